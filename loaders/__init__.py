@@ -1,0 +1,18 @@
+"""Drive loaders: file formats and message types in, ``Frame`` records out; no safety logic."""
+
+from loaders.drive import Drive, DriveInfo, TopicInfo, TopicRoles
+from loaders.errors import LoaderError
+from loaders.records import ActorTable, EgoState, Frame, ObjectClass, Plan
+
+__all__ = [
+    "ActorTable",
+    "Drive",
+    "DriveInfo",
+    "EgoState",
+    "Frame",
+    "LoaderError",
+    "ObjectClass",
+    "Plan",
+    "TopicInfo",
+    "TopicRoles",
+]

@@ -1,0 +1,20 @@
+"""Registry of CLI command modules; each module exposes ``register(app)``."""
+
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    import typer
+
+__all__ = ["COMMAND_MODULES", "register_all"]
+
+#: Modules whose ``register(app)`` adds commands, in help order.
+COMMAND_MODULES: tuple[str, ...] = ()
+
+
+def register_all(app: typer.Typer) -> None:
+    """Import every command module and let it add its commands to ``app``."""
+    for name in COMMAND_MODULES:
+        importlib.import_module(name).register(app)
