@@ -1,0 +1,78 @@
+"""Run every benchmark and write ``docs/benchmarks.md`` with the machine and date.
+
+Each ``bench/bench_*.py`` module exposes ``run(quick: bool) -> str`` returning a Markdown
+section (heading level 2) with its measured table. Modules run in name order, one at a time,
+so they do not compete for the two cores.
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime as dt
+import importlib
+import os
+import platform
+import subprocess
+import sys
+from pathlib import Path
+
+
+def _machine() -> str:
+    cpu = platform.processor() or platform.machine()
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                cpu = line.split(":", 1)[1].strip()
+                break
+    except OSError:
+        pass
+    mem_gib = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES") / 2**30
+    return (
+        f"{cpu}, {os.cpu_count()} cores, {mem_gib:.0f} GiB, {platform.system()} "
+        f"{platform.release()}, Python {platform.python_version()}"
+    )
+
+
+def _commit() -> str:
+    try:
+        out = subprocess.run(
+            ["git", "rev-parse", "--short", "HEAD"],  # noqa: S607
+            capture_output=True,
+            text=True,
+            check=False,
+        )
+    except OSError:
+        return "unknown"
+    return out.stdout.strip() or "unknown"
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run the benchmarks named on the command line (all by default) and write the report."""
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--out", type=Path, default=Path("docs/benchmarks.md"))
+    parser.add_argument("--quick", action="store_true", help="smaller workloads (smoke run)")
+    parser.add_argument("only", nargs="*", help="bench module names, e.g. bench_replay")
+    args = parser.parse_args(argv)
+    here = Path(__file__).parent
+    names = args.only or sorted(p.stem for p in here.glob("bench_*.py"))
+    sections = []
+    for name in names:
+        print(f"running {name} ...", file=sys.stderr, flush=True)
+        module = importlib.import_module(f"bench.{name}")
+        sections.append(module.run(quick=args.quick).rstrip() + "\n")
+    today = dt.datetime.now(tz=dt.UTC).date().isoformat()
+    header = (
+        "# Benchmarks\n\n"
+        f"Measured by `make bench` on {today}, commit `{_commit()}`.\n\n"
+        f"Machine: {_machine()}.\n\n"
+        "Every number below comes from that one run; engines and their reference "
+        "implementations ran side by side in the same process where a reference exists.\n\n"
+    )
+    args.out.parent.mkdir(parents=True, exist_ok=True)
+    args.out.write_text(header + "\n".join(sections))
+    print(f"wrote {args.out}", file=sys.stderr)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
