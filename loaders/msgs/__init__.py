@@ -1,0 +1,1 @@
+"""Message definitions (``<package>__<Type>.msg``) registered by ``loaders.typestore``."""

@@ -1,0 +1,57 @@
+"""Typestores with the AV message types the ROS core stores lack.
+
+rosbags' stores hold only the ROS core packages. For *writing* sample logs and for reading
+old ROS 2 bags that carry no message definitions, we register the CARLA
+(``derived_object_msgs``), Autoware (``autoware_perception_msgs``, ``autoware_planning_msgs``)
+and ``vision_msgs`` 4.x types from the ``.msg`` files in ``loaders/msgs/``. Their field layout
+follows the upstream interface definitions; files are named ``<package>__<Type>.msg``.
+Reading a log never needs this: ROS 1 bags and MCAP files embed their definitions and
+rosbags' ``AnyReader`` builds the types itself.
+"""
+
+from __future__ import annotations
+
+import functools
+from importlib import resources
+from typing import TYPE_CHECKING
+
+from rosbags.typesys import Stores, get_types_from_msg, get_typestore
+
+if TYPE_CHECKING:
+    from rosbags.typesys.store import Typestore
+
+__all__ = ["CUSTOM_MSGTYPES", "typestore"]
+
+
+def _custom_types() -> dict[str, object]:
+    types: dict[str, object] = {}
+    for entry in sorted(resources.files("loaders.msgs").iterdir(), key=lambda e: e.name):
+        if not entry.name.endswith(".msg"):
+            continue
+        package, name = entry.name.removesuffix(".msg").split("__")
+        types.update(get_types_from_msg(entry.read_text(), f"{package}/msg/{name}"))
+    return types
+
+
+#: Message types we register on top of the ROS core stores.
+CUSTOM_MSGTYPES: tuple[str, ...] = tuple(
+    sorted(t for t in _custom_types() if not t.startswith("unique_identifier_msgs/"))
+)
+
+
+@functools.cache
+def typestore(ros_version: int = 2) -> Typestore:
+    """Return a typestore (ROS 2 Humble or ROS 1 Noetic) with the AV types registered.
+
+    Args:
+        ros_version: 1 for ROS 1 Noetic (bags), 2 for ROS 2 Humble (MCAP, rosbag2).
+
+    Returns:
+        A cached typestore; do not register further types on it.
+    """
+    store = get_typestore(Stores.ROS1_NOETIC if ros_version == 1 else Stores.ROS2_HUMBLE)
+    types = _custom_types()
+    if "unique_identifier_msgs/msg/UUID" in store.types:
+        types.pop("unique_identifier_msgs/msg/UUID")
+    store.register(types)  # type: ignore[arg-type]
+    return store
