@@ -1,0 +1,34 @@
+"""Shared pytest fixtures.
+
+``external_dir`` locates the real-world test data in the sibling ``shared/external``
+directory of the repository (never committed). Tests that use it skip with a reason when
+the directory is absent, except under ``CI=true``, where a missing directory is a failure.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import pytest
+
+EXTERNAL_DIR = (Path(__file__).resolve().parents[1] / ".." / "shared" / "external").resolve()
+
+
+def _ci() -> bool:
+    return os.environ.get("CI", "").strip().lower() in {"1", "true", "yes"}
+
+
+@pytest.fixture(scope="session")
+def external_dir() -> Path:
+    """The ``shared/external`` data directory next to the repository.
+
+    Skips the requesting test when the directory is absent; fails it instead when the
+    environment variable ``CI`` is ``true``.
+    """
+    if not EXTERNAL_DIR.is_dir():
+        reason = f"external test data not found at {EXTERNAL_DIR}"
+        if _ci():
+            pytest.fail(f"{reason} (CI=true: external data is required)")
+        pytest.skip(reason)
+    return EXTERNAL_DIR
