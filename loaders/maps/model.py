@@ -41,6 +41,8 @@ class LaneKind(enum.Enum):
     SIDEWALK = "sidewalk"
     PARKING = "parking"
     TRACK = "track"
+    BICYCLE = "bicycle"
+    RAIL = "rail"
 
 
 class LineType(enum.Enum):
@@ -71,6 +73,10 @@ class Lane:
         right_neighbour: Adjacent lane on the right, if any.
         left_line: Marking of the left border.
         right_line: Marking of the right border.
+        left_neighbour_opposite: The left neighbour runs against this lane's reference
+            direction (its border order is reversed), e.g. the oncoming lane.
+        right_neighbour_opposite: The right neighbour runs against this lane's reference
+            direction.
     """
 
     id: str
@@ -86,6 +92,8 @@ class Lane:
     right_neighbour: str | None = None
     left_line: LineType = LineType.UNKNOWN
     right_line: LineType = LineType.UNKNOWN
+    left_neighbour_opposite: bool = False
+    right_neighbour_opposite: bool = False
 
     def __post_init__(self) -> None:
         """Freeze the border arrays."""
