@@ -1,10 +1,11 @@
-"""Polyline helpers shared by the map readers: arc length, resampling and centre lines.
+"""Geometry shared by the map readers: geodetic projection, arc length, resampling, centre lines.
 
 All polylines are ``(K, 2)`` float arrays in the map frame (ENU, metres).
 """
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -12,7 +13,10 @@ import numpy as np
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike, NDArray
 
-__all__ = ["arc_length_m", "centre_line_m", "resample_polyline_m"]
+__all__ = ["arc_length_m", "centre_line_m", "project_to_local_enu_m", "resample_polyline_m"]
+
+_WGS84_A_M = 6_378_137.0
+_WGS84_F = 1.0 / 298.257223563
 
 
 def arc_length_m(points_m: ArrayLike) -> NDArray[np.float64]:
@@ -79,3 +83,43 @@ def centre_line_m(left_m: ArrayLike, right_m: ArrayLike) -> NDArray[np.float64]:
     right = np.asarray(right_m, dtype=np.float64).reshape(-1, 2)
     count = max(len(left), len(right), 2)
     return 0.5 * (resample_polyline_m(left, count) + resample_polyline_m(right, count))
+
+
+def project_to_local_enu_m(
+    lat_deg: ArrayLike, lon_deg: ArrayLike, lat0_deg: float, lon0_deg: float
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Project WGS-84 coordinates onto the east-north tangent plane at an origin.
+
+    Args:
+        lat_deg: Latitudes, ``(N,)`` degrees.
+        lon_deg: Longitudes, ``(N,)`` degrees.
+        lat0_deg: Origin latitude, degrees.
+        lon0_deg: Origin longitude, degrees.
+
+    Returns:
+        East and north offsets from the origin, each ``(N,)`` metres.
+    """
+    e2 = _WGS84_F * (2.0 - _WGS84_F)
+
+    def ecef(lat: NDArray[np.float64], lon: NDArray[np.float64]) -> NDArray[np.float64]:
+        n = _WGS84_A_M / np.sqrt(1.0 - e2 * np.sin(lat) ** 2)
+        return np.stack(
+            (
+                n * np.cos(lat) * np.cos(lon),
+                n * np.cos(lat) * np.sin(lon),
+                n * (1 - e2) * np.sin(lat),
+            )
+        )
+
+    lat0, lon0 = math.radians(lat0_deg), math.radians(lon0_deg)
+    d = ecef(
+        np.radians(np.asarray(lat_deg, dtype=np.float64)),
+        np.radians(np.asarray(lon_deg, dtype=np.float64)),
+    ) - ecef(np.array([lat0]), np.array([lon0]))
+    east = -math.sin(lon0) * d[0] + math.cos(lon0) * d[1]
+    north = (
+        -math.sin(lat0) * math.cos(lon0) * d[0]
+        - math.sin(lat0) * math.sin(lon0) * d[1]
+        + math.cos(lat0) * d[2]
+    )
+    return east, north

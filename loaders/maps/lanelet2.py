@@ -32,7 +32,7 @@ from pathlib import Path
 import numpy as np
 
 from loaders.errors import MapError
-from loaders.maps.geometry import centre_line_m
+from loaders.maps.geometry import centre_line_m, project_to_local_enu_m
 from loaders.maps.model import (
     Lane,
     LaneDirection,
@@ -43,10 +43,8 @@ from loaders.maps.model import (
     TrafficLight,
 )
 
-__all__ = ["project_to_local_enu_m", "read_lanelet2"]
+__all__ = ["read_lanelet2"]
 
-_WGS84_A_M = 6_378_137.0
-_WGS84_F = 1.0 / 298.257223563
 _KMH_TO_MPS = 1.0 / 3.6
 _MPH_TO_MPS = 0.44704
 _BIDIRECTIONAL = {"no", "false", "0"}
@@ -76,46 +74,6 @@ class _Border:
 
     def flipped(self) -> _Border:
         return _Border(self.way, not self.reversed, self.nodes[::-1], self.points_m[::-1])
-
-
-def project_to_local_enu_m(
-    lat_deg: np.ndarray, lon_deg: np.ndarray, lat0_deg: float, lon0_deg: float
-) -> tuple[np.ndarray, np.ndarray]:
-    """Project WGS-84 coordinates onto the east-north tangent plane at an origin.
-
-    Args:
-        lat_deg: Latitudes, ``(N,)`` degrees.
-        lon_deg: Longitudes, ``(N,)`` degrees.
-        lat0_deg: Origin latitude, degrees.
-        lon0_deg: Origin longitude, degrees.
-
-    Returns:
-        East and north offsets from the origin, each ``(N,)`` metres.
-    """
-    e2 = _WGS84_F * (2.0 - _WGS84_F)
-
-    def ecef(lat: np.ndarray, lon: np.ndarray) -> np.ndarray:
-        n = _WGS84_A_M / np.sqrt(1.0 - e2 * np.sin(lat) ** 2)
-        return np.stack(
-            (
-                n * np.cos(lat) * np.cos(lon),
-                n * np.cos(lat) * np.sin(lon),
-                n * (1 - e2) * np.sin(lat),
-            )
-        )
-
-    lat0, lon0 = math.radians(lat0_deg), math.radians(lon0_deg)
-    d = (
-        ecef(np.radians(lat_deg), np.radians(lon_deg))
-        - ecef(np.array(lat0), np.array(lon0))[:, None]
-    )
-    east = -math.sin(lon0) * d[0] + math.cos(lon0) * d[1]
-    north = (
-        -math.sin(lat0) * math.cos(lon0) * d[0]
-        - math.sin(lat0) * math.sin(lon0) * d[1]
-        + math.cos(lat0) * d[2]
-    )
-    return east, north
 
 
 def read_lanelet2(source: Path | bytes, *, name: str | None = None) -> LaneMap:
