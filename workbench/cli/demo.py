@@ -1,0 +1,125 @@
+"""``workbench demo``: replay every sample log of a directory and print one summary table."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Annotated
+
+import typer
+from rich.console import Console
+from rich.table import Table
+
+from workbench.cli.replay import default_output, open_log, run_with_progress
+from workbench.errors import USER_ERRORS
+
+__all__ = ["DemoRow", "demo", "find_sample_logs", "register"]
+
+_LOG_SUFFIXES = (".mcap", ".bag", ".xml")
+
+
+def _is_rosbag2_dir(path: Path) -> bool:
+    return path.is_dir() and (path / "metadata.yaml").is_file()
+
+
+def find_sample_logs(samples_dir: Path) -> list[Path]:
+    """Drives directly in ``samples_dir``, sorted by name.
+
+    Drives are ``*.mcap``, ``*.bag`` and CommonRoad ``*.xml`` files and rosbag2 directories
+    (a directory holding ``metadata.yaml``).
+    """
+    found = [
+        p
+        for p in samples_dir.iterdir()
+        if (p.is_file() and p.suffix.lower() in _LOG_SUFFIXES) or _is_rosbag2_dir(p)
+    ]
+    return sorted(found, key=lambda p: p.name)
+
+
+@dataclass(frozen=True, slots=True)
+class DemoRow:
+    """One line of the summary table; ``error`` is set when the log could not be replayed."""
+
+    log: str
+    source_format: str = ""
+    frames: int = 0
+    actors: int = 0
+    duration_s: float = 0.0
+    frames_per_s: float = 0.0
+    output: str = ""
+    error: str = ""
+
+
+def _replay_one(log: Path, out_dir: Path) -> DemoRow:
+    target = default_output(log, out_dir)
+    try:
+        drive = open_log(log, map_path=None, profile=None, ego_id=None)
+        try:
+            s = run_with_progress(
+                drive, label=f"replay {log.name}", start_s=None, end_s=None, out=target
+            )
+        finally:
+            drive.close()
+    except USER_ERRORS as err:
+        return DemoRow(log=log.name, error=str(err))
+    return DemoRow(
+        log=log.name,
+        source_format=s.source_format,
+        frames=s.frames,
+        actors=s.actors_seen,
+        duration_s=s.duration_s,
+        frames_per_s=s.frames_per_s,
+        output=str(target),
+    )
+
+
+def _table(rows: list[DemoRow]) -> Table:
+    table = Table(title="workbench demo", title_justify="left")
+    for name in ("log", "format", "frames", "actors", "duration", "frames/s", "output"):
+        table.add_column(name, justify="right" if name in {"frames", "actors"} else "left")
+    for r in rows:
+        if r.error:
+            table.add_row(r.log, "[red]failed[/red]", "", "", "", "", f"[red]{r.error}[/red]")
+            continue
+        table.add_row(
+            r.log,
+            r.source_format,
+            str(r.frames),
+            str(r.actors),
+            f"{r.duration_s:.1f} s",
+            f"{r.frames_per_s:.0f}",
+            r.output,
+        )
+    return table
+
+
+def demo(
+    samples_dir: Annotated[Path, typer.Argument(help="Directory of sample logs.")],
+    *,
+    out: Annotated[Path, typer.Option("--out", help="Directory for the .rrd files.")] = Path(
+        "out/demo"
+    ),
+) -> None:
+    """Replay every sample log in SAMPLES_DIR into OUT/<name>.rrd and summarise."""
+    from workbench.replay.run import ReplayError  # noqa: PLC0415
+
+    if not samples_dir.is_dir():
+        raise ReplayError(f"{samples_dir}: not a directory")
+    logs = find_sample_logs(samples_dir)
+    if not logs:
+        raise ReplayError(f"{samples_dir}: no .mcap, .bag, rosbag2 directory or .xml found")
+    rows = [_replay_one(log, out) for log in logs]
+    console = Console(width=max(Console().width, 120))
+    console.print(_table(rows))
+    done = [r for r in rows if not r.error]
+    if done:
+        console.print("open one with:")
+        for r in done[:3]:
+            console.print(f"  rerun {r.output}", highlight=False)
+    if not done:
+        raise typer.Exit(1)
+
+
+def register(app: typer.Typer) -> None:
+    """Add ``demo`` to the CLI."""
+    app.command("demo")(demo)

@@ -1,0 +1,87 @@
+"""The default viewer layout of a replay, built in one function.
+
+::
+
+    +-------------------------------------+------------------------+
+    |                                     | plots (time series)    |
+    |  world: 3-D scene, camera follows   +------------------------+
+    |  the ego from above and behind      | rss | reach (tabs)     |
+    |                                     |                        |
+    +-------------------------------------+------------------------+
+    | time panel on the ``frame`` timeline                         |
+    +--------------------------------------------------------------+
+
+``/rss`` and ``/reach`` stay empty until the engines log their results there.
+"""
+
+from __future__ import annotations
+
+import rerun.blueprint as rrb
+
+from workbench.replay.sink import FRAME_TIMELINE, TIME_TIMELINE
+
+__all__ = ["TRAIL_FRAMES", "TRAIL_SECONDS", "replay_blueprint"]
+
+#: The ego trail shows this many past frames on the ``frame`` timeline ...
+TRAIL_FRAMES = 100
+#: ... or this many seconds on the ``log_time`` timeline.
+TRAIL_SECONDS = 10.0
+
+#: Camera offset from the ego: behind (-x), above (+z); metres, map frame.
+_EYE_OFFSET_M = (-25.0, 0.0, 60.0)
+
+
+def _trail_ranges() -> rrb.VisibleTimeRanges:
+    return rrb.VisibleTimeRanges(
+        [
+            rrb.VisibleTimeRange(
+                FRAME_TIMELINE,
+                start=rrb.TimeRangeBoundary.cursor_relative(seq=-TRAIL_FRAMES),
+                end=rrb.TimeRangeBoundary.cursor_relative(),
+            ),
+            rrb.VisibleTimeRange(
+                TIME_TIMELINE,
+                start=rrb.TimeRangeBoundary.cursor_relative(seconds=-TRAIL_SECONDS),
+                end=rrb.TimeRangeBoundary.cursor_relative(),
+            ),
+        ]
+    )
+
+
+def replay_blueprint(ego_start_m: tuple[float, float] | None = None) -> rrb.Blueprint:
+    """The default blueprint: scene, plots, engine result views, time panel on ``frame``.
+
+    Args:
+        ego_start_m: Ego position at the first frame ``(x, y)``; the camera starts there and
+            then tracks ``world/ego``.
+    """
+    x0, y0 = ego_start_m or (0.0, 0.0)
+    dx, dy, dz = _EYE_OFFSET_M
+    scene = rrb.Spatial3DView(
+        name="scene",
+        origin="/world",
+        line_grid=rrb.LineGrid3D(visible=False),
+        eye_controls=rrb.EyeControls3D(
+            kind=rrb.Eye3DKind.Orbital,
+            position=(x0 + dx, y0 + dy, dz),
+            look_target=(x0, y0, 0.0),
+            eye_up=(0.0, 0.0, 1.0),
+            tracking_entity="/world/ego",
+        ),
+        overrides={"world/ego/trail": _trail_ranges()},
+    )
+    side = rrb.Vertical(
+        rrb.TimeSeriesView(name="plots", origin="/plots"),
+        rrb.Tabs(
+            rrb.StateTimelineView(name="rss", origin="/rss"),
+            rrb.Spatial3DView(name="reach", origin="/reach"),
+        ),
+        row_shares=[3, 2],
+    )
+    return rrb.Blueprint(
+        rrb.Horizontal(scene, side, column_shares=[3, 1]),
+        rrb.TimePanel(timeline=FRAME_TIMELINE),
+        rrb.SelectionPanel(state="hidden"),
+        rrb.BlueprintPanel(state="hidden"),
+        collapse_panels=False,
+    )

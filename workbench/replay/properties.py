@@ -1,0 +1,51 @@
+"""Recording properties of a replay: the drive's metadata, decided here, sent by the sink.
+
+Pure: no Rerun import. Properties appear in the viewer's recording panel and in
+``property:<name>:<field>`` columns when an ``.rrd`` is read back.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from loaders.drive import DriveInfo
+
+__all__ = ["PropertyValue", "drive_properties", "recording_name"]
+
+PropertyValue = str | int | float
+
+
+def recording_name(info: DriveInfo) -> str:
+    """Name shown for the recording: the log's file name and its format."""
+    return f"{info.path.name} ({info.source_format})"
+
+
+def drive_properties(info: DriveInfo) -> dict[str, dict[str, PropertyValue]]:
+    """Property name to fields for a drive.
+
+    ``drive`` holds what was detected (path, format, roles, clock, matching tolerance, frame
+    count, map source, time span); ``notes`` holds the loader's free-form notes, if any.
+
+    Args:
+        info: What the loader detected about the drive.
+    """
+    roles = info.roles
+    drive: dict[str, PropertyValue] = {
+        "path": str(info.path),
+        "format": info.source_format,
+        "ego_topic": roles.ego,
+        "object_topics": ", ".join(roles.objects),
+        "plan_topic": roles.plan or "",
+        "clock": info.clock,
+        "match_tolerance_s": info.match_tolerance_ns / 1e9,
+        "frame_count": int(info.frame_count),
+        "map_source": info.map_source or "",
+        "start_ns": int(info.start_ns),
+        "end_ns": int(info.end_ns),
+        "duration_s": info.duration_s,
+    }
+    out: dict[str, dict[str, PropertyValue]] = {"drive": drive}
+    if info.notes:
+        out["notes"] = {key: str(value) for key, value in sorted(info.notes.items())}
+    return out

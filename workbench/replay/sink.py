@@ -1,0 +1,240 @@
+"""A thin Rerun sink: sends what ``layout`` and ``properties`` decided, nothing more.
+
+Entity paths (they mirror the scene; see ``docs/replay.md``)::
+
+    world                      ViewCoordinates RIGHT_HAND_Z_UP, AnnotationContext (static)
+    world/map/borders/<type>   LineStrips3D lane borders by line type (static)
+    world/map/centre/<kind>    LineStrips3D centre lines by lane kind, dim (static)
+    world/map/boundaries       LineStrips3D road/track boundaries (static)
+    world/ego                  Boxes3D, one box per frame
+    world/ego/trail            Points3D, one point per frame (the blueprint shows the recent ones)
+    world/ego/plan             LineStrips3D, the plan valid at the frame
+    world/actors               Boxes3D with class ids and id labels
+    world/actors/velocity      Arrows3D, one second of travel at the current velocity
+    plots/ego/speed_mps        Scalars
+    plots/ego/accel_mps2       Scalars
+    plots/actors/count         Scalars
+    plots/actors/min_distance_m  Scalars (frames with at least one actor)
+
+Every temporal entity gets one ``send_columns`` call per chunk on the timelines ``frame``
+(sequence) and ``log_time`` (the drive's timestamps; the SDK's own wall-clock ``log_time`` is
+switched off so the name means drive time).
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+import rerun as rr
+
+from loaders.records import ObjectClass
+from workbench.replay import style
+
+if TYPE_CHECKING:
+    from collections.abc import Mapping
+
+    from numpy.typing import NDArray
+
+    from workbench.replay.layout import ChunkLayout, MapLayout
+
+__all__ = ["FRAME_TIMELINE", "TIME_TIMELINE", "RerunSink"]
+
+FRAME_TIMELINE = "frame"
+TIME_TIMELINE = "log_time"
+
+_SERIES: dict[str, tuple[str, int]] = {
+    "plots/ego/speed_mps": ("ego speed [m/s]", 0x00E676FF),
+    "plots/ego/accel_mps2": ("ego acceleration [m/s²]", 0x29B6F6FF),
+    "plots/actors/count": ("actors", 0xFFA726FF),
+    "plots/actors/min_distance_m": ("nearest actor [m]", 0xEF5350FF),
+}
+
+
+def _u32(colors: list[int] | int, n: int = 1) -> NDArray[np.uint32]:
+    """Packed RGBA as a ``uint32`` array (a bare list of three ints is ambiguous to Rerun)."""
+    if isinstance(colors, int):
+        return np.full(n, colors, dtype=np.uint32)
+    return np.asarray(colors, dtype=np.uint32)
+
+
+class RerunSink:
+    """Sends a drive to one explicit ``rr.RecordingStream`` (never the global one)."""
+
+    def __init__(self, recording: rr.RecordingStream) -> None:
+        """Wrap ``recording`` and switch off its wall-clock ``log_time`` timeline.
+
+        Args:
+            recording: The stream to log to; its sinks (file, viewer, server) are set by the
+                caller.
+        """
+        self.recording = recording
+        recording.set_log_time_enabled(False)
+        self._plan_seen = False
+
+    def send_static(
+        self,
+        *,
+        name: str,
+        start_ns: int,
+        properties: Mapping[str, Mapping[str, str | int | float]],
+        map_layout: MapLayout | None,
+    ) -> None:
+        """Send recording properties, coordinates, class annotations, series styles and the map.
+
+        Args:
+            name: Recording name shown in the viewer.
+            start_ns: Drive start, used as the recording start time.
+            properties: Property name to fields (see ``workbench.replay.properties``).
+            map_layout: Static map geometry, if the drive has a map.
+        """
+        rec = self.recording
+        rec.send_recording_name(name)
+        rec.send_recording_start_time_nanos(start_ns)
+        for prop, fields in properties.items():
+            values = rr.AnyValues()
+            for key, value in fields.items():
+                values.with_component_from_data(key, value)
+            rec.send_property(prop, values)
+        rec.log("world", rr.ViewCoordinates.RIGHT_HAND_Z_UP, static=True)
+        infos = [
+            rr.AnnotationInfo(id=int(cls), label=cls.label, color=int(style.CLASS_COLORS[cls]))
+            for cls in ObjectClass
+        ]
+        rec.log("world", rr.AnnotationContext(infos), static=True)
+        for path, (label, color) in _SERIES.items():
+            rec.log(path, rr.SeriesLines(names=[label], colors=_u32([color])), static=True)
+        if map_layout is not None:
+            self._send_map(map_layout)
+
+    def _send_map(self, layout: MapLayout) -> None:
+        rec = self.recording
+        for line_type, strips in layout.borders.items():
+            color = style.BORDER_COLORS.get(line_type, style.BORDER_COLORS["unknown"])
+            rec.log(
+                f"world/map/borders/{line_type}",
+                rr.LineStrips3D(strips, radii=style.BORDER_RADIUS_M, colors=_u32(color)),
+                static=True,
+            )
+        for kind, strips in layout.centres.items():
+            rec.log(
+                f"world/map/centre/{kind}",
+                rr.LineStrips3D(
+                    strips, radii=style.CENTRE_RADIUS_M, colors=_u32(style.CENTRE_COLOR)
+                ),
+                static=True,
+            )
+        if len(layout.boundaries):
+            rec.log(
+                "world/map/boundaries",
+                rr.LineStrips3D(
+                    layout.boundaries,
+                    radii=style.BOUNDARY_RADIUS_M,
+                    colors=_u32(style.BOUNDARY_COLOR),
+                ),
+                static=True,
+            )
+
+    def send_chunk(self, layout: ChunkLayout) -> None:
+        """Send one chunk of frames: one columnar call per entity.
+
+        Args:
+            layout: The chunk's columns from ``layout_chunk``.
+        """
+        rec = self.recording
+        n = len(layout)
+        index = [
+            rr.TimeColumn(FRAME_TIMELINE, sequence=layout.frame),
+            rr.TimeColumn(TIME_TIMELINE, timestamp=layout.t_ns.astype("datetime64[ns]")),
+        ]
+        ego = layout.ego
+        rec.send_columns(
+            "world/ego",
+            indexes=index,
+            columns=rr.Boxes3D.columns(
+                centers=ego.centre_m,
+                half_sizes=ego.half_size_m,
+                quaternions=ego.quaternion_xyzw,
+                colors=_u32(style.EGO_COLOR, n),
+                labels=np.full(n, "ego"),
+            ),
+        )
+        trail = ego.centre_m.copy()
+        trail[:, 2] = style.EGO_TRAIL_RADIUS_M
+        rec.send_columns(
+            "world/ego/trail",
+            indexes=index,
+            columns=rr.Points3D.columns(
+                positions=trail,
+                radii=np.full(n, style.EGO_TRAIL_RADIUS_M, dtype=np.float32),
+                colors=_u32(style.EGO_COLOR, n),
+            ),
+        )
+        self._send_actors(index, layout)
+        self._send_plan(index, layout)
+        self._send_scalars(index, layout)
+
+    def _send_actors(self, index: list[rr.TimeColumn], layout: ChunkLayout) -> None:
+        actors = layout.actors
+        self.recording.send_columns(
+            "world/actors",
+            indexes=index,
+            columns=rr.Boxes3D.columns(
+                centers=actors.centre_m,
+                half_sizes=actors.half_size_m,
+                quaternions=actors.quaternion_xyzw,
+                class_ids=actors.class_ids,
+                labels=actors.labels,
+            ).partition(actors.counts),
+        )
+        self.recording.send_columns(
+            "world/actors/velocity",
+            indexes=index,
+            columns=rr.Arrows3D.columns(
+                origins=actors.centre_m,
+                vectors=actors.velocity_mps,
+                colors=_u32(style.VELOCITY_COLOR, len(actors.labels)),
+            ).partition(actors.counts),
+        )
+
+    def _send_plan(self, index: list[rr.TimeColumn], layout: ChunkLayout) -> None:
+        plan = layout.plan
+        if not self._plan_seen and not plan.counts.any():
+            return
+        self._plan_seen = True
+        self.recording.send_columns(
+            "world/ego/plan",
+            indexes=index,
+            columns=rr.LineStrips3D.columns(
+                strips=plan.strips_m,
+                radii=np.full(len(plan.strips_m), style.PLAN_RADIUS_M, dtype=np.float32),
+                colors=_u32(style.PLAN_COLOR, len(plan.strips_m)),
+            ).partition(plan.counts),
+        )
+
+    def _send_scalars(self, index: list[rr.TimeColumn], layout: ChunkLayout) -> None:
+        rec = self.recording
+        series = {
+            "plots/ego/speed_mps": layout.ego.speed_mps,
+            "plots/ego/accel_mps2": layout.ego.accel_mps2,
+            "plots/actors/count": layout.actors.counts.astype(np.float64),
+        }
+        for path, values in series.items():
+            rec.send_columns(path, indexes=index, columns=rr.Scalars.columns(scalars=values))
+        dist = layout.actors.min_distance_m
+        keep = np.isfinite(dist)
+        if keep.any():
+            rec.send_columns(
+                "plots/actors/min_distance_m",
+                indexes=[
+                    rr.TimeColumn(FRAME_TIMELINE, sequence=layout.frame[keep]),
+                    rr.TimeColumn(
+                        TIME_TIMELINE, timestamp=layout.t_ns[keep].astype("datetime64[ns]")
+                    ),
+                ],
+                columns=rr.Scalars.columns(scalars=dist[keep]),
+            )
+
+    def flush(self) -> None:
+        """Block until everything sent so far has reached the sinks."""
+        self.recording.flush()
