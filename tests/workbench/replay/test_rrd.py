@@ -1,0 +1,88 @@
+"""Write an .rrd from a fake drive and read it back without a viewer."""
+
+import numpy as np
+import pytest
+from rerun.chunk import RrdReader
+
+from tests.workbench.fakes import T0_NS, FakeDrive
+from workbench.replay.run import ReplayError, replay_drive
+
+
+def _store(path):
+    return RrdReader(path).store().stream().collect()
+
+
+def _rows(store, entity):
+    return store.reader(index="frame", contents=entity).to_arrow_table()
+
+
+def test_replay_writes_entities_timelines_and_properties(tmp_path):
+    out = tmp_path / "sub" / "drive.rrd"
+    summary = replay_drive(FakeDrive(n_frames=23, n_actors=4), out=out, chunk_frames=10)
+    assert out.is_file()
+    assert (summary.frames, summary.actors_seen) == (23, 4)
+    assert summary.duration_s == pytest.approx(2.2)
+    assert summary.output == str(out)
+
+    store = _store(out)
+    for entity in (
+        "/world/ego",
+        "/world/ego/trail",
+        "/world/ego/plan",
+        "/world/actors",
+        "/world/actors/velocity",
+        "/plots/ego/speed_mps",
+        "/plots/ego/accel_mps2",
+        "/plots/actors/count",
+        "/plots/actors/min_distance_m",
+    ):
+        table = _rows(store, entity)
+        assert table.num_rows == 23, entity
+        assert sorted(table.column("frame").to_pylist()) == list(range(23))
+
+    actors = _rows(store, "/world/actors").to_pydict()
+    assert actors["/world/actors:Boxes3D:labels"][0] == ["car0", "car1", "car2", "car3"]
+    stamps = _rows(store, "/world/ego").column("log_time").cast("int64").to_numpy()
+    np.testing.assert_array_equal(np.sort(stamps), T0_NS + np.arange(23) * 100_000_000)
+
+    static = store.reader(index=None, contents="/world/**").to_arrow_table().column_names
+    assert "/world/map/borders/solid:LineStrips3D:strips" in static
+    assert "/world/map/centre/road:LineStrips3D:strips" in static
+    assert "/world:AnnotationContext:context" in static
+    assert "/world:ViewCoordinates:xyz" in static
+
+    props = store.reader(index=None, contents="/__properties/**").to_arrow_table().to_pydict()
+    assert props["property:drive:format"] == [["fake"]]
+    assert props["property:drive:frame_count"] == [[23]]
+    assert props["property:drive:ego_topic"] == [["/ego/odom"]]
+    assert props["property:RecordingInfo:name"] == [["fake_drive.mcap (fake)"]]
+    assert props["property:RecordingInfo:start_time"] == [[T0_NS]]
+
+
+def test_no_wall_clock_timeline_and_a_default_blueprint(tmp_path):
+    out = tmp_path / "d.rrd"
+    replay_drive(FakeDrive(n_frames=3), out=out)
+    reader = RrdReader(out)
+    assert len(reader.blueprints()) == 1
+    stamps = _rows(_store(out), "/world/ego").column("log_time").cast("int64").to_pylist()
+    assert min(stamps) >= T0_NS  # drive time, not the time the replay ran
+    assert max(stamps) < T0_NS + 10**9
+
+
+def test_time_window_and_drive_without_map_or_actors(tmp_path):
+    out = tmp_path / "w.rrd"
+    drive = FakeDrive(n_frames=40, n_actors=0, with_map=False)
+    summary = replay_drive(drive, out=out, start_ns=T0_NS + 10**9, end_ns=T0_NS + 2 * 10**9)
+    assert summary.frames == 10
+    assert summary.actors_seen == 0
+    store = _store(out)
+    assert _rows(store, "/world/ego").num_rows == 10
+    names = store.reader(index=None, contents="/world/**").to_arrow_table().column_names
+    assert not any(name.startswith("/world/map") for name in names)
+
+
+def test_exactly_one_destination(tmp_path):
+    with pytest.raises(ReplayError, match="exactly one"):
+        replay_drive(FakeDrive(n_frames=1), out=tmp_path / "x.rrd", spawn=True)
+    with pytest.raises(ReplayError, match="exactly one"):
+        replay_drive(FakeDrive(n_frames=1))
