@@ -30,7 +30,7 @@ def opened(monkeypatch):
     return calls
 
 
-def _log(tmp_path, name="drive.mcap"):
+def _log(tmp_path: Path, name: str = "drive.mcap") -> Path:
     path = tmp_path / name
     path.write_bytes(b"")
     return path

@@ -1,5 +1,8 @@
 """Write an .rrd from a fake drive and read it back without a viewer."""
 
+from pathlib import Path
+from typing import Any
+
 import numpy as np
 import pytest
 from rerun.chunk import RrdReader
@@ -8,11 +11,11 @@ from tests.workbench.fakes import T0_NS, FakeDrive
 from workbench.replay.run import ReplayError, replay_drive
 
 
-def _store(path):
+def _store(path: Path) -> Any:
     return RrdReader(path).store().stream().collect()
 
 
-def _rows(store, entity):
+def _rows(store: Any, entity: str) -> Any:
     return store.reader(index="frame", contents=entity).to_arrow_table()
 
 
