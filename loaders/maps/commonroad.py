@@ -31,7 +31,13 @@ if TYPE_CHECKING:
 
     from numpy.typing import NDArray
 
-__all__ = ["NETWORK_TAGS", "lane_map_from_elements", "read_commonroad_map"]
+__all__ = [
+    "NETWORK_TAGS",
+    "id_sort_key",
+    "lane_map_from_elements",
+    "parse_float",
+    "read_commonroad_map",
+]
 
 #: Top-level scenario elements that make up the lanelet network.
 NETWORK_TAGS = frozenset({"lanelet", "trafficSign", "trafficLight", "intersection"})
@@ -134,7 +140,7 @@ def _sign_speeds_mps(signs: list[ET.Element]) -> dict[str, float]:
         for element in sign.iter("trafficSignElement"):
             if (element.findtext("trafficSignID") or "").strip() not in _SPEED_SIGNS:
                 continue
-            value = _float(element.findtext("additionalValue"))
+            value = parse_float(element.findtext("additionalValue"))
             if math.isfinite(value):
                 sid = sign.get("id", "")
                 out[sid] = min(out.get(sid, math.inf), value)
@@ -151,7 +157,7 @@ def _intersections(elems: list[ET.Element], known: Iterable[str]) -> tuple[tuple
             for ref in inter.iter(role)
             if ref.get("ref", "") in ids
         }
-        groups.append(tuple(sorted(inner, key=_id_key)))
+        groups.append(tuple(sorted(inner, key=id_sort_key)))
     return tuple(groups)
 
 
@@ -166,7 +172,7 @@ def _lane(
 ) -> Lane:
     left, left_line = _bound(lid, elem, "leftBound", source)
     right, right_line = _bound(lid, elem, "rightBound", source)
-    speeds = [_float(elem.findtext("speedLimit"))]
+    speeds = [parse_float(elem.findtext("speedLimit"))]
     speeds += [sign_speed.get(r.get("ref", ""), math.nan) for r in elem.iter("trafficSignRef")]
     finite = [s for s in speeds if math.isfinite(s)]
     types = [(t.text or "").strip() for t in elem.iter("laneletType")]
@@ -208,7 +214,9 @@ def _bound(
     bound = elem.find(tag)
     if bound is None:
         raise MapError(source, f"lanelet {lid} has no {tag}")
-    points = [(_float(p.findtext("x")), _float(p.findtext("y"))) for p in bound.iter("point")]
+    points = [
+        (parse_float(p.findtext("x")), parse_float(p.findtext("y"))) for p in bound.iter("point")
+    ]
     arr = np.array(points, dtype=np.float64).reshape(-1, 2)
     if len(arr) < 2:  # noqa: PLR2004 - a border needs two vertices
         raise MapError(source, f"lanelet {lid} {tag} has {len(arr)} points")
@@ -223,12 +231,14 @@ def _refs(elem: ET.Element, tag: str, known: set[str]) -> tuple[str, ...]:
     return tuple(r.get("ref", "") for r in elem.iter(tag) if r.get("ref", "") in known)
 
 
-def _float(text: str | None) -> float:
+def parse_float(text: str | None) -> float:
+    """Number in a CommonRoad text node; NaN when absent or not a number."""
     try:
         return float(text) if text is not None else math.nan
     except ValueError:
         return math.nan
 
 
-def _id_key(value: str) -> tuple[int, str]:
+def id_sort_key(value: str) -> tuple[int, str]:
+    """Sort key putting numeric ids in numeric order (CommonRoad ids are integers)."""
     return (int(value), "") if value.isdigit() else (0, value)
