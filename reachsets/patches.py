@@ -1,0 +1,122 @@
+"""Deletion patches: what a rule removes from an object's reachable set, and their subtraction."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+import shapely
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+
+    from numpy.typing import NDArray
+
+    from reachsets.inputs import ObjectStates, RoadLayout, ZoneMap
+    from reachsets.occupancy import EgoOccupancy
+    from reachsets.params import ReachParams
+    from reachsets.track import TrackGeometry
+
+__all__ = ["RuleContext", "RulePatch", "keep_largest_part", "patch_grid", "subtract_patches"]
+
+
+@dataclass(frozen=True, slots=True)
+class RulePatch:
+    """A region a rule-conform object will not enter.
+
+    Attributes:
+        object_index: Row of the object in the context's object table.
+        rule: Rule name (e.g. ``f1.alongside``).
+        geometry: The region (map frame).
+        step: Grid step the patch applies to; ``None`` means every step.
+    """
+
+    object_index: int
+    rule: str
+    geometry: Any
+    step: int | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class RuleContext:
+    """What every rule sees at the current frame.
+
+    Attributes:
+        objects: The objects under evaluation (N).
+        footprints: Their current footprints, ``(N,)`` polygons.
+        ego_x_m: Ego centre x now.
+        ego_y_m: Ego centre y now.
+        ego_yaw_rad: Ego heading now.
+        ego_speed_mps: Ego speed now.
+        ego_length_m: Ego length.
+        ego_width_m: Ego width.
+        occupancy: Ego occupancy along the plan.
+        times_s: Grid stamps ``(T,)``.
+        params: All parameters.
+        track: Track geometry, if any.
+        s_obj_m: Object arc lengths on the track, ``(N,)`` (zeros without a track).
+        s_ego_m: Ego arc length on the track (0 without a track).
+        road: Public-road layout, if any.
+        zones: Roborace zones, if any.
+    """
+
+    objects: ObjectStates
+    footprints: NDArray[np.object_]
+    ego_x_m: float
+    ego_y_m: float
+    ego_yaw_rad: float
+    ego_speed_mps: float
+    ego_length_m: float
+    ego_width_m: float
+    occupancy: EgoOccupancy
+    times_s: NDArray[np.float64]
+    params: ReachParams
+    track: TrackGeometry | None
+    s_obj_m: NDArray[np.float64]
+    s_ego_m: float
+    road: RoadLayout | None
+    zones: ZoneMap | None
+
+
+def patch_grid(
+    patches: Sequence[RulePatch], footprints: NDArray[np.object_], n_steps: int
+) -> NDArray[np.object_]:
+    """Union of the patches per object and step, ``(N, T)`` (``None`` where no patch applies).
+
+    Every patch loses the object's own current footprint first, so a rule never deletes
+    where the object already is.
+    """
+    n = len(footprints)
+    parts: list[list[list[Any]]] = [[[] for _ in range(n_steps)] for _ in range(n)]
+    for patch in patches:
+        steps = range(n_steps) if patch.step is None else (patch.step,)
+        for k in steps:
+            parts[patch.object_index][k].append(patch.geometry)
+    grid = np.full((n, n_steps), None, dtype=object)
+    for i in range(n):
+        for k in range(n_steps):
+            if parts[i][k]:
+                grid[i, k] = shapely.difference(shapely.union_all(parts[i][k]), footprints[i])
+    return grid
+
+
+def subtract_patches(reach: NDArray[np.object_], grid: NDArray[np.object_]) -> NDArray[np.object_]:
+    """``reach - grid`` element-wise, ``(N, T)``; cells without a patch are kept as they are."""
+    if reach.size == 0:
+        return reach
+    has = np.not_equal(grid, None)
+    out = reach.copy()
+    out[has] = shapely.difference(reach[has], grid[has].astype(object))
+    return out
+
+
+def keep_largest_part(geoms: NDArray[np.object_]) -> NDArray[np.object_]:
+    """Reference behaviour: keep only the largest polygon of each multi-part result."""
+    out = geoms.copy()
+    flat = out.reshape(-1)
+    for i, g in enumerate(flat):
+        if g is not None and shapely.get_num_geometries(g) > 1:
+            polys = [p for p in shapely.get_parts(g) if shapely.area(p) > 0]
+            flat[i] = max(polys, key=shapely.area) if polys else shapely.Polygon()
+    return out

@@ -1,0 +1,141 @@
+"""``turn`` reachable sets: the ``simple`` set minus what lies outside two steering arcs.
+
+Each arc starts at a front corner and turns as hard as allowed, braking at the same time
+(longitudinal and lateral acceleration treated as decoupled)::
+
+    r_k = max(v_k^2 / ay_max, turn_radius)          radius of chord k (length c)
+    dpsi_k = 2 asin(c / (2 r_k))                     heading change (lateral offset c^2/(2r))
+    v_{k+1}^2 = max(v_k^2 - 2 ax_max c, 0)            full braking along the arc
+
+The deletion polygon is everything outside the funnel between the arcs (body frame)::
+
+    (-L/2-50, eta_L+50) +---------------------------+ (xi_L, eta_L+50)
+                        |         left arc  ..--'  + end of left arc
+                        |  RL +----+ FL ..--'
+                        |     |body|    funnel (kept)  --> ahead, open
+                        |  RR +----+ FR ''--.
+                        |         right arc ''--.  + end of right arc
+    (-L/2-50, eta_R-50) +---------------------------+ (xi_R, eta_R-50)
+
+Unlike the reference, the funnel includes the body (RL..RR) so the deletion never removes
+the object's own footprint, and arcs stop turning after ``arc_max_turn_rad`` so the polygon
+stays simple at low speed.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+import numpy as np
+import shapely
+
+from reachsets.footprints import body_to_map
+
+if TYPE_CHECKING:
+    from numpy.typing import NDArray
+
+    from reachsets.inputs import ObjectStates
+    from reachsets.params import ReachParams
+
+__all__ = ["EXTENSION_M", "funnel_polygons", "steering_arcs", "steering_arc_scalar"]
+
+#: How far the deletion polygon reaches sideways and behind (reference: 50 m).
+EXTENSION_M = 50.0
+
+
+def steering_arcs(
+    objects: ObjectStates, params: ReachParams, side: float
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Body-frame steering arc of every object on one side.
+
+    Args:
+        objects: The objects (N).
+        params: Arc parameters (``arc_points``, ``arc_step_m``, ``turn_radius_m``,
+            ``ay_max_mps2``, ``ax_max_mps2``, ``arc_max_turn_rad``).
+        side: ``+1.0`` for the left arc, ``-1.0`` for the right one.
+
+    Returns:
+        ``(xi, eta)``, each ``(N, P)`` with ``P = arc_points``, starting at the front corner.
+    """
+    n = len(objects)
+    c = params.arc_step_m
+    xi = np.empty((n, params.arc_points))
+    eta = np.empty((n, params.arc_points))
+    xi[:, 0] = np.asarray(objects.length_m) / 2
+    eta[:, 0] = side * np.asarray(objects.width_m) / 2
+    v2 = np.asarray(objects.speed_mps, dtype=np.float64) ** 2
+    psi = np.zeros(n)
+    for k in range(1, params.arc_points):
+        radius = np.maximum(v2 / params.ay_max_mps2, params.turn_radius_m)
+        dpsi = 2 * np.arcsin(np.minimum(c / (2 * radius), 1.0))
+        dpsi = np.minimum(dpsi, params.arc_max_turn_rad - psi)
+        chord = psi + dpsi / 2
+        xi[:, k] = xi[:, k - 1] + c * np.cos(chord)
+        eta[:, k] = eta[:, k - 1] + side * c * np.sin(chord)
+        psi = psi + dpsi
+        v2 = np.maximum(v2 - 2 * params.ax_max_mps2 * c, 0.0)
+    return xi, eta
+
+
+def steering_arc_scalar(
+    v0_mps: float, length_m: float, width_m: float, params: ReachParams, side: float
+) -> list[tuple[float, float]]:
+    """Slow, obvious reference of ``steering_arcs`` for one object (body frame)."""
+    pts = [(length_m / 2, side * width_m / 2)]
+    v2 = v0_mps**2
+    psi = 0.0
+    for _ in range(1, params.arc_points):
+        radius = max(v2 / params.ay_max_mps2, params.turn_radius_m)
+        dpsi = min(2 * math.asin(min(params.arc_step_m / (2 * radius), 1.0)),
+                   params.arc_max_turn_rad - psi)
+        x, y = pts[-1]
+        pts.append((
+            x + params.arc_step_m * math.cos(psi + dpsi / 2),
+            y + side * params.arc_step_m * math.sin(psi + dpsi / 2),
+        ))
+        psi += dpsi
+        v2 = max(v2 - 2 * params.ax_max_mps2 * params.arc_step_m, 0.0)
+    return pts
+
+
+def funnel_polygons(
+    objects: ObjectStates,
+    left: tuple[NDArray[np.float64], NDArray[np.float64]],
+    right: tuple[NDArray[np.float64], NDArray[np.float64]],
+    extension_m: float = EXTENSION_M,
+) -> NDArray[np.object_]:
+    """Deletion polygons outside the funnel between two body-frame edge curves.
+
+    Args:
+        objects: The objects (N).
+        left: Left edge ``(xi, eta)``, each ``(N, P)``, starting at the front-left corner.
+        right: Right edge, each ``(N, Q)``, starting at the front-right corner.
+        extension_m: Sideways and backwards reach of the polygon.
+
+    Returns:
+        ``(N,)`` shapely polygons in the map frame.
+    """
+    lxi, leta = left
+    rxi, reta = right
+    half_l = np.asarray(objects.length_m)[:, None] / 2
+    half_w = np.asarray(objects.width_m)[:, None] / 2
+    eta_l = leta.max(axis=1, keepdims=True) + extension_m
+    eta_r = reta.min(axis=1, keepdims=True) - extension_m
+    back = -half_l - extension_m
+    xi = np.concatenate(
+        [lxi[:, ::-1], -half_l, -half_l, rxi, rxi[:, -1:], back, back, lxi[:, -1:]], axis=1
+    )
+    eta = np.concatenate(
+        [leta[:, ::-1], half_w, -half_w, reta, eta_r, eta_r, eta_l, eta_l], axis=1
+    )
+    coords = body_to_map(
+        xi,
+        eta,
+        np.asarray(objects.x_m)[:, None],
+        np.asarray(objects.y_m)[:, None],
+        np.asarray(objects.yaw_rad)[:, None],
+    )
+    if coords.shape[0] == 0:
+        return np.empty(0, dtype=object)
+    return np.asarray(shapely.make_valid(shapely.polygons(coords)))

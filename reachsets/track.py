@@ -1,0 +1,180 @@
+"""Track geometry derived once from the left/right bounds: centre line, arc length, widths.
+
+::
+
+    left bound   o-----o-----o-----o
+                 |  tw_left        |
+    centre  s=0  o-----o-----o-----o---> s
+                 |  tw_right       |   normal n points to the right
+    right bound  o-----o-----o-----o
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+import shapely
+
+if TYPE_CHECKING:
+    from numpy.typing import NDArray
+
+    from reachsets.inputs import TrackBounds
+
+__all__ = ["TrackGeometry", "build_track", "resample_polyline"]
+
+#: Spacing of the resampled centre line (the reference builds its line at 1 m).
+CENTRE_STEP_M = 1.0
+#: Half window over which the centre-line heading is differentiated for the curvature.
+CURVATURE_HALF_WINDOW_M = 5.0
+
+
+def resample_polyline(points: NDArray[np.float64], n: int) -> NDArray[np.float64]:
+    """Resample a polyline at ``n`` points equally spaced in arc length, ``(n, 2)``."""
+    seg = np.hypot(*np.diff(points, axis=0).T)
+    s = np.concatenate([[0.0], np.cumsum(seg)])
+    target = np.linspace(0.0, s[-1], n)
+    return np.stack([np.interp(target, s, points[:, 0]), np.interp(target, s, points[:, 1])], 1)
+
+
+@dataclass(frozen=True, slots=True)
+class TrackGeometry:
+    """Derived track geometry.
+
+    Attributes:
+        centre_m: Centre line, ``(C, 2)``.
+        s_m: Arc length at each centre point, ``(C,)``.
+        normal: Unit normals pointing to the right, ``(C, 2)``.
+        tw_left_m: Distance centre to left bound, ``(C,)``.
+        tw_right_m: Distance centre to right bound, ``(C,)``.
+        kappa_inv_m: Centre-line curvature (left turn positive), ``(C,)``.
+        left: Left bound as a LineString.
+        right: Right bound as a LineString.
+        centre: Centre line as a LineString.
+        polygon: Drivable area.
+        closed: Whether the track is a loop.
+        length_m: Centre-line length.
+    """
+
+    centre_m: NDArray[np.float64]
+    s_m: NDArray[np.float64]
+    normal: NDArray[np.float64]
+    tw_left_m: NDArray[np.float64]
+    tw_right_m: NDArray[np.float64]
+    kappa_inv_m: NDArray[np.float64]
+    left: Any
+    right: Any
+    centre: Any
+    polygon: Any
+    closed: bool
+    length_m: float
+
+    def project(self, x_m: Any, y_m: Any) -> NDArray[np.float64]:
+        """Arc length of the nearest centre-line point, ``(N,)`` for ``(N,)`` positions."""
+        pts = shapely.points(np.asarray(x_m, dtype=float), np.asarray(y_m, dtype=float))
+        return np.asarray(shapely.line_locate_point(self.centre, pts), dtype=np.float64)
+
+    def index_at(self, s_m: Any) -> NDArray[np.intp]:
+        """Index of the centre point at or just before arc length ``s_m``."""
+        idx = np.searchsorted(self.s_m, np.asarray(s_m, dtype=float), side="right") - 1
+        return np.clip(idx, 0, len(self.s_m) - 1)
+
+    def ahead_m(self, s_from: Any, s_to: Any) -> NDArray[np.float64]:
+        """Signed distance along the track from ``s_from`` to ``s_to`` (wraps on loops)."""
+        d = np.asarray(s_to, dtype=float) - np.asarray(s_from, dtype=float)
+        if self.closed:
+            d = (d + self.length_m / 2) % self.length_m - self.length_m / 2
+        return d
+
+    def lateral_m(self, x_m: Any, y_m: Any) -> NDArray[np.float64]:
+        """Signed lateral offset from the centre line (right positive), ``(N,)``."""
+        s = self.project(x_m, y_m)
+        i = self.index_at(s)
+        dx = np.asarray(x_m, dtype=float) - self.centre_m[i, 0]
+        dy = np.asarray(y_m, dtype=float) - self.centre_m[i, 1]
+        return np.asarray(dx * self.normal[i, 0] + dy * self.normal[i, 1], dtype=np.float64)
+
+    def span_indices(self, s_from_m: float, length_m: float) -> NDArray[np.intp]:
+        """Centre-point indices from ``s_from_m`` forward over ``length_m`` (wraps on loops)."""
+        n = len(self.s_m)
+        start = int(self.index_at(s_from_m))
+        if self.closed:
+            ahead = (self.s_m - self.s_m[start]) % self.length_m
+            order = np.argsort(ahead, kind="stable")
+            return order[ahead[order] <= length_m]
+        stop = int(self.index_at(s_from_m + length_m)) + 1
+        return np.arange(start, min(max(stop, start + 2), n))
+
+    def strip(
+        self, idx: NDArray[np.intp], lat_a_m: Any, lat_b_m: Any
+    ) -> Any:
+        """Polygon between two lateral offsets (right positive) over centre points ``idx``.
+
+        Args:
+            idx: Centre-point indices in driving order, ``(K,)``, ``K >= 2``.
+            lat_a_m: First edge offset, scalar or ``(K,)``.
+            lat_b_m: Second edge offset, scalar or ``(K,)``.
+
+        Returns:
+            A shapely polygon (made valid).
+        """
+        c = self.centre_m[idx]
+        nrm = self.normal[idx]
+        a = c + nrm * np.broadcast_to(np.asarray(lat_a_m, dtype=float), idx.shape)[:, None]
+        b = c + nrm * np.broadcast_to(np.asarray(lat_b_m, dtype=float), idx.shape)[:, None]
+        return shapely.make_valid(shapely.polygons(np.concatenate([a, b[::-1]])))
+
+
+def build_track(bounds: TrackBounds, closed_gap_m: float = 35.0) -> TrackGeometry:
+    """Derive the centre line, widths, curvature and drivable polygon from the bounds.
+
+    Args:
+        bounds: Left and right bounds in driving direction.
+        closed_gap_m: The track is a loop if its centre line ends closer than this to its
+            start (reference threshold).
+
+    Returns:
+        The track geometry.
+    """
+    left_len = float(np.hypot(*np.diff(bounds.left_m, axis=0).T).sum())
+    right_len = float(np.hypot(*np.diff(bounds.right_m, axis=0).T).sum())
+    n = max(math.ceil(max(left_len, right_len) / 2 / CENTRE_STEP_M) * 2, 2)
+    left = resample_polyline(bounds.left_m, n)
+    right = resample_polyline(bounds.right_m, n)
+    centre = (left + right) / 2
+    s = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(centre, axis=0).T))])
+    tangent = np.gradient(centre, axis=0)
+    tangent /= np.maximum(np.hypot(tangent[:, 0], tangent[:, 1]), 1e-12)[:, None]
+    normal = np.stack([tangent[:, 1], -tangent[:, 0]], axis=1)
+    heading = np.unwrap(np.arctan2(tangent[:, 1], tangent[:, 0]))
+    lo = np.clip(np.searchsorted(s, s - CURVATURE_HALF_WINDOW_M), 0, n - 1)
+    hi = np.clip(np.searchsorted(s, s + CURVATURE_HALF_WINDOW_M), 0, n - 1)
+    kappa = (heading[hi] - heading[lo]) / np.maximum(s[hi] - s[lo], 1e-9)
+    closed = bool(np.hypot(*(centre[0] - centre[-1])) < closed_gap_m)
+    left_line = shapely.linestrings(bounds.left_m)
+    right_line = shapely.linestrings(bounds.right_m)
+    if closed:
+        outer = shapely.polygons(bounds.left_m)
+        inner = shapely.polygons(bounds.right_m)
+        if shapely.area(inner) > shapely.area(outer):
+            outer, inner = inner, outer
+        polygon = shapely.difference(shapely.make_valid(outer), shapely.make_valid(inner))
+    else:
+        ring = np.concatenate([bounds.left_m, bounds.right_m[::-1]])
+        polygon = shapely.make_valid(shapely.polygons(ring))
+    return TrackGeometry(
+        centre_m=centre,
+        s_m=s,
+        normal=normal,
+        tw_left_m=np.hypot(*(left - centre).T),
+        tw_right_m=np.hypot(*(right - centre).T),
+        kappa_inv_m=kappa,
+        left=left_line,
+        right=right_line,
+        centre=shapely.linestrings(centre),
+        polygon=polygon,
+        closed=closed,
+        length_m=float(s[-1]),
+    )
