@@ -1,0 +1,302 @@
+"""Situation extraction: metric extents and relative positions of all pairs, vectorised.
+
+Implements ad-rss ``RssSituationExtraction`` for structured constellations: every object's
+occupied regions are turned into metric longitudinal / lateral extents in the
+constellation's lane frame (vehicles are "stretched" by every length uncertainty before
+them), then the ego is positioned relative to the other. All comparisons are ad-physics
+tolerant (1 mm).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from rss.batch import BoolArray, FloatArray, IntArray
+from rss.model import ConstellationType, LaneDrivingDirection, ObjectType, RoadSegmentType
+from rss.physics import DISTANCE_PRECISION, gt, lt
+from rss.states import InvalidReason, LateralPosition, LongitudinalPosition
+
+if TYPE_CHECKING:
+    from rss.batch import ConstellationBatch, ObjectArrays, RoadAreaArrays
+
+__all__ = ["Extents", "Relative", "extract", "object_extents", "relative_position"]
+
+_P = DISTANCE_PRECISION
+
+
+@dataclass(frozen=True)
+class Extents:
+    """Metric footprint of ``C`` objects in their road areas (lane frame, m).
+
+    Attributes:
+        lon_min_m: ``(C,)`` rear end along the road area.
+        lon_max_m: ``(C,)`` front end.
+        lat_min_m: ``(C,)`` left edge (lateral grows to the right).
+        lat_max_m: ``(C,)`` right edge.
+        on_positive_lane: ``(C,)`` touches a lane with direction Positive.
+        on_negative_lane: ``(C,)`` touches a lane with direction Negative.
+        found: ``(C,)`` at least one occupied region lies in the road area.
+        intersection_min_m: ``(C,)`` entry of the intersecting area (NaN if none).
+        intersection_max_m: ``(C,)`` exit of the intersecting area (NaN if none).
+    """
+
+    lon_min_m: FloatArray
+    lon_max_m: FloatArray
+    lat_min_m: FloatArray
+    lat_max_m: FloatArray
+    on_positive_lane: BoolArray
+    on_negative_lane: BoolArray
+    found: BoolArray
+    intersection_min_m: FloatArray
+    intersection_max_m: FloatArray
+
+
+@dataclass(frozen=True)
+class Relative:
+    """Relative situation of every constellation (ad-rss ``RelativeConstellation``).
+
+    Attributes:
+        lon_position: ``(C,)`` :class:`LongitudinalPosition` of the ego w.r.t. the other.
+        lon_distance_m: ``(C,)`` gap, 0 when overlapping.
+        lat_position: ``(C,)`` :class:`LateralPosition`.
+        lat_distance_m: ``(C,)``.
+        ego_in_correct_lane: ``(C,)``.
+        other_in_correct_lane: ``(C,)``.
+        ego_dist_to_enter_m: ``(C,)`` intersection types: front bumper to entry (else 0).
+        ego_dist_to_leave_m: ``(C,)`` rear bumper to exit.
+        other_dist_to_enter_m: ``(C,)``.
+        other_dist_to_leave_m: ``(C,)``.
+        invalid: ``(C,)`` :class:`InvalidReason` codes (0 = valid).
+    """
+
+    lon_position: IntArray
+    lon_distance_m: FloatArray
+    lat_position: IntArray
+    lat_distance_m: FloatArray
+    ego_in_correct_lane: BoolArray
+    other_in_correct_lane: BoolArray
+    ego_dist_to_enter_m: FloatArray
+    ego_dist_to_leave_m: FloatArray
+    other_dist_to_enter_m: FloatArray
+    other_dist_to_leave_m: FloatArray
+    invalid: IntArray
+
+
+def _exclusive_cumsum(values: FloatArray, axis: int) -> FloatArray:
+    total = np.cumsum(values, axis=axis)
+    return np.asarray(total - values, dtype=np.float64)
+
+
+def object_extents(obj: ObjectArrays, road: RoadAreaArrays) -> Extents:
+    """Metric extents of one object per constellation in a road area.
+
+    Args:
+        obj: Objects with ``(C, K)`` occupied regions.
+        road: Road areas with ``(C, R, L)`` lanes.
+
+    Returns:
+        The extents; ``found`` is False where no region lies in the road area.
+    """
+    lane_ok = road.lane_id >= 0  # (C, R, L)
+    inf = np.inf
+    seg_len_min = np.where(lane_ok, road.length_min_m, inf).min(axis=2)
+    seg_len_max = np.where(lane_ok, road.length_max_m, -inf).max(axis=2)
+    seg_ok = lane_ok.any(axis=2)
+    seg_len_min = np.where(seg_ok, seg_len_min, 0.0)
+    seg_len_max = np.where(seg_ok, seg_len_max, 0.0)
+    start_min = _exclusive_cumsum(seg_len_min, axis=1)  # (C, R)
+    start_max = _exclusive_cumsum(seg_len_max, axis=1)
+    col_ok = lane_ok.any(axis=1)  # (C, L)
+    col_w_min = np.where(col_ok, np.where(lane_ok, road.width_min_m, inf).min(axis=1), 0.0)
+    col_w_max = np.where(col_ok, np.where(lane_ok, road.width_max_m, -inf).max(axis=1), 0.0)
+    lat_start_min = _exclusive_cumsum(col_w_min, axis=1)  # (C, L)
+    lat_start_max = _exclusive_cumsum(col_w_max, axis=1)
+
+    region = obj.region_lane_id[:, :, None, None]  # (C, K, 1, 1)
+    match = (road.lane_id[:, None, :, :] == region) & (region >= 0)  # (C, K, R, L)
+    hit = match.any(axis=(2, 3))  # (C, K)
+    flat = match.reshape(match.shape[0], match.shape[1], -1).argmax(axis=2)
+    n_lanes = road.lane_id.shape[2]
+    r_idx, l_idx = np.divmod(flat, n_lanes)  # (C, K)
+    c_idx = np.arange(match.shape[0])[:, None]
+
+    lon_min = start_min[c_idx, r_idx] + obj.region_lon_min * road.length_min_m[c_idx, r_idx, l_idx]
+    lon_max = start_max[c_idx, r_idx] + obj.region_lon_max * road.length_max_m[c_idx, r_idx, l_idx]
+    lat_min = lat_start_min[c_idx, l_idx] + obj.region_lat_min * road.width_min_m[c_idx, r_idx, l_idx]
+    lat_max = lat_start_max[c_idx, l_idx] + obj.region_lat_max * road.width_max_m[c_idx, r_idx, l_idx]
+    direction = road.driving_direction[c_idx, r_idx, l_idx]
+
+    is_intersection = road.segment_type == RoadSegmentType.Intersection  # (C, R)
+    has_intersection = is_intersection.any(axis=1)
+    first = is_intersection.argmax(axis=1)
+    rows = np.arange(first.shape[0])
+    i_min = start_min[rows, first] + road.before_intersection_m[rows, first]
+    i_max = start_max[rows, first] + seg_len_max[rows, first] - road.after_intersection_m[rows, first]
+    return Extents(
+        lon_min_m=np.where(hit, lon_min, inf).min(axis=1),
+        lon_max_m=np.where(hit, lon_max, -inf).max(axis=1),
+        lat_min_m=np.where(hit, lat_min, inf).min(axis=1),
+        lat_max_m=np.where(hit, lat_max, -inf).max(axis=1),
+        on_positive_lane=(hit & (direction == LaneDrivingDirection.Positive)).any(axis=1),
+        on_negative_lane=(hit & (direction == LaneDrivingDirection.Negative)).any(axis=1),
+        found=hit.any(axis=1),
+        intersection_min_m=np.where(has_intersection, i_min, np.nan),
+        intersection_max_m=np.where(has_intersection, i_max, np.nan),
+    )
+
+
+def relative_position(
+    ego_min: FloatArray, ego_max: FloatArray, other_min: FloatArray, other_max: FloatArray
+) -> tuple[IntArray, FloatArray]:
+    """Position of the ego interval relative to the other one (codes of
+    :class:`LongitudinalPosition`; for lateral use the same codes: InFront <-> AtRight).
+
+    Args:
+        ego_min: ``(C,)`` ego interval start (larger = further ahead / right).
+        ego_max: ``(C,)`` ego interval end.
+        other_min: ``(C,)``.
+        other_max: ``(C,)``.
+
+    Returns:
+        ``(position, distance)``; distance 0 for overlaps.
+    """
+    ahead = gt(ego_min, other_max, _P)
+    behind = ~ahead & gt(other_min, ego_max, _P)
+    overlap_front = gt(ego_min, other_min, _P) & gt(ego_max, other_max, _P)
+    overlap_back = lt(ego_min, other_min, _P) & lt(ego_max, other_max, _P)
+    position = np.select(
+        [ahead, behind, overlap_front, overlap_back],
+        [
+            LongitudinalPosition.InFront,
+            LongitudinalPosition.AtBack,
+            LongitudinalPosition.OverlapFront,
+            LongitudinalPosition.OverlapBack,
+        ],
+        LongitudinalPosition.Overlap,
+    ).astype(np.int64)
+    distance = np.select([ahead, behind], [ego_min - other_max, other_min - ego_max], 0.0)
+    return position, distance
+
+
+_LAT_FROM_LON = np.array(
+    [
+        LateralPosition.AtRight,  # InFront: ego.min > other.max
+        LateralPosition.OverlapRight,
+        LateralPosition.Overlap,
+        LateralPosition.OverlapLeft,
+        LateralPosition.AtLeft,
+    ],
+    dtype=np.int64,
+)
+
+
+def _distances_to_intersection(ext: Extents) -> tuple[FloatArray, FloatArray]:
+    enter = np.where(
+        gt(ext.intersection_min_m, ext.lon_max_m, _P), ext.intersection_min_m - ext.lon_max_m, 0.0
+    )
+    leave = np.where(
+        gt(ext.intersection_max_m, ext.lon_min_m, _P), ext.intersection_max_m - ext.lon_min_m, 0.0
+    )
+    return enter, leave
+
+
+def _invalid_objects(batch: ConstellationBatch) -> IntArray:
+    reason = np.zeros(batch.size, dtype=np.int64)
+    for obj in (batch.other, batch.ego):
+        speeds = np.stack(
+            [obj.speed_lon_min_mps, obj.speed_lon_max_mps, obj.speed_lat_min_mps, obj.speed_lat_max_mps]
+        )
+        used = obj.region_lane_id >= 0
+        params = np.stack(
+            [obj.region_lon_min, obj.region_lon_max, obj.region_lat_min, obj.region_lat_max]
+        )
+        params = np.where(used, params, 0.5)
+        with np.errstate(invalid="ignore"):
+            bad_speed = (
+                (obj.speed_lon_min_mps < 0.0)
+                | (obj.speed_lon_max_mps < obj.speed_lon_min_mps)
+                | (obj.speed_lon_max_mps > 100.0)  # noqa: PLR2004 (ad-rss speed input range)
+                | (obj.speed_lat_min_mps < -100.0)  # noqa: PLR2004
+                | (obj.speed_lat_max_mps < obj.speed_lat_min_mps)
+                | (obj.speed_lat_max_mps > 100.0)  # noqa: PLR2004
+            )
+            bad_region = (
+                ((params < 0.0) | (params > 1.0)).any(axis=0)
+                | (params[0] > params[1])
+                | (params[2] > params[3])
+            ).any(axis=1)
+        reason = np.where(bad_region, InvalidReason.RegionOutOfRange, reason)
+        reason = np.where(bad_speed, InvalidReason.SpeedOutOfRange, reason)
+        finite = np.isfinite(speeds).all(axis=0) & np.isfinite(params).all(axis=(0, 2))
+        reason = np.where(~finite, InvalidReason.NonFiniteValue, reason)
+    bad_type = (batch.ego.object_type != ObjectType.EgoVehicle) | np.isin(
+        batch.other.object_type, [ObjectType.Invalid, ObjectType.EgoVehicle]
+    )
+    reason = np.where(bad_type & (reason == 0), InvalidReason.InvalidObjectType, reason)
+    same = batch.ego.object_id == batch.other.object_id
+    return np.where(same & (reason == 0), InvalidReason.SameObjectIds, reason).astype(np.int64)
+
+
+def extract(batch: ConstellationBatch) -> Relative:
+    """Relative situation of all constellations of a frame.
+
+    Args:
+        batch: ``C`` constellations.
+
+    Returns:
+        Relative positions, distances and lane flags; invalid constellations are flagged
+        (their other fields are meaningless).
+    """
+    ctype = batch.constellation_type
+    intersection = ctype >= ConstellationType.IntersectionEgoHasPriority
+    ego = object_extents(batch.ego, batch.ego_road)
+    other_same = object_extents(batch.other, batch.ego_road)
+    other_cross = object_extents(batch.other, batch.intersecting_road)
+
+    def pick(a: FloatArray, b: FloatArray) -> FloatArray:
+        return np.where(intersection, b, a)
+
+    other = Extents(
+        *(pick(getattr(other_same, f), getattr(other_cross, f)) for f in Extents.__dataclass_fields__)
+    )
+    lon_pos, lon_dist = relative_position(ego.lon_min_m, ego.lon_max_m, other.lon_min_m, other.lon_max_m)
+    lat_code, lat_dist = relative_position(ego.lat_min_m, ego.lat_max_m, other.lat_min_m, other.lat_max_m)
+    lat_pos = _LAT_FROM_LON[lat_code]
+
+    ego_enter, ego_leave = _distances_to_intersection(ego)
+    other_enter, other_leave = _distances_to_intersection(other)
+    # intersection-centric frame: smaller "distance to the entry" = further ahead
+    int_pos, int_dist = relative_position(
+        -(ego.intersection_min_m - ego.lon_min_m),
+        -(ego.intersection_min_m - ego.lon_max_m),
+        -(other.intersection_min_m - other.lon_min_m),
+        -(other.intersection_min_m - other.lon_max_m),
+    )
+    lon_pos = np.where(intersection, int_pos, lon_pos)
+    lon_dist = np.where(intersection, int_dist, lon_dist)
+    lat_pos = np.where(intersection, LateralPosition.Overlap, lat_pos)
+    lat_dist = np.where(intersection, 0.0, lat_dist)
+    zero = np.zeros(batch.size)
+
+    invalid = _invalid_objects(batch)
+    not_found = ~(ego.found & other.found)
+    invalid = np.where((invalid == 0) & not_found, InvalidReason.NotInRoadArea, invalid)
+    no_area = intersection & ~(np.isfinite(ego.intersection_min_m) & np.isfinite(other.intersection_min_m))
+    invalid = np.where((invalid == 0) & no_area, InvalidReason.NoIntersection, invalid)
+    opposite = ctype == ConstellationType.OppositeDirection
+    return Relative(
+        lon_position=lon_pos.astype(np.int64),
+        lon_distance_m=lon_dist,
+        lat_position=lat_pos.astype(np.int64),
+        lat_distance_m=lat_dist,
+        ego_in_correct_lane=~ego.on_negative_lane,
+        other_in_correct_lane=np.where(opposite, ~other.on_positive_lane, ~other.on_negative_lane),
+        ego_dist_to_enter_m=np.where(intersection, ego_enter, zero),
+        ego_dist_to_leave_m=np.where(intersection, ego_leave, zero),
+        other_dist_to_enter_m=np.where(intersection, other_enter, zero),
+        other_dist_to_leave_m=np.where(intersection, other_leave, zero),
+        invalid=invalid.astype(np.int64),
+    )

@@ -1,0 +1,217 @@
+"""The frozen RSS parameter set: dynamics per object class plus scene settings, from TOML.
+
+TOML layout (``--rss-params``, see ``conformance/rss_params_example.toml``)::
+
+    [ego]         RssDynamics keys of the ego vehicle
+    [vehicle]     defaults for every vehicle class ...
+    [car] [truck] [bus] [motorcycle] [bicycle]   ... refined per class
+    [pedestrian]  RssDynamics keys of pedestrians
+    [scene]       restrict_speed_limit_mode, constellation_creation_mode,
+                  ego_length, ego_width, ego_height
+
+Keys not given keep the documented defaults: ad-rss-lib's unit-test dynamics for the ego
+(ρ = 1 s) and for vehicles (ρ = 2 s), CARLA's pedestrian dynamics for pedestrians.
+"""
+
+from __future__ import annotations
+
+import enum
+import math
+import tomllib
+from typing import TypeVar
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+from rss.dynamics import RssDynamics
+from rss.errors import RssParameterError
+
+if TYPE_CHECKING:
+    from collections.abc import Mapping
+
+_E = TypeVar("_E", bound=enum.StrEnum)
+
+__all__ = [
+    "DEFAULT_EGO_DYNAMICS",
+    "DEFAULT_PEDESTRIAN_DYNAMICS",
+    "DEFAULT_VEHICLE_DYNAMICS",
+    "ConstellationCreationMode",
+    "ObjectClass",
+    "RestrictSpeedLimitMode",
+    "RssParams",
+    "SceneSettings",
+    "parse_rss_params",
+    "rss_params_from_mapping",
+]
+
+#: ad-rss unit-test ego dynamics (``TestSupport.cpp``): response time 1 s.
+DEFAULT_EGO_DYNAMICS = RssDynamics(response_time_s=1.0)
+#: ad-rss unit-test dynamics of other vehicles: response time 2 s.
+DEFAULT_VEHICLE_DYNAMICS = RssDynamics()
+#: CARLA RssSensor pedestrian dynamics.
+DEFAULT_PEDESTRIAN_DYNAMICS = RssDynamics(
+    accel_max_mps2=2.0,
+    brake_max_mps2=-4.0,
+    brake_min_mps2=-2.0,
+    brake_min_correct_mps2=-2.0,
+    lat_accel_max_mps2=0.001,
+    lat_brake_min_mps2=-0.001,
+    lateral_fluctuation_margin_m=0.1,
+    response_time_s=0.5,
+    max_speed_on_acceleration_mps=10.0,
+)
+
+
+class ObjectClass(enum.StrEnum):
+    """Object classes that carry their own dynamics (TOML table names)."""
+
+    EGO = "ego"
+    CAR = "car"
+    TRUCK = "truck"
+    BUS = "bus"
+    MOTORCYCLE = "motorcycle"
+    BICYCLE = "bicycle"
+    PEDESTRIAN = "pedestrian"
+    UNKNOWN = "unknown"
+
+
+_VEHICLE_CLASSES = (
+    ObjectClass.CAR,
+    ObjectClass.TRUCK,
+    ObjectClass.BUS,
+    ObjectClass.MOTORCYCLE,
+    ObjectClass.BICYCLE,
+    ObjectClass.UNKNOWN,
+)
+
+
+class RestrictSpeedLimitMode(enum.StrEnum):
+    """How scene creation writes ``max_speed_on_acceleration`` from lane speed limits."""
+
+    NONE = "None"
+    EXACT_SPEED_LIMIT = "ExactSpeedLimit"
+    INCREASED_SPEED_LIMIT_5 = "IncreasedSpeedLimit5"
+    INCREASED_SPEED_LIMIT_10 = "IncreasedSpeedLimit10"
+
+
+class ConstellationCreationMode(enum.StrEnum):
+    """Which kind of constellation scene creation builds for an ego/object pair."""
+
+    STRUCTURED = "Structured"
+    UNSTRUCTURED = "Unstructured"
+
+
+@dataclass(frozen=True)
+class SceneSettings:
+    """Scene-creation settings and the ego size (no standard message carries it).
+
+    Attributes:
+        restrict_speed_limit_mode: Speed-limit mode of scene creation.
+        constellation_creation_mode: Structured or unstructured constellations.
+        ego_length_m: Ego length, > 0.
+        ego_width_m: Ego width, > 0.
+        ego_height_m: Ego height, > 0.
+    """
+
+    restrict_speed_limit_mode: RestrictSpeedLimitMode = RestrictSpeedLimitMode.INCREASED_SPEED_LIMIT_10
+    constellation_creation_mode: ConstellationCreationMode = ConstellationCreationMode.STRUCTURED
+    ego_length_m: float = 4.5
+    ego_width_m: float = 2.0
+    ego_height_m: float = 1.5
+
+
+def _default_classes() -> dict[ObjectClass, RssDynamics]:
+    classes = dict.fromkeys(_VEHICLE_CLASSES, DEFAULT_VEHICLE_DYNAMICS)
+    classes[ObjectClass.EGO] = DEFAULT_EGO_DYNAMICS
+    classes[ObjectClass.PEDESTRIAN] = DEFAULT_PEDESTRIAN_DYNAMICS
+    return classes
+
+
+@dataclass(frozen=True)
+class RssParams:
+    """Dynamics per object class and scene settings.
+
+    Attributes:
+        dynamics: Dynamics of every :class:`ObjectClass` (all present).
+        scene: Scene-creation settings.
+    """
+
+    dynamics: Mapping[ObjectClass, RssDynamics] = field(default_factory=_default_classes)
+    scene: SceneSettings = field(default_factory=SceneSettings)
+
+    def for_class(self, object_class: ObjectClass) -> RssDynamics:
+        """Return the dynamics of one object class."""
+        return self.dynamics[object_class]
+
+
+def parse_rss_params(text: str) -> RssParams:
+    """Parse an ``--rss-params`` TOML document.
+
+    Args:
+        text: TOML text.
+
+    Returns:
+        The validated parameter set.
+
+    Raises:
+        RssParameterError: Invalid TOML, unknown table or key, invalid value.
+    """
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as err:
+        raise RssParameterError("<toml>", str(err), "not valid TOML") from err
+    return rss_params_from_mapping(data)
+
+
+def rss_params_from_mapping(data: Mapping[str, object]) -> RssParams:
+    """Build the parameter set from a parsed TOML mapping (tables as nested mappings).
+
+    ``[vehicle]`` applies to every vehicle class first; ``[car]`` etc. refine it.
+
+    Raises:
+        RssParameterError: Unknown table or key, invalid value.
+    """
+    known = {c.value for c in ObjectClass} | {"vehicle", "scene"}
+    for table, content in data.items():
+        if table not in known:
+            raise RssParameterError(table, content, f"unknown table; expected one of {sorted(known)}")
+        if not isinstance(content, dict):
+            raise RssParameterError(table, content, "must be a table")
+    classes = _default_classes()
+    vehicle = _table(data, "vehicle")
+    for cls in _VEHICLE_CLASSES:
+        base = classes[cls].with_overrides(vehicle, prefix="vehicle.")
+        classes[cls] = base.with_overrides(_table(data, cls.value), prefix=f"{cls.value}.")
+    for cls in (ObjectClass.EGO, ObjectClass.PEDESTRIAN):
+        classes[cls] = classes[cls].with_overrides(_table(data, cls.value), prefix=f"{cls.value}.")
+    return RssParams(dynamics=classes, scene=_scene(_table(data, "scene")))
+
+
+def _table(data: Mapping[str, object], name: str) -> dict[str, object]:
+    content = data.get(name, {})
+    assert isinstance(content, dict)
+    return content
+
+
+def _scene(table: Mapping[str, object]) -> SceneSettings:
+    values: dict[str, object] = {}
+    for key, value in table.items():
+        name = f"scene.{key}"
+        if key == "restrict_speed_limit_mode":
+            values[key] = _enum_value(RestrictSpeedLimitMode, name, value)
+        elif key == "constellation_creation_mode":
+            values[key] = _enum_value(ConstellationCreationMode, name, value)
+        elif key in {"ego_length", "ego_width", "ego_height"}:
+            ok = isinstance(value, int | float) and not isinstance(value, bool)
+            if not ok or not math.isfinite(float(value)) or float(value) <= 0.0:  # type: ignore[arg-type]
+                raise RssParameterError(name, value, "must be a finite number > 0 m")
+            values[f"{key}_m"] = float(value)  # type: ignore[arg-type]
+        else:
+            raise RssParameterError(name, value, "unknown [scene] key")
+    return SceneSettings(**values)  # type: ignore[arg-type]
+
+
+def _enum_value(cls: type[_E], name: str, value: object) -> _E:
+    try:
+        return cls(str(value))
+    except ValueError as err:
+        raise RssParameterError(name, value, f"must be one of {[m.value for m in cls]}") from err
