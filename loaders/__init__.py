@@ -2,6 +2,7 @@
 
 from loaders.drive import Drive, DriveInfo, TopicInfo, TopicRoles
 from loaders.errors import LoaderError
+from loaders.open import open_drive
 from loaders.records import ActorTable, EgoState, Frame, ObjectClass, Plan
 
 __all__ = [
@@ -15,4 +16,5 @@ __all__ = [
     "Plan",
     "TopicInfo",
     "TopicRoles",
+    "open_drive",
 ]

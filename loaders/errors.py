@@ -10,6 +10,7 @@ __all__ = [
     "EmptyLogError",
     "InvalidValueError",
     "LoaderError",
+    "LogNotFoundError",
     "MapError",
     "MissingEgoTopicError",
     "ProfileError",
@@ -69,6 +70,12 @@ class LoaderError(Exception):
         if self.value is not None:
             text += f" (value: {self.value!r})"
         return text
+
+
+class LogNotFoundError(LoaderError):
+    """The drive path does not exist."""
+
+    what = "no such file or directory"
 
 
 class UnsupportedFormatError(LoaderError):

@@ -11,7 +11,11 @@ if TYPE_CHECKING:
 __all__ = ["COMMAND_MODULES", "register_all"]
 
 #: Modules whose ``register(app)`` adds commands, in help order.
-COMMAND_MODULES: tuple[str, ...] = ("workbench.cli.replay", "workbench.cli.demo")
+COMMAND_MODULES: tuple[str, ...] = (
+    "workbench.cli.info",
+    "workbench.cli.replay",
+    "workbench.cli.demo",
+)
 
 
 def register_all(app: typer.Typer) -> None:

@@ -1,0 +1,144 @@
+"""``open_drive``: one entry point choosing a reader by suffix and content.
+
+| input                                   | reader                                   |
+|-----------------------------------------|------------------------------------------|
+| ``.bag``                                | rosbags ``AnyReader`` (ROS 1)            |
+| rosbag2 directory (sqlite3 or mcap)     | rosbags ``AnyReader``                    |
+| ``.mcap`` with ``cdr`` channels         | rosbags ``AnyReader`` (``mcap`` when the summary is damaged) |
+| ``.mcap`` with ``json``/``protobuf``    | ``mcap`` reader                          |
+| ``.xml`` (CommonRoad)                   | ``loaders.commonroad``                   |
+| ``.saa`` / ``.scn`` (ScenarioArchitect) | ``loaders.scenario_architect``           |
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from loaders.errors import (
+    EmptyLogError,
+    LoaderError,
+    LogNotFoundError,
+    UnsupportedFormatError,
+)
+from loaders.profile import DEFAULT_TOLERANCE_NS, Profile, load_profile
+from loaders.ros.assemble import AssemblyOptions
+from loaders.ros.log_drive import LogDrive
+from loaders.ros.mapsource import find_map, read_map
+from loaders.ros.mcap_source import McapSource
+from loaders.ros.roles import detect_roles
+from loaders.ros.rosbags_source import RosbagsSource
+
+if TYPE_CHECKING:
+    from loaders.drive import Drive
+    from loaders.ros.source import MessageSource
+
+__all__ = ["SUFFIXES", "open_drive"]
+
+#: File suffixes ``open_drive`` accepts (besides rosbag2 directories).
+SUFFIXES: tuple[str, ...] = (".mcap", ".bag", ".xml", ".saa", ".scn")
+
+
+def _rosbag2_storage(path: Path) -> str:
+    if any(path.glob("*.db3")):
+        return "rosbag2-sqlite3"
+    if any(path.glob("*.mcap")):
+        return "rosbag2-mcap"
+    raise UnsupportedFormatError(path, "directory is not a rosbag2 bag (no .db3 or .mcap inside)")
+
+
+def _open_source(path: Path) -> MessageSource:
+    if path.is_dir():
+        if not (path / "metadata.yaml").is_file():
+            raise UnsupportedFormatError(path, "directory without rosbag2 metadata.yaml")
+        return RosbagsSource(path, _rosbag2_storage(path))
+    if path.stat().st_size == 0:
+        raise EmptyLogError(path, "file has 0 bytes")
+    suffix = path.suffix.lower()
+    if suffix == ".bag":
+        return RosbagsSource(path, "ros1-bag")
+    source = McapSource(path)
+    if source.source_format == "ros2-mcap" and source.indexed:
+        source.close()
+        return RosbagsSource(path, "ros2-mcap")
+    return source
+
+
+def _profile(profile: str | Path | Profile | None) -> Profile | None:
+    if profile is None or isinstance(profile, Profile):
+        return profile
+    return load_profile(profile)
+
+
+def _open_other(
+    path: Path, suffix: str, map_path: Path | None, ego_id: str | None, plan: Any
+) -> Drive:
+    if suffix == ".xml":
+        from loaders.commonroad import open_commonroad  # noqa: PLC0415 - optional reader, loaded on demand
+
+        lane_map = None if map_path is None else read_map(map_path, str(map_path))
+        return open_commonroad(path, ego_id=ego_id, lane_map=lane_map)
+    from loaders.scenario_architect import open_scenario_architect  # noqa: PLC0415 - optional reader
+
+    return (
+        open_scenario_architect(path) if plan is None else open_scenario_architect(path, plan=plan)
+    )
+
+
+def open_drive(
+    path: str | Path,
+    *,
+    map: str | Path | None = None,  # noqa: A002 - mirrors the CLI option --map
+    profile: str | Path | Profile | None = None,
+    ego_id: str | None = None,
+    window: tuple[int | None, int | None] | None = None,
+    plan: str | None = None,
+) -> Drive:
+    """Open a recorded drive.
+
+    Args:
+        path: ``.mcap``, ``.bag``, rosbag2 directory, CommonRoad ``.xml`` or
+            ScenarioArchitect ``.saa``/``.scn``.
+        map: Lane map file (Lanelet2 ``.osm`` for ROS/MCAP logs); default: attachment or
+            sidecar file.
+        profile: TOML topic profile (path or parsed ``Profile``).
+        ego_id: CommonRoad obstacle promoted to ego; for ROS/MCAP logs, an object id
+            removed from the actor tables (the ego's own entry in a global object list).
+        window: ``(start_ns, end_ns)`` bounds of the frames ``frames()`` yields.
+        plan: ScenarioArchitect trajectory used as plan (``emergency``/``performance``).
+
+    Returns:
+        The drive; close it when done.
+
+    Raises:
+        LoaderError: A subclass naming the file and what is wrong with it.
+    """
+    path = Path(path)
+    map_path = None if map is None else Path(map)
+    if not path.exists():
+        raise LogNotFoundError(path)
+    suffix = path.suffix.lower()
+    if path.is_file() and suffix not in SUFFIXES:
+        raise UnsupportedFormatError(
+            path, f"suffix {suffix or '(none)'}; expected one of {', '.join(SUFFIXES)}"
+        )
+    if suffix in {".xml", ".saa", ".scn"}:
+        return _open_other(path, suffix, map_path, ego_id, plan)
+    prof = _profile(profile)
+    source = _open_source(path)
+    try:
+        roles = detect_roles(path, source.topics, prof)
+        lane_map = find_map(path, source, map_path)
+    except LoaderError:
+        source.close()
+        raise
+    start, end = window or (None, None)
+    options = AssemblyOptions(
+        clock=prof.clock if prof else "log_time",
+        tolerance_ns=prof.match_tolerance_ns if prof else DEFAULT_TOLERANCE_NS,
+        invalid_ego=prof.invalid_ego if prof else "raise",
+        exclude_id=None if ego_id is None else str(ego_id),
+        start_ns=start,
+        end_ns=end,
+    )
+    return LogDrive(source, roles, options, lane_map)

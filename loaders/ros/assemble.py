@@ -1,0 +1,148 @@
+"""Frames on the ego clock from one time-ordered pass over the role topics.
+
+Memory holds the last message per object topic, the last plan and a three-sample ego
+window, whatever the log size. A frame is emitted when the next ego message arrives (or
+at the end), so finite differences can be central (see ``kinematics``).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+from loaders.errors import CorruptLogError, InvalidValueError
+from loaders.records import EgoState, Frame
+from loaders.ros.kinematics import ego_kinematics
+from loaders.ros.matching import ObjectBuffer, match_objects
+from loaders.ros.samples import EgoSample, ObjectColumns, PlanSample
+
+if TYPE_CHECKING:
+    from collections.abc import Callable, Iterable, Iterator
+    from pathlib import Path
+
+    from loaders.drive import TopicRoles
+    from loaders.records import ActorTable, Plan
+
+__all__ = ["AssemblyOptions", "FrameAssembler"]
+
+
+@dataclass(frozen=True, slots=True)
+class AssemblyOptions:
+    """How frames are built.
+
+    Attributes:
+        clock: ``log_time`` or ``header``.
+        tolerance_ns: Maximum age of a matched object message.
+        invalid_ego: ``raise`` or ``skip`` on a non-finite ego pose.
+        exclude_id: Object id dropped from the actor tables (the ego itself).
+        start_ns: First frame time (inclusive), if bounded.
+        end_ns: Frame time bound (exclusive), if bounded.
+    """
+
+    clock: str = "log_time"
+    tolerance_ns: int = 150_000_000
+    invalid_ego: str = "raise"
+    exclude_id: str | None = None
+    start_ns: int | None = None
+    end_ns: int | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class _Pending:
+    t_ns: int
+    sample: EgoSample
+    actors: ActorTable
+    plan: Plan | None
+
+
+class FrameAssembler:
+    """Turns ``(topic, log_time_ns, decoded message)`` tuples into frames."""
+
+    def __init__(
+        self,
+        path: Path,
+        roles: TopicRoles,
+        decoders: dict[str, Callable[[Any], Any]],
+        options: AssemblyOptions,
+    ) -> None:
+        """Prepare buffers for ``roles``; ``decoders`` maps topic → message decoder."""
+        self._path = path
+        self._roles = roles
+        self._decoders = decoders
+        self._opt = options
+        self._buffers = [ObjectBuffer(t) for t in roles.objects]
+        self._by_topic = {b.topic: b for b in self._buffers}
+        self._plan: tuple[int, Plan] | None = None
+        self._prev: _Pending | None = None
+        self._cur: _Pending | None = None
+        self._index = 0
+        self.skipped_invalid = 0
+        self.skipped_out_of_order = 0
+
+    def _time(self, log_ns: int, stamp_ns: int | None) -> int:
+        return stamp_ns if self._opt.clock == "header" and stamp_ns is not None else log_ns
+
+    def _in_window(self, t_ns: int) -> bool:
+        start, end = self._opt.start_ns, self._opt.end_ns
+        return (start is None or t_ns >= start) and (end is None or t_ns < end)
+
+    def _emit(self, nxt: _Pending | None) -> Frame | None:
+        cur = self._cur
+        if cur is None:
+            self._cur = nxt
+            return None
+        prev = self._prev
+        speed, accel, yaw_rate = ego_kinematics(
+            (prev.t_ns, prev.sample) if prev else None,
+            (cur.t_ns, cur.sample),
+            (nxt.t_ns, nxt.sample) if nxt else None,
+        )
+        s = cur.sample
+        ego = EgoState(s.x_m, s.y_m, s.z_m, s.yaw_rad, speed, accel, yaw_rate)
+        self._prev, self._cur = cur, nxt
+        if not self._in_window(cur.t_ns):
+            return None
+        frame = Frame(self._index, cur.t_ns, ego, cur.actors, cur.plan)
+        self._index += 1
+        return frame
+
+    def _on_ego(self, topic: str, log_ns: int, sample: EgoSample) -> Frame | None:
+        t_ns = self._time(log_ns, sample.stamp_ns)
+        if self._cur is not None and t_ns <= self._cur.t_ns:
+            self.skipped_out_of_order += 1
+            return None
+        pose = (sample.x_m, sample.y_m, sample.yaw_rad)
+        if not all(math.isfinite(v) for v in pose):
+            if self._opt.invalid_ego == "skip":
+                self.skipped_invalid += 1
+                return None
+            raise InvalidValueError(
+                self._path, "non-finite ego pose (x, y, yaw)", topic=topic, t_ns=t_ns, value=pose
+            )
+        actors = match_objects(self._buffers, t_ns, self._opt.tolerance_ns, self._opt.exclude_id)
+        plan = self._plan[1] if self._plan is not None and self._plan[0] <= t_ns else None
+        return self._emit(_Pending(t_ns, sample, actors, plan))
+
+    def run(self, messages: Iterable[tuple[str, int, Any]]) -> Iterator[Frame]:
+        """Yield frames; a ``CorruptLogError`` or ``InvalidValueError`` from the stream is
+        re-raised after the frame still pending was yielded."""
+        try:
+            for topic, log_ns, msg in messages:
+                decoded = self._decoders[topic](msg)
+                if isinstance(decoded, EgoSample):
+                    frame = self._on_ego(topic, log_ns, decoded)
+                    if frame is not None:
+                        yield frame
+                elif isinstance(decoded, ObjectColumns):
+                    self._by_topic[topic].update(self._time(log_ns, decoded.stamp_ns), decoded)
+                elif isinstance(decoded, PlanSample):
+                    self._plan = (self._time(log_ns, decoded.stamp_ns), decoded.plan)
+        except (CorruptLogError, InvalidValueError):
+            frame = self._emit(None)
+            if frame is not None:
+                yield frame
+            raise
+        frame = self._emit(None)
+        if frame is not None:
+            yield frame

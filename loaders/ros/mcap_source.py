@@ -1,0 +1,227 @@
+"""MCAP files through ``mcap``'s reader: JSON and protobuf channels, and damaged ROS 2 files.
+
+Healthy files are read through the summary and chunk index (``SeekingReader``). Files
+without a readable summary (truncated, or written without one) are read as a record
+stream: a first pass lists channels, counts and attachments and notes where the data
+breaks off; message reading then yields every message before that point and raises
+``CorruptLogError`` with the byte offset.
+
+Decoders are resolved once per channel and cached: ``protobuf`` through
+``mcap_protobuf``, ``json`` with the standard library, ``cdr`` (ROS 2) through a rosbags
+typestore built from the channel's ``ros2msg`` schema.
+"""
+
+from __future__ import annotations
+
+import json
+import struct
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+from mcap.exceptions import McapError
+from mcap.reader import SeekingReader
+from mcap.records import Attachment, Channel, Message, Schema
+from mcap.stream_reader import StreamReader
+from mcap_protobuf.decoder import DecoderFactory as ProtobufDecoderFactory
+from rosbags.typesys import Stores, get_types_from_msg, get_typestore
+
+from loaders.drive import TopicInfo
+from loaders.errors import CorruptLogError, EmptyLogError, UnsupportedFormatError
+from loaders.ros.registry import normalize_msgtype
+
+if TYPE_CHECKING:
+    from collections.abc import Callable, Collection, Iterator
+    from pathlib import Path
+    from typing import BinaryIO
+
+__all__ = ["MCAP_ERRORS", "McapSource"]
+
+#: What a damaged MCAP raises while reading (wrapped into ``CorruptLogError``).
+MCAP_ERRORS: tuple[type[Exception], ...] = (
+    McapError,
+    struct.error,
+    EOFError,
+    ValueError,
+    KeyError,
+    OSError,
+    RuntimeError,
+)
+_FORMATS = {"cdr": "ros2-mcap", "json": "mcap-json", "protobuf": "mcap-protobuf"}
+
+
+def _ros2_decoder(schema: Schema) -> Callable[[bytes], Any]:
+    store = get_typestore(Stores.EMPTY)
+    store.register(get_types_from_msg(schema.data.decode(), schema.name))
+    name = schema.name
+    return lambda data: store.deserialize_cdr(data, name)
+
+
+@dataclass
+class _Index:
+    """What a pass over the records found."""
+
+    schemas: dict[int, Schema] = field(default_factory=dict)
+    channels: dict[int, Channel] = field(default_factory=dict)
+    counts: dict[int, int] = field(default_factory=dict)
+    start_ns: int | None = None
+    end_ns: int = 0
+    maps: list[tuple[str, bytes]] = field(default_factory=list)
+    damage: tuple[int, str] | None = None
+
+
+def _scan(stream: BinaryIO) -> _Index:
+    index = _Index()
+    reader = StreamReader(stream, record_size_limit=2**31)
+    try:
+        for record in reader.records:
+            if isinstance(record, Schema):
+                index.schemas[record.id] = record
+            elif isinstance(record, Channel):
+                index.channels[record.id] = record
+            elif isinstance(record, Message):
+                index.counts[record.channel_id] = index.counts.get(record.channel_id, 0) + 1
+                t = record.log_time
+                index.start_ns = t if index.start_ns is None else min(index.start_ns, t)
+                index.end_ns = max(index.end_ns, t)
+            elif isinstance(record, Attachment) and record.name.endswith(".osm"):
+                index.maps.append((record.name, bytes(record.data)))
+    except MCAP_ERRORS as err:
+        index.damage = (stream.tell(), f"{type(err).__name__}: {err}")
+    return index
+
+
+class McapSource:
+    """An MCAP file read with ``mcap`` (see the module docstring)."""
+
+    def __init__(self, path: Path) -> None:
+        """Open ``path`` and read its summary (or scan it when it has none)."""
+        self.path = path
+        self._file = path.open("rb")
+        self._reader: SeekingReader | None = None
+        self._protobuf = ProtobufDecoderFactory()
+        self._decoders: dict[int, Callable[[bytes], Any]] = {}
+        try:
+            reader = SeekingReader(self._file)
+            summary = reader.get_summary()
+        except MCAP_ERRORS:
+            summary = None
+        if summary is not None and summary.statistics is not None and summary.chunk_indexes:
+            self._reader = reader
+            stats = summary.statistics
+            index = _Index(
+                summary.schemas,
+                summary.channels,
+                dict(stats.channel_message_counts),
+                stats.message_start_time,
+                stats.message_end_time,
+            )
+        else:
+            self._file.seek(0)
+            index = _scan(self._file)
+        self._index = index
+        if not index.counts or index.start_ns is None:
+            self.close()
+            if index.damage is not None:
+                raise CorruptLogError(
+                    path, f"no readable message: {index.damage[1]}", offset=index.damage[0]
+                )
+            raise EmptyLogError(path, "the MCAP holds no messages")
+        self.start_ns, self.end_ns = index.start_ns, index.end_ns
+        encodings = {c.message_encoding for c in index.channels.values()}
+        known = sorted(_FORMATS[e] for e in encodings if e in _FORMATS)
+        if not known:
+            self.close()
+            raise UnsupportedFormatError(path, f"no channel encoding we read: {sorted(encodings)}")
+        self.source_format = "ros2-mcap" if "ros2-mcap" in known else "+".join(known)
+        self.topics = self._topic_infos()
+
+    @property
+    def indexed(self) -> bool:
+        """True when the file was opened through its summary and chunk index."""
+        return self._reader is not None
+
+    def _msgtype(self, channel: Channel) -> str:
+        schema = self._index.schemas.get(channel.schema_id)
+        return normalize_msgtype(schema.name) if schema is not None else channel.message_encoding
+
+    def _topic_infos(self) -> tuple[TopicInfo, ...]:
+        counts: dict[str, int] = {}
+        types: dict[str, str] = {}
+        for cid, channel in self._index.channels.items():
+            counts[channel.topic] = counts.get(channel.topic, 0) + self._index.counts.get(cid, 0)
+            types[channel.topic] = self._msgtype(channel)
+        return tuple(TopicInfo(t, types[t], counts[t]) for t in sorted(types))
+
+    def _decoder(self, channel: Channel) -> Callable[[bytes], Any]:
+        decode = self._decoders.get(channel.id)
+        if decode is None:
+            schema = self._index.schemas.get(channel.schema_id)
+            if channel.message_encoding == "json":
+                decode = json.loads
+            elif channel.message_encoding == "cdr" and schema is not None:
+                decode = _ros2_decoder(schema)
+            else:
+                found = self._protobuf.decoder_for(channel.message_encoding, schema)
+                if found is None:
+                    raise UnsupportedFormatError(
+                        self.path, f"cannot decode {channel.message_encoding}", topic=channel.topic
+                    )
+                decode = found
+            self._decoders[channel.id] = decode
+        return decode
+
+    def _records(
+        self, topics: Collection[str], start_ns: int | None, stop_ns: int | None
+    ) -> Iterator[tuple[Channel, Message]]:
+        if self._reader is not None:
+            for _, channel, message in self._reader.iter_messages(
+                topics=list(topics), starting_at=start_ns, ending_before=stop_ns
+            ):
+                yield channel, message
+            return
+        self._file.seek(0)
+        channels: dict[int, Channel] = {}
+        for record in StreamReader(self._file, record_size_limit=2**31).records:
+            if isinstance(record, Channel):
+                channels[record.id] = record
+            elif isinstance(record, Message):
+                channel = channels[record.channel_id]
+                t = record.log_time
+                if channel.topic not in topics or (start_ns is not None and t < start_ns):
+                    continue
+                if stop_ns is None or t < stop_ns:
+                    yield channel, record
+
+    def messages(
+        self, topics: Collection[str], start_ns: int | None, stop_ns: int | None
+    ) -> Iterator[tuple[str, int, Any]]:
+        """Yield decoded messages of ``topics``; see ``MessageSource``."""
+        topic, t_ns = None, None
+        try:
+            for channel, message in self._records(topics, start_ns, stop_ns):
+                topic, t_ns = channel.topic, message.log_time
+                yield topic, t_ns, self._decoder(channel)(message.data)
+        except MCAP_ERRORS as err:
+            raise CorruptLogError(
+                self.path,
+                f"{type(err).__name__}: {err}",
+                topic=topic,
+                t_ns=t_ns,
+                offset=self._file.tell(),
+            ) from err
+        if self._index.damage is not None and (stop_ns is None or stop_ns > self._index.end_ns):
+            offset, detail = self._index.damage
+            raise CorruptLogError(self.path, detail, topic=topic, t_ns=t_ns, offset=offset)
+
+    def attachments(self) -> Iterator[tuple[str, bytes]]:
+        """Yield ``(name, data)`` of the ``.osm`` attachments."""
+        if self._reader is None:
+            yield from self._index.maps
+            return
+        for att in self._reader.iter_attachments():
+            if att.name.endswith(".osm"):
+                yield att.name, bytes(att.data)
+
+    def close(self) -> None:
+        """Close the file."""
+        self._file.close()

@@ -1,0 +1,165 @@
+"""Object decoders for ROS message families: CARLA, Autoware and vision_msgs.
+
+Frames of the velocities (checked against the publishers):
+
+- ``derived_object_msgs/Object.twist`` from the CARLA ROS bridge is the actor velocity in
+  the *map* frame (the bridge converts CARLA's world velocity, it does not rotate it into
+  the object frame), so it is used as is.
+- Autoware ``kinematics.*twist_with_covariance`` is in the object's *body* frame; it is
+  rotated into the map frame by the object yaw.
+- ``vision_msgs/Detection3D`` has no velocity: ``has_velocity=False`` lets the assembler
+  estimate it per id by finite differences across messages.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from loaders.records import ObjectClass
+from loaders.ros.poses import body_to_map, ros_stamp_ns, yaw_from_quaternion
+from loaders.ros.samples import ObjectColumns, class_from_name
+
+__all__ = [
+    "AUTOWARE_LABELS",
+    "CARLA_CLASSES",
+    "decode_autoware_objects",
+    "decode_carla_objects",
+    "decode_detection3d",
+]
+
+#: ``derived_object_msgs/Object.classification`` constants.
+CARLA_CLASSES: dict[int, ObjectClass] = {
+    4: ObjectClass.PEDESTRIAN,
+    5: ObjectClass.BICYCLE,
+    6: ObjectClass.CAR,
+    7: ObjectClass.TRUCK,
+    8: ObjectClass.MOTORCYCLE,
+    9: ObjectClass.CAR,
+}
+
+#: ``autoware_perception_msgs/ObjectClassification.label`` constants.
+AUTOWARE_LABELS: dict[int, ObjectClass] = {
+    0: ObjectClass.UNKNOWN,
+    1: ObjectClass.CAR,
+    2: ObjectClass.TRUCK,
+    3: ObjectClass.BUS,
+    4: ObjectClass.TRUCK,
+    5: ObjectClass.MOTORCYCLE,
+    6: ObjectClass.BICYCLE,
+    7: ObjectClass.PEDESTRIAN,
+}
+
+_BOX, _CYLINDER = 1, 3  # shape_msgs/SolidPrimitive types
+_NAN = float("nan")
+
+
+def _pose_row(pose: Any) -> tuple[float, float, float, float]:
+    p, q = pose.position, pose.orientation
+    return float(p.x), float(p.y), float(p.z), yaw_from_quaternion(q.x, q.y, q.z, q.w)
+
+
+def _solid_dims(shape: Any) -> tuple[float, float, float]:
+    dims = [float(d) for d in shape.dimensions]
+    if shape.type == _BOX and len(dims) >= 3:
+        return dims[0], dims[1], dims[2]
+    if shape.type == _CYLINDER and len(dims) >= 2:
+        return 2 * dims[1], 2 * dims[1], dims[0]
+    return _NAN, _NAN, _NAN
+
+
+def decode_carla_objects(msg: Any) -> ObjectColumns:
+    """``derived_object_msgs/ObjectArray`` (BOX dimensions are full sizes; twist in map frame)."""
+    ids, classes, rows = [], [], []
+    for obj in msg.objects:
+        ids.append(str(obj.id))
+        classes.append(CARLA_CLASSES.get(int(obj.classification), ObjectClass.UNKNOWN))
+        lin = obj.twist.linear
+        rows.append((*_pose_row(obj.pose), float(lin.x), float(lin.y), *_solid_dims(obj.shape)))
+    return ObjectColumns.from_rows(ros_stamp_ns(msg.header.stamp), ids, classes, rows)
+
+
+def _autoware_class(classification: Any) -> ObjectClass:
+    if not classification:
+        return ObjectClass.UNKNOWN
+    best = max(classification, key=lambda c: float(c.probability))
+    return AUTOWARE_LABELS.get(int(best.label), ObjectClass.UNKNOWN)
+
+
+def _autoware_dims(shape: Any) -> tuple[float, float, float]:
+    d = shape.dimensions
+    length, width, height = float(d.x), float(d.y), float(d.z)
+    points = shape.footprint.points
+    if (length <= 0 or width <= 0) and points:
+        xs = [float(p.x) for p in points]
+        ys = [float(p.y) for p in points]
+        length, width = max(xs) - min(xs), max(ys) - min(ys)
+    return length, width, height
+
+
+def decode_autoware_objects(msg: Any) -> ObjectColumns:
+    """``autoware_perception_msgs/PredictedObjects`` or ``TrackedObjects``.
+
+    The twist is in the object body frame and is rotated into the map frame; the UUID
+    becomes a 32-character hex id.
+    """
+    ids, classes, rows = [], [], []
+    for obj in msg.objects:
+        kin = obj.kinematics
+        pose = getattr(kin, "initial_pose_with_covariance", None) or kin.pose_with_covariance
+        twist = getattr(kin, "initial_twist_with_covariance", None) or kin.twist_with_covariance
+        ids.append(bytes(np.asarray(obj.object_id.uuid, dtype=np.uint8)).hex())
+        classes.append(_autoware_class(obj.classification))
+        x, y, z, yaw = _pose_row(pose.pose)
+        lin = twist.twist.linear
+        rows.append((x, y, z, yaw, float(lin.x), float(lin.y), *_autoware_dims(obj.shape)))
+    cols = ObjectColumns.from_rows(ros_stamp_ns(msg.header.stamp), ids, classes, rows)
+    vx, vy = body_to_map(cols.vx_mps, cols.vy_mps, cols.yaw_rad)
+    object.__setattr__(cols, "vx_mps", vx)
+    object.__setattr__(cols, "vy_mps", vy)
+    return cols
+
+
+def _hypothesis_class(results: Any) -> ObjectClass:
+    if not results:
+        return ObjectClass.UNKNOWN
+    best = max(results, key=lambda r: float(getattr(r, "hypothesis", r).score))
+    hyp = getattr(best, "hypothesis", None)
+    if hyp is not None:
+        return class_from_name(str(hyp.class_id))
+    raw = best.id  # ROS 1 vision_msgs: integer (or string) id in the result itself
+    if isinstance(raw, str):
+        return class_from_name(raw)
+    value = int(raw)
+    return ObjectClass(value) if value in ObjectClass._value2member_map_ else ObjectClass.UNKNOWN
+
+
+def _detection_id(det: Any, index: int) -> str:
+    for name in ("id", "tracking_id"):
+        value = getattr(det, name, None)
+        if isinstance(value, str) and value:
+            return value
+    return f"det{index}"
+
+
+def decode_detection3d(msg: Any) -> ObjectColumns:
+    """``vision_msgs/Detection3DArray`` (4.x and the ROS 1 layout with integer result ids)."""
+    ids, classes, rows = [], [], []
+    for k, det in enumerate(msg.detections):
+        ids.append(_detection_id(det, k))
+        classes.append(_hypothesis_class(det.results))
+        size = det.bbox.size
+        rows.append(
+            (
+                *_pose_row(det.bbox.center),
+                _NAN,
+                _NAN,
+                float(size.x),
+                float(size.y),
+                float(size.z),
+            )
+        )
+    return ObjectColumns.from_rows(
+        ros_stamp_ns(msg.header.stamp), ids, classes, rows, has_velocity=False
+    )

@@ -1,0 +1,73 @@
+"""Which message types we decode, for which role, and how much we prefer each.
+
+Type names are normalised to ``package/Type`` (ROS, without the ``/msg/`` infix) or the
+schema name (``foxglove.SceneUpdate``, ``workbench.EgoState``). A decoder is looked up once
+per topic and cached by the drive.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+from loaders.ros import ego, objects_mcap, objects_ros, plan
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+
+    from loaders.ros.samples import EgoSample, ObjectColumns, PlanSample
+
+__all__ = ["FAMILIES", "ROLES", "MessageFamily", "family_of", "normalize_msgtype"]
+
+#: Role names in display order.
+ROLES: tuple[str, ...] = ("ego", "objects", "plan")
+
+
+@dataclass(frozen=True, slots=True)
+class MessageFamily:
+    """A decodable message type.
+
+    Attributes:
+        role: ``ego``, ``objects`` or ``plan``.
+        rank: Preference within the role when several topics qualify (lower wins).
+        decode: Decoded message object → sample.
+    """
+
+    role: str
+    rank: int
+    decode: Callable[[Any], EgoSample | ObjectColumns | PlanSample]
+
+
+FAMILIES: dict[str, MessageFamily] = {
+    "nav_msgs/Odometry": MessageFamily("ego", 0, ego.decode_odometry),
+    "foxglove.Odometry": MessageFamily("ego", 0, ego.decode_foxglove_odometry),
+    "workbench.EgoState": MessageFamily("ego", 0, ego.decode_json_ego),
+    "geometry_msgs/PoseStamped": MessageFamily("ego", 1, ego.decode_pose_stamped),
+    "foxglove.PoseInFrame": MessageFamily("ego", 1, ego.decode_foxglove_pose_in_frame),
+    "foxglove.FrameTransform": MessageFamily("ego", 2, ego.decode_foxglove_frame_transform),
+    "derived_object_msgs/ObjectArray": MessageFamily(
+        "objects", 0, objects_ros.decode_carla_objects
+    ),
+    "autoware_perception_msgs/TrackedObjects": MessageFamily(
+        "objects", 0, objects_ros.decode_autoware_objects
+    ),
+    "autoware_perception_msgs/PredictedObjects": MessageFamily(
+        "objects", 1, objects_ros.decode_autoware_objects
+    ),
+    "workbench.ObjectList": MessageFamily("objects", 0, objects_mcap.decode_json_objects),
+    "vision_msgs/Detection3DArray": MessageFamily("objects", 2, objects_ros.decode_detection3d),
+    "foxglove.SceneUpdate": MessageFamily("objects", 2, objects_mcap.decode_scene_update),
+    "autoware_planning_msgs/Trajectory": MessageFamily("plan", 0, plan.decode_trajectory),
+    "workbench.Plan": MessageFamily("plan", 0, plan.decode_json_plan),
+    "nav_msgs/Path": MessageFamily("plan", 1, plan.decode_path),
+}
+
+
+def normalize_msgtype(msgtype: str) -> str:
+    """``nav_msgs/msg/Odometry`` → ``nav_msgs/Odometry``; other names unchanged."""
+    return msgtype.replace("/msg/", "/")
+
+
+def family_of(msgtype: str) -> MessageFamily | None:
+    """The family decoding ``msgtype`` (any spelling), or None."""
+    return FAMILIES.get(normalize_msgtype(msgtype))

@@ -1,0 +1,95 @@
+"""ROS logs through rosbags' ``AnyReader``: ROS 1 bags, rosbag2 directories, ROS 2 MCAP files."""
+
+from __future__ import annotations
+
+import struct
+from typing import TYPE_CHECKING, Any
+
+from rosbags.highlevel import AnyReader, AnyReaderError
+from rosbags.rosbag1 import ReaderError as Bag1ReaderError
+from rosbags.rosbag2 import ReaderError as Bag2ReaderError
+
+from loaders.drive import TopicInfo
+from loaders.errors import CorruptLogError, EmptyLogError
+from loaders.ros.registry import normalize_msgtype
+from loaders.typestore import typestore
+
+if TYPE_CHECKING:
+    from collections.abc import Collection, Iterator
+    from pathlib import Path
+
+__all__ = ["READ_ERRORS", "RosbagsSource"]
+
+#: What a damaged container raises while reading (wrapped into ``CorruptLogError``).
+READ_ERRORS: tuple[type[Exception], ...] = (
+    AnyReaderError,
+    Bag1ReaderError,
+    Bag2ReaderError,
+    struct.error,
+    EOFError,
+    ValueError,
+    IndexError,
+    KeyError,
+    OSError,
+)
+
+
+def _size(path: Path) -> int:
+    if path.is_dir():
+        return sum(p.stat().st_size for p in path.iterdir() if p.is_file())
+    return path.stat().st_size
+
+
+class RosbagsSource:
+    """A ROS log opened with ``AnyReader`` (``default_typestore`` for bags without definitions).
+
+    Raises ``CorruptLogError`` at open when the container index cannot be read (rosbags
+    needs the index of bags and the summary of MCAP files); the offset is the file size,
+    i.e. where the data ends.
+    """
+
+    def __init__(self, path: Path, source_format: str) -> None:
+        """Open ``path``; see the class docstring for errors."""
+        self.path = path
+        self.source_format = source_format
+        self._reader = AnyReader([path], default_typestore=typestore(2))
+        try:
+            self._reader.open()
+        except READ_ERRORS as err:
+            raise CorruptLogError(
+                path, f"cannot read the index: {err}", offset=_size(path)
+            ) from err
+        if self._reader.message_count == 0:
+            self._reader.close()
+            raise EmptyLogError(path, "the container holds no messages")
+        self.start_ns = int(self._reader.start_time)
+        self.end_ns = int(self._reader.end_time) - 1  # rosbags reports last + 1
+        counts: dict[str, int] = {}
+        types: dict[str, str] = {}
+        for conn in self._reader.connections:
+            counts[conn.topic] = counts.get(conn.topic, 0) + int(conn.msgcount)
+            types[conn.topic] = normalize_msgtype(conn.msgtype)
+        self.topics = tuple(TopicInfo(t, types[t], counts[t]) for t in sorted(types))
+
+    def messages(
+        self, topics: Collection[str], start_ns: int | None, stop_ns: int | None
+    ) -> Iterator[tuple[str, int, Any]]:
+        """Yield decoded messages of ``topics`` in log-time order; see ``MessageSource``."""
+        conns = [c for c in self._reader.connections if c.topic in topics]
+        topic, t_ns = None, None
+        try:
+            for conn, t, raw in self._reader.messages(conns, start=start_ns, stop=stop_ns):
+                topic, t_ns = conn.topic, t
+                yield conn.topic, t, self._reader.deserialize(raw, conn.msgtype)
+        except READ_ERRORS as err:
+            where = "after the last readable message" if topic else "before any message"
+            raise CorruptLogError(self.path, f"{where}: {err}", topic=topic, t_ns=t_ns) from err
+
+    def attachments(self) -> Iterator[tuple[str, bytes]]:
+        """Bags carry no attachments."""
+        return iter(())
+
+    def close(self) -> None:
+        """Close the reader."""
+        if self._reader.stack is not None:
+            self._reader.close()

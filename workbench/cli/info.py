@@ -1,0 +1,65 @@
+"""``workbench info``: what a drive holds and how it will be read (formats, topics, roles)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING, Annotated
+
+import typer
+from rich.console import Console
+from rich.table import Table
+
+if TYPE_CHECKING:
+    from loaders.drive import Drive
+
+__all__ = ["info", "register", "render_info"]
+
+
+def render_info(drive: Drive, console: Console) -> None:
+    """Print the drive summary and the topic table."""
+    info = drive.info
+    console.print(f"[bold]{info.path}[/bold]")
+    console.print(f"format      {info.source_format}")
+    console.print(f"duration    {info.duration_s:.3f} s ({info.start_ns} .. {info.end_ns} ns)")
+    console.print(f"frames      {info.frame_count}")
+    console.print(
+        f"clock       {info.clock}, match tolerance {info.match_tolerance_ns / 1e9:.3f} s"
+    )
+    lane_map = drive.lane_map
+    if lane_map is None:
+        console.print("map         none")
+    else:
+        console.print(f"map         {info.map_source} ({len(lane_map.lanes)} lanes)")
+    for key, value in sorted(info.notes.items()):
+        console.print(f"note        {key}: {value}")
+    table = Table(title="topics")
+    table.add_column("topic")
+    table.add_column("type")
+    table.add_column("count", justify="right")
+    table.add_column("role")
+    for topic in info.topics:
+        table.add_row(topic.topic, topic.msgtype, str(topic.count), topic.role or "")
+    console.print(table)
+
+
+def info(
+    log: Annotated[Path, typer.Argument(help="Drive: .mcap, .bag, rosbag2 dir, .xml, .saa/.scn")],
+    map_path: Annotated[
+        Path | None, typer.Option("--map", help="Lane map file (Lanelet2 .osm)")
+    ] = None,
+    profile: Annotated[Path | None, typer.Option("--profile", help="TOML topic profile")] = None,
+    ego_id: Annotated[str | None, typer.Option("--ego-id", help="CommonRoad ego obstacle")] = None,
+) -> None:
+    """Show format, duration, frame count, topics with types, counts and roles, and the map."""
+    from loaders import open_drive  # noqa: PLC0415 - keeps CLI start-up light
+
+    drive = open_drive(log, map=map_path, profile=profile, ego_id=ego_id)
+    try:
+        render_info(drive, Console(width=160))
+    finally:
+        drive.close()
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``info`` command."""
+    app.command("info")(info)
