@@ -72,5 +72,25 @@ def reachable_sets(
         sets = np.asarray(shapely.difference(sets, deletion[:, None]))
     area = drivable if drivable is not None else (track.polygon if track is not None else None)
     if params.trim_to_drivable and area is not None:
-        sets = np.asarray(shapely.intersection(sets, area))
+        sets = _trim(sets, area)
     return sets
+
+
+def _trim(sets: NDArray[np.object_], area: Any) -> NDArray[np.object_]:
+    """``sets & area``, ``(N, T)``, clipping ``area`` to each object's bounding box first.
+
+    One clip per object makes the polygon intersections cheap (the track
+    polygon has hundreds of vertices; one object's sets touch only a few dozen of them).
+    """
+    bounds = shapely.bounds(sets)
+    box = np.stack(
+        [
+            np.nanmin(bounds[..., 0], axis=1),
+            np.nanmin(bounds[..., 1], axis=1),
+            np.nanmax(bounds[..., 2], axis=1),
+            np.nanmax(bounds[..., 3], axis=1),
+        ],
+        axis=1,
+    )
+    local = np.asarray(shapely.intersection(area, shapely.box(*box.T)))
+    return np.asarray(shapely.intersection(sets, local[:, None]))

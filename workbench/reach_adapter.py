@@ -1,0 +1,102 @@
+"""Adapt loader ``Frame`` records and lane maps to the reach-set engine's plain inputs."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from loaders.maps.model import LaneDirection, LaneKind, LineType
+from reachsets.adapter import reach_inputs_from_arrays
+from reachsets.inputs import RightOfWayRule, RoadLane, RoadLayout
+
+if TYPE_CHECKING:
+    from loaders.maps.model import LaneMap
+    from loaders.records import Frame
+    from reachsets.inputs import ReachInputs
+
+__all__ = ["PLAN_FALLBACK_HORIZON_S", "frame_to_reach_inputs", "road_layout_from_lane_map"]
+
+#: Without a plan the ego is assumed to keep its speed and heading for this long.
+PLAN_FALLBACK_HORIZON_S = 4.0
+
+
+def road_layout_from_lane_map(lane_map: LaneMap) -> RoadLayout | None:
+    """Lanes as polygons with centre lines in driving direction; solid borders as polylines."""
+    lanes = []
+    solid = []
+    in_intersection = {lane_id for group in lane_map.intersections for lane_id in group}
+    for lane in lane_map.lanes.values():
+        if lane.kind not in (LaneKind.ROAD, LaneKind.INTERSECTION) or len(lane.left_m) < 2:  # noqa: PLR2004
+            continue
+        ring = np.concatenate([lane.left_m, lane.right_m[::-1]])
+        centre = lane.centre_m if lane.direction != LaneDirection.NEGATIVE else lane.centre_m[::-1]
+        lanes.append(
+            RoadLane(
+                lane_id=lane.id,
+                polygon_m=ring,
+                centre_m=centre,
+                speed_limit_mps=lane.speed_limit_mps,
+                in_intersection=lane.kind == LaneKind.INTERSECTION or lane.id in in_intersection,
+            )
+        )
+        if lane.left_line == LineType.SOLID:
+            solid.append(lane.left_m)
+        if lane.right_line == LineType.SOLID:
+            solid.append(lane.right_m)
+    if not lanes:
+        return None
+    rules = tuple(
+        RightOfWayRule(r.priority_lanes, r.yield_lanes) for r in lane_map.right_of_way
+    )
+    return RoadLayout(lanes=tuple(lanes), solid_lines_m=tuple(solid), right_of_way=rules)
+
+
+def frame_to_reach_inputs(frame: Frame, lane_map: LaneMap | None) -> ReachInputs:
+    """Engine inputs of one frame.
+
+    The plan becomes the ego trajectory (its ``t_offset_s`` when known, else timed from its
+    speeds); without a plan the ego keeps its current speed and heading. A ``track`` map
+    gives the track bounds (``boundaries_m = (left, right)``); other maps give a road layout.
+    """
+    ego = frame.ego
+    plan = frame.plan
+    if plan is not None and len(plan) > 0:
+        x, y, yaw = plan.x_m, plan.y_m, plan.yaw_rad
+        speed = np.where(np.isfinite(plan.speed_mps), plan.speed_mps, ego.speed_mps)
+        t = plan.t_offset_s if np.all(np.isfinite(plan.t_offset_s)) else None
+    else:
+        t = np.linspace(0.0, PLAN_FALLBACK_HORIZON_S, 21)
+        dist = ego.speed_mps * t
+        x = ego.x_m + np.cos(ego.yaw_rad) * dist
+        y = ego.y_m + np.sin(ego.yaw_rad) * dist
+        yaw = np.full_like(t, ego.yaw_rad)
+        speed = np.full_like(t, ego.speed_mps)
+    actors = frame.actors
+    valid = np.asarray(actors.valid, dtype=bool)
+    left = right = None
+    road = None
+    if lane_map is not None:
+        if lane_map.format == "track" and len(lane_map.boundaries_m) >= 2:  # noqa: PLR2004
+            left, right = lane_map.boundaries_m[0], lane_map.boundaries_m[1]
+        else:
+            road = road_layout_from_lane_map(lane_map)
+    return reach_inputs_from_arrays(
+        ego_x_m=x,
+        ego_y_m=y,
+        ego_yaw_rad=yaw,
+        ego_speed_mps=speed,
+        ego_t_s=t,
+        ego_length_m=ego.length_m,
+        ego_width_m=ego.width_m,
+        object_ids=[str(i) for i in actors.ids[valid]],
+        object_x_m=actors.x_m[valid],
+        object_y_m=actors.y_m[valid],
+        object_yaw_rad=actors.yaw_rad[valid],
+        object_speed_mps=actors.speed_mps[valid],
+        object_length_m=actors.length_m[valid],
+        object_width_m=actors.width_m[valid],
+        track_left_m=left,
+        track_right_m=right,
+        road=road,
+    )
