@@ -262,11 +262,11 @@ def _ego_rates(ego: Track, dt_ns: int) -> tuple[int, NDArray[np.float64], NDArra
     """Valid prefix length, yaw rate and acceleration of the ego over that prefix."""
     finite = np.all(np.isfinite(np.vstack((ego.x_m, ego.y_m, ego.yaw_rad, ego.speed_mps))), axis=0)
     k = int(np.argmin(finite)) if not np.all(finite) else len(ego.steps)
-    t_s = ego.steps[:k] * (dt_ns / 1e9)
+    steps, dt_s = ego.steps[:k].astype(np.float64), dt_ns / 1e9
     if k < 2:  # noqa: PLR2004 - a finite difference needs two states
         zeros = np.zeros(k)
         return k, zeros, np.where(np.isfinite(ego.accel_mps2[:k]), ego.accel_mps2[:k], 0.0)
-    yaw_rate = np.gradient(np.unwrap(ego.yaw_rad[:k]), t_s)
+    yaw_rate = np.gradient(np.unwrap(ego.yaw_rad[:k]), steps) / dt_s
     given = ego.accel_mps2[:k]
-    accel = np.where(np.isfinite(given), given, np.gradient(ego.speed_mps[:k], t_s))
+    accel = np.where(np.isfinite(given), given, np.gradient(ego.speed_mps[:k], steps) / dt_s)
     return k, yaw_rate, accel
