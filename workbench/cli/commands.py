@@ -15,6 +15,7 @@ COMMAND_MODULES: tuple[str, ...] = (
     "workbench.cli.info",
     "workbench.cli.replay",
     "workbench.cli.demo",
+    "workbench.cli.conformance",
 )
 
 

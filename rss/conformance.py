@@ -1,0 +1,259 @@
+"""Evaluate a conformance case file and produce the JSON-line records of
+``conformance/rss-cases-format.md`` (pure: the CLI does the file I/O and printing)."""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from rss.batch import stack_constellations
+from rss.cases import CaseDefaults, ParsedCase, other_dynamics_for, parse_case, parse_defaults
+from rss.checks import safe_lateral_distance, safe_longitudinal_distance_opposite, safe_longitudinal_distance_same
+from rss.batch import stack_dynamics
+from rss.engine import check_frame
+from rss.errors import RssCaseError, RssError
+from rss.memory import RssMemory
+from rss.model import ConstellationType, ObjectType
+from rss.physics import DISTANCE_MAX_M, stated_braking_longitudinal, stopping_distance
+from rss.states import InvalidReason, LateralPosition, LateralResponse, LongitudinalPosition, LongitudinalResponse, RssStateEvaluator
+
+if TYPE_CHECKING:
+    from collections.abc import Iterator, Mapping
+
+    from rss.checks import LateralSide
+    from rss.engine import FrameResult
+
+__all__ = ["UNSUPPORTED_UNSTRUCTURED", "check_expected", "evaluate_document", "evaluate_formula", "frame_record"]
+
+#: Error text of unstructured cases (issue 6).
+UNSUPPORTED_UNSTRUCTURED = "unsupported: unstructured (issue 6)"
+
+
+def _num(value: float) -> float | None:
+    """JSON number rounded to 1e-6; "max" distances and non-finite values become null."""
+    if not math.isfinite(value) or value >= DISTANCE_MAX_M:
+        return None
+    return round(float(value), 6)
+
+
+def _lateral(side: LateralSide, i: int) -> dict[str, Any]:
+    return {
+        "is_safe": bool(side.is_safe[i]),
+        "response": str(LateralResponse(int(side.response[i]))),
+        "evaluator": str(RssStateEvaluator(int(side.evaluator[i]))),
+        "current_distance": _num(float(side.current_distance_m[i])),
+        "safe_distance": _num(float(side.safe_distance_m[i])),
+    }
+
+
+def frame_record(result: FrameResult, constellation_types: np.ndarray, object_ids: np.ndarray) -> dict[str, Any]:
+    """``situation``, ``states`` and ``proper_response`` of one evaluated frame.
+
+    Args:
+        result: The engine's result.
+        constellation_types: ``(C,)`` type codes.
+        object_ids: ``(C,)`` ids of the other objects.
+
+    Returns:
+        The record's keys (without ``id``/``kind``/``ok``).
+    """
+    rel, st = result.relative, result.states
+    situation, states = [], []
+    for i in range(constellation_types.shape[0]):
+        situation.append(
+            {
+                "longitudinal_position": LongitudinalPosition(int(rel.lon_position[i])).name,
+                "longitudinal_distance": _num(float(rel.lon_distance_m[i])),
+                "lateral_position": LateralPosition(int(rel.lat_position[i])).name,
+                "lateral_distance": _num(float(rel.lat_distance_m[i])),
+                "ego": {"is_in_correct_lane": bool(rel.ego_in_correct_lane[i])},
+                "other": {"is_in_correct_lane": bool(rel.other_in_correct_lane[i])},
+            }
+        )
+        states.append(
+            {
+                "object_id": int(object_ids[i]),
+                "constellation_type": ConstellationType(int(constellation_types[i])).name,
+                "is_dangerous": bool(result.dangerous[i]),
+                "invalid": InvalidReason(int(result.invalid[i])).name if result.invalid[i] else None,
+                "longitudinal": {
+                    "is_safe": bool(st.lon_is_safe[i]),
+                    "response": str(LongitudinalResponse(int(st.lon_response[i]))),
+                    "evaluator": str(RssStateEvaluator(int(st.lon_evaluator[i]))),
+                    "current_distance": _num(float(st.lon_current_distance_m[i])),
+                    "safe_distance": _num(float(st.lon_safe_distance_m[i])),
+                },
+                "lateral_left": _lateral(st.left, i),
+                "lateral_right": _lateral(st.right, i),
+                "unstructured": None,
+            }
+        )
+    pr = result.proper_response
+    proper = {
+        "is_safe": pr.is_safe,
+        "dangerous_objects": [int(x) for x in pr.dangerous_objects],
+        "longitudinal_response": str(pr.longitudinal_response),
+        "lateral_response_left": str(pr.lateral_response_left),
+        "lateral_response_right": str(pr.lateral_response_right),
+        "unstructured_constellation_response": "None",
+        "heading_ranges": [],
+        "acceleration_restrictions": {
+            name: [_num(r.minimum_mps2), _num(r.maximum_mps2)]
+            for name, r in (
+                ("longitudinal", pr.longitudinal_range),
+                ("lateral_left", pr.lateral_left_range),
+                ("lateral_right", pr.lateral_right_range),
+            )
+        },
+    }
+    return {"situation": situation, "states": states, "proper_response": proper}
+
+
+def _formula_object(case_id: str, obj: Mapping[str, Any], defaults: CaseDefaults) -> tuple[Any, dict[str, float]]:
+    if not isinstance(obj, dict):
+        raise RssCaseError(case_id, "formula objects must be JSON objects")
+    try:
+        dyn = other_dynamics_for(defaults, ObjectType.OtherVehicle).with_overrides(obj.get("dynamics", {}))
+    except RssError as err:
+        raise RssCaseError(case_id, str(err)) from err
+    speeds = {}
+    for name in ("v_lon", "v_lat"):
+        low = obj.get(name, obj.get(f"{name}_min", 0.0))
+        high = obj.get(name, obj.get(f"{name}_max", 0.0))
+        speeds[f"{name}_min"], speeds[f"{name}_max"] = float(low), float(high)
+    return stack_dynamics([dyn]), speeds
+
+
+def evaluate_formula(case: Mapping[str, Any], defaults: CaseDefaults, case_id: str) -> float:
+    """Value of a ``kind: formula`` case.
+
+    Raises:
+        RssCaseError: Unknown function or malformed arguments.
+    """
+    function = case.get("function")
+    arr = np.array
+
+    def arg(key: str) -> Any:
+        if key not in case:
+            raise RssCaseError(case_id, f"formula {function!r} needs {key!r}")
+        return arr([float(case[key])])
+
+    if function == "stated_braking_lon":
+        value = stated_braking_longitudinal(
+            arg("speed"), arg("max_speed_on_acceleration"), arg("response_time"), arg("accel"), arg("decel")
+        )
+    elif function == "stopping_distance":
+        value = stopping_distance(arg("speed"), arg("decel"))
+    elif function in {"lon_same_direction", "lon_opposite_direction", "lateral"}:
+        names = {
+            "lon_same_direction": ("following", "leading"),
+            "lon_opposite_direction": ("correct", "opposite"),
+            "lateral": ("left", "right"),
+        }[function]
+        (d_a, v_a), (d_b, v_b) = (_formula_object(case_id, case.get(n, {}), defaults) for n in names)
+        if function == "lon_same_direction":
+            value = safe_longitudinal_distance_same(d_a, arr([v_a["v_lon_max"]]), d_b, arr([v_b["v_lon_min"]]))
+        elif function == "lon_opposite_direction":
+            value = safe_longitudinal_distance_opposite(d_a, arr([v_a["v_lon_max"]]), d_b, arr([v_b["v_lon_max"]]))
+        else:
+            value = safe_lateral_distance(d_a, arr([v_a["v_lat_max"]]), d_b, arr([v_b["v_lat_min"]]))
+    else:
+        raise RssCaseError(case_id, f"unknown formula function {function!r}")
+    return float(np.asarray(value).reshape(-1)[0])
+
+
+def _resolve_path(record: Mapping[str, Any], path: str) -> Any:
+    node: Any = record
+    for part in path.split("."):
+        if isinstance(node, list) and part.isdigit() and int(part) < len(node):
+            node = node[int(part)]
+        elif isinstance(node, dict) and part in node:
+            node = node[part]
+        else:
+            raise KeyError(path)
+    return node
+
+
+def _matches(actual: Any, expected: Any) -> bool:
+    if isinstance(actual, list) and isinstance(expected, list):
+        return len(actual) == len(expected) and all(
+            _matches(a, e) if not isinstance(a, int | float) or isinstance(a, bool) else a is not None and abs(a - e) <= 1e-5
+            for a, e in zip(actual, expected, strict=True)
+        )
+    if isinstance(expected, list) and len(expected) == 2 and isinstance(actual, int | float) and not isinstance(actual, bool):  # noqa: PLR2004
+        return abs(actual - expected[0]) <= expected[1]
+    return bool(actual == expected)
+
+
+def check_expected(record: Mapping[str, Any], expected: Mapping[str, Any]) -> dict[str, Any]:
+    """Compare a record against ``expected`` dotted paths (``[value, tol]`` = tolerance)."""
+    failures = []
+    for path, want in expected.items():
+        try:
+            got = _resolve_path(record, path)
+        except KeyError:
+            failures.append(f"{path}: missing (expected {want!r})")
+            continue
+        if not _matches(got, want):
+            failures.append(f"{path}: got {got!r}, expected {want!r}")
+    return {"passed": not failures, "failures": failures}
+
+
+def _evaluate(parsed: ParsedCase, defaults: CaseDefaults, memory: RssMemory) -> tuple[dict[str, Any], RssMemory]:
+    record: dict[str, Any] = {"id": parsed.case_id, "kind": parsed.kind}
+    if parsed.sequence_id is not None:
+        record |= {"sequence_id": parsed.sequence_id, "step": parsed.step}
+    if parsed.kind == "unstructured":
+        return record | {"ok": False, "unsupported": True, "error": UNSUPPORTED_UNSTRUCTURED}, memory
+    if parsed.kind == "formula":
+        record |= {"ok": True, "value": _num(evaluate_formula(parsed.raw, defaults, parsed.case_id))}
+    else:
+        assert parsed.constellation is not None
+        try:
+            batch = stack_constellations([parsed.constellation])
+        except RssError as err:
+            return record | {"ok": False, "error": str(err)}, memory
+        result, memory = check_frame(batch, parsed.default_ego, memory)
+        record |= {"ok": True, "constellation_type": parsed.constellation.constellation_type.name}
+        record |= frame_record(result, batch.constellation_type, batch.other.object_id)
+        if result.invalid.any():
+            record |= {"ok": False, "error": f"invalid input: {InvalidReason(int(result.invalid[0])).name}"}
+    if parsed.expected:
+        record["expected_check"] = check_expected(record, parsed.expected)
+    return record, memory
+
+
+def evaluate_document(document: Mapping[str, Any]) -> Iterator[dict[str, Any]]:
+    """Yield one record per case and per sequence step.
+
+    A malformed case yields ``ok: false`` with its error and the run continues.
+
+    Raises:
+        RssCaseError: The document itself is malformed (no ``cases`` list).
+        RssParameterError: Invalid ``defaults``.
+    """
+    cases = document.get("cases") if isinstance(document, dict) else None
+    if not isinstance(cases, list):
+        raise RssCaseError("<document>", "needs a 'cases' list")
+    defaults = parse_defaults(document)
+    for index, case in enumerate(cases):
+        case_id = str(case.get("id", f"#{index}")) if isinstance(case, dict) else f"#{index}"
+        if isinstance(case, dict) and case.get("kind") == "sequence":
+            memory = RssMemory.empty()
+            for step, raw_step in enumerate(case.get("steps", [])):
+                step_id = f"{case_id}#{step}"
+                try:
+                    parsed = parse_case(raw_step, defaults, step_id, case_id, step)
+                    record, memory = _evaluate(parsed, defaults, memory)
+                except RssError as err:
+                    record = {"id": step_id, "sequence_id": case_id, "step": step, "ok": False, "error": str(err)}
+                yield record
+            continue
+        try:
+            record, _ = _evaluate(parse_case(case, defaults, case_id), defaults, RssMemory.empty())
+        except RssError as err:
+            kind = case.get("kind") if isinstance(case, dict) else None
+            record = {"id": case_id, "kind": kind, "ok": False, "error": str(err)}
+        yield record
