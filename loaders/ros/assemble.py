@@ -129,7 +129,12 @@ class FrameAssembler:
         re-raised after the frame still pending was yielded."""
         try:
             for topic, log_ns, msg in messages:
-                decoded = self._decoders[topic](msg)
+                try:
+                    decoded = self._decoders[topic](msg)
+                except (AttributeError, KeyError, TypeError, ValueError) as err:
+                    raise CorruptLogError(
+                        self._path, f"cannot decode message: {err!r}", topic=topic, t_ns=log_ns
+                    ) from err
                 if isinstance(decoded, EgoSample):
                     frame = self._on_ego(topic, log_ns, decoded)
                     if frame is not None:

@@ -18,12 +18,14 @@ import struct
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
+from google.protobuf.message import DecodeError
 from mcap.exceptions import McapError
 from mcap.reader import SeekingReader
 from mcap.records import Attachment, Channel, Message, Schema
 from mcap.stream_reader import StreamReader
 from mcap_protobuf.decoder import DecoderFactory as ProtobufDecoderFactory
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
+from zstandard import ZstdError
 
 from loaders.drive import TopicInfo
 from loaders.errors import CorruptLogError, EmptyLogError, UnsupportedFormatError
@@ -45,6 +47,9 @@ MCAP_ERRORS: tuple[type[Exception], ...] = (
     KeyError,
     OSError,
     RuntimeError,
+    IndexError,
+    ZstdError,
+    DecodeError,
 )
 _FORMATS = {"cdr": "ros2-mcap", "json": "mcap-json", "protobuf": "mcap-protobuf"}
 

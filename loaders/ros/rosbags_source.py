@@ -31,6 +31,7 @@ READ_ERRORS: tuple[type[Exception], ...] = (
     IndexError,
     KeyError,
     OSError,
+    RuntimeError,  # lz4 frame errors
 )
 
 
