@@ -15,7 +15,18 @@ import pytest
 EXTERNAL_DIR = (Path(__file__).resolve().parents[1] / ".." / "shared" / "external").resolve()
 
 
-def _ci() -> bool:
+def require_external_dir(path: Path, *, ci: bool) -> Path:
+    """Return ``path`` if it is a directory; otherwise skip (or fail when ``ci``)."""
+    if not path.is_dir():
+        reason = f"external test data not found at {path}"
+        if ci:
+            pytest.fail(f"{reason} (CI=true: external data is required)")
+        pytest.skip(reason)
+    return path
+
+
+def running_in_ci() -> bool:
+    """Whether the environment variable ``CI`` is set to a true value."""
     return os.environ.get("CI", "").strip().lower() in {"1", "true", "yes"}
 
 
@@ -26,9 +37,4 @@ def external_dir() -> Path:
     Skips the requesting test when the directory is absent; fails it instead when the
     environment variable ``CI`` is ``true``.
     """
-    if not EXTERNAL_DIR.is_dir():
-        reason = f"external test data not found at {EXTERNAL_DIR}"
-        if _ci():
-            pytest.fail(f"{reason} (CI=true: external data is required)")
-        pytest.skip(reason)
-    return EXTERNAL_DIR
+    return require_external_dir(EXTERNAL_DIR, ci=running_in_ci())
