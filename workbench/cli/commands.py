@@ -16,6 +16,7 @@ COMMAND_MODULES: tuple[str, ...] = (
     "workbench.cli.replay",
     "workbench.cli.demo",
     "workbench.cli.conformance",
+    "workbench.cli.samples",
 )
 
 

@@ -83,10 +83,7 @@ def _rows(t0: float, v0: float, s0: float, *, ego: bool, brake: bool) -> list[li
     lat = _ego_lat(np.full_like(tau, t0) + (0 if brake else tau)) if ego else np.full_like(tau, 1.5)
     x, y, yaw, kappa = _pose(s, lat)
     psi = (yaw - math.pi / 2 + math.pi) % (2 * math.pi) - math.pi
-    return [
-        [round(float(c), 4) for c in row]
-        for row in np.stack([x, y, psi, kappa, v, a], axis=1)
-    ]
+    return [[round(float(c), 4) for c in row] for row in np.stack([x, y, psi, kappa, v, a], axis=1)]
 
 
 def _scn_text() -> str:
