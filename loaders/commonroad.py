@@ -99,14 +99,12 @@ def open_commonroad(
     candidates = scenario.candidates()
     if not candidates:
         raise EmptyLogError(path, "no dynamic vehicle obstacle to promote to ego")
-    if ego_id is None:
-        ego = candidates[0]
-    else:
-        ego = next((t for t in candidates if t.id == str(ego_id)), None)  # type: ignore[assignment]
-        if ego is None:
-            names = ", ".join(t.id for t in candidates)
-            detail = f"{ego_id} is not a dynamic vehicle obstacle; candidates: {names}"
-            raise MissingEgoTopicError(path, detail, topic=f"obstacle/{ego_id}")
+    by_id = {t.id: t for t in candidates}
+    ego = candidates[0] if ego_id is None else by_id.get(str(ego_id))
+    if ego is None:
+        names = ", ".join(by_id)
+        detail = f"{ego_id} is not a dynamic vehicle obstacle; candidates: {names}"
+        raise MissingEgoTopicError(path, detail, topic=f"obstacle/{ego_id}", value=ego_id)
     return CommonRoadDrive(path, scenario, ego, lane_map, len(candidates))
 
 
