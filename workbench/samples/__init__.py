@@ -1,1 +1,1 @@
-"""Deterministic sample drives (scenarios, Lanelet2 maps and ROS/Foxglove logs) for demos and tests."""
+"""Deterministic sample drives: scenarios, Lanelet2 maps, ROS and Foxglove logs."""

@@ -152,4 +152,4 @@ def write_foxglove_mcap(sc: Scenario, path: Path, osm: bytes) -> None:
             writer.add_message(plan_ch, t_ns, _plan(sc, k, t_ns), t_ns, k // 2)
         writer.add_attachment(T0_NS, T0_NS, f"{sc.name}.osm", "application/xml", osm)
         writer.add_metadata("drive", {**drive_metadata(sc), "variant": "foxglove"})
-        writer.finish()
+        writer.finish()  # type: ignore[no-untyped-call]

@@ -83,4 +83,4 @@ def to_osm_bytes(builder: MapBuilder) -> bytes:
         _tag(rel, "type", "regulatory_element")
         _tag(rel, "subtype", element.subtype)
     ET.indent(root)
-    return ET.tostring(root, encoding="utf-8", xml_declaration=True) + b"\n"
+    return bytes(ET.tostring(root, encoding="utf-8", xml_declaration=True)) + b"\n"

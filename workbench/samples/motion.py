@@ -11,7 +11,6 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from loaders.records import ObjectClass
 from workbench.samples.geometry import quintic_step
 
 if TYPE_CHECKING:
@@ -19,6 +18,7 @@ if TYPE_CHECKING:
 
     from numpy.typing import NDArray
 
+    from loaders.records import ObjectClass
     from workbench.samples.geometry import Polyline
 
 __all__ = ["DT_S", "LaneChange", "Motion", "Track", "drive", "splice", "time_axis"]
@@ -29,7 +29,7 @@ DT_S = 0.05
 
 def time_axis(duration_s: float) -> NDArray[np.float64]:
     """Sample times ``0, DT_S, ...`` up to and including ``duration_s``, ``(T,)``."""
-    return np.arange(round(duration_s / DT_S) + 1) * DT_S
+    return np.asarray(np.arange(round(duration_s / DT_S) + 1) * DT_S, dtype=np.float64)
 
 
 @dataclass(frozen=True, slots=True)
@@ -119,16 +119,15 @@ def drive(
 def splice(first: Motion, second: Motion, index: int) -> Motion:
     """Take samples ``[:index]`` from ``first`` and ``[index:]`` from ``second``."""
 
-    def cat(a: NDArray[np.generic], b: NDArray[np.generic]) -> NDArray[np.generic]:
+    def cat(a: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64]:
         return np.concatenate([a[:index], b[index:]])
 
-    yaw = np.unwrap(cat(first.yaw_rad, second.yaw_rad))
     return Motion(
-        cat(first.x_m, second.x_m),  # type: ignore[arg-type]
-        cat(first.y_m, second.y_m),  # type: ignore[arg-type]
-        yaw,
-        cat(first.speed_mps, second.speed_mps),  # type: ignore[arg-type]
-        cat(first.lane_change, second.lane_change),  # type: ignore[arg-type]
+        cat(first.x_m, second.x_m),
+        cat(first.y_m, second.y_m),
+        np.unwrap(cat(first.yaw_rad, second.yaw_rad)),
+        cat(first.speed_mps, second.speed_mps),
+        np.concatenate([first.lane_change[:index], second.lane_change[index:]]),
     )
 
 
@@ -170,6 +169,7 @@ class Track:
         size_m: tuple[float, float, float],
         motion: Motion,
         lanes: Sequence[int],
+        *,
         visible: NDArray[np.bool_] | None = None,
         confidence: float = 1.0,
     ) -> Track:

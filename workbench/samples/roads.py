@@ -16,6 +16,7 @@ geometrically, as Lanelet2 does).
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -75,7 +76,7 @@ def add_road(
         Lanelet ids as ``[lane][segment]``, segments in driving order of each lane.
     """
     lanes: list[list[int]] = [[] for _ in spec.forward]
-    for s0, s1 in zip(breaks_s_m[:-1], breaks_s_m[1:], strict=True):
+    for s0, s1 in itertools.pairwise(breaks_s_m):
         n = max(1, round((s1 - s0) / step_m))
         s = [s0 + (s1 - s0) * k / n for k in range(n + 1)]
         borders = []

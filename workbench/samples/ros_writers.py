@@ -113,7 +113,7 @@ def write_mcap(sc: Scenario, path: Path, osm: bytes) -> None:
             counts[topic] += 1
         writer.add_attachment(T0_NS, T0_NS, f"{sc.name}.osm", "application/xml", osm)
         writer.add_metadata("drive", drive_metadata(sc))
-        writer.finish()
+        writer.finish()  # type: ignore[no-untyped-call]
 
 
 def write_bag(sc: Scenario, path: Path) -> None:

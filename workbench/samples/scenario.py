@@ -102,6 +102,7 @@ def actor(
     cls: ObjectClass,
     motion: Motion,
     lanes: Sequence[int],
+    *,
     ego: Motion,
     range_m: float = 100.0,
 ) -> Track:

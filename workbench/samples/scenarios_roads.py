@@ -48,10 +48,10 @@ def highway_cut_in(seed: int = 1) -> Scenario:
     truck = drive(ref, t, s0_m=110.0, v0_mps=22.0, offset_m=right)
     rng_m = 80.0
     actors = (
-        actor(rng, 1, ObjectClass.CAR, cutter, lanes[0] + lanes[1], ego, rng_m),
-        actor(rng, 2, ObjectClass.MOTORCYCLE, moto, lanes[0], ego, rng_m),
-        actor(rng, 3, ObjectClass.CAR, fast, lanes[2], ego, rng_m),
-        actor(rng, 4, ObjectClass.TRUCK, truck, lanes[2], ego, rng_m),
+        actor(rng, 1, ObjectClass.CAR, cutter, lanes[0] + lanes[1], ego=ego, range_m=rng_m),
+        actor(rng, 2, ObjectClass.MOTORCYCLE, moto, lanes[0], ego=ego, range_m=rng_m),
+        actor(rng, 3, ObjectClass.CAR, fast, lanes[2], ego=ego, range_m=rng_m),
+        actor(rng, 4, ObjectClass.TRUCK, truck, lanes[2], ego=ego, range_m=rng_m),
     )
     return Scenario(
         name="highway_cut_in",
@@ -87,9 +87,9 @@ def hard_braking_lead(seed: int = 2) -> Scenario:
     bus = drive(ref, t, s0_m=80.0, v0_mps=16.0, offset_m=left)
     car = drive(ref, t, s0_m=10.0, v0_mps=24.0, offset_m=left, phases=[(5.5, -1.5), (7.5, 0.0)])
     actors = (
-        actor(rng, 1, ObjectClass.CAR, lead, lanes[1], ego, 120.0),
-        actor(rng, 2, ObjectClass.BUS, bus, lanes[0], ego, 120.0),
-        actor(rng, 3, ObjectClass.CAR, car, lanes[0], ego, 120.0),
+        actor(rng, 1, ObjectClass.CAR, lead, lanes[1], ego=ego, range_m=120.0),
+        actor(rng, 2, ObjectClass.BUS, bus, lanes[0], ego=ego, range_m=120.0),
+        actor(rng, 3, ObjectClass.CAR, car, lanes[0], ego=ego, range_m=120.0),
     )
     return Scenario(
         name="hard_braking_lead",
@@ -138,9 +138,9 @@ def wrong_way_oncoming(seed: int = 3) -> Scenario:
     truck = drive(back, t, s0_m=length - 540.0, v0_mps=18.0, offset_m=-1.75)
     moto = drive(ref, t, s0_m=70.0, v0_mps=23.0, offset_m=spec.centre_offset_m(1))
     actors = (
-        actor(rng, 1, ObjectClass.CAR, oncoming, lanes[0] + lanes[1], ego, 250.0),
-        actor(rng, 2, ObjectClass.TRUCK, truck, lanes[0], ego, 250.0),
-        actor(rng, 3, ObjectClass.MOTORCYCLE, moto, lanes[1], ego, 250.0),
+        actor(rng, 1, ObjectClass.CAR, oncoming, lanes[0] + lanes[1], ego=ego, range_m=250.0),
+        actor(rng, 2, ObjectClass.TRUCK, truck, lanes[0], ego=ego, range_m=250.0),
+        actor(rng, 3, ObjectClass.MOTORCYCLE, moto, lanes[1], ego=ego, range_m=250.0),
     )
     return Scenario(
         name="wrong_way_oncoming",

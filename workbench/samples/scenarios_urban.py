@@ -66,9 +66,9 @@ def urban_intersection(seed: int = 4) -> Scenario:
     bus = drive(build_path((120.0, 1.75), math.pi, [(400.0, 0.0)]), t, s0_m=20.0, v0_mps=11.0)
     bike = drive(build_path((-1.75, 80.0), -_HALF_PI, [(160.0, 0.0)]), t, s0_m=25.0, v0_mps=5.0)
     actors = (
-        actor(rng, 1, ObjectClass.CAR, car, [west[1][0], eb, east[1][0]], ego),
-        actor(rng, 2, ObjectClass.BUS, bus, [east[0][0], wb, west[0][0]], ego),
-        actor(rng, 3, ObjectClass.BICYCLE, bike, [north[0][0], sb, south[0][0]], ego),
+        actor(rng, 1, ObjectClass.CAR, car, [west[1][0], eb, east[1][0]], ego=ego),
+        actor(rng, 2, ObjectClass.BUS, bus, [east[0][0], wb, west[0][0]], ego=ego),
+        actor(rng, 3, ObjectClass.BICYCLE, bike, [north[0][0], sb, south[0][0]], ego=ego),
     )
     return Scenario(
         name="urban_intersection",
@@ -138,10 +138,12 @@ def pedestrian_crossing(seed: int = 5) -> Scenario:
     car = drive(westbound, t, s0_m=40.0, v0_mps=11.0)
     bike = drive(westbound, t, s0_m=5.0, v0_mps=5.0)
     actors = (
-        actor(rng, 1, ObjectClass.PEDESTRIAN, walker, [lanes[3][1], crosswalk, lanes[0][1]], ego),
-        actor(rng, 2, ObjectClass.PEDESTRIAN, stroller, lanes[0], ego),
-        actor(rng, 3, ObjectClass.CAR, car, lanes[1], ego),
-        actor(rng, 4, ObjectClass.BICYCLE, bike, lanes[1], ego),
+        actor(
+            rng, 1, ObjectClass.PEDESTRIAN, walker, [lanes[3][1], crosswalk, lanes[0][1]], ego=ego
+        ),
+        actor(rng, 2, ObjectClass.PEDESTRIAN, stroller, lanes[0], ego=ego),
+        actor(rng, 3, ObjectClass.CAR, car, lanes[1], ego=ego),
+        actor(rng, 4, ObjectClass.BICYCLE, bike, lanes[1], ego=ego),
     )
     return Scenario(
         name="pedestrian_crossing",
@@ -215,12 +217,17 @@ def parking_lot(seed: int = 6) -> Scenario:
         phases=[(8.5, -1.3)],
     )
     actors = (
-        actor(rng, 1, ObjectClass.CAR, reverser, [spaces[1, 8], *aisle], ego),
-        actor(rng, 2, ObjectClass.CAR, parked_a, [spaces[1, 2]], ego),
-        actor(rng, 3, ObjectClass.CAR, parked_b, [spaces[-1, 5]], ego),
-        actor(rng, 4, ObjectClass.PEDESTRIAN, walker, aisle, ego),
+        actor(rng, 1, ObjectClass.CAR, reverser, [spaces[1, 8], *aisle], ego=ego),
+        actor(rng, 2, ObjectClass.CAR, parked_a, [spaces[1, 2]], ego=ego),
+        actor(rng, 3, ObjectClass.CAR, parked_b, [spaces[-1, 5]], ego=ego),
+        actor(rng, 4, ObjectClass.PEDESTRIAN, walker, aisle, ego=ego),
         actor(
-            rng, 5, ObjectClass.PEDESTRIAN, crosser, [spaces[-1, 11], *aisle, spaces[1, 11]], ego
+            rng,
+            5,
+            ObjectClass.PEDESTRIAN,
+            crosser,
+            [spaces[-1, 11], *aisle, spaces[1, 11]],
+            ego=ego,
         ),
     )
     return Scenario(
