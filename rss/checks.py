@@ -207,14 +207,13 @@ def _lateral(batch: ConstellationBatch, rel: Relative) -> tuple[LateralSide, Lat
     overlap = ~(ego_left | ego_right)
     zero = np.zeros_like(rel.lat_distance_m)
     far = np.full_like(zero, DISTANCE_MAX_M)
-    evaluator = np.full(zero.shape, _E.LateralDistance, dtype=np.int64)
 
     def side(evaluated: BoolArray, gap_safe: BoolArray, safe_dist: FloatArray, overlap_safe: BoolArray) -> LateralSide:
         is_safe = np.where(evaluated, gap_safe, np.where(overlap, overlap_safe, True))
         return LateralSide(
             is_safe=np.asarray(is_safe, dtype=np.bool_),
             response=np.where(is_safe, _LAT.None_, _LAT.BrakeMin).astype(np.int64),
-            evaluator=evaluator,
+            evaluator=np.where(evaluated | overlap, _E.LateralDistance, _E.None_).astype(np.int64),
             current_distance_m=np.where(evaluated, rel.lat_distance_m, np.where(overlap, zero, far)),
             safe_distance_m=np.where(evaluated, safe_dist, np.where(overlap, zero, far)),
         )
@@ -300,13 +299,13 @@ def check_all(batch: ConstellationBatch, rel: Relative) -> RawStates:
     none_eval = np.zeros(zero.shape, dtype=np.int64)
 
     def adjust(side: LateralSide) -> LateralSide:
-        unsafe_fixed = intersection
+        fixed = intersection | ~relevant
         return LateralSide(
-            is_safe=np.where(unsafe_fixed, False, side.is_safe) | ~relevant,
-            response=np.where(unsafe_fixed | ~relevant, _LAT.None_, side.response).astype(np.int64),
-            evaluator=np.where(unsafe_fixed | ~relevant, none_eval, side.evaluator),
-            current_distance_m=np.where(unsafe_fixed | ~relevant, zero, side.current_distance_m),
-            safe_distance_m=np.where(unsafe_fixed | ~relevant, zero, side.safe_distance_m),
+            is_safe=np.where(intersection, False, side.is_safe) | ~relevant,
+            response=np.where(fixed, _LAT.None_, side.response).astype(np.int64),
+            evaluator=np.select([intersection, ~relevant], [_E.LateralDistance, _E.None_], side.evaluator),
+            current_distance_m=np.where(fixed, zero, side.current_distance_m),
+            safe_distance_m=np.where(fixed, zero, side.safe_distance_m),
         )
 
     return RawStates(

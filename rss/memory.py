@@ -142,12 +142,14 @@ def apply_memory(
         ((prev_int == IntersectionState.NON_PRIO_ABLE_TO_BREAK) & ego_prio)
         | ((prev_int == IntersectionState.SAFE_LONGITUDINAL_DISTANCE) & ego_front)
     )
-    lon_response = np.where(clear_lon | int_none, LongitudinalResponse.None_, raw.lon_response)
+    # responses of non-dangerous structured states are reset to None (as ad-rss does)
+    calm = ~intersection & ~dangerous
+    lon_response = np.where(clear_lon | int_none | calm, LongitudinalResponse.None_, raw.lon_response)
     states = dataclasses.replace(
         raw,
         lon_response=lon_response.astype(np.int64),
-        left=_side(raw.left, clear_lat),
-        right=_side(raw.right, clear_lat),
+        left=_side(raw.left, clear_lat | calm),
+        right=_side(raw.right, clear_lat | calm),
     )
 
     lateral_safe = raw.left.is_safe & raw.right.is_safe
