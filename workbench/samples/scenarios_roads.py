@@ -33,14 +33,14 @@ def highway_cut_in(seed: int = 1) -> Scenario:
     lanes = add_road(b, ref, (0.0, 200.0, 400.0, 600.0, 800.0), spec)
     t = time_axis(20.0)
     left, mid, right = (spec.centre_offset_m(i) for i in range(3))
-    ego = drive(ref, t, s0_m=30.0, v0_mps=25.0, offset_m=mid, phases=[(9.8, -2.5), (11.8, 0.0)])
+    ego = drive(ref, t, s0_m=30.0, v0_mps=25.0, offset_m=mid, phases=[(9.8, -2.5), (12.0, 0.0)])
     cutter = drive(
         ref,
         t,
-        s0_m=33.0,
+        s0_m=29.0,
         v0_mps=28.0,
         offset_m=left,
-        phases=[(5.0, -1.0), (6.5, 0.0), (9.0, -3.0), (11.0, 0.0)],
+        phases=[(5.0, -2.0), (6.25, 0.0), (9.0, -3.0), (11.0, 0.0)],
         lane_changes=[LaneChange(5.5, 3.0, mid - left)],
     )
     moto = drive(ref, t, s0_m=45.0, v0_mps=33.0, offset_m=left)
@@ -57,11 +57,12 @@ def highway_cut_in(seed: int = 1) -> Scenario:
         name="highway_cut_in",
         summary=(
             "Ego in the middle lane of a 3-lane highway at 25 m/s (straight 400 m, then a "
-            "R = 1000 m left curve). Car 1 overtakes on the left and changes into the ego "
-            "lane from t = 5.5 s to 8.5 s about 13-15 m (bumper to bumper) ahead, then brakes "
-            "at -3 m/s2 from t = 9 s to 11 s; the ego brakes at -2.5 m/s2 from t = 9.8 s. A "
-            "motorcycle (left lane, 33 m/s) and a car (right lane, 30 m/s) flow freely and "
-            "leave the 80 m sensor range after a few seconds; a truck cruises in the right lane."
+            "R = 1000 m left curve). Car 1 overtakes on the left at 28 m/s and changes into "
+            "the ego lane from t = 5.5 s to 8.5 s with an 11-13 m bumper gap, then brakes at "
+            "-3 m/s2 from t = 9 s to 11 s (25.5 -> 19.5 m/s); the ego brakes at -2.5 m/s2 from "
+            "t = 9.8 s to 12 s (25 -> 19.5 m/s) and follows about 8 m behind. A motorcycle "
+            "(left lane, 33 m/s) and a car (right lane, 30 m/s) flow freely and leave the 80 m "
+            "sensor range after a few seconds; a truck cruises in the right lane."
         ),
         seed=seed,
         t_s=t,
@@ -148,7 +149,7 @@ def wrong_way_oncoming(seed: int = 3) -> Scenario:
             "Rural road, one lane per direction, straight then a R = 600 m right curve. The "
             "oncoming car 1 (20 m/s) drifts fully into the ego lane from t = 4 s to 6.5 s, "
             "stays there until t = 8 s and returns by t = 10.5 s; the cars pass each other "
-            "at t = 10.7 s. The ego brakes at -3 m/s2 from t = 5.5 s to 7.5 s (20 -> 14 m/s). A "
+            "at t = 10.9 s. The ego brakes at -3 m/s2 from t = 5.5 s to 7.5 s (20 -> 14 m/s). A "
             "truck follows the oncoming car; a motorcycle rides ahead of the ego."
         ),
         seed=seed,
