@@ -16,8 +16,6 @@ marked ``userBidirectional``. References to lanelets that are not in the file ar
 from __future__ import annotations
 
 import math
-import xml.etree.ElementTree as ET
-from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -25,9 +23,12 @@ import numpy as np
 from loaders.errors import MapError
 from loaders.maps.geometry import centre_line_m
 from loaders.maps.model import Lane, LaneDirection, LaneKind, LaneMap, LineType, TrafficLight
+from loaders.maps.xmlsource import read_xml_root
 
 if TYPE_CHECKING:
+    import xml.etree.ElementTree as ET
     from collections.abc import Iterable
+    from pathlib import Path
 
     from numpy.typing import NDArray
 
@@ -77,15 +78,7 @@ def read_commonroad_map(source: Path | bytes, *, name: str | None = None) -> Lan
         MapError: If the XML is malformed or a lanelet border is unusable, naming the file
             and the lanelet id.
     """
-    label = name or (str(source) if isinstance(source, Path) else "<bytes>")
-    try:
-        data = source.read_bytes() if isinstance(source, Path) else source
-        root = ET.fromstring(data)  # noqa: S314 - expat refuses external entities; scenarios are local files
-    except OSError as err:
-        raise MapError(label, f"cannot open: {err.strerror}") from err
-    except ET.ParseError as err:
-        line, col = err.position
-        raise MapError(label, f"malformed XML at line {line}, column {col}") from err
+    root, label = read_xml_root(source, name)
     return lane_map_from_elements((e for e in root if e.tag in NETWORK_TAGS), label)
 
 

@@ -24,10 +24,9 @@ from __future__ import annotations
 
 import math
 import re
-import xml.etree.ElementTree as ET
 from collections import defaultdict
 from dataclasses import dataclass
-from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -42,6 +41,11 @@ from loaders.maps.model import (
     RightOfWay,
     TrafficLight,
 )
+from loaders.maps.xmlsource import read_xml_root
+
+if TYPE_CHECKING:
+    import xml.etree.ElementTree as ET
+    from pathlib import Path
 
 __all__ = ["read_lanelet2"]
 
@@ -91,15 +95,7 @@ def read_lanelet2(source: Path | bytes, *, name: str | None = None) -> LaneMap:
         MapError: If the XML is malformed or a lanelet refers to a missing way or node,
             naming the file and the element id.
     """
-    label = name or (str(source) if isinstance(source, Path) else "<bytes>")
-    try:
-        data = source.read_bytes() if isinstance(source, Path) else source
-        root = ET.fromstring(data)  # noqa: S314 - expat refuses external entities; maps are local files
-    except OSError as err:
-        raise MapError(label, f"cannot open: {err.strerror}") from err
-    except ET.ParseError as err:
-        line, col = err.position
-        raise MapError(label, f"malformed XML at line {line}, column {col}") from err
+    root, label = read_xml_root(source, name)
     return _Reader(root, label).lane_map()
 
 
