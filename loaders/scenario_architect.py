@@ -145,6 +145,14 @@ class ScenarioArchitectDrive:
     def close(self) -> None:
         """Nothing stays open between calls."""
 
+    def __enter__(self) -> ScenarioArchitectDrive:
+        """Use the drive as a context manager."""
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        """Close the drive."""
+        self.close()
+
     def _open_text(self) -> io.TextIOBase:
         try:
             if zipfile.is_zipfile(self._path):

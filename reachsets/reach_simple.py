@@ -15,8 +15,11 @@ The polygon of step j covers [t_{j-1}, t_j]::
           +--------------+--------------------+
         q6 (c'-r', -r')  q5 (b', -r)         q4 (c+r, -r)
 
-The rear vertices never move backwards (no reversing), and the body is added: q1, q2, q5,
-q6 move back by L/2, q3 and q4 forward by L/2, every vertex sideways by W/2.
+The rear edge never moves backwards (no reversing: once ``c - r`` shrinks it stays at its
+peak) while its half-width keeps following ``r`` (the reference froze the whole rear vertex,
+which under-approximates and makes the set shrink with a larger acceleration bound). The body
+is added: q1, q2, q5, q6 move back by L/2, q3 and q4 forward by L/2, every vertex sideways
+by W/2.
 """
 
 from __future__ import annotations
@@ -70,19 +73,10 @@ def simple_reach_vertices(
     a = np.broadcast_to(np.asarray(a_max_mps2, dtype=np.float64), v0.shape[:1])[:, None]
     t = np.asarray(times_s, dtype=np.float64)
     c, r, b = _profiles(v0, a, t)
-    prev = np.concatenate([np.zeros_like(c[:, :1]), c[:, :-1]], axis=1), np.concatenate(
-        [np.zeros_like(r[:, :1]), r[:, :-1]], axis=1
-    )
-    c_p, r_p = prev
-    b_p = np.concatenate([np.zeros_like(b[:, :1]), b[:, :-1]], axis=1)
-    rear = c_p - r_p
-    # No reversing: once c - r shrinks, keep the rear vertices of the step where it peaked.
-    best = np.maximum.accumulate(rear, axis=1)
-    keep = rear < best
-    idx = np.where(keep, 0, np.arange(rear.shape[1])[None, :])
-    idx = np.maximum.accumulate(idx, axis=1)
-    rear_xi = np.take_along_axis(rear, idx, axis=1)
-    rear_eta = np.take_along_axis(r_p, idx, axis=1)
+    c_p, r_p, b_p = (np.concatenate([np.zeros_like(v[:, :1]), v[:, :-1]], axis=1) for v in (c, r, b))
+    # No reversing: the rear edge stays where c - r peaked; its half-width keeps growing.
+    rear_xi = np.maximum.accumulate(c_p - r_p, axis=1)
+    rear_eta = r_p
     front = c + r
     xi = np.stack([rear_xi, b_p, front, front, b_p, rear_xi], axis=-1)
     eta = np.stack([rear_eta, r, r, -r, -r, -rear_eta], axis=-1)
@@ -131,13 +125,12 @@ def simple_reach_scalar(
         return c, r, v0_mps * te - a_max_mps2**2 * te**3 / (2 * v0_mps)
 
     out = []
-    rear_best = (-math.inf, 0.0)
+    rx = -math.inf
     for j, t in enumerate(times_s):
         c, r, _ = prof(t)
         cp, rp, bp = prof(times_s[j - 1] if j > 0 else 0.0)
-        if cp - rp >= rear_best[0]:
-            rear_best = (cp - rp, rp)
-        rx, ry = rear_best
+        rx = max(rx, cp - rp)
+        ry = rp
         hl, hw = length_m / 2, width_m / 2
         local = [
             (rx - hl, ry + hw),

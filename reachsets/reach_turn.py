@@ -17,9 +17,11 @@ The deletion polygon is everything outside the funnel between the arcs (body fra
                         |         right arc ''--.  + end of right arc
     (-L/2-50, eta_R-50) +---------------------------+ (xi_R, eta_R-50)
 
-Unlike the reference, the funnel includes the body (RL..RR) so the deletion never removes
-the object's own footprint, and arcs stop turning after ``arc_max_turn_rad`` so the polygon
-stays simple at low speed.
+Unlike the reference (which deletes everything behind the front corners), the funnel holds
+the body: its sides run from the rear corners straight to each arc's second point, so the
+deletion never removes the object's own footprint nor the few centimetres its sides swing
+out while it turns. Arcs stop turning after ``arc_max_turn_rad`` so the polygon stays simple
+at low speed.
 """
 
 from __future__ import annotations
@@ -123,11 +125,13 @@ def funnel_polygons(
     eta_l = leta.max(axis=1, keepdims=True) + extension_m
     eta_r = reta.min(axis=1, keepdims=True) - extension_m
     back = -half_l - extension_m
+    # The front corners themselves are skipped: the body sides run straight from the rear
+    # corners to the arcs' second points, leaving room for the sides to swing out in a turn.
     xi = np.concatenate(
-        [lxi[:, ::-1], -half_l, -half_l, rxi, rxi[:, -1:], back, back, lxi[:, -1:]], axis=1
+        [lxi[:, :0:-1], -half_l, -half_l, rxi[:, 1:], rxi[:, -1:], back, back, lxi[:, -1:]], axis=1
     )
     eta = np.concatenate(
-        [leta[:, ::-1], half_w, -half_w, reta, eta_r, eta_r, eta_l, eta_l], axis=1
+        [leta[:, :0:-1], half_w, -half_w, reta[:, 1:], eta_r, eta_r, eta_l, eta_l], axis=1
     )
     coords = body_to_map(
         xi,

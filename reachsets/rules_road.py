@@ -88,7 +88,9 @@ def evaluate_road(
     p = ctx.params.road
     objs = ctx.objects
     ids = [str(i) for i in objs.ids]
-    lane_polys = shapely.make_valid(shapely.polygons([ln.polygon_m for ln in road.lanes]))
+    lane_polys = np.array(
+        [shapely.make_valid(shapely.polygons(ln.polygon_m)) for ln in road.lanes], dtype=object
+    )
     lanes_by_id = {ln.lane_id: k for k, ln in enumerate(road.lanes)}
     drivable = shapely.union_all(lane_polys)
     centres = shapely.points(objs.x_m, objs.y_m)

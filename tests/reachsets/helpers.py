@@ -1,0 +1,47 @@
+"""Small builders shared by the reach-set tests."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from reachsets.inputs import EgoTrajectory, ObjectStates, ReachInputs, TrackBounds
+
+
+def objects(*rows: tuple[float, float, float, float], length=4.7, width=2.0) -> ObjectStates:
+    """Objects from ``(x, y, yaw, speed)`` rows."""
+    arr = np.asarray(rows, dtype=float).reshape(-1, 4)
+    n = len(arr)
+    return ObjectStates(
+        ids=np.array([f"o{i}" for i in range(n)]) if n else np.zeros(0, "<U1"),
+        x_m=arr[:, 0],
+        y_m=arr[:, 1],
+        yaw_rad=arr[:, 2],
+        speed_mps=arr[:, 3],
+        length_m=np.full(n, length),
+        width_m=np.full(n, width),
+    )
+
+
+def straight_ego(x0=0.0, y0=0.0, speed=10.0, yaw=0.0, points=30, horizon=4.0) -> EgoTrajectory:
+    """A constant-speed straight plan timed explicitly."""
+    t = np.linspace(0.0, horizon, points)
+    return EgoTrajectory(
+        x_m=x0 + np.cos(yaw) * speed * t,
+        y_m=y0 + np.sin(yaw) * speed * t,
+        yaw_rad=np.full(points, yaw),
+        speed_mps=np.full(points, speed),
+        t_s=t,
+    )
+
+
+def straight_track(length=600.0, half_width=6.0, x0=-100.0) -> TrackBounds:
+    """A straight track along +x centred on y = 0."""
+    x = np.linspace(x0, x0 + length, 121)
+    return TrackBounds(
+        left_m=np.stack([x, np.full_like(x, half_width)], axis=1),
+        right_m=np.stack([x, np.full_like(x, -half_width)], axis=1),
+    )
+
+
+def inputs(ego: EgoTrajectory, objs: ObjectStates, track: TrackBounds | None = None) -> ReachInputs:
+    return ReachInputs(ego=ego, objects=objs, track=track)

@@ -1,0 +1,177 @@
+"""Engine verdicts, state handling, split sets and the rule patches."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import shapely
+
+from reachsets.engine import RuleState, evaluate
+from reachsets.errors import InputShapeError, ParamsError, ReachSetError, ZoneFileError
+from reachsets.inputs import ReachInputs, RightOfWayRule, RoadLane, RoadLayout
+from reachsets.params import ReachMethod, ReachParams
+from reachsets.patches import RulePatch, patch_grid, subtract_patches
+from reachsets.rules_roborace import zones_from_json
+from tests.reachsets.helpers import inputs, objects, straight_ego, straight_track
+
+
+def test_empty_scene_is_safe():
+    res, state = evaluate(inputs(straight_ego(), objects()), ReachParams())
+    assert res.is_safe
+    assert res.collisions == ()
+    assert isinstance(state, RuleState)
+
+
+@pytest.mark.parametrize("method", list(ReachMethod))
+def test_standing_car_ahead_in_lane_collides(method):
+    inp = inputs(straight_ego(speed=20.0), objects((40.0, 0.0, 0.0, 0.0)), straight_track())
+    res, _ = evaluate(inp, ReachParams(method=method))
+    assert not res.is_safe
+    (col,) = res.collisions
+    assert col.object_id == "o0"
+    assert 0.0 < col.t_offset_s <= 2.4
+
+
+@pytest.mark.parametrize("method", list(ReachMethod))
+def test_car_far_ahead_and_faster_is_safe(method):
+    inp = inputs(straight_ego(speed=10.0), objects((150.0, 0.0, 0.0, 40.0)), straight_track())
+    res, _ = evaluate(inp, ReachParams(method=method, rules_enabled=False))
+    assert res.is_safe
+
+
+def test_follower_is_ignored_on_track():
+    inp = inputs(straight_ego(speed=10.0), objects((-20.0, 0.0, 0.0, 30.0)), straight_track())
+    res, _ = evaluate(inp, ReachParams())
+    assert res.skipped_ids == ("o0",)
+    assert res.is_safe
+
+
+def test_invalid_object_rows_are_skipped_not_fatal():
+    inp = inputs(straight_ego(), objects((np.nan, 0.0, 0.0, 5.0), (30.0, 0.0, 0.0, 0.0)))
+    res, _ = evaluate(inp, ReachParams())
+    assert "o0" in res.skipped_ids
+    assert list(res.object_ids) == ["o1"]
+
+
+def test_split_sets_keep_every_part():
+    """Reference defect: only the largest part of a split set survived."""
+    reach = np.array([[shapely.box(0, 0, 10, 3)]], dtype=object)
+    cut = shapely.box(6, -1, 7, 4)
+    grid = patch_grid([RulePatch(0, "test", cut)], np.array([shapely.Point(100, 100)]), 1)
+    out = subtract_patches(reach, grid)
+    assert shapely.get_num_geometries(out[0, 0]) == 2
+    assert shapely.intersects(out[0, 0], shapely.box(8, 1, 9, 2))
+
+
+def test_patch_never_removes_own_footprint():
+    foot = shapely.box(0, 0, 4, 2)
+    grid = patch_grid([RulePatch(0, "r", shapely.box(-10, -10, 10, 10))], np.array([foot]), 2)
+    assert shapely.area(shapely.intersection(grid[0, 0], foot)) == pytest.approx(0.0)
+
+
+def test_state_carries_track_geometry():
+    inp = inputs(straight_ego(), objects((30.0, 0.0, 0.0, 5.0)), straight_track())
+    _, s1 = evaluate(inp, ReachParams())
+    _, s2 = evaluate(inp, ReachParams(), s1)
+    assert s2.track is s1.track
+
+
+def test_errors_are_typed():
+    with pytest.raises(ParamsError):
+        ReachParams(dt_s=0.0)
+    with pytest.raises(InputShapeError):
+        straight_ego(points=0)
+    with pytest.raises(ZoneFileError):
+        zones_from_json({"Centre": [[0, 0]], "Zone": [{"Type": 1, "ID": 1, "Start": 0, "End": 5}]})
+    assert issubclass(ZoneFileError, ReachSetError)
+
+
+def _alongside_scene(ego_y: float, obj_y: float, gap: float) -> ReachInputs:
+    return inputs(straight_ego(y0=ego_y, speed=30.0), objects((gap, obj_y, 0.0, 30.0)), straight_track())
+
+
+def test_f1_alongside_leaves_the_ego_room():
+    params = ReachParams()
+    res, _ = evaluate(_alongside_scene(-3.0, 2.5, 1.0), params)
+    assert any(p.rule == "f1.alongside" for p in res.patches)
+    # the patch keeps the right-hand strip (ego side) free at every later step
+    strip = shapely.box(20, -6.0, 60, -4.5)
+    for k in range(5, 21):
+        assert not shapely.intersects(res.reach_sets[0, k], strip)
+
+
+def test_f1_not_alongside_without_overlap():
+    res, _ = evaluate(_alongside_scene(-3.0, 2.5, 15.0), ReachParams())
+    assert not any(p.rule == "f1.alongside" for p in res.patches)
+
+
+def test_roborace_zones_replace_f1_and_patch_the_offence_side():
+    track = straight_track()
+    centre = np.stack([np.linspace(-100, 500, 61), np.zeros(61)], axis=1)
+    zones = zones_from_json(
+        {
+            "Centre": centre.tolist(),
+            "Zone": [
+                {"Type": 1, "ID": 1, "Start": 0, "End": 60},
+                {"Type": 2, "ID": 2, "Start": 10, "End": 50},
+            ],
+        }
+    )
+    # o0 closes in on the slower o1 inside the trigger zone -> offence
+    objs = objects((30.0, 0.0, 0.0, 30.0), (60.0, 0.0, 0.0, 10.0))
+    inp = ReachInputs(ego=straight_ego(speed=20.0), objects=objs, track=track, zones=zones)
+    res, _ = evaluate(inp, ReachParams())
+    rules = {(p.object_id, p.rule) for p in res.patches}
+    assert ("o0", "roborace.offence") in rules
+    assert not any(r.startswith("f1.") for _, r in rules)
+    # offence in an overtake-left zone loses the right half
+    assert not shapely.intersects(res.reach_sets[0, 10], shapely.box(100, -5, 110, -1))
+
+
+def _two_lane_road() -> RoadLayout:
+    x = np.linspace(-50, 300, 36)
+    right_lane = RoadLane(
+        "r", np.concatenate([np.stack([x, np.zeros_like(x)], 1), np.stack([x[::-1], np.full_like(x, -4.0)], 1)]),
+        np.stack([x, np.full_like(x, -2.0)], 1), speed_limit_mps=15.0,
+    )
+    left_lane = RoadLane(
+        "l", np.concatenate([np.stack([x, np.full_like(x, 4.0)], 1), np.stack([x[::-1], np.zeros_like(x)], 1)]),
+        np.stack([x[::-1], np.full_like(x, 2.0)], 1), speed_limit_mps=15.0,
+    )
+    solid = (np.stack([x, np.zeros_like(x)], 1),)
+    return RoadLayout(lanes=(right_lane, left_lane), solid_lines_m=solid)
+
+
+def test_road_rules_fire_and_patch():
+    road = _two_lane_road()
+    objs = objects((20.0, -2.0, 0.0, 14.0))
+    inp = ReachInputs(ego=straight_ego(x0=0.0, y0=-2.0, speed=10.0), objects=objs, road=road)
+    res, state = evaluate(inp, ReachParams())
+    rules = {p.rule for p in res.patches}
+    assert {"road.stay_on_road", "road.no_opposite", "road.speed_limit"} <= rules
+    late = res.reach_sets[0, -1]
+    assert not shapely.intersects(late, shapely.box(100, 1, 110, 3))  # opposite lane
+    assert not shapely.intersects(late, shapely.box(100, -20, 110, -5))  # off road
+    assert shapely.bounds(late)[2] < 20 + 4 * 16.5 + 10  # speed cap 16.5 m/s
+    # once over the limit, never again assumed compliant (H below_limit)
+    fast = ReachInputs(ego=inp.ego, objects=objects((20.0, -2.0, 0.0, 30.0)), road=road)
+    res2, state = evaluate(fast, ReachParams(), state)
+    res3, _ = evaluate(inp, ReachParams(), state)
+    assert "road.speed_limit" not in {p.rule for p in res3.patches}
+
+
+def test_right_of_way_keeps_yielding_vehicle_out():
+    x = np.linspace(-50, 100, 16)
+    main = RoadLane("main", np.concatenate([np.stack([x, np.full_like(x, 2.0)], 1),
+                                             np.stack([x[::-1], np.full_like(x, -2.0)], 1)]),
+                    np.stack([x, np.zeros_like(x)], 1))
+    y = np.linspace(-80, -2, 10)
+    side = RoadLane("side", np.concatenate([np.stack([np.full_like(y, 38.0), y], 1),
+                                             np.stack([np.full_like(y, 42.0), y[::-1]], 1)]),
+                    np.stack([np.full_like(y, 40.0), y], 1))
+    road = RoadLayout(lanes=(main, side), right_of_way=(RightOfWayRule(("main",), ("side",)),))
+    objs = objects((40.0, -40.0, np.pi / 2, 8.0))
+    inp = ReachInputs(ego=straight_ego(speed=15.0), objects=objs, road=road)
+    res, _ = evaluate(inp, ReachParams())
+    assert "road.right_of_way" in {p.rule for p in res.patches}
+    assert res.is_safe

@@ -1,0 +1,118 @@
+"""Fast kernels against their slow scalar references, and the fixed reference defects."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+import shapely
+
+from reachsets.occupancy import ego_occupancy, ego_occupancy_scalar, trajectory_times
+from reachsets.params import ReachParams
+from reachsets.reach_simple import simple_reach_polygons, simple_reach_scalar, simple_reach_vertices
+from reachsets.reach_turn import funnel_polygons, steering_arc_scalar, steering_arcs
+from tests.reachsets.helpers import objects, straight_ego
+
+TIMES = np.asarray(ReachParams().times_s)
+
+
+def test_grid_has_21_stamps():
+    params = ReachParams()
+    assert params.n_steps == 21
+    assert params.times_s[-1] == pytest.approx(4.0)
+
+
+@pytest.mark.parametrize("v0", [0.0, 0.5, 12.0, 40.0, 70.0])
+def test_simple_vectorised_matches_scalar(v0):
+    objs = objects((3.0, -2.0, 0.7, v0), (10.0, 5.0, -2.5, v0 / 2))
+    verts = simple_reach_vertices(objs, TIMES, 13.0)
+    for i in range(len(objs)):
+        ref = simple_reach_scalar(
+            float(objs.x_m[i]), float(objs.y_m[i]), float(objs.yaw_rad[i]),
+            float(objs.speed_mps[i]), 4.7, 2.0, list(TIMES), 13.0,
+        )
+        np.testing.assert_allclose(verts[i], np.asarray(ref), atol=1e-9)
+
+
+def test_simple_matches_documented_example():
+    # v0 = 40 m/s, a = 13 m/s^2, t = 1 s: rear 27.8 m (of t=0.8 s..), q2 at b, front 46.5 m, half width 6.5 m
+    objs = objects((0.0, 0.0, 0.0, 40.0), length=0.0 + 1e-9, width=1e-9)
+    verts = simple_reach_vertices(objs, np.array([0.0, 1.0]), 13.0)
+    q = verts[0, 1]
+    assert q[2, 0] == pytest.approx(46.5, abs=1e-6)
+    assert q[2, 1] == pytest.approx(6.5, abs=1e-6)
+
+
+def test_standing_object_gives_finite_valid_polygons():
+    """Reference defect: v0 = 0 divided by zero and produced NaN polygons."""
+    polys = simple_reach_polygons(objects((0.0, 0.0, 0.0, 0.0)), TIMES, 13.0)
+    assert np.all(np.isfinite(shapely.get_coordinates(polys)))
+    assert np.all(shapely.is_valid(polys))
+    assert shapely.area(polys[0, -1]) > shapely.area(polys[0, 0])
+
+
+def test_no_reversing_rear_never_moves_back():
+    verts = simple_reach_vertices(objects((0.0, 0.0, 0.0, 5.0)), TIMES, 13.0)
+    rear = verts[0, :, 0, 0]
+    assert np.all(np.diff(rear) >= -1e-12)
+
+
+@pytest.mark.parametrize("side", [1.0, -1.0])
+@pytest.mark.parametrize("v0", [0.0, 8.0, 30.0, 60.0])
+def test_steering_arcs_match_scalar(side, v0):
+    params = ReachParams()
+    objs = objects((0.0, 0.0, 0.0, v0))
+    xi, eta = steering_arcs(objs, params, side)
+    ref = np.asarray(steering_arc_scalar(v0, 4.7, 2.0, params, side))
+    np.testing.assert_allclose(np.stack([xi[0], eta[0]], axis=1), ref, atol=1e-9)
+
+
+def test_arc_chord_offset_is_c2_over_2r():
+    params = ReachParams()
+    xi, eta = steering_arcs(objects((0.0, 0.0, 0.0, 0.0)), params, 1.0)
+    # first chord at turn radius 11 m: lateral offset c^2 / (2 r)
+    assert eta[0, 1] - eta[0, 0] == pytest.approx(3.0**2 / (2 * 11.0), rel=1e-9)
+
+
+def test_funnel_keeps_own_footprint_and_is_valid():
+    params = ReachParams()
+    objs = objects((5.0, 1.0, 0.3, 0.0), (0.0, 0.0, -1.0, 45.0))
+    left = steering_arcs(objs, params, 1.0)
+    right = steering_arcs(objs, params, -1.0)
+    funnel = funnel_polygons(objs, left, right)
+    assert np.all(shapely.is_valid(funnel))
+    body = simple_reach_polygons(objs, np.array([0.0]), 13.0)[:, 0]
+    overlap = shapely.area(shapely.intersection(funnel, body))
+    np.testing.assert_allclose(overlap, 0.0, atol=1e-6)
+
+
+def test_occupancy_matches_scalar_and_holds_last_pose():
+    ego = straight_ego(speed=12.0, horizon=3.0)
+    occ = ego_occupancy(ego, TIMES)
+    ref = ego_occupancy_scalar(ego, list(TIMES))
+    np.testing.assert_allclose(
+        shapely.get_coordinates(occ.polygons).reshape(len(TIMES), 5, 2)[:, :4], np.asarray(ref)
+    )
+    assert occ.x_m[-1] == pytest.approx(36.0)
+
+
+def test_trajectory_timing_from_speeds_floors_standstill():
+    ego = straight_ego(speed=10.0)
+    timed = type(ego)(ego.x_m, ego.y_m, ego.yaw_rad, np.r_[np.linspace(10, 0, 29), 0.0], np.full(30, np.nan))
+    t = trajectory_times(timed)
+    assert t[0] == 0.0
+    assert np.all(np.diff(t) > 0)
+    assert t[-1] > 100.0  # last segment timed at the 0.01 m/s floor (reference behaviour)
+    ref = ego_occupancy_scalar(timed, list(TIMES))
+    got = shapely.get_coordinates(ego_occupancy(timed, TIMES).polygons).reshape(-1, 5, 2)[:, :4]
+    np.testing.assert_allclose(got, np.asarray(ref), atol=1e-9)
+
+
+def test_heading_interpolation_takes_the_short_way():
+    ego = straight_ego(points=2, horizon=1.0)
+    wrapped = type(ego)(
+        ego.x_m, ego.y_m, np.array([math.pi - 0.1, -math.pi + 0.1]), ego.speed_mps, ego.t_s
+    )
+    occ = ego_occupancy(wrapped, np.array([0.5]))
+    assert abs(math.cos(occ.yaw_rad[0]) + 1) < 1e-9
