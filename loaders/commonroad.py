@@ -26,7 +26,7 @@ only clear that actor row's ``valid`` flag.
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NoReturn
 
 import numpy as np
 
@@ -204,15 +204,15 @@ class CommonRoadDrive:
             )
             yield Frame(i, t_ns, state, self._actors.at(step), plan, {"time_step": step})
 
-    def _raise_invalid(self, i: int, t_ns: int) -> None:
+    def _raise_invalid(self, i: int, t_ns: int) -> NoReturn:
         ego = self._ego
-        for name in ("x_m", "y_m", "yaw_rad", "speed_mps"):
-            value = float(getattr(ego, name)[i])
-            if not math.isfinite(value):
-                detail = f"ego obstacle {ego.id} at time step {int(ego.steps[i])}: {name}"
-                raise InvalidValueError(
-                    self._path, detail, topic=f"obstacle/{ego.id}", t_ns=t_ns, value=value
-                )
+        names = ("x_m", "y_m", "yaw_rad", "speed_mps")
+        name = next(n for n in names if not math.isfinite(float(getattr(ego, n)[i])))
+        detail = f"ego obstacle {ego.id} at time step {int(ego.steps[i])}: {name}"
+        value = float(getattr(ego, name)[i])
+        raise InvalidValueError(
+            self._path, detail, topic=f"obstacle/{ego.id}", t_ns=t_ns, value=value
+        )
 
     def close(self) -> None:
         """Nothing to release: the file was read in one pass when the drive was opened."""
