@@ -16,6 +16,7 @@ import json
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+from mcap.writer import CompressionType
 from mcap.writer import Writer as McapWriter
 from rosbags.rosbag1 import Writer as Bag1Writer
 from rosbags.rosbag2 import StoragePlugin
@@ -119,11 +120,12 @@ def write_ros2_mcap(
     entries: Iterable[Entry],
     attachments: dict[str, bytes] | None = None,
     chunk_size: int = 256 * 1024,
+    compression: CompressionType = CompressionType.ZSTD,
 ) -> Path:
     """A bare ROS 2 MCAP file (``ros2msg`` schemas, ``cdr`` messages) via ``mcap``'s writer."""
     ts = typestore(2)
     with path.open("wb") as f:
-        writer = McapWriter(f, chunk_size=chunk_size)
+        writer = McapWriter(f, chunk_size=chunk_size, compression=compression)
         writer.start(profile="ros2", library="rss-workbench tests")
         schemas: dict[str, int] = {}
         channels: dict[str, int] = {}
