@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypeVar
 
 import numpy as np
 import numpy.typing as npt
@@ -33,7 +33,10 @@ __all__ = [
     "RoadAreaArrays",
     "stack_constellations",
     "stack_dynamics",
+    "take_rows",
 ]
+
+_T = TypeVar("_T")
 
 BoolArray = npt.NDArray[np.bool_]
 FloatArray = npt.NDArray[np.float64]
@@ -288,3 +291,14 @@ def _stack_roads(roads: Sequence[tuple[RoadSegment, ...]]) -> RoadAreaArrays:
         before_intersection_m=_frozen(lengths[0], np.float64),
         after_intersection_m=_frozen(lengths[1], np.float64),
     )
+
+
+def take_rows(records: _T, rows: IntArray) -> _T:
+    """Select constellations ``rows`` from a dataclass of ``(C, ...)`` arrays (recursively)."""
+    values = {}
+    for f in dataclasses.fields(records):  # type: ignore[arg-type]
+        value = getattr(records, f.name)
+        values[f.name] = (
+            value[rows] if isinstance(value, np.ndarray) else take_rows(value, rows)
+        )
+    return dataclasses.replace(records, **values)  # type: ignore[type-var]

@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from rss.batch import BoolArray, FloatArray, IntArray
+from rss.batch import BoolArray, FloatArray, IntArray, take_rows
 from rss.model import ConstellationType
 from rss.physics import (
     DISTANCE_MAX_M,
@@ -272,6 +272,25 @@ def _intersection(batch: ConstellationBatch, rel: Relative) -> tuple[BoolArray, 
     return able | safe3 | safe4, evaluator, current, safe_dist, state
 
 
+def _scatter_intersection(
+    batch: ConstellationBatch, rel: Relative, intersection: BoolArray
+) -> tuple[BoolArray, IntArray, FloatArray, FloatArray, IntArray]:
+    """Run the (costly) intersection checks only on intersection constellations."""
+    size = batch.size
+    out = (
+        np.zeros(size, dtype=np.bool_),
+        np.zeros(size, dtype=np.int64),
+        np.zeros(size),
+        np.zeros(size),
+        np.zeros(size, dtype=np.int64),
+    )
+    rows = np.flatnonzero(intersection)
+    if rows.size:
+        for target, values in zip(out, _intersection(take_rows(batch, rows), take_rows(rel, rows)), strict=True):
+            target[rows] = values
+    return out
+
+
 def check_all(batch: ConstellationBatch, rel: Relative) -> RawStates:
     """Run every structured check for every constellation.
 
@@ -284,9 +303,9 @@ def check_all(batch: ConstellationBatch, rel: Relative) -> RawStates:
     """
     lon_safe, lon_resp, lon_eval, lon_safe_dist = _longitudinal(batch, rel)
     left, right = _lateral(batch, rel)
-    i_safe, i_eval, i_current, i_safe_dist, i_state = _intersection(batch, rel)
     ctype = batch.constellation_type
     intersection = ctype >= ConstellationType.IntersectionEgoHasPriority
+    i_safe, i_eval, i_current, i_safe_dist, i_state = _scatter_intersection(batch, rel, intersection)
     relevant = ctype != ConstellationType.NotRelevant
 
     lon_safe = np.where(intersection, i_safe, lon_safe) | ~relevant

@@ -25,7 +25,14 @@ if TYPE_CHECKING:
     from rss.checks import LateralSide
     from rss.engine import FrameResult
 
-__all__ = ["UNSUPPORTED_UNSTRUCTURED", "check_expected", "evaluate_document", "evaluate_formula", "frame_record"]
+__all__ = [
+    "UNSUPPORTED_UNSTRUCTURED",
+    "check_expected",
+    "evaluate_document",
+    "evaluate_formula",
+    "frame_record",
+    "response_record",
+]
 
 #: Error text of unstructured cases (issue 6).
 UNSUPPORTED_UNSTRUCTURED = "unsupported: unstructured (issue 6)"
@@ -90,25 +97,28 @@ def frame_record(result: FrameResult, constellation_types: np.ndarray, object_id
                 "unstructured": None,
             }
         )
-    pr = result.proper_response
-    proper = {
-        "is_safe": pr.is_safe,
-        "dangerous_objects": [int(x) for x in pr.dangerous_objects],
-        "longitudinal_response": str(pr.longitudinal_response),
-        "lateral_response_left": str(pr.lateral_response_left),
-        "lateral_response_right": str(pr.lateral_response_right),
+    proper = response_record(result, object_ids, 0)
+    return {"situation": situation, "states": states, "proper_response": proper}
+
+
+def response_record(result: FrameResult, object_ids: np.ndarray, index: int) -> dict[str, Any]:
+    """The ``proper_response`` record of frame ``index`` (``object_ids``: ``(C,)`` other ids)."""
+    pr = result.responses
+    dangerous = result.dangerous & (result.frame == index)
+    return {
+        "is_safe": bool(pr.is_safe[index]),
+        "dangerous_objects": [int(x) for x in object_ids[dangerous]],
+        "longitudinal_response": str(LongitudinalResponse(int(pr.longitudinal_response[index]))),
+        "lateral_response_left": str(LateralResponse(int(pr.lateral_response_left[index]))),
+        "lateral_response_right": str(LateralResponse(int(pr.lateral_response_right[index]))),
         "unstructured_constellation_response": "None",
         "heading_ranges": [],
         "acceleration_restrictions": {
-            name: [_num(r.minimum_mps2), _num(r.maximum_mps2)]
-            for name, r in (
-                ("longitudinal", pr.longitudinal_range),
-                ("lateral_left", pr.lateral_left_range),
-                ("lateral_right", pr.lateral_right_range),
-            )
+            "longitudinal": [_num(pr.lon_min_mps2[index]), _num(pr.lon_max_mps2[index])],
+            "lateral_left": [_num(pr.lat_left_min_mps2[index]), _num(pr.lat_left_max_mps2[index])],
+            "lateral_right": [_num(pr.lat_right_min_mps2[index]), _num(pr.lat_right_max_mps2[index])],
         },
     }
-    return {"situation": situation, "states": states, "proper_response": proper}
 
 
 def _formula_object(case_id: str, obj: Mapping[str, Any], defaults: CaseDefaults) -> tuple[Any, dict[str, float]]:

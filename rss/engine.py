@@ -1,9 +1,9 @@
 """The structured RSS engine: ``(constellations, params, memory) -> (result, memory)``.
 
-One call evaluates all constellations of a frame with numpy (extraction, checks, memory,
-response resolving). Invalid constellations (NaN, negative or out-of-range speeds,
-regions outside the road area, ...) are flagged and skipped instead of failing the frame
-as ad-rss does.
+One call evaluates all constellations of one frame — or of ``F`` consecutive frames at
+once — with numpy: extraction, checks, memory, response resolving. Invalid constellations
+(NaN, negative or out-of-range speeds, regions outside the road area, ...) are flagged and
+skipped instead of failing the whole frame as ad-rss does.
 """
 
 from __future__ import annotations
@@ -11,55 +11,73 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+import numpy as np
+
 from rss.checks import RawStates, check_all
 from rss.extraction import Relative, extract
 from rss.memory import RssMemory, apply_memory, is_dangerous
-from rss.response import ProperResponse, resolve
+from rss.response import ProperResponses, resolve
 from rss.states import InvalidReason
 
 if TYPE_CHECKING:
     from rss.batch import BoolArray, ConstellationBatch, IntArray
     from rss.dynamics import RssDynamics
 
-__all__ = ["FrameResult", "check_frame"]
+__all__ = ["FrameResult", "check_frame", "check_frames"]
 
 
 @dataclass(frozen=True)
 class FrameResult:
-    """Everything the engine decided for one frame.
+    """Everything the engine decided for ``C`` constellations in ``F`` frames.
 
     Attributes:
         relative: Relative situation per constellation (``(C,)`` arrays).
         states: Memory-adjusted states per constellation.
         dangerous: ``(C,)`` dangerous (and valid) constellations.
         invalid: ``(C,)`` :class:`InvalidReason` codes (0 = evaluated).
-        proper_response: The ego's proper response.
+        frame: ``(C,)`` frame number of each constellation.
+        responses: The ego's proper response per frame (``(F,)`` arrays).
     """
 
     relative: Relative
     states: RawStates
     dangerous: BoolArray
     invalid: IntArray
-    proper_response: ProperResponse
+    frame: IntArray
+    responses: ProperResponses
+
+
+def check_frames(
+    batch: ConstellationBatch,
+    frame: IntArray,
+    n_frames: int,
+    default_ego: RssDynamics,
+    memory: RssMemory | None = None,
+) -> tuple[FrameResult, RssMemory]:
+    """Evaluate the constellations of ``F`` consecutive frames in one vectorised call.
+
+    Args:
+        batch: ``C`` constellations of all frames.
+        frame: ``(C,)`` frame number in ``0..F-1`` of each constellation.
+        n_frames: ``F`` (frames without constellations are safe).
+        default_ego: Default ego dynamics (seed of the acceleration restrictions).
+        memory: Memory before frame 0; ``None`` = fresh start.
+
+    Returns:
+        ``(result, memory)``: the result and the memory after frame ``F-1``.
+    """
+    rel = extract(batch)
+    raw = check_all(batch, rel)
+    valid = rel.invalid == InvalidReason.Valid
+    frame = np.asarray(frame, dtype=np.int64)
+    states, new_memory = apply_memory(batch, rel, raw, valid, frame, memory or RssMemory.empty())
+    dangerous = is_dangerous(states) & valid
+    responses = resolve(batch, states, dangerous, frame, n_frames, default_ego)
+    return FrameResult(rel, states, dangerous, rel.invalid, frame, responses), new_memory
 
 
 def check_frame(
     batch: ConstellationBatch, default_ego: RssDynamics, memory: RssMemory | None = None
 ) -> tuple[FrameResult, RssMemory]:
-    """Evaluate all constellations of one frame.
-
-    Args:
-        batch: ``C`` constellations of the frame.
-        default_ego: Default ego dynamics (seed of the acceleration restrictions).
-        memory: Memory after the previous frame; ``None`` = fresh start.
-
-    Returns:
-        ``(result, memory)``: the frame's result and the memory to pass to the next frame.
-    """
-    rel = extract(batch)
-    raw = check_all(batch, rel)
-    valid = rel.invalid == InvalidReason.Valid
-    states, new_memory = apply_memory(batch, rel, raw, valid, memory or RssMemory.empty())
-    dangerous = is_dangerous(states) & valid
-    response = resolve(batch, states, dangerous, default_ego)
-    return FrameResult(rel, states, dangerous, rel.invalid, response), new_memory
+    """Evaluate all constellations of one frame (see :func:`check_frames`)."""
+    return check_frames(batch, np.zeros(batch.size, dtype=np.int64), 1, default_ego, memory)

@@ -2,12 +2,19 @@
 
 ad-rss keeps this inside its checker objects and requires a strictly increasing time
 index. Here the memory is an explicit immutable value: :func:`apply_memory` takes the
-memory of the previous frame and returns the next one, so a replay can start at any frame
-(with :meth:`RssMemory.empty`) or restart from any stored memory.
+memory before the first frame of a batch and returns the memory after its last frame, so a
+replay can start at any frame (with :meth:`RssMemory.empty`) or restart from any stored
+memory. A batch may hold ``F`` consecutive frames; the memory is then carried through them
+with a vectorised forward fill instead of a Python loop over frames.
 
 Keys are ``(ego id, object id, constellation type)``, like ad-rss' constellation-id
-provider. Entries of constellations absent from a frame are dropped (ad-rss forgets ids
-not seen in the previous step); an *invalid* constellation keeps its previous entry.
+provider. A key absent from a frame loses its memory (ad-rss forgets ids not seen in the
+previous step); an *invalid* constellation keeps its previous entry.
+
+What is remembered (non-intersection): ``{lon_safe, lat_safe}`` of the last non-dangerous
+frame; a same-direction pair that is dangerous without memory while overlapping laterally
+is remembered as "longitudinally safe" (ad-rss' assumption). Intersection: which check
+made the pair safe the last time it was safe.
 """
 
 from __future__ import annotations
@@ -38,11 +45,9 @@ class RssMemory:
         ego_id: ``(M,)`` key part.
         object_id: ``(M,)`` key part.
         constellation_type: ``(M,)`` key part.
-        lon_safe: ``(M,)`` non-intersection: longitudinal verdict of the last
-            non-dangerous frame.
-        lat_safe: ``(M,)`` non-intersection: lateral verdict of that frame.
-        intersection_state: ``(M,)`` intersection: :class:`IntersectionState` of the last
-            safe frame.
+        lon_safe: ``(M,)`` non-intersection: remembered longitudinal verdict.
+        lat_safe: ``(M,)`` non-intersection: remembered lateral verdict.
+        intersection_state: ``(M,)`` intersection: :class:`IntersectionState`.
     """
 
     ego_id: IntArray
@@ -71,99 +76,163 @@ def is_dangerous(states: RawStates) -> BoolArray:
     return np.asarray(~states.lon_is_safe & ~lateral_safe, dtype=np.bool_)
 
 
-def _lookup(memory: RssMemory, batch: ConstellationBatch) -> IntArray:
-    """Row of ``memory`` holding each constellation's key, -1 if none (``(C,)``)."""
+def _keys(memory: RssMemory, batch: ConstellationBatch) -> tuple[IntArray, IntArray]:
+    """Dense key numbers of the memory rows ``(M,)`` and of the constellations ``(C,)``."""
     dtype = np.dtype([("e", np.int64), ("o", np.int64), ("t", np.int64)])
     keys = np.empty(memory.size + batch.size, dtype=dtype)
     keys["e"] = np.concatenate([memory.ego_id, batch.ego.object_id])
     keys["o"] = np.concatenate([memory.object_id, batch.other.object_id])
     keys["t"] = np.concatenate([memory.constellation_type, batch.constellation_type])
     _, inverse = np.unique(keys, return_inverse=True)
-    table = np.full(inverse.max(initial=-1) + 1, -1, dtype=np.int64)
-    table[inverse[: memory.size]] = np.arange(memory.size)
-    return table[inverse[memory.size :]]
+    inverse = inverse.reshape(-1)
+    return inverse[: memory.size], inverse[memory.size :]
 
 
 def _side(side: LateralSide, clear: BoolArray) -> LateralSide:
     return dataclasses.replace(side, response=np.where(clear, LateralResponse.None_, side.response))
 
 
+@dataclass(frozen=True)
+class _Runs:
+    """Constellations sorted by (key, frame) and cut into runs of consecutive frames."""
+
+    order: IntArray  # (C,) sorted position -> row
+    start: IntArray  # (C,) sorted position of the run start
+    initial: IntArray  # (C,) memory row valid at the run start, -1 if none
+
+
+def _runs(memory: RssMemory, batch: ConstellationBatch, frame: IntArray) -> _Runs:
+    mem_key, key = _keys(memory, batch)
+    order = np.lexsort((frame, key))
+    k, f = key[order], frame[order]
+    pos = np.arange(order.size)
+    new_run = np.ones(order.size, dtype=np.bool_)
+    new_run[1:] = (k[1:] != k[:-1]) | (f[1:] - f[:-1] > 1)
+    start = np.maximum.accumulate(np.where(new_run, pos, 0))
+    table = np.full(int(key.max(initial=-1)) + 1, -1, dtype=np.int64)
+    table[mem_key[mem_key < table.size]] = np.flatnonzero(mem_key < table.size)
+    initial = np.where(f[start] == 0, table[k], -1)
+    return _Runs(order, start, initial)
+
+
+def _previous(store: BoolArray, runs: _Runs) -> IntArray:
+    """For every sorted position: last earlier position of its run that stored, else -1."""
+    pos = np.arange(store.size)
+    last = np.maximum.accumulate(np.where(store, pos, -1))
+    prev = np.full(store.size, -1, dtype=np.int64)
+    prev[1:] = last[:-1]
+    return np.where(prev >= runs.start, prev, -1)
+
+
 def apply_memory(
-    batch: ConstellationBatch, rel: Relative, raw: RawStates, valid: BoolArray, memory: RssMemory
+    batch: ConstellationBatch,
+    rel: Relative,
+    raw: RawStates,
+    valid: BoolArray,
+    frame: IntArray,
+    memory: RssMemory,
 ) -> tuple[RawStates, RssMemory]:
     """Adjust the responses of dangerous states by the remembered safe state.
 
-    Non-intersection (dangerous now), by what was safe in the last non-dangerous frame:
-    only lateral -> longitudinal response None; only longitudinal -> lateral responses
-    None; both -> keep; nothing remembered -> same-direction pairs that overlap laterally
-    get lateral None, others keep. Intersection (unsafe now), by the last safe check:
-    able-to-stop -> None if the ego has priority else BrakeMin; safe longitudinal
-    distance -> None if the ego is in front else BrakeMin; otherwise BrakeMin.
+    Non-intersection (dangerous now), by what was safe at the remembered frame: only
+    lateral -> longitudinal response None; only longitudinal -> lateral responses None;
+    both -> keep. Non-dangerous states get all responses None. Intersection (unsafe now):
+    able-to-stop -> None if the ego has priority; safe longitudinal distance -> None if the
+    ego is in front; otherwise BrakeMin.
 
     Args:
         batch: ``C`` constellations.
         rel: Their relative situation.
         raw: Unadjusted states.
         valid: ``(C,)`` constellations that were evaluated.
-        memory: Memory after the previous frame.
+        frame: ``(C,)`` frame number 0..F-1 of each constellation (consecutive frames).
+        memory: Memory before frame 0.
 
     Returns:
-        ``(states, memory)``: adjusted states and the memory after this frame.
+        ``(states, memory)``: adjusted states and the memory after the last frame.
     """
-    row = _lookup(memory, batch)
-    known = row >= 0
-    safe_row = np.where(known, row, 0)
-    has_rows = memory.size > 0
-    prev_lon = np.where(known, memory.lon_safe[safe_row], False) if has_rows else np.zeros_like(known)
-    prev_lat = np.where(known, memory.lat_safe[safe_row], False) if has_rows else np.zeros_like(known)
-    prev_int = (
-        np.where(known, memory.intersection_state[safe_row], IntersectionState.NONE)
-        if has_rows
-        else np.zeros(known.shape, dtype=np.int64)
-    )
-    ctype = batch.constellation_type
+    runs = _runs(memory, batch, frame)
+    o = runs.order
+    ctype = batch.constellation_type[o]
     intersection = ctype >= ConstellationType.IntersectionEgoHasPriority
-    dangerous = is_dangerous(raw) & valid
+    dangerous = (is_dangerous(raw) & valid)[o]
+    lat_safe_now = (raw.left.is_safe & raw.right.is_safe)[o]
+    lon_safe_now = raw.lon_is_safe[o]
+    ok = valid[o]
 
-    # non-intersection
+    base = ok & np.where(intersection, lon_safe_now, ~dangerous)
+    lat_overlap = np.isin(
+        rel.lat_position[o], [LateralPosition.OverlapLeft, LateralPosition.Overlap, LateralPosition.OverlapRight]
+    )
+    candidate = dangerous & ~intersection & (ctype == ConstellationType.SameDirection) & lat_overlap
+    first_event = _previous(base | candidate, runs) < 0
+    synthetic = candidate & first_event & (runs.initial < 0)
+    store = base | synthetic
+    prev = _previous(store, runs)
+    has_initial = runs.initial >= 0
+    init_row = np.where(has_initial, runs.initial, 0)
+
+    def remembered(now: np.ndarray, initial: np.ndarray, fill: object) -> np.ndarray:
+        from_initial = initial[init_row] if memory.size else np.full(now.shape, fill)
+        return np.where(prev >= 0, now[np.maximum(prev, 0)], np.where(has_initial, from_initial, fill))
+
+    stored_lon = np.where(synthetic, True, lon_safe_now)
+    stored_lat = np.where(synthetic, False, lat_safe_now)
+    stored_int = np.where(intersection & base, raw.intersection_state[o], IntersectionState.NONE)
+    known = (prev >= 0) | has_initial
+    prev_lon = remembered(stored_lon, memory.lon_safe, False)
+    prev_lat = remembered(stored_lat, memory.lat_safe, False)
+    prev_int = remembered(stored_int, memory.intersection_state, IntersectionState.NONE)
+
     structured = dangerous & ~intersection
     clear_lon = structured & known & prev_lat & ~prev_lon
-    lat_overlap = np.isin(
-        rel.lat_position, [LateralPosition.OverlapLeft, LateralPosition.Overlap, LateralPosition.OverlapRight]
-    )
-    fresh_overlap = ~known & (ctype == ConstellationType.SameDirection) & lat_overlap
-    clear_lat = structured & ((known & prev_lon & ~prev_lat) | fresh_overlap)
-
-    # intersection
-    unsafe_int = valid & intersection & ~raw.lon_is_safe & (prev_int != IntersectionState.NONE)
+    clear_lat = structured & ((known & prev_lon & ~prev_lat) | synthetic)
+    unsafe_int = ok & intersection & ~lon_safe_now & known
     ego_prio = ctype == ConstellationType.IntersectionEgoHasPriority
-    ego_front = rel.lon_position == LongitudinalPosition.InFront
+    ego_front = rel.lon_position[o] == LongitudinalPosition.InFront
     int_none = unsafe_int & (
         ((prev_int == IntersectionState.NON_PRIO_ABLE_TO_BREAK) & ego_prio)
         | ((prev_int == IntersectionState.SAFE_LONGITUDINAL_DISTANCE) & ego_front)
     )
-    # responses of non-dangerous structured states are reset to None (as ad-rss does)
     calm = ~intersection & ~dangerous
-    lon_response = np.where(clear_lon | int_none | calm, LongitudinalResponse.None_, raw.lon_response)
+    clear_lon_rows = np.zeros(batch.size, dtype=np.bool_)
+    clear_lon_rows[o] = clear_lon | int_none | calm
+    clear_lat_rows = np.zeros(batch.size, dtype=np.bool_)
+    clear_lat_rows[o] = clear_lat | calm
     states = dataclasses.replace(
         raw,
-        lon_response=lon_response.astype(np.int64),
-        left=_side(raw.left, clear_lat | calm),
-        right=_side(raw.right, clear_lat | calm),
+        lon_response=np.where(clear_lon_rows, LongitudinalResponse.None_, raw.lon_response).astype(np.int64),
+        left=_side(raw.left, clear_lat_rows),
+        right=_side(raw.right, clear_lat_rows),
     )
+    return states, _memory_after(batch, frame, runs, store, known, stored_lon, stored_lat, stored_int, prev_lon, prev_lat, prev_int)
 
-    lateral_safe = raw.left.is_safe & raw.right.is_safe
-    store_now = valid & np.where(intersection, raw.lon_is_safe, ~dangerous)
-    keep = store_now | known
-    new_lon = np.where(store_now, raw.lon_is_safe, prev_lon)
-    new_lat = np.where(store_now, lateral_safe, prev_lat)
-    new_int = np.where(store_now, np.where(intersection, raw.intersection_state, IntersectionState.NONE), prev_int)
-    new_memory = RssMemory(
-        ego_id=batch.ego.object_id[keep],
-        object_id=batch.other.object_id[keep],
-        constellation_type=ctype[keep],
-        lon_safe=np.asarray(new_lon[keep], dtype=np.bool_),
-        lat_safe=np.asarray(new_lat[keep], dtype=np.bool_),
-        intersection_state=np.asarray(new_int[keep], dtype=np.int64),
+
+def _memory_after(
+    batch: ConstellationBatch,
+    frame: IntArray,
+    runs: _Runs,
+    store: BoolArray,
+    known: BoolArray,
+    stored_lon: BoolArray,
+    stored_lat: BoolArray,
+    stored_int: IntArray,
+    prev_lon: BoolArray,
+    prev_lat: BoolArray,
+    prev_int: IntArray,
+) -> RssMemory:
+    """Memory after the last frame: one entry per key present in it that has a value."""
+    o = runs.order
+    last_frame = frame.max(initial=0)
+    run_end = np.ones(o.size, dtype=np.bool_)
+    run_end[:-1] = runs.start[1:] != runs.start[:-1]
+    keep = run_end & (frame[o] == last_frame) & (store | known)
+    rows = o[keep]
+    return RssMemory(
+        ego_id=batch.ego.object_id[rows],
+        object_id=batch.other.object_id[rows],
+        constellation_type=batch.constellation_type[rows],
+        lon_safe=np.where(store, stored_lon, prev_lon)[keep].astype(np.bool_),
+        lat_safe=np.where(store, stored_lat, prev_lat)[keep].astype(np.bool_),
+        intersection_state=np.where(store, stored_int, prev_int)[keep].astype(np.int64),
     )
-    return states, new_memory

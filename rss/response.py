@@ -1,12 +1,15 @@
-"""Response resolving: from per-constellation states to one proper response of the ego.
+"""Response resolving: from per-constellation states to the ego's proper response per frame.
 
-ad-rss ``RssResponseResolving`` (stateless in 5.0): every dangerous state makes the frame
+ad-rss ``RssResponseResolving`` (stateless in 5.0): every dangerous state makes its frame
 unsafe, lists its object, escalates the responses (``None < BrakeMinCorrect < BrakeMin``)
 and narrows the acceleration restrictions, starting from the default ego dynamics::
 
-    longitudinal  [brake_max, accel_max]  ->  max  = min(.., brake_min | brake_min_correct | accel_max)
-                                              min  = max(.., brake_max)
-    lateral L/R   [-1000, lat_accel_max]  ->  max  = min(.., lat_brake_min if BrakeMin else lat_accel_max)
+    longitudinal  [brake_max, accel_max] -> max = min(.., brake_min | brake_min_correct | accel_max)
+                                            min = max(.., brake_max)
+    lateral L/R   [-1000, lat_accel_max] -> max = min(.., lat_brake_min if BrakeMin else lat_accel_max)
+
+Frames are reduced with unbuffered ufuncs (``np.minimum.at``), so ``F`` frames resolve in
+one call.
 """
 
 from __future__ import annotations
@@ -16,94 +19,122 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from rss.batch import IntArray
+from rss.batch import BoolArray, FloatArray, IntArray
 from rss.physics import ACCELERATION_LOWEST_MPS2
 from rss.states import LateralResponse, LongitudinalResponse
 
 if TYPE_CHECKING:
-    from rss.batch import BoolArray, ConstellationBatch, FloatArray
+    from rss.batch import ConstellationBatch
     from rss.checks import LateralSide, RawStates
     from rss.dynamics import RssDynamics
 
-__all__ = ["AccelerationRange", "ProperResponse", "resolve"]
+__all__ = ["ProperResponses", "resolve"]
 
 
 @dataclass(frozen=True)
-class AccelerationRange:
-    """Allowed acceleration interval [m/s²]."""
-
-    minimum_mps2: float
-    maximum_mps2: float
-
-
-@dataclass(frozen=True)
-class ProperResponse:
-    """The ego's proper response for one frame.
+class ProperResponses:
+    """The ego's proper response for ``F`` frames (every field ``(F,)``).
 
     Attributes:
-        is_safe: No dangerous constellation.
-        dangerous_objects: ``(D,)`` ids of the objects of dangerous constellations.
-        longitudinal_response: Most severe longitudinal response.
-        lateral_response_left: Most severe lateral response to the left.
-        lateral_response_right: Most severe lateral response to the right.
-        longitudinal_range: Allowed longitudinal acceleration.
-        lateral_left_range: Allowed lateral acceleration to the left.
-        lateral_right_range: Allowed lateral acceleration to the right.
+        is_safe: No dangerous constellation in the frame.
+        longitudinal_response: Most severe :class:`LongitudinalResponse` code.
+        lateral_response_left: Most severe :class:`LateralResponse` code to the left.
+        lateral_response_right: Most severe code to the right.
+        lon_min_mps2: Allowed longitudinal acceleration, lower bound.
+        lon_max_mps2: Upper bound.
+        lat_left_min_mps2: Allowed lateral acceleration to the left (lower bound, -1000 =
+            unbounded).
+        lat_left_max_mps2: Upper bound.
+        lat_right_min_mps2: Lateral to the right, lower bound.
+        lat_right_max_mps2: Upper bound.
     """
 
-    is_safe: bool
-    dangerous_objects: IntArray
-    longitudinal_response: LongitudinalResponse
-    lateral_response_left: LateralResponse
-    lateral_response_right: LateralResponse
-    longitudinal_range: AccelerationRange
-    lateral_left_range: AccelerationRange
-    lateral_right_range: AccelerationRange
+    is_safe: BoolArray
+    longitudinal_response: IntArray
+    lateral_response_left: IntArray
+    lateral_response_right: IntArray
+    lon_min_mps2: FloatArray
+    lon_max_mps2: FloatArray
+    lat_left_min_mps2: FloatArray
+    lat_left_max_mps2: FloatArray
+    lat_right_min_mps2: FloatArray
+    lat_right_max_mps2: FloatArray
 
 
-def _lateral(side: LateralSide, dangerous: BoolArray, batch: ConstellationBatch, default_max: float) -> tuple[LateralResponse, AccelerationRange]:
-    response = np.where(dangerous, side.response, LateralResponse.None_)
-    limit = np.where(
-        response == LateralResponse.BrakeMin,
-        batch.ego_dynamics.lat_brake_min_mps2,
-        batch.ego_dynamics.lat_accel_max_mps2,
-    )
-    maximum = float(np.min(np.where(dangerous, limit, np.inf), initial=default_max))
-    return LateralResponse(int(response.max(initial=0))), AccelerationRange(ACCELERATION_LOWEST_MPS2, maximum)
+def _lateral(
+    side: LateralSide, frame: IntArray, ego_lat_brake: FloatArray, ego_lat_accel: FloatArray, initial: FloatArray
+) -> tuple[IntArray, FloatArray]:
+    response = np.zeros(initial.shape, dtype=np.int64)
+    np.maximum.at(response, frame, side.response)
+    limit = np.where(side.response == LateralResponse.BrakeMin, ego_lat_brake, ego_lat_accel)
+    maximum = initial.copy()
+    np.minimum.at(maximum, frame, limit)
+    return response, maximum
 
 
 def resolve(
-    batch: ConstellationBatch, states: RawStates, dangerous: BoolArray, default_ego: RssDynamics
-) -> ProperResponse:
-    """Combine all dangerous states of a frame into the ego's proper response.
+    batch: ConstellationBatch,
+    states: RawStates,
+    dangerous: BoolArray,
+    frame: IntArray,
+    n_frames: int,
+    default_ego: RssDynamics,
+) -> ProperResponses:
+    """Combine the dangerous states of every frame into the ego's proper responses.
 
     Args:
         batch: ``C`` constellations (the ego dynamics per constellation are used).
         states: Memory-adjusted states.
         dangerous: ``(C,)`` dangerous and valid constellations.
+        frame: ``(C,)`` frame number of each constellation.
+        n_frames: ``F``.
         default_ego: Default ego dynamics (seed of the acceleration restrictions).
 
     Returns:
-        The proper response.
+        The proper responses, ``(F,)`` each.
     """
     ego = batch.ego_dynamics
-    lon = np.where(dangerous, states.lon_response, LongitudinalResponse.None_)
-    lon_limit: FloatArray = np.select(
+    rows = np.flatnonzero(dangerous)
+    f = frame[rows]
+    is_safe = np.ones(n_frames, dtype=np.bool_)
+    is_safe[f] = False
+    lon = states.lon_response[rows]
+    lon_response = np.zeros(n_frames, dtype=np.int64)
+    np.maximum.at(lon_response, f, lon)
+    lon_limit = np.select(
         [lon == LongitudinalResponse.BrakeMin, lon == LongitudinalResponse.BrakeMinCorrect],
-        [ego.brake_min_mps2, ego.brake_min_correct_mps2],
-        ego.accel_max_mps2,
+        [ego.brake_min_mps2[rows], ego.brake_min_correct_mps2[rows]],
+        ego.accel_max_mps2[rows],
     )
-    lon_max = float(np.min(np.where(dangerous, lon_limit, np.inf), initial=default_ego.accel_max_mps2))
-    lon_min = float(np.max(np.where(dangerous, ego.brake_max_mps2, -np.inf), initial=default_ego.brake_max_mps2))
-    left_response, left_range = _lateral(states.left, dangerous, batch, default_ego.lat_accel_max_mps2)
-    right_response, right_range = _lateral(states.right, dangerous, batch, default_ego.lat_accel_max_mps2)
-    return ProperResponse(
-        is_safe=not bool(dangerous.any()),
-        dangerous_objects=batch.other.object_id[dangerous],
-        longitudinal_response=LongitudinalResponse(int(lon.max(initial=0))),
-        lateral_response_left=left_response,
-        lateral_response_right=right_response,
-        longitudinal_range=AccelerationRange(lon_min, lon_max),
-        lateral_left_range=left_range,
-        lateral_right_range=right_range,
+    lon_max = np.full(n_frames, default_ego.accel_max_mps2)
+    np.minimum.at(lon_max, f, lon_limit)
+    lon_min = np.full(n_frames, default_ego.brake_max_mps2)
+    np.maximum.at(lon_min, f, ego.brake_max_mps2[rows])
+    lat_initial = np.full(n_frames, default_ego.lat_accel_max_mps2)
+    lat_brake, lat_accel = ego.lat_brake_min_mps2[rows], ego.lat_accel_max_mps2[rows]
+    left, left_max = _lateral(take_side(states.left, rows), f, lat_brake, lat_accel, lat_initial)
+    right, right_max = _lateral(take_side(states.right, rows), f, lat_brake, lat_accel, lat_initial)
+    lowest = np.full(n_frames, ACCELERATION_LOWEST_MPS2)
+    return ProperResponses(
+        is_safe=is_safe,
+        longitudinal_response=lon_response,
+        lateral_response_left=left,
+        lateral_response_right=right,
+        lon_min_mps2=lon_min,
+        lon_max_mps2=lon_max,
+        lat_left_min_mps2=lowest,
+        lat_left_max_mps2=left_max,
+        lat_right_min_mps2=lowest,
+        lat_right_max_mps2=right_max,
+    )
+
+
+def take_side(side: LateralSide, rows: IntArray) -> LateralSide:
+    """The lateral states of the given constellations."""
+    return type(side)(
+        is_safe=side.is_safe[rows],
+        response=side.response[rows],
+        evaluator=side.evaluator[rows],
+        current_distance_m=side.current_distance_m[rows],
+        safe_distance_m=side.safe_distance_m[rows],
     )
