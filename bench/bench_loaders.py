@@ -60,7 +60,9 @@ print(json.dumps({"peak_rss_mb": resource.getrusage(resource.RUSAGE_SELF).ru_max
 def _objects_template(ts: Any) -> Any:
     objs = []
     for k in range(N_ACTORS):
-        shape = build(ts, "shape_msgs/msg/SolidPrimitive", type=1, dimensions=np.array([4.5, 1.9, 1.5]))
+        shape = build(
+            ts, "shape_msgs/msg/SolidPrimitive", type=1, dimensions=np.array([4.5, 1.9, 1.5])
+        )
         twist = build(
             ts,
             "geometry_msgs/msg/Twist",
@@ -85,8 +87,16 @@ def _entries(n_frames: int) -> Iterator[Entry]:
     ts = typestore(2)
     rng = np.random.default_rng(7)
     objects = _objects_template(ts)
-    cloud = build(ts, CLOUD, header=header(ts, T0, "lidar"), height=1, width=CLOUD_BYTES // 16,
-                  point_step=16, row_step=CLOUD_BYTES, data=rng.integers(0, 255, CLOUD_BYTES, dtype=np.uint8))
+    cloud = build(
+        ts,
+        CLOUD,
+        header=header(ts, T0, "lidar"),
+        height=1,
+        width=CLOUD_BYTES // 16,
+        point_step=16,
+        row_step=CLOUD_BYTES,
+        data=rng.integers(0, 255, CLOUD_BYTES, dtype=np.uint8),
+    )
     for i in range(n_frames):
         t = T0 + i * DT_NS
         yield Entry("/carla/ego_vehicle/lidar", CLOUD, t - 50_000_000, cloud)
@@ -99,7 +109,7 @@ def _entries(n_frames: int) -> Iterator[Entry]:
 
 
 def _child(code: str, *args: str) -> dict[str, float]:
-    out = subprocess.run(
+    out = subprocess.run(  # noqa: S603 - our own interpreter and script
         [sys.executable, "-c", code, *args], capture_output=True, text=True, check=True
     )
     return dict(json.loads(out.stdout.strip().splitlines()[-1]))
@@ -111,8 +121,9 @@ def run(quick: bool) -> str:  # noqa: FBT001 - harness signature
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "large_drive.mcap"
         t0 = time.perf_counter()
-        write_ros2_mcap(path, _entries(n_frames), chunk_size=1024 * 1024,
-                        compression=CompressionType.NONE)
+        write_ros2_mcap(
+            path, _entries(n_frames), chunk_size=1024 * 1024, compression=CompressionType.NONE
+        )
         gen_s = time.perf_counter() - t0
         size_mb = path.stat().st_size / 2**20
         base = _child(_BASELINE)

@@ -4,7 +4,7 @@
 |-----------------------------------------|------------------------------------------|
 | ``.bag``                                | rosbags ``AnyReader`` (ROS 1)            |
 | rosbag2 directory (sqlite3 or mcap)     | rosbags ``AnyReader``                    |
-| ``.mcap`` with ``cdr`` channels         | rosbags ``AnyReader`` (``mcap`` when the summary is damaged) |
+| ``.mcap`` with ``cdr`` channels         | ``AnyReader`` (``mcap`` if summary damaged) |
 | ``.mcap`` with ``json``/``protobuf``    | ``mcap`` reader                          |
 | ``.xml`` (CommonRoad)                   | ``loaders.commonroad``                   |
 | ``.saa`` / ``.scn`` (ScenarioArchitect) | ``loaders.scenario_architect``           |

@@ -125,8 +125,11 @@ class FrameAssembler:
         return self._emit(_Pending(t_ns, sample, actors, plan))
 
     def run(self, messages: Iterable[tuple[str, int, Any]]) -> Iterator[Frame]:
-        """Yield frames; a ``CorruptLogError`` or ``InvalidValueError`` from the stream is
-        re-raised after the frame still pending was yielded."""
+        """Yield frames from the message stream.
+
+        A ``CorruptLogError`` or ``InvalidValueError`` is re-raised after the frame still
+        pending was yielded.
+        """
         try:
             for topic, log_ns, msg in messages:
                 try:

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import replace
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Self
 
 from loaders.drive import DriveInfo
 from loaders.ros.assemble import AssemblyOptions, FrameAssembler
@@ -96,7 +96,7 @@ class LogDrive:
         """Close the source."""
         self._source.close()
 
-    def __enter__(self) -> LogDrive:
+    def __enter__(self) -> Self:
         """Use as a context manager."""
         return self
 

@@ -15,13 +15,15 @@ messages of the topic; an id seen for the first time gets velocity 0.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from loaders.records import ActorTable
 
 if TYPE_CHECKING:
+    from numpy.typing import NDArray
+
     from loaders.ros.samples import ObjectColumns
 
 __all__ = ["ObjectBuffer", "match_objects"]
@@ -78,11 +80,11 @@ def match_objects(
         return ActorTable.empty()
     prefix = len(buffers) > 1
     ids: list[str] = []
-    columns: dict[str, list[np.ndarray]] = {}
+    columns: dict[str, list[NDArray[Any]]] = {}
     for topic, dt_ns, cols in parts:
         ids.extend(f"{topic}:{i}" for i in cols.ids) if prefix else ids.extend(cols.ids)
         dt = dt_ns / 1e9
-        values = {
+        values: dict[str, NDArray[Any]] = {
             "object_class": cols.object_class,
             "x_m": cols.x_m + cols.vx_mps * dt,
             "y_m": cols.y_m + cols.vy_mps * dt,

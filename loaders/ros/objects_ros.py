@@ -52,6 +52,7 @@ AUTOWARE_LABELS: dict[int, ObjectClass] = {
 }
 
 _BOX, _CYLINDER = 1, 3  # shape_msgs/SolidPrimitive types
+_BOX_DIMS, _CYLINDER_DIMS = 3, 2  # dimensions: [x, y, z] and [height, radius]
 _NAN = float("nan")
 
 
@@ -62,9 +63,9 @@ def _pose_row(pose: Any) -> tuple[float, float, float, float]:
 
 def _solid_dims(shape: Any) -> tuple[float, float, float]:
     dims = [float(d) for d in shape.dimensions]
-    if shape.type == _BOX and len(dims) >= 3:
+    if shape.type == _BOX and len(dims) >= _BOX_DIMS:
         return dims[0], dims[1], dims[2]
-    if shape.type == _CYLINDER and len(dims) >= 2:
+    if shape.type == _CYLINDER and len(dims) >= _CYLINDER_DIMS:
         return 2 * dims[1], 2 * dims[1], dims[0]
     return _NAN, _NAN, _NAN
 
@@ -124,7 +125,11 @@ def decode_autoware_objects(msg: Any) -> ObjectColumns:
 def _hypothesis_class(results: Any) -> ObjectClass:
     if not results:
         return ObjectClass.UNKNOWN
-    best = max(results, key=lambda r: float(getattr(r, "hypothesis", r).score))
+
+    def score(result: Any) -> float:
+        return float(getattr(result, "hypothesis", result).score)
+
+    best = max(results, key=score)
     hyp = getattr(best, "hypothesis", None)
     if hyp is not None:
         return class_from_name(str(hyp.class_id))

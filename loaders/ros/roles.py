@@ -39,7 +39,7 @@ def _best(topics: Sequence[TopicInfo], role: str, hints: tuple[str, ...]) -> Top
             continue
         hinted = any(h in info.topic.lower() for h in hints)
         candidates.append((info.count == 0, family.rank, not hinted, info.topic, info))
-    return min(candidates)[-1] if candidates else None  # type: ignore[no-any-return]
+    return min(candidates)[-1] if candidates else None
 
 
 def _listing(topics: Sequence[TopicInfo]) -> str:

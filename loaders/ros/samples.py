@@ -3,13 +3,15 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from loaders.records import ObjectClass, Plan
 
 if TYPE_CHECKING:
+    from collections.abc import Sequence
+
     from numpy.typing import NDArray
 
 __all__ = ["CLASS_NAMES", "EgoSample", "ObjectColumns", "PlanSample", "class_from_name"]
@@ -103,18 +105,26 @@ class ObjectColumns:
         cls,
         stamp_ns: int | None,
         ids: list[str],
-        classes: list[int],
-        rows: list[tuple[float, ...]],
+        classes: Sequence[int],
+        rows: Sequence[tuple[float, ...]],
         *,
         has_velocity: bool = True,
     ) -> ObjectColumns:
         """Build from per-object rows ``(x, y, z, yaw, vx, vy, length, width, height)``."""
         table = np.asarray(rows, dtype=np.float64).reshape(len(rows), 9)
-        cols: list[Any] = [table[:, k] for k in range(9)]
+        c = [table[:, k] for k in range(9)]
         return cls(
-            stamp_ns,
-            ids,
-            np.asarray(classes, dtype=np.int8),
-            *cols,
+            stamp_ns=stamp_ns,
+            ids=ids,
+            object_class=np.asarray(classes, dtype=np.int8),
+            x_m=c[0],
+            y_m=c[1],
+            z_m=c[2],
+            yaw_rad=c[3],
+            vx_mps=c[4],
+            vy_mps=c[5],
+            length_m=c[6],
+            width_m=c[7],
+            height_m=c[8],
             has_velocity=has_velocity,
         )

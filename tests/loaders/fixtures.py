@@ -1,13 +1,13 @@
 """Write the synthetic drive in every format we read, with the libraries' own writers.
 
-| format            | ego                        | objects                    | plan        |
+| format | ego | objects | plan |
 |-------------------|----------------------------|----------------------------|-------------|
-| ros1-bag          | nav_msgs/Odometry          | derived_object_msgs        | nav_msgs/Path |
-| rosbag2-sqlite3   | nav_msgs/Odometry          | autoware PredictedObjects  | autoware Trajectory |
-| rosbag2-mcap      | geometry_msgs/PoseStamped  | autoware TrackedObjects    | nav_msgs/Path |
-| ros2-mcap         | nav_msgs/Odometry          | vision_msgs Detection3DArray | autoware Trajectory |
-| mcap-json         | workbench.EgoState         | workbench.ObjectList       | workbench.Plan |
-| mcap-protobuf     | foxglove.Odometry          | foxglove.SceneUpdate       | —           |
+| ros1-bag | nav_msgs/Odometry | derived_object_msgs | nav_msgs/Path |
+| rosbag2-sqlite3 | nav_msgs/Odometry | autoware PredictedObjects | autoware Trajectory |
+| rosbag2-mcap | geometry_msgs/PoseStamped | autoware TrackedObjects | nav_msgs/Path |
+| ros2-mcap | nav_msgs/Odometry | vision_msgs Detection3DArray | autoware Trajectory |
+| mcap-json | workbench.EgoState | workbench.ObjectList | workbench.Plan |
+| mcap-protobuf | foxglove.Odometry | foxglove.SceneUpdate | — |
 """
 
 from __future__ import annotations
@@ -139,7 +139,7 @@ def write_ros2_mcap(
             writer.add_message(channels[e.topic], e.t_ns, bytes(data), e.t_ns)
         for name, blob in (attachments or {}).items():
             writer.add_attachment(syn.T0, syn.T0, name, "application/xml", blob)
-        writer.finish()
+        writer.finish()  # type: ignore[no-untyped-call]
     return path
 
 
@@ -192,7 +192,7 @@ def write_mcap_json(path: Path, attachments: dict[str, bytes] | None = None) -> 
             writer.add_message(channels[topic], t, json.dumps(payload).encode(), t)
         for name, blob in (attachments or {}).items():
             writer.add_attachment(syn.T0, syn.T0, name, "application/xml", blob)
-        writer.finish()
+        writer.finish()  # type: ignore[no-untyped-call]
     return path
 
 
@@ -217,13 +217,13 @@ def _pb_pose(x: float, y: float, z: float, yaw: float) -> Any:
 
 def write_mcap_protobuf(path: Path, ego_kind: str = "odometry") -> Path:
     """A Foxglove protobuf MCAP: ego as ``foxglove.Odometry`` (or ``pose``/``transform``)."""
+    from foxglove_schemas_protobuf.CubePrimitive_pb2 import CubePrimitive  # noqa: PLC0415
     from foxglove_schemas_protobuf.FrameTransform_pb2 import FrameTransform  # noqa: PLC0415
     from foxglove_schemas_protobuf.KeyValuePair_pb2 import KeyValuePair  # noqa: PLC0415
     from foxglove_schemas_protobuf.Odometry_pb2 import Odometry  # noqa: PLC0415
     from foxglove_schemas_protobuf.PoseInFrame_pb2 import PoseInFrame  # noqa: PLC0415
     from foxglove_schemas_protobuf.SceneEntity_pb2 import SceneEntity  # noqa: PLC0415
     from foxglove_schemas_protobuf.SceneUpdate_pb2 import SceneUpdate  # noqa: PLC0415
-    from foxglove_schemas_protobuf.CubePrimitive_pb2 import CubePrimitive  # noqa: PLC0415
     from foxglove_schemas_protobuf.Vector3_pb2 import Vector3  # noqa: PLC0415
     from mcap_protobuf.writer import Writer as PbWriter  # noqa: PLC0415
 
@@ -271,7 +271,7 @@ def write_mcap_protobuf(path: Path, ego_kind: str = "odometry") -> Path:
         writer = PbWriter(f)
         for topic, t, msg in sorted(msgs, key=lambda m: m[1]):
             writer.write_message(topic, msg, log_time=t, publish_time=t)
-        writer.finish()
+        writer.finish()  # type: ignore[no-untyped-call]
     return path
 
 

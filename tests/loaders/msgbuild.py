@@ -34,11 +34,7 @@ def _default(ts: Any, desc: tuple[int, Any]) -> Any:
     kind, detail = desc
     if kind == _BASE:
         name = detail[0]
-        if name == "string":
-            return ""
-        if name == "bool":
-            return False
-        return 0.0 if name.startswith("float") else 0
+        return {"string": "", "bool": False}.get(name, 0.0 if name.startswith("float") else 0)
     if kind == _NAME:
         return build(ts, detail)
     sub, length = detail

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 from contextlib import closing
-from types import SimpleNamespace as NS
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -46,17 +46,23 @@ def test_kinematics_central_differences():
     speed, accel, _ = ego_kinematics(
         (0, s(0, 0, 10.0)), (10**9, s(10, 0, 11.0)), (2 * 10**9, s(21, 0, 12.0))
     )
-    assert (speed, accel) == (pytest.approx(11.0), pytest.approx(1.0))
+    assert speed == pytest.approx(11.0)
+    assert accel == pytest.approx(1.0)
     assert ego_kinematics(None, (0, s(0, 0)), None) == (0.0, 0.0, 0.0)
 
 
 def test_detection3d_ros1_variant_with_integer_result_ids():
-    center = NS(position=NS(x=1.0, y=2.0, z=0.0), orientation=NS(x=0.0, y=0.0, z=0.0, w=1.0))
-    det = NS(
-        results=[NS(id=1, score=0.9), NS(id=6, score=0.2)],
-        bbox=NS(center=center, size=NS(x=4.0, y=2.0, z=1.5)),
+    center = SimpleNamespace(
+        position=SimpleNamespace(x=1.0, y=2.0, z=0.0),
+        orientation=SimpleNamespace(x=0.0, y=0.0, z=0.0, w=1.0),
     )
-    msg = NS(header=NS(stamp=NS(sec=1, nanosec=5)), detections=[det])
+    det = SimpleNamespace(
+        results=[SimpleNamespace(id=1, score=0.9), SimpleNamespace(id=6, score=0.2)],
+        bbox=SimpleNamespace(center=center, size=SimpleNamespace(x=4.0, y=2.0, z=1.5)),
+    )
+    msg = SimpleNamespace(
+        header=SimpleNamespace(stamp=SimpleNamespace(sec=1, nanosec=5)), detections=[det]
+    )
     cols = decode_detection3d(msg)
     assert cols.stamp_ns == 1_000_000_005
     assert cols.ids == ["det0"]
