@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from typing import Any
 
 import jsonschema
 import pytest
@@ -43,7 +44,7 @@ def test_ros_files_open_with_anyreader(name, variant, ros_version):
             if conn.topic in seen:
                 continue
             seen.add(conn.topic)
-            msg = reader.deserialize(raw, conn.msgtype)
+            msg: Any = reader.deserialize(raw, conn.msgtype)
             stamp = msg.transforms[0].header.stamp if conn.topic == "/tf" else msg.header.stamp
             assert stamp.sec * 10**9 + stamp.nanosec == t_ns
         assert seen == set(types)

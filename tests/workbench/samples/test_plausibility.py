@@ -8,7 +8,7 @@ import shapely
 
 from loaders.records import ObjectClass
 from workbench.samples.generate import SCENARIOS
-from workbench.samples.motion import DT_S
+from workbench.samples.motion import DT_S, Track
 
 VEHICLES = {ObjectClass.CAR, ObjectClass.TRUCK, ObjectClass.BUS, ObjectClass.MOTORCYCLE}
 EPS = 1e-6
@@ -75,7 +75,7 @@ def test_agents_stay_on_their_lanes(scenario):
         assert inside.all(), (tr.id, scenario.t_s[check][~inside][:5])
 
 
-def _boxes(tr, k):
+def _boxes(tr: Track, k: int) -> shapely.Polygon:
     m = tr.motion
     c, s = np.cos(m.yaw_rad[k]), np.sin(m.yaw_rad[k])
     hl, hw = tr.length_m / 2, tr.width_m / 2
