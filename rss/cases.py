@@ -137,6 +137,11 @@ def _overlap(a0: float, a1: float, b0: float, b1: float) -> tuple[float, float] 
     return (lo, hi) if hi > lo else None
 
 
+def _unit(value: float) -> float:
+    """Clamp a parametric coordinate to [0, 1] (removes float rounding)."""
+    return min(1.0, max(0.0, value))
+
+
 def _straight_road(case_id: str, road: Mapping[str, Any]) -> tuple[tuple[RoadSegment, ...], float]:
     length = _number(case_id, road, "length")
     widths = road.get("lane_widths")
@@ -173,10 +178,10 @@ def _straight_object(
             regions.append(
                 OccupiedRegion(
                     lane.lane_id,
-                    lon[0] / road_length,
-                    lon[1] / road_length,
-                    (lat[0] - start) / lane.width_max_m,
-                    (lat[1] - start) / lane.width_max_m,
+                    _unit(lon[0] / road_length),
+                    _unit(lon[1] / road_length),
+                    _unit((lat[0] - start) / lane.width_max_m),
+                    _unit((lat[1] - start) / lane.width_max_m),
                 )
             )
         start += lane.width_max_m
@@ -217,8 +222,8 @@ def _intersection_object(
             regions.append(
                 OccupiedRegion(
                     lane.lane_id,
-                    (lon[0] - start) / lane.length_max_m,
-                    (lon[1] - start) / lane.length_max_m,
+                    _unit((lon[0] - start) / lane.length_max_m),
+                    _unit((lon[1] - start) / lane.length_max_m),
                     0.5 - half_w / width,
                     0.5 + half_w / width,
                 )

@@ -315,6 +315,7 @@ def check_all(batch: ConstellationBatch, rel: Relative) -> RawStates:
     lon_safe_dist = np.where(intersection, i_safe_dist, lon_safe_dist)
 
     zero = np.zeros_like(lon_current)
+    far = np.full_like(zero, DISTANCE_MAX_M)
     none_eval = np.zeros(zero.shape, dtype=np.int64)
 
     def adjust(side: LateralSide) -> LateralSide:
@@ -323,16 +324,16 @@ def check_all(batch: ConstellationBatch, rel: Relative) -> RawStates:
             is_safe=np.where(intersection, False, side.is_safe) | ~relevant,
             response=np.where(fixed, _LAT.None_, side.response).astype(np.int64),
             evaluator=np.select([intersection, ~relevant], [_E.LateralDistance, _E.None_], side.evaluator),
-            current_distance_m=np.where(fixed, zero, side.current_distance_m),
-            safe_distance_m=np.where(fixed, zero, side.safe_distance_m),
+            current_distance_m=np.select([intersection, ~relevant], [zero, far], side.current_distance_m),
+            safe_distance_m=np.select([intersection, ~relevant], [zero, far], side.safe_distance_m),
         )
 
     return RawStates(
         lon_is_safe=np.asarray(lon_safe, dtype=np.bool_),
         lon_response=lon_resp.astype(np.int64),
         lon_evaluator=np.where(relevant, lon_eval, none_eval),
-        lon_current_distance_m=np.where(relevant, lon_current, zero),
-        lon_safe_distance_m=np.where(relevant, lon_safe_dist, zero),
+        lon_current_distance_m=np.where(relevant, lon_current, far),
+        lon_safe_distance_m=np.where(relevant, lon_safe_dist, far),
         left=adjust(left),
         right=adjust(right),
         intersection_state=np.where(intersection & i_safe, i_state, IntersectionState.NONE).astype(np.int64),

@@ -22,6 +22,7 @@ from rss.states import InvalidReason, LateralPosition, LateralResponse, Longitud
 if TYPE_CHECKING:
     from collections.abc import Iterator, Mapping
 
+    from rss.batch import ConstellationBatch
     from rss.checks import LateralSide
     from rss.engine import FrameResult
 
@@ -55,20 +56,21 @@ def _lateral(side: LateralSide, i: int) -> dict[str, Any]:
     }
 
 
-def frame_record(result: FrameResult, constellation_types: np.ndarray, object_ids: np.ndarray) -> dict[str, Any]:
-    """``situation``, ``states`` and ``proper_response`` of one evaluated frame.
+def frame_record(result: FrameResult, batch: ConstellationBatch, index: int = 0) -> dict[str, Any]:
+    """``situation``, ``states`` and ``proper_response`` of frame ``index`` of a result.
 
     Args:
         result: The engine's result.
-        constellation_types: ``(C,)`` type codes.
-        object_ids: ``(C,)`` ids of the other objects.
+        batch: The evaluated constellations.
+        index: Frame number.
 
     Returns:
         The record's keys (without ``id``/``kind``/``ok``).
     """
     rel, st = result.relative, result.states
     situation, states = [], []
-    for i in range(constellation_types.shape[0]):
+    constellation_types, object_ids = batch.constellation_type, batch.other.object_id
+    for i in np.flatnonzero(result.frame == index):
         situation.append(
             {
                 "longitudinal_position": LongitudinalPosition(int(rel.lon_position[i])).name,
@@ -97,7 +99,7 @@ def frame_record(result: FrameResult, constellation_types: np.ndarray, object_id
                 "unstructured": None,
             }
         )
-    proper = response_record(result, object_ids, 0)
+    proper = response_record(result, object_ids, index)
     return {"situation": situation, "states": states, "proper_response": proper}
 
 
@@ -227,7 +229,7 @@ def _evaluate(parsed: ParsedCase, defaults: CaseDefaults, memory: RssMemory) -> 
             return record | {"ok": False, "error": str(err)}, memory
         result, memory = check_frame(batch, parsed.default_ego, memory)
         record |= {"ok": True, "constellation_type": parsed.constellation.constellation_type.name}
-        record |= frame_record(result, batch.constellation_type, batch.other.object_id)
+        record |= frame_record(result, batch)
         if result.invalid.any():
             record |= {"ok": False, "error": f"invalid input: {InvalidReason(int(result.invalid[0])).name}"}
     if parsed.expected:

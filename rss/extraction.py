@@ -25,6 +25,8 @@ if TYPE_CHECKING:
 __all__ = ["Extents", "Relative", "extract", "object_extents", "relative_position"]
 
 _P = DISTANCE_PRECISION
+#: Rounding slack of parametric region bounds.
+_PARAM_EPS = 1e-9
 
 
 @dataclass(frozen=True)
@@ -224,7 +226,7 @@ def _invalid_objects(batch: ConstellationBatch) -> IntArray:
                 | (obj.speed_lat_max_mps > 100.0)  # noqa: PLR2004
             )
             bad_region = (
-                ((params < 0.0) | (params > 1.0)).any(axis=0)
+                ((params < -_PARAM_EPS) | (params > 1.0 + _PARAM_EPS)).any(axis=0)
                 | (params[0] > params[1])
                 | (params[2] > params[3])
             ).any(axis=1)
