@@ -22,6 +22,7 @@ from google.protobuf.message import DecodeError
 from mcap.exceptions import McapError
 from mcap.reader import SeekingReader
 from mcap.records import Attachment, Channel, Message, Schema
+from mcap.data_stream import ReadDataStream
 from mcap.stream_reader import StreamReader
 from mcap_protobuf.decoder import DecoderFactory as ProtobufDecoderFactory
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
@@ -36,7 +37,7 @@ if TYPE_CHECKING:
     from pathlib import Path
     from typing import BinaryIO
 
-__all__ = ["MCAP_ERRORS", "McapSource"]
+__all__ = ["MCAP_ERRORS", "McapSource", "osm_attachments"]
 
 #: What a damaged MCAP raises while reading (wrapped into ``CorruptLogError``).
 MCAP_ERRORS: tuple[type[Exception], ...] = (
@@ -93,6 +94,20 @@ def _scan(stream: BinaryIO) -> _Index:
     except MCAP_ERRORS as err:
         index.damage = (stream.tell(), f"{type(err).__name__}: {err}")
     return index
+
+
+def osm_attachments(path: Path) -> Iterator[tuple[str, bytes]]:
+    """Yield ``(name, data)`` of the ``.osm`` attachments of an indexed MCAP file."""
+    with path.open("rb") as f:
+        reader = SeekingReader(f)
+        summary = reader.get_summary()
+        if summary is None:
+            return
+        for index in summary.attachment_indexes:
+            if index.name.endswith(".osm"):
+                f.seek(index.offset + 1 + 8)
+                record = Attachment.read(ReadDataStream(f))
+                yield record.name, bytes(record.data)
 
 
 class McapSource:
@@ -223,9 +238,7 @@ class McapSource:
         if self._reader is None:
             yield from self._index.maps
             return
-        for att in self._reader.iter_attachments():
-            if att.name.endswith(".osm"):
-                yield att.name, bytes(att.data)
+        yield from osm_attachments(self.path)
 
     def close(self) -> None:
         """Close the file."""

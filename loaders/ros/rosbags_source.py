@@ -11,6 +11,7 @@ from rosbags.rosbag2 import ReaderError as Bag2ReaderError
 
 from loaders.drive import TopicInfo
 from loaders.errors import CorruptLogError, EmptyLogError
+from loaders.ros.mcap_source import osm_attachments
 from loaders.ros.registry import normalize_msgtype
 from loaders.typestore import typestore
 
@@ -87,8 +88,13 @@ class RosbagsSource:
             raise CorruptLogError(self.path, f"{where}: {err}", topic=topic, t_ns=t_ns) from err
 
     def attachments(self) -> Iterator[tuple[str, bytes]]:
-        """Bags carry no attachments."""
-        return iter(())
+        """``.osm`` attachments of the MCAP file(s); bags and sqlite3 storage have none."""
+        if self.path.is_dir():
+            files = sorted(self.path.glob("*.mcap"))
+        else:
+            files = [self.path] if self.path.suffix.lower() == ".mcap" else []
+        for file in files:
+            yield from osm_attachments(file)
 
     def close(self) -> None:
         """Close the reader."""
