@@ -26,7 +26,7 @@ from reachsets.footprints import rectangles
 from reachsets.occupancy import EgoOccupancy, ego_occupancy
 from reachsets.patches import RuleContext, RulePatch, keep_largest_part, patch_grid
 from reachsets.patches import subtract_patches
-from reachsets.reachable import reachable_sets
+from reachsets.reachable import reachable_sets, simple_sets
 from reachsets.rules_f1 import evaluate_f1
 from reachsets.rules_road import evaluate_road
 from reachsets.rules_roborace import evaluate_roborace
@@ -184,7 +184,15 @@ def evaluate(
     rows = np.flatnonzero(keep)
     objs: ObjectStates = inputs.objects.take(rows)
     skipped = tuple(str(i) for i in inputs.objects.ids[~keep])
-    sets = reachable_sets(objs, times, params, track)
+    cells = None
+    if not params.full_geometry:
+        raw = simple_sets(objs, times, params)
+        cells = (
+            np.asarray(shapely.intersects(raw, occ.polygons[None, :]), dtype=bool)
+            if raw.size
+            else np.zeros(raw.shape, dtype=bool)
+        )
+    sets = reachable_sets(objs, times, params, track, cells=cells)
     footprints = rectangles(objs.x_m, objs.y_m, objs.yaw_rad, objs.length_m, objs.width_m)
     ego = inputs.ego
     ctx = RuleContext(
@@ -207,7 +215,8 @@ def evaluate(
     )
     patches, memory = _rule_patches(ctx, params, state.ltl)
     if patches:
-        sets = subtract_patches(sets, patch_grid(patches, ctx.footprints, len(times)))
+        grid = patch_grid(patches, ctx.footprints, len(times), cells)
+        sets = subtract_patches(sets, grid)
     if params.keep_largest_part_only and sets.size:
         sets = keep_largest_part(sets)
     hits = (
@@ -215,6 +224,8 @@ def evaluate(
         if sets.size
         else np.zeros((len(objs), len(times)), dtype=bool)
     )
+    if cells is not None:
+        hits &= cells
     collisions = []
     for i in np.flatnonzero(hits.any(axis=1)):
         k = int(np.argmax(hits[i]))

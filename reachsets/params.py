@@ -108,6 +108,9 @@ class ReachParams:
         closed_track_gap_m: A track whose centre line ends this close to its start is closed.
         keep_largest_part_only: Reference behaviour: keep only the largest polygon after
             trimming and subtraction. Off by default: dropping parts under-approximates.
+        full_geometry: Reduce every reachable set (for display). When False, only the
+            cells whose unreduced ``simple`` set touches the ego footprint are reduced; the
+            verdict is identical (reductions only shrink sets) and much cheaper.
         rules_enabled: Master switch of all rules.
         f1: F1 rule parameters.
         roborace: Roborace rule parameters.
@@ -131,6 +134,7 @@ class ReachParams:
     ego_width_m: float = 2.8
     closed_track_gap_m: float = 35.0
     keep_largest_part_only: bool = False
+    full_geometry: bool = True
     rules_enabled: bool = True
     f1: F1Params = field(default_factory=F1Params)
     roborace: RoboraceParams = field(default_factory=RoboraceParams)

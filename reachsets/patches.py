@@ -80,9 +80,14 @@ class RuleContext:
 
 
 def patch_grid(
-    patches: Sequence[RulePatch], footprints: NDArray[np.object_], n_steps: int
+    patches: Sequence[RulePatch],
+    footprints: NDArray[np.object_],
+    n_steps: int,
+    cells: NDArray[np.bool_] | None = None,
 ) -> NDArray[np.object_]:
     """Union of the patches per object and step, ``(N, T)`` (``None`` where no patch applies).
+
+    Only the ``cells`` mask (default: all) is filled.
 
     Every patch loses the object's own current footprint first, so a rule never deletes
     where the object already is.
@@ -96,7 +101,7 @@ def patch_grid(
     grid = np.full((n, n_steps), None, dtype=object)
     for i in range(n):
         for k in range(n_steps):
-            if parts[i][k]:
+            if parts[i][k] and (cells is None or cells[i, k]):
                 grid[i, k] = shapely.difference(shapely.union_all(parts[i][k]), footprints[i])
     return grid
 

@@ -19,7 +19,7 @@ if TYPE_CHECKING:
     from reachsets.params import ReachParams
     from reachsets.track import TrackGeometry
 
-__all__ = ["deletion_polygons", "reachable_sets"]
+__all__ = ["deletion_polygons", "reachable_sets", "simple_sets"]
 
 
 def deletion_polygons(
@@ -46,6 +46,7 @@ def reachable_sets(
     params: ReachParams,
     track: TrackGeometry | None,
     drivable: Any = None,
+    cells: NDArray[np.bool_] | None = None,
 ) -> NDArray[np.object_]:
     """Reachable sets of every object at every stamp, ``(N, T)`` shapely geometries.
 
@@ -59,38 +60,61 @@ def reachable_sets(
         track: Track geometry (``bound`` walls and trimming), if any.
         drivable: Area to trim to when ``params.trim_to_drivable`` (defaults to the track
             polygon); ``None`` and no track means no trimming.
+        cells: ``(N, T)`` mask of the cells to reduce (deletion and trimming); the others
+            keep the plain ``simple`` polygon. ``None`` reduces every cell.
 
     Returns:
         ``(N, T)`` geometries (possibly multi-part or empty).
     """
-    a = params.a_max_mps2 if params.method == ReachMethod.SIMPLE else params.ax_max_mps2
-    sets = simple_reach_polygons(objects, times_s, a)
+    sets = simple_sets(objects, times_s, params)
     if sets.size == 0:
+        return sets
+    mask = np.ones(sets.shape, dtype=bool) if cells is None else np.asarray(cells, dtype=bool)
+    rows = np.nonzero(mask)[0]
+    if len(rows) == 0:
         return sets
     deletion = deletion_polygons(objects, params, track)
     if deletion is not None:
-        sets = np.asarray(shapely.difference(sets, deletion[:, None]))
+        sets[mask] = shapely.difference(sets[mask], deletion[rows])
     area = drivable if drivable is not None else (track.polygon if track is not None else None)
     if params.trim_to_drivable and area is not None:
-        sets = _trim(sets, area)
+        trimmed = _trim(sets, area, mask)
+        sets[mask] = trimmed[mask]
     return sets
 
 
-def _trim(sets: NDArray[np.object_], area: Any) -> NDArray[np.object_]:
-    """``sets & area``, ``(N, T)``, clipping ``area`` to each object's bounding box first.
+def simple_sets(
+    objects: ObjectStates, times_s: NDArray[np.float64], params: ReachParams
+) -> NDArray[np.object_]:
+    """The unreduced ``simple`` polygons with the method's acceleration bound, ``(N, T)``.
+
+    ``simple`` uses ``a_max_mps2``; ``turn`` and ``bound`` use ``ax_max_mps2`` (reference).
+    Every reduced set lies inside this one, so it is a sound collision pre-filter.
+    """
+    a = params.a_max_mps2 if params.method == ReachMethod.SIMPLE else params.ax_max_mps2
+    return simple_reach_polygons(objects, times_s, a)
+
+
+def _trim(sets: NDArray[np.object_], area: Any, mask: NDArray[np.bool_]) -> NDArray[np.object_]:
+    """``sets & area`` on the ``mask`` cells, clipping ``area`` per object's bounding box first.
 
     One clip per object makes the polygon intersections cheap (the track
     polygon has hundreds of vertices; one object's sets touch only a few dozen of them).
     """
-    bounds = shapely.bounds(sets)
+    bounds = np.where(mask[..., None], shapely.bounds(sets), np.nan)
+    rows = np.flatnonzero(mask.any(axis=1))
+    sub = bounds[rows]
     box = np.stack(
         [
-            np.nanmin(bounds[..., 0], axis=1),
-            np.nanmin(bounds[..., 1], axis=1),
-            np.nanmax(bounds[..., 2], axis=1),
-            np.nanmax(bounds[..., 3], axis=1),
+            np.nanmin(sub[..., 0], axis=1),
+            np.nanmin(sub[..., 1], axis=1),
+            np.nanmax(sub[..., 2], axis=1),
+            np.nanmax(sub[..., 3], axis=1),
         ],
         axis=1,
     )
-    local = np.asarray(shapely.intersection(area, shapely.box(*box.T)))
-    return np.asarray(shapely.intersection(sets, local[:, None]))
+    local = np.full(len(sets), None, dtype=object)
+    local[rows] = shapely.intersection(area, shapely.box(*box.T))
+    out = sets.copy()
+    out[mask] = shapely.intersection(sets[mask], local[np.nonzero(mask)[0]])
+    return out

@@ -175,3 +175,12 @@ def test_right_of_way_keeps_yielding_vehicle_out():
     res, _ = evaluate(inp, ReachParams())
     assert "road.right_of_way" in {p.rule for p in res.patches}
     assert res.is_safe
+
+
+@pytest.mark.parametrize("method", list(ReachMethod))
+@pytest.mark.parametrize(("gap", "obj_y", "speed"), [(40.0, 0.0, 0.0), (1.0, 2.5, 30.0), (20.0, -3.0, 10.0)])
+def test_verdict_mode_matches_full_geometry(method, gap, obj_y, speed):
+    inp = inputs(straight_ego(y0=-2.0, speed=25.0), objects((gap, obj_y, 0.0, speed)), straight_track())
+    full, _ = evaluate(inp, ReachParams(method=method))
+    fast, _ = evaluate(inp, ReachParams(method=method, full_geometry=False))
+    assert full.collisions == fast.collisions
