@@ -152,7 +152,11 @@ class McapSource:
         if not known:
             self.close()
             raise UnsupportedFormatError(path, f"no channel encoding we read: {sorted(encodings)}")
-        self.source_format = "ros2-mcap" if "ros2-mcap" in known else "+".join(known)
+        self.source_format = (
+            "ros2-mcap"
+            if "ros2-mcap" in known
+            else "mcap-" + "+".join(k.removeprefix("mcap-") for k in known)
+        )
         self.topics = self._topic_infos()
 
     @property
