@@ -11,40 +11,58 @@ from __future__ import annotations
 import tempfile
 import time
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from loaders.scenario_architect import open_scenario_architect
 from reachsets.adapter import reach_inputs_from_arrays
-from reachsets.engine import evaluate
+from reachsets.engine import RuleState, evaluate
 from reachsets.params import ReachMethod, ReachParams
 from workbench.reach_adapter import frame_to_reach_inputs
 from workbench.samples.racing import racing_centre, write_racing_sample
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+
+    from numpy.typing import NDArray
+
+    from reachsets.inputs import ReachInputs
 
 #: Mean ms per ``calc_score`` call (1 object, trimmed, F1 on) on shapely 2.2 + numpy 2.4,
 #: averaged over the two TUM samples -- from the reference notes, not measured in this run.
 REFERENCE_MS = {"simple": (5.2 + 6.6) / 2, "turn": (6.1 + 11.0) / 2, "bound": (11.4 + 11.9) / 2}
 
 
-def _crowded_frame(n: int, lane_map_bounds: tuple[np.ndarray, np.ndarray], seed: int = 7):
+def _crowded_frame(
+    n: int, lane_map_bounds: tuple[NDArray[np.float64], ...], seed: int = 7
+) -> ReachInputs:
     rng = np.random.default_rng(seed)
     s = np.sort(rng.uniform(20.0, 140.0, n))
     x, y, yaw, _ = racing_centre(s)
     lat = rng.uniform(-4.0, 4.0, n)
     ox, oy = x + np.sin(yaw) * lat, y - np.cos(yaw) * lat
     t = np.linspace(0.0, 3.8, 30)
-    ex, ey, eyaw, _ = racing_centre(38.0 * t - 9.5 * t**2 / 2 * 0 + 0.0)
+    ex, ey, eyaw, _ = racing_centre(38.0 * t - 5.0 * t**2)
     left, right = lane_map_bounds
     return reach_inputs_from_arrays(
-        ego_x_m=ex, ego_y_m=ey, ego_yaw_rad=eyaw, ego_speed_mps=np.linspace(38.0, 0.0, 30),
-        object_ids=[f"car{i}" for i in range(n)], object_x_m=ox, object_y_m=oy,
-        object_yaw_rad=yaw, object_speed_mps=rng.uniform(0.0, 45.0, n),
-        object_length_m=np.full(n, 4.7), object_width_m=np.full(n, 2.0),
-        track_left_m=left, track_right_m=right,
+        ego_x_m=ex,
+        ego_y_m=ey,
+        ego_yaw_rad=eyaw,
+        ego_speed_mps=np.linspace(38.0, 0.0, 30),
+        object_ids=[f"car{i}" for i in range(n)],
+        object_x_m=ox,
+        object_y_m=oy,
+        object_yaw_rad=yaw,
+        object_speed_mps=rng.uniform(0.0, 45.0, n),
+        object_length_m=np.full(n, 4.7),
+        object_width_m=np.full(n, 2.0),
+        track_left_m=left,
+        track_right_m=right,
     )
 
 
-def _time_ms(fn, repeat: int) -> float:
+def _time_ms(fn: Callable[[], object], repeat: int) -> float:
     fn()
     best = []
     for _ in range(3):
@@ -69,7 +87,7 @@ def run(quick: bool) -> str:  # noqa: FBT001
     for method, full in [(m, f) for m in ReachMethod for f in (True, False)]:
         params = ReachParams(method=method, full_geometry=full)
 
-        def replay(params=params):
+        def replay(params: ReachParams = params) -> None:
             state = None
             for inp in single:
                 _, state = evaluate(inp, params, state)
@@ -77,34 +95,47 @@ def run(quick: bool) -> str:  # noqa: FBT001
         one = _time_ms(replay, 1 if quick else 2) / len(single)
         _, state = evaluate(crowd, params)
         checked = len(evaluate(crowd, params, state)[0].object_ids)
-        per_obj = _time_ms(lambda p=params, s=state: evaluate(crowd, p, s), 2 if quick else 5)
+
+        def crowded(params: ReachParams = params, state: RuleState = state) -> None:
+            evaluate(crowd, params, state)
+
+        per_obj = _time_ms(crowded, 2 if quick else 5)
         per_obj /= max(checked, 1)
         ref = REFERENCE_MS[method.value]
         rows.append(
-            f"| {method.value} | {'full sets' if full else 'verdict only'} | {one:.2f} | {checked} | {per_obj:.3f} | {ref:.1f} | "
+            f"| {method.value} | {'full sets' if full else 'verdict only'} | {one:.2f} | "
+            f"{checked} | {per_obj:.3f} | {ref:.1f} | "
             f"{ref / one:.1f}x | {ref / per_obj:.0f}x |"
         )
     return "\n".join(
         [
             "## Reach-set supervisor",
             "",
-            "Racing sample (`racing_overtake.saa`, 1 object, emergency plan, trimming and F1 rules "
-            f"on, 21 stamps) replayed frame by frame, and one crowded frame with {n_crowd} "
-            "objects on the same track (objects outside the plan's s-span are not checked, "
-            "as in the reference). *full sets* reduces every reachable set (what the viewer "
-            "shows); *verdict only* (`full_geometry=False`) reduces only the cells whose "
-            "unreduced simple set touches the ego footprint -- same verdicts, tested.",
+            (
+                "Racing sample (`racing_overtake.saa`, 1 object, emergency plan, trimming and "
+                "F1 rules on, 21 stamps) replayed frame by frame, and one crowded frame with "
+                f"{n_crowd} objects on the same track (objects outside the plan's s-span are "
+                "not checked, as in the reference). *full sets* reduces every reachable set "
+                "(what the viewer shows); *verdict only* (`full_geometry=False`) reduces "
+                "only the cells whose unreduced simple set touches the ego footprint -- "
+                "same verdicts, tested."
+            ),
             "",
-            "| method | geometry | ms per frame, 1 object | objects checked (crowded) | ms per object, "
-            "crowded | reference ms per object check* | speed-up, 1 object | speed-up, crowded |",
+            (
+                "| method | geometry | ms per frame, 1 object | objects checked (crowded) | "
+                "ms per object, crowded | reference ms per object check* | speed-up, 1 object | "
+                "speed-up, crowded |"
+            ),
             "|---|---|---|---|---|---|---|---|",
             *rows,
             "",
-            "\\* From the reference notes, not measured in this run: TUM TrajectorySupervisor "
-            "`calc_score` mean per call (1 object, trimmed, F1 on) on shapely 2.2 + numpy 2.4 "
-            "with the two shims, averaged over the T1 and T3/T4 samples "
-            "(simple 5.2/6.6, turn 6.1/11.0, bound 11.4/11.9 ms). The samples differ, so the "
-            "ratios are indicative.",
+            (
+                "\\* From the reference notes, not measured in this run: TUM TrajectorySupervisor "
+                "`calc_score` mean per call (1 object, trimmed, F1 on) on shapely 2.2 + numpy 2.4 "
+                "with the two shims, averaged over the T1 and T3/T4 samples "
+                "(simple 5.2/6.6, turn 6.1/11.0, bound 11.4/11.9 ms). The samples differ, so the "
+                "ratios are indicative."
+            ),
         ]
     )
 

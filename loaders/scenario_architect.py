@@ -28,7 +28,7 @@ import math
 import zipfile
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Self
 
 import numpy as np
 
@@ -52,9 +52,7 @@ __all__ = [
 
 EGO_LENGTH_M = 4.7
 EGO_WIDTH_M = 2.8
-_COLUMNS = (
-    "time;x;y;heading;curv;vel;acc;ego_traj;ego_traj_em;object_array;safety_dyn;safety_stat"
-)
+_COLUMNS = "time;x;y;heading;curv;vel;acc;ego_traj;ego_traj_em;object_array;safety_dyn;safety_stat"
 _PLANS = {"emergency": "ego_traj_em", "performance": "ego_traj"}
 _TRAJ_FIELDS = ("x_m", "y_m", "yaw_rad", "curvature_inv_m", "speed_mps", "accel_mps2")
 
@@ -145,7 +143,7 @@ class ScenarioArchitectDrive:
     def close(self) -> None:
         """Nothing stays open between calls."""
 
-    def __enter__(self) -> ScenarioArchitectDrive:
+    def __enter__(self) -> Self:
         """Use the drive as a context manager."""
         return self
 
@@ -168,7 +166,7 @@ class ScenarioArchitectDrive:
                 return io.TextIOWrapper(zf.open(names[0]), encoding="utf-8")
             if self._path.suffix == ".saa":
                 raise CorruptLogError(self._path, "not a valid ZIP archive")
-            return open(self._path, encoding="utf-8")  # noqa: SIM115
+            return self._path.open(encoding="utf-8")
         except (zipfile.BadZipFile, OSError, UnicodeDecodeError) as err:
             raise CorruptLogError(self._path, f"cannot open: {err}") from err
 
@@ -184,8 +182,9 @@ class ScenarioArchitectDrive:
                         bounds[key] = np.asarray(json.loads(value), dtype=np.float64)
                     elif line.startswith("time;"):
                         if line.strip() != _COLUMNS:
-                            raise UnsupportedFormatError(self._path, "unexpected columns",
-                                                         offset=lineno, value=line.strip())
+                            raise UnsupportedFormatError(
+                                self._path, "unexpected columns", offset=lineno, value=line.strip()
+                            )
                         first = lineno + 1
                     elif first >= 0 and line.strip():
                         times.append(float(line.split(";", 1)[0]))
@@ -206,8 +205,15 @@ class ScenarioArchitectDrive:
             raise InvalidValueError(self._path, "non-finite ego pose", t_ns=t_ns, value=cols[:4])
         trajs = {"performance": _traj(json.loads(cols[7])), "emergency": _traj(json.loads(cols[8]))}
         ego = EgoState(
-            x_m=x, y_m=y, z_m=0.0, yaw_rad=float(north0_to_enu(heading)), speed_mps=vel,
-            accel_mps2=acc, yaw_rate_radps=curv * vel, length_m=EGO_LENGTH_M, width_m=EGO_WIDTH_M,
+            x_m=x,
+            y_m=y,
+            z_m=0.0,
+            yaw_rad=float(north0_to_enu(heading)),
+            speed_mps=vel,
+            accel_mps2=acc,
+            yaw_rate_radps=curv * vel,
+            length_m=EGO_LENGTH_M,
+            width_m=EGO_WIDTH_M,
         )
         objects = json.loads(cols[9])
         state = np.asarray([o[1] for o in objects], dtype=np.float64).reshape(-1, 6)
@@ -215,14 +221,21 @@ class ScenarioArchitectDrive:
         actors = ActorTable.from_columns(
             ids=[str(o[0]) for o in objects],
             object_class=np.full(len(objects), ObjectClass.CAR),
-            x_m=state[:, 0], y_m=state[:, 1], yaw_rad=yaw,
-            vx_mps=state[:, 3] * np.cos(yaw), vy_mps=state[:, 3] * np.sin(yaw),
-            length_m=state[:, 4], width_m=state[:, 5],
+            x_m=state[:, 0],
+            y_m=state[:, 1],
+            yaw_rad=yaw,
+            vx_mps=state[:, 3] * np.cos(yaw),
+            vy_mps=state[:, 3] * np.sin(yaw),
+            length_m=state[:, 4],
+            width_m=state[:, 5],
         )
         chosen = trajs[self._plan]
         plan = Plan(
-            x_m=chosen["x_m"], y_m=chosen["y_m"], yaw_rad=chosen["yaw_rad"],
-            t_offset_s=np.full(len(chosen["x_m"]), np.nan), speed_mps=chosen["speed_mps"],
+            x_m=chosen["x_m"],
+            y_m=chosen["y_m"],
+            yaw_rad=chosen["yaw_rad"],
+            t_offset_s=np.full(len(chosen["x_m"]), np.nan),
+            speed_mps=chosen["speed_mps"],
         )
         labels = {"safety_dyn": _label(cols[10]), "safety_stat": _label(cols[11])}
         extras = {"labels": labels, "trajectories": trajs, "plan_kind": self._plan}

@@ -24,8 +24,13 @@ import shapely
 
 from reachsets.footprints import rectangles
 from reachsets.occupancy import EgoOccupancy, ego_occupancy
-from reachsets.patches import RuleContext, RulePatch, keep_largest_part, patch_grid
-from reachsets.patches import subtract_patches
+from reachsets.patches import (
+    RuleContext,
+    RulePatch,
+    keep_largest_part,
+    patch_grid,
+    subtract_patches,
+)
 from reachsets.reachable import reachable_sets, simple_sets
 from reachsets.rules_f1 import evaluate_f1
 from reachsets.rules_road import evaluate_road
@@ -108,14 +113,23 @@ class ReachResult:
     occupancy: EgoOccupancy
 
 
-def _prepared_track(inputs: ReachInputs, params: ReachParams, state: RuleState) -> TrackGeometry | None:
+def _prepared_track(
+    inputs: ReachInputs, params: ReachParams, state: RuleState
+) -> TrackGeometry | None:
     bounds = inputs.track
     if bounds is None:
         return None
     old = state.track_bounds
-    if state.track is not None and old is not None and (
-        old is bounds
-        or (np.array_equal(old.left_m, bounds.left_m) and np.array_equal(old.right_m, bounds.right_m))
+    if (
+        state.track is not None
+        and old is not None
+        and (
+            old is bounds
+            or (
+                np.array_equal(old.left_m, bounds.left_m)
+                and np.array_equal(old.right_m, bounds.right_m)
+            )
+        )
     ):
         return state.track
     return build_track(bounds, params.closed_track_gap_m)

@@ -2,9 +2,9 @@
 
 Operators (``phi``, ``psi`` formulas; ``t`` the current frame, ``t-1`` the previous one)::
 
-    Y phi      previously:    phi held at t-1                      (false at the first frame)
-    O phi      once:          phi held at some frame <= t          O phi = phi or Y O phi
-    H phi      historically:  phi held at every frame <= t         H phi = phi and (first or Y H phi)
+    Y phi      previously:    phi held at t-1                  (false at the first frame)
+    O phi      once:          phi held at some frame <= t      O phi = phi or Y O phi
+    H phi      historically:  phi held at every frame <= t     H phi = phi and (first or Y H phi)
     phi S psi  since:         psi held at some k <= t and phi at every frame in (k, t]
                               phi S psi = psi or (phi and Y (phi S psi))
 
@@ -103,6 +103,7 @@ class Since:
 
 Formula = Atom | Not | And | Or | Previously | Once | Historically | Since
 
+
 def _prev(
     memory: Mapping[str, Mapping[str, bool]], key: str, ids: Sequence[str], *, default: bool
 ) -> NDArray[np.bool_]:
@@ -166,7 +167,9 @@ def step(
     return ev(formula, "@"), new
 
 
-def evaluate_trace(formula: Formula, trace: Sequence[Mapping[str, bool]], t: int) -> bool:
+def evaluate_trace(  # noqa: PLR0911 - one return per operator reads best
+    formula: Formula, trace: Sequence[Mapping[str, bool]], t: int
+) -> bool:
     """Slow reference: the textbook semantics of ``formula`` at position ``t`` of ``trace``."""
     if isinstance(formula, Atom):
         return bool(trace[t][formula.name])

@@ -110,7 +110,7 @@ def subtract_patches(reach: NDArray[np.object_], grid: NDArray[np.object_]) -> N
     """``reach - grid`` element-wise, ``(N, T)``; cells without a patch are kept as they are."""
     if reach.size == 0:
         return reach
-    has = np.not_equal(grid, None)
+    has = np.asarray([g is not None for g in grid.reshape(-1)], dtype=bool).reshape(grid.shape)
     out = reach.copy()
     out[has] = shapely.difference(reach[has], grid[has].astype(object))
     return out

@@ -73,7 +73,9 @@ def simple_reach_vertices(
     a = np.broadcast_to(np.asarray(a_max_mps2, dtype=np.float64), v0.shape[:1])[:, None]
     t = np.asarray(times_s, dtype=np.float64)
     c, r, b = _profiles(v0, a, t)
-    c_p, r_p, b_p = (np.concatenate([np.zeros_like(v[:, :1]), v[:, :-1]], axis=1) for v in (c, r, b))
+    c_p, r_p, b_p = (
+        np.concatenate([np.zeros_like(v[:, :1]), v[:, :-1]], axis=1) for v in (c, r, b)
+    )
     # No reversing: the rear edge stays where c - r peaked; its half-width keeps growing.
     rear_xi = np.maximum.accumulate(c_p - r_p, axis=1)
     rear_eta = r_p
@@ -108,6 +110,7 @@ def simple_reach_scalar(
     y_m: float,
     yaw_rad: float,
     v0_mps: float,
+    *,
     length_m: float,
     width_m: float,
     times_s: list[float],

@@ -40,7 +40,7 @@ if TYPE_CHECKING:
     from reachsets.inputs import ObjectStates
     from reachsets.params import ReachParams
 
-__all__ = ["EXTENSION_M", "funnel_polygons", "steering_arcs", "steering_arc_scalar"]
+__all__ = ["EXTENSION_M", "funnel_polygons", "steering_arc_scalar", "steering_arcs"]
 
 #: How far the deletion polygon reaches sideways and behind (reference: 50 m).
 EXTENSION_M = 50.0
@@ -89,13 +89,16 @@ def steering_arc_scalar(
     psi = 0.0
     for _ in range(1, params.arc_points):
         radius = max(v2 / params.ay_max_mps2, params.turn_radius_m)
-        dpsi = min(2 * math.asin(min(params.arc_step_m / (2 * radius), 1.0)),
-                   params.arc_max_turn_rad - psi)
+        dpsi = min(
+            2 * math.asin(min(params.arc_step_m / (2 * radius), 1.0)), params.arc_max_turn_rad - psi
+        )
         x, y = pts[-1]
-        pts.append((
-            x + params.arc_step_m * math.cos(psi + dpsi / 2),
-            y + side * params.arc_step_m * math.sin(psi + dpsi / 2),
-        ))
+        pts.append(
+            (
+                x + params.arc_step_m * math.cos(psi + dpsi / 2),
+                y + side * params.arc_step_m * math.sin(psi + dpsi / 2),
+            )
+        )
         psi += dpsi
         v2 = max(v2 - 2 * params.ax_max_mps2 * params.arc_step_m, 0.0)
     return pts

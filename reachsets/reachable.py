@@ -45,6 +45,7 @@ def reachable_sets(
     times_s: NDArray[np.float64],
     params: ReachParams,
     track: TrackGeometry | None,
+    *,
     drivable: Any = None,
     cells: NDArray[np.bool_] | None = None,
 ) -> NDArray[np.object_]:

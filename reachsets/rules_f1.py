@@ -45,9 +45,7 @@ ALONGSIDE = Since(Atom("overlap"), And((Atom("overlap"), Not(Atom("approach"))))
 DEFENDING = And(
     (
         Atom("active"),
-        Previously(
-            Since(Atom("active"), And((Atom("active"), Atom("defense"), Atom("off_line"))))
-        ),
+        Previously(Since(Atom("active"), And((Atom("active"), Atom("defense"), Atom("off_line"))))),
     )
 )
 
@@ -126,10 +124,10 @@ def evaluate_f1(
     tw_l = track.tw_left_m[idx]
     tw_r = track.tw_right_m[idx]
     lat_ego = float(track.lateral_m([ctx.ego_x_m], [ctx.ego_y_m])[0])
-    for i in np.flatnonzero(alongside):
-        patches.append(
-            RulePatch(int(i), "f1.alongside", _alongside_strip(ctx, int(i), idx, lat_ego))
-        )
+    patches.extend(
+        RulePatch(int(i), "f1.alongside", _alongside_strip(ctx, int(i), idx, lat_ego))
+        for i in np.flatnonzero(alongside)
+    )
     for i in np.flatnonzero(defending & ~alongside):
         width = p.veh_width_factor * ctx.ego_width_m
         if direction[i] < 0:  # right corner: keep the left (outside) edge free

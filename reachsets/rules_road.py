@@ -98,8 +98,10 @@ def evaluate_road(
     heading = np.stack([np.cos(objs.yaw_rad), np.sin(objs.yaw_rad)], axis=1)
     cos_dir = np.array(
         [
-            [float(heading[i] @ _lane_direction(ln.centre_m, objs.x_m[i], objs.y_m[i]))
-             for ln in road.lanes]
+            [
+                float(heading[i] @ _lane_direction(ln.centre_m, objs.x_m[i], objs.y_m[i]))
+                for ln in road.lanes
+            ]
             for i in range(n)
         ]
     ).reshape(n, len(road.lanes))
@@ -107,7 +109,7 @@ def evaluate_road(
     shrunk = shapely.buffer(ctx.footprints, -p.on_road_margin_m)
     atoms: dict[str, NDArray[np.bool_]] = {
         "on_road": np.asarray(shapely.covered_by(shrunk, drivable), dtype=bool),
-        "in_lane": aligned.any(axis=1),
+        "in_lane": np.asarray(aligned.any(axis=1), dtype=bool),
     }
     limits = np.array([ln.speed_limit_mps for ln in road.lanes])
     lane_limit = np.where(aligned, limits[None, :], np.nan)
@@ -128,23 +130,30 @@ def evaluate_road(
         results[name], m = step(formula, atoms, ids, memory, prefix=name)
         mem.update(m)
     patches: list[RulePatch] = []
-    reach_radius = max_travel_m(objs.speed_mps, objs.speed_mps, ctx.params.a_max_mps2,
-                                ctx.times_s[-1:])[:, 0] + objs.length_m + 10.0
+    reach_radius = (
+        max_travel_m(objs.speed_mps, objs.speed_mps, ctx.params.a_max_mps2, ctx.times_s[-1:])[:, 0]
+        + objs.length_m
+        + 10.0
+    )
     for i in np.flatnonzero(results["road.stay_on_road"]):
         box = shapely.buffer(centres[i], reach_radius[i], quad_segs=2)
         patches.append(RulePatch(int(i), "road.stay_on_road", shapely.difference(box, drivable)))
     for i in np.flatnonzero(atoms["in_lane"]):
-        geom = _opposite_across_solid(ctx, i, lane_polys, cos_dir[i], contains[i])
+        geom = _opposite_across_solid(ctx, int(i), lane_polys, cos_dir[i], contains[i])
         if geom is not None:
             patches.append(RulePatch(int(i), "road.no_opposite", geom))
-    for i in np.flatnonzero(results["road.right_of_way"]):
-        patches.append(RulePatch(int(i), "road.right_of_way", prio_geom[i]))
+    patches.extend(
+        RulePatch(int(i), "road.right_of_way", prio_geom[i])
+        for i in np.flatnonzero(results["road.right_of_way"])
+    )
     patches.extend(_speed_patches(ctx, np.flatnonzero(results["road.speed_limit"]), limit))
     return patches, mem
 
 
 def _right_of_way(
-    ctx: RuleContext, lane_polys: NDArray[np.object_], lanes_by_id: dict[str, int],
+    ctx: RuleContext,
+    lane_polys: NDArray[np.object_],
+    lanes_by_id: dict[str, int],
     contains: NDArray[np.bool_],
 ) -> tuple[list[Any], NDArray[np.bool_], NDArray[np.bool_]]:
     """Priority area per object, ``on_yield`` and ``can_stop`` atoms."""
@@ -174,7 +183,10 @@ def _right_of_way(
 
 
 def _opposite_across_solid(
-    ctx: RuleContext, i: int, lane_polys: NDArray[np.object_], cos_dir: NDArray[np.float64],
+    ctx: RuleContext,
+    i: int,
+    lane_polys: NDArray[np.object_],
+    cos_dir: NDArray[np.float64],
     inside: NDArray[np.bool_],
 ) -> Any:
     """Union of opposite lanes object ``i`` reaches only across a solid line, or ``None``."""

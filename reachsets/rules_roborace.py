@@ -58,7 +58,9 @@ def zones_from_json(data: Mapping[str, Any]) -> ZoneMap:
     zones = []
     for entry in raw:
         try:
-            zone = Zone(int(entry["Type"]), str(entry["ID"]), int(entry["Start"]), int(entry["End"]))
+            zone = Zone(
+                int(entry["Type"]), str(entry["ID"]), int(entry["Start"]), int(entry["End"])
+            )
         except (KeyError, TypeError, ValueError) as err:
             raise ZoneFileError(f"zone entry {entry!r} lacks Type/ID/Start/End") from err
         if not (0 <= zone.start_index < len(centre) and 0 <= zone.end_index < len(centre)):

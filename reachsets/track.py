@@ -86,7 +86,7 @@ class TrackGeometry:
         d = np.asarray(s_to, dtype=float) - np.asarray(s_from, dtype=float)
         if self.closed:
             d = (d + self.length_m / 2) % self.length_m - self.length_m / 2
-        return d
+        return np.asarray(d, dtype=np.float64)
 
     def lateral_m(self, x_m: Any, y_m: Any) -> NDArray[np.float64]:
         """Signed lateral offset from the centre line (right positive), ``(N,)``."""
@@ -103,13 +103,11 @@ class TrackGeometry:
         if self.closed:
             ahead = (self.s_m - self.s_m[start]) % self.length_m
             order = np.argsort(ahead, kind="stable")
-            return order[ahead[order] <= length_m]
+            return np.asarray(order[ahead[order] <= length_m], dtype=np.intp)
         stop = int(self.index_at(s_from_m + length_m)) + 1
         return np.arange(start, min(max(stop, start + 2), n))
 
-    def strip(
-        self, idx: NDArray[np.intp], lat_a_m: Any, lat_b_m: Any
-    ) -> Any:
+    def strip(self, idx: NDArray[np.intp], lat_a_m: Any, lat_b_m: Any) -> Any:
         """Polygon between two lateral offsets (right positive) over centre points ``idx``.
 
         Args:

@@ -46,9 +46,7 @@ def road_layout_from_lane_map(lane_map: LaneMap) -> RoadLayout | None:
             solid.append(lane.right_m)
     if not lanes:
         return None
-    rules = tuple(
-        RightOfWayRule(r.priority_lanes, r.yield_lanes) for r in lane_map.right_of_way
-    )
+    rules = tuple(RightOfWayRule(r.priority_lanes, r.yield_lanes) for r in lane_map.right_of_way)
     return RoadLayout(lanes=tuple(lanes), solid_lines_m=tuple(solid), right_of_way=rules)
 
 

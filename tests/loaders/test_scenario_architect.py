@@ -93,7 +93,7 @@ def test_bad_row_yields_readable_frames_then_raises(sample, tmp_path):
     path = tmp_path / "damaged.scn"
     path.write_text("\n".join(lines) + "\n")
     drive = open_scenario_architect(path)
-    got = []
+    got: list[int] = []
     with pytest.raises(CorruptLogError) as err:
         got.extend(f.index for f in drive.frames())
     assert got == [0, 1, 2, 3, 4]
@@ -125,5 +125,3 @@ def test_external_logs_have_the_documented_labels(external_dir):
     left, right = drive.lane_map.boundaries_m
     assert (len(left), len(right)) == (101, 101)  # the notes said 101/100; the file has 101/101
     assert "ggv" in drive.csv_members
-
-

@@ -22,7 +22,7 @@ def objects(*rows: tuple[float, float, float, float], length=4.7, width=2.0) -> 
     )
 
 
-def straight_ego(x0=0.0, y0=0.0, speed=10.0, yaw=0.0, points=30, horizon=4.0) -> EgoTrajectory:
+def straight_ego(*, x0=0.0, y0=0.0, speed=10.0, yaw=0.0, points=30, horizon=4.0) -> EgoTrajectory:
     """A constant-speed straight plan timed explicitly."""
     t = np.linspace(0.0, horizon, points)
     return EgoTrajectory(

@@ -87,7 +87,9 @@ def test_errors_are_typed():
 
 
 def _alongside_scene(ego_y: float, obj_y: float, gap: float) -> ReachInputs:
-    return inputs(straight_ego(y0=ego_y, speed=30.0), objects((gap, obj_y, 0.0, 30.0)), straight_track())
+    return inputs(
+        straight_ego(y0=ego_y, speed=30.0), objects((gap, obj_y, 0.0, 30.0)), straight_track()
+    )
 
 
 def test_f1_alongside_leaves_the_ego_room():
@@ -131,12 +133,20 @@ def test_roborace_zones_replace_f1_and_patch_the_offence_side():
 def _two_lane_road() -> RoadLayout:
     x = np.linspace(-50, 300, 36)
     right_lane = RoadLane(
-        "r", np.concatenate([np.stack([x, np.zeros_like(x)], 1), np.stack([x[::-1], np.full_like(x, -4.0)], 1)]),
-        np.stack([x, np.full_like(x, -2.0)], 1), speed_limit_mps=15.0,
+        "r",
+        np.concatenate(
+            [np.stack([x, np.zeros_like(x)], 1), np.stack([x[::-1], np.full_like(x, -4.0)], 1)]
+        ),
+        np.stack([x, np.full_like(x, -2.0)], 1),
+        speed_limit_mps=15.0,
     )
     left_lane = RoadLane(
-        "l", np.concatenate([np.stack([x, np.full_like(x, 4.0)], 1), np.stack([x[::-1], np.zeros_like(x)], 1)]),
-        np.stack([x[::-1], np.full_like(x, 2.0)], 1), speed_limit_mps=15.0,
+        "l",
+        np.concatenate(
+            [np.stack([x, np.full_like(x, 4.0)], 1), np.stack([x[::-1], np.zeros_like(x)], 1)]
+        ),
+        np.stack([x[::-1], np.full_like(x, 2.0)], 1),
+        speed_limit_mps=15.0,
     )
     solid = (np.stack([x, np.zeros_like(x)], 1),)
     return RoadLayout(lanes=(right_lane, left_lane), solid_lines_m=solid)
@@ -155,20 +165,28 @@ def test_road_rules_fire_and_patch():
     assert shapely.bounds(late)[2] < 20 + 4 * 16.5 + 10  # speed cap 16.5 m/s
     # once over the limit, never again assumed compliant (H below_limit)
     fast = ReachInputs(ego=inp.ego, objects=objects((20.0, -2.0, 0.0, 30.0)), road=road)
-    res2, state = evaluate(fast, ReachParams(), state)
+    _res2, state = evaluate(fast, ReachParams(), state)
     res3, _ = evaluate(inp, ReachParams(), state)
     assert "road.speed_limit" not in {p.rule for p in res3.patches}
 
 
 def test_right_of_way_keeps_yielding_vehicle_out():
     x = np.linspace(-50, 100, 16)
-    main = RoadLane("main", np.concatenate([np.stack([x, np.full_like(x, 2.0)], 1),
-                                             np.stack([x[::-1], np.full_like(x, -2.0)], 1)]),
-                    np.stack([x, np.zeros_like(x)], 1))
+    main = RoadLane(
+        "main",
+        np.concatenate(
+            [np.stack([x, np.full_like(x, 2.0)], 1), np.stack([x[::-1], np.full_like(x, -2.0)], 1)]
+        ),
+        np.stack([x, np.zeros_like(x)], 1),
+    )
     y = np.linspace(-80, -2, 10)
-    side = RoadLane("side", np.concatenate([np.stack([np.full_like(y, 38.0), y], 1),
-                                             np.stack([np.full_like(y, 42.0), y[::-1]], 1)]),
-                    np.stack([np.full_like(y, 40.0), y], 1))
+    side = RoadLane(
+        "side",
+        np.concatenate(
+            [np.stack([np.full_like(y, 38.0), y], 1), np.stack([np.full_like(y, 42.0), y[::-1]], 1)]
+        ),
+        np.stack([np.full_like(y, 40.0), y], 1),
+    )
     road = RoadLayout(lanes=(main, side), right_of_way=(RightOfWayRule(("main",), ("side",)),))
     objs = objects((40.0, -40.0, np.pi / 2, 8.0))
     inp = ReachInputs(ego=straight_ego(speed=15.0), objects=objs, road=road)
@@ -178,9 +196,13 @@ def test_right_of_way_keeps_yielding_vehicle_out():
 
 
 @pytest.mark.parametrize("method", list(ReachMethod))
-@pytest.mark.parametrize(("gap", "obj_y", "speed"), [(40.0, 0.0, 0.0), (1.0, 2.5, 30.0), (20.0, -3.0, 10.0)])
+@pytest.mark.parametrize(
+    ("gap", "obj_y", "speed"), [(40.0, 0.0, 0.0), (1.0, 2.5, 30.0), (20.0, -3.0, 10.0)]
+)
 def test_verdict_mode_matches_full_geometry(method, gap, obj_y, speed):
-    inp = inputs(straight_ego(y0=-2.0, speed=25.0), objects((gap, obj_y, 0.0, speed)), straight_track())
+    inp = inputs(
+        straight_ego(y0=-2.0, speed=25.0), objects((gap, obj_y, 0.0, speed)), straight_track()
+    )
     full, _ = evaluate(inp, ReachParams(method=method))
     fast, _ = evaluate(inp, ReachParams(method=method, full_geometry=False))
     assert full.collisions == fast.collisions

@@ -2,12 +2,17 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import pytest
 
 from loaders.scenario_architect import open_scenario_architect
-from reachsets.engine import evaluate
+from reachsets.engine import ReachResult, evaluate
 from reachsets.params import ReachMethod, ReachParams
 from workbench.reach_adapter import frame_to_reach_inputs
+
+if TYPE_CHECKING:
+    from pathlib import Path
 
 pytestmark = pytest.mark.external
 
@@ -15,7 +20,7 @@ pytestmark = pytest.mark.external
 FILES = {"modena_T1_cutin_collision.saa": 23, "modena_T3_T4_catchingup_collision.saa": 88}
 
 
-def _verdicts(path, method):
+def _verdicts(path: Path, method: ReachMethod) -> list[tuple[float, bool | None, ReachResult]]:
     drive = open_scenario_architect(path)
     state = None
     out = []

@@ -29,14 +29,20 @@ def test_simple_vectorised_matches_scalar(v0):
     verts = simple_reach_vertices(objs, TIMES, 13.0)
     for i in range(len(objs)):
         ref = simple_reach_scalar(
-            float(objs.x_m[i]), float(objs.y_m[i]), float(objs.yaw_rad[i]),
-            float(objs.speed_mps[i]), 4.7, 2.0, list(TIMES), 13.0,
+            float(objs.x_m[i]),
+            float(objs.y_m[i]),
+            float(objs.yaw_rad[i]),
+            float(objs.speed_mps[i]),
+            length_m=4.7,
+            width_m=2.0,
+            times_s=list(TIMES),
+            a_max_mps2=13.0,
         )
         np.testing.assert_allclose(verts[i], np.asarray(ref), atol=1e-9)
 
 
 def test_simple_matches_documented_example():
-    # v0 = 40 m/s, a = 13 m/s^2, t = 1 s: rear 27.8 m (of t=0.8 s..), q2 at b, front 46.5 m, half width 6.5 m
+    # notes: v0 = 40 m/s, a = 13 m/s^2, t = 1 s -> front 46.5 m, half-width 6.5 m
     objs = objects((0.0, 0.0, 0.0, 40.0), length=0.0 + 1e-9, width=1e-9)
     verts = simple_reach_vertices(objs, np.array([0.0, 1.0]), 13.0)
     q = verts[0, 1]
@@ -70,7 +76,7 @@ def test_steering_arcs_match_scalar(side, v0):
 
 def test_arc_chord_offset_is_c2_over_2r():
     params = ReachParams()
-    xi, eta = steering_arcs(objects((0.0, 0.0, 0.0, 0.0)), params, 1.0)
+    _xi, eta = steering_arcs(objects((0.0, 0.0, 0.0, 0.0)), params, 1.0)
     # first chord at turn radius 11 m: lateral offset c^2 / (2 r)
     assert eta[0, 1] - eta[0, 0] == pytest.approx(3.0**2 / (2 * 11.0), rel=1e-9)
 
@@ -99,7 +105,9 @@ def test_occupancy_matches_scalar_and_holds_last_pose():
 
 def test_trajectory_timing_from_speeds_floors_standstill():
     ego = straight_ego(speed=10.0)
-    timed = type(ego)(ego.x_m, ego.y_m, ego.yaw_rad, np.r_[np.linspace(10, 0, 29), 0.0], np.full(30, np.nan))
+    timed = type(ego)(
+        ego.x_m, ego.y_m, ego.yaw_rad, np.r_[np.linspace(10, 0, 29), 0.0], np.full(30, np.nan)
+    )
     t = trajectory_times(timed)
     assert t[0] == 0.0
     assert np.all(np.diff(t) > 0)

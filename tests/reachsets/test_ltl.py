@@ -9,7 +9,9 @@ from hypothesis import strategies as st
 from reachsets.ltl import (
     And,
     Atom,
+    Formula,
     Historically,
+    LtlMemory,
     Not,
     Once,
     Or,
@@ -22,7 +24,7 @@ from reachsets.ltl import (
 ATOMS = ("p", "q")
 
 
-def formulas():
+def formulas() -> st.SearchStrategy[Formula]:
     leaves = st.sampled_from([Atom("p"), Atom("q")])
 
     def extend(children):
@@ -32,8 +34,8 @@ def formulas():
             children.map(Once),
             children.map(Historically),
             st.tuples(children, children).map(lambda ab: Since(*ab)),
-            st.tuples(children, children).map(lambda ab: And(ab)),
-            st.tuples(children, children).map(lambda ab: Or(ab)),
+            st.tuples(children, children).map(And),
+            st.tuples(children, children).map(Or),
         )
 
     return st.recursive(leaves, extend, max_leaves=6)
@@ -46,7 +48,7 @@ traces = st.lists(st.fixed_dictionaries({a: st.booleans() for a in ATOMS}), min_
 @given(formulas(), traces, traces)
 def test_incremental_equals_trace_semantics(formula, trace_a, trace_b):
     # two objects with independent traces; object b appears later (first-frame semantics)
-    memory = {}
+    memory: LtlMemory = {}
     trace_b = trace_b[: len(trace_a)]
     offset = len(trace_a) - len(trace_b)
     for t, frame in enumerate(trace_a):
@@ -66,7 +68,7 @@ def test_incremental_equals_trace_semantics(formula, trace_a, trace_b):
 def test_since_holds_until_lhs_breaks():
     f = Since(Atom("p"), Atom("q"))
     rows = [(False, True), (True, False), (True, False), (False, False)]
-    memory = {}
+    memory: LtlMemory = {}
     out = []
     for p, q in rows:
         v, memory = step(f, {"p": np.array([p]), "q": np.array([q])}, ["x"], memory)
