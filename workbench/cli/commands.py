@@ -14,6 +14,7 @@ __all__ = ["COMMAND_MODULES", "register_all"]
 COMMAND_MODULES: tuple[str, ...] = (
     "workbench.cli.info",
     "workbench.cli.replay",
+    "workbench.cli.evaluate",
     "workbench.cli.demo",
     "workbench.cli.conformance",
     "workbench.cli.samples",

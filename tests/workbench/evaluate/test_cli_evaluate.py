@@ -1,0 +1,68 @@
+import itertools
+import json
+from pathlib import Path
+
+import pytest
+
+from workbench.cli.main import main
+
+SAMPLES = Path(__file__).resolve().parents[3] / "sample_logs"
+
+
+def _run(args: list[str]) -> int:
+    with pytest.raises(SystemExit) as info:
+        main(args)
+    code = info.value.code
+    return 0 if code is None else int(code)
+
+
+def test_evaluate_writes_pinned_per_frame_records(tmp_path, capsys):
+    per_frame = tmp_path / "frames.jsonl"
+    viol = tmp_path / "viol.json"
+    log = SAMPLES / "hard_braking_lead.mcap"
+    code = _run(
+        [
+            "evaluate",
+            str(log),
+            "--engines",
+            "reachsets",
+            "--reach-method",
+            "simple",
+            "--per-frame",
+            str(per_frame),
+            "--violations",
+            str(viol),
+            "--end",
+            "3",
+        ]
+    )
+    assert code == 0
+    lines = [json.loads(line) for line in per_frame.read_text().splitlines()]
+    assert lines, "no frames evaluated"
+    assert [line["frame"] for line in lines] == list(range(len(lines)))
+    assert all(a["t_ns"] < b["t_ns"] for a, b in itertools.pairwise(lines))
+    for line in lines:
+        assert set(line) == {"t_ns", "frame", "reachsets"}
+        reach = line["reachsets"]
+        assert isinstance(reach["is_safe"], bool)
+        assert reach["is_safe"] == (not reach["collisions"])
+        for hit in reach["collisions"]:
+            assert set(hit) == {"object_id", "t_offset_s"}
+            assert 0.0 <= hit["t_offset_s"] <= 4.0
+    rows = json.loads(viol.read_text())
+    unsafe_frames = {line["frame"] for line in lines if not line["reachsets"]["is_safe"]}
+    covered = {f for r in rows for f in range(r["start_frame"], r["end_frame"] + 1)}
+    assert covered == unsafe_frames
+    assert f"{len(lines)} frames evaluated" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize(
+    ("engines", "message"),
+    [("rss", "scene creation"), ("bogus", "unknown engine 'bogus'"), (",", "at least one")],
+)
+def test_bad_engine_choice_is_one_line_error(engines, message, capsys):
+    code = _run(["evaluate", str(SAMPLES / "hard_braking_lead.mcap"), "--engines", engines])
+    assert code == 2
+    err = capsys.readouterr().err
+    assert message in err
+    assert "Traceback" not in err

@@ -1,0 +1,82 @@
+"""Loader frames -> engines -> ``FrameResult``: the one-way flow every sink consumes.
+
+An engine runner wraps one pure engine, carrying its explicit state from frame to frame. It
+returns the pinned per-frame JSON record of DESIGN.md and, for the sinks, the engine's full
+result object (geometry for Rerun).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Protocol
+
+if TYPE_CHECKING:
+    from collections.abc import Iterable, Iterator, Mapping, Sequence
+
+    from loaders.records import Frame
+
+__all__ = ["EngineOutput", "EngineRunner", "FrameResult", "evaluate_frames"]
+
+
+@dataclass(frozen=True, slots=True)
+class EngineOutput:
+    """One engine's verdict on one frame.
+
+    Attributes:
+        record: JSON-ready per-frame record (the pinned ``evaluate --per-frame`` keys).
+        is_safe: The frame verdict.
+        culprits: Ids of the objects that make the frame unsafe.
+        label: Short reason (rule or response) for violation intervals.
+        margin: Engine-specific severity; smaller is worse (e.g. time to first collision).
+        detail: The engine's full result object, for sinks that draw geometry.
+    """
+
+    record: dict[str, Any]
+    is_safe: bool
+    culprits: tuple[str, ...] = ()
+    label: str = ""
+    margin: float = float("inf")
+    detail: Any = None
+
+
+class EngineRunner(Protocol):
+    """A stateful wrapper of one pure engine."""
+
+    name: str
+
+    def step(self, frame: Frame) -> EngineOutput:
+        """Evaluate one frame, advancing the engine's explicit state."""
+        ...
+
+
+@dataclass(frozen=True, slots=True)
+class FrameResult:
+    """All engine verdicts of one frame."""
+
+    frame: int
+    t_ns: int
+    outputs: Mapping[str, EngineOutput]
+
+    def record(self) -> dict[str, Any]:
+        """The per-frame JSON line of ``workbench evaluate --per-frame``."""
+        line: dict[str, Any] = {"t_ns": self.t_ns, "frame": self.frame}
+        for name, out in self.outputs.items():
+            line[name] = out.record
+        return line
+
+
+def evaluate_frames(
+    frames: Iterable[Frame], engines: Sequence[EngineRunner]
+) -> Iterator[tuple[Frame, FrameResult]]:
+    """Run every engine on every frame, in order.
+
+    Args:
+        frames: Frames of one drive, in time order.
+        engines: Engine runners; each keeps its own state across frames.
+
+    Yields:
+        Each frame with its result.
+    """
+    for frame in frames:
+        outputs = {engine.name: engine.step(frame) for engine in engines}
+        yield frame, FrameResult(frame=frame.index, t_ns=frame.t_ns, outputs=outputs)
