@@ -17,7 +17,7 @@ from rss.cases import CaseDefaults, ParsedCase, parse_case
 from rss.engine import check_frame
 from rss.physics import stated_braking_longitudinal
 
-__all__ = ["random_case", "random_dynamics", "random_sequence", "renumber"]
+__all__ = ["evaluate_ours", "random_case", "random_cases", "random_dynamics", "random_sequence", "renumber"]
 
 _TYPES = (
     ("SameDirection", 0.34),
@@ -150,12 +150,16 @@ def _evaluate(case: dict[str, Any], defaults: CaseDefaults) -> tuple[ParsedCase,
     return parsed, frame_record(result, batch)
 
 
-def _to_boundary(rng: np.random.Generator, case: dict[str, Any], defaults: CaseDefaults) -> None:
+def _to_boundary(
+    rng: np.random.Generator, case: dict[str, Any], defaults: CaseDefaults, record: dict[str, Any] | None = None
+) -> None:
     """Move the other object so that a distance lies within ±2 cm of its safe distance."""
-    parsed, record = _evaluate(case, defaults)
-    state = record["states"][0]
+    parsed = parse_case(case, defaults, "gen") if "intersection" in case else None
+    if parsed is None and record is None:
+        _, record = _evaluate(case, defaults)
     delta = float(rng.uniform(-_BOUNDARY_CM, _BOUNDARY_CM))
     if "intersection" in case:
+        assert parsed is not None
         c = parsed.constellation
         assert c is not None
         who, obj, dyn = ("other", c.other, c.other_dynamics) if rng.random() < 0.5 else ("ego", c.ego, c.ego_dynamics)
@@ -166,6 +170,8 @@ def _to_boundary(rng: np.random.Generator, case: dict[str, Any], defaults: CaseD
         limit = case["intersection"][f"{who}_approach"] - case[who]["length"] - 0.5
         case[who]["dist_to_enter"] = round(float(min(float(stop) + delta, limit)), 6)
         return
+    assert record is not None
+    state = record["states"][0]
     lat_sides = [s for s in ("lateral_left", "lateral_right") if state[s]["current_distance"] not in (None, 0.0)]
     ego, other = case["ego"], case["other"]
     if lat_sides and rng.random() < 0.4:
@@ -188,7 +194,9 @@ def _to_boundary(rng: np.random.Generator, case: dict[str, Any], defaults: CaseD
     other["s"] = round(ego["s"] + direction * ((ego["length"] + other["length"]) / 2.0 + lon["safe_distance"] + delta), 6)
 
 
-def random_case(rng: np.random.Generator, defaults: CaseDefaults, case_id: str) -> dict[str, Any]:
+def random_case(
+    rng: np.random.Generator, defaults: CaseDefaults, case_id: str, *, boundary: bool = True
+) -> dict[str, Any]:
     """One random structured case (all constellation types, lane layouts, overrides)."""
     names, weights = zip(*_TYPES, strict=True)
     ctype = str(rng.choice(names, p=np.asarray(weights) / sum(weights)))
@@ -198,9 +206,40 @@ def random_case(rng: np.random.Generator, defaults: CaseDefaults, case_id: str) 
         case["ego_dynamics"] = random_dynamics(rng)
     if rng.random() < 0.6:
         case["other_dynamics"] = random_dynamics(rng)
-    if rng.random() < 0.45:
+    if boundary and rng.random() < 0.45:
         _to_boundary(rng, case, defaults)
     return case
+
+
+def random_cases(rng: np.random.Generator, defaults: CaseDefaults, count: int) -> list[dict[str, Any]]:
+    """``count`` random cases; 45 % moved within ±2 cm of a safe distance (one batched
+    engine call computes the safe distances)."""
+    cases = [random_case(rng, defaults, f"case{i}", boundary=False) for i in range(count)]
+    chosen = [c for c in cases if rng.random() < 0.45]  # noqa: PLR2004
+    straight = [c for c in chosen if "intersection" not in c]
+    for case in chosen:
+        if "intersection" in case:
+            _to_boundary(rng, case, defaults)
+    parsed = [renumber(parse_case(c, defaults, "gen"), 2 * i, 2 * i + 1) for i, c in enumerate(straight)]
+    records = evaluate_ours(parsed)
+    for case, record in zip(straight, records, strict=True):
+        _to_boundary(rng, case, defaults, record)
+    return cases
+
+
+def evaluate_ours(parsed: list[ParsedCase], frame: np.ndarray | None = None) -> list[dict[str, Any]]:
+    """Our records of many cases in ONE engine call (one frame per case unless ``frame``
+    says otherwise; ids must keep independent cases apart)."""
+    from rss.conformance import frame_record  # noqa: PLC0415
+    from rss.engine import check_frames  # noqa: PLC0415
+
+    if not parsed:
+        return []
+    batch = stack_constellations([p.constellation for p in parsed if p.constellation is not None])
+    frames = np.arange(len(parsed)) if frame is None else frame
+    n_frames = int(frames.max()) + 1
+    result, _ = check_frames(batch, frames, n_frames, parsed[0].default_ego)
+    return [frame_record(result, batch, i) for i in range(n_frames)]
 
 
 def random_sequence(rng: np.random.Generator, defaults: CaseDefaults, case_id: str, steps: int) -> dict[str, Any]:
