@@ -8,9 +8,16 @@ import shapely
 
 from reachsets.engine import RuleState, evaluate
 from reachsets.errors import InputShapeError, ParamsError, ReachSetError, ZoneFileError
-from reachsets.inputs import ReachInputs, RightOfWayRule, RoadLane, RoadLayout
+from reachsets.inputs import (
+    EgoTrajectory,
+    ReachInputs,
+    RightOfWayRule,
+    RoadLane,
+    RoadLayout,
+    TrackBounds,
+)
 from reachsets.params import ReachMethod, ReachParams
-from reachsets.patches import RulePatch, patch_grid, subtract_patches
+from reachsets.patches import RulePatch, keep_largest_part, patch_grid, subtract_patches
 from reachsets.rules_roborace import zones_from_json
 from tests.reachsets.helpers import inputs, objects, straight_ego, straight_track
 
@@ -206,3 +213,49 @@ def test_verdict_mode_matches_full_geometry(method, gap, obj_y, speed):
     full, _ = evaluate(inp, ReachParams(method=method))
     fast, _ = evaluate(inp, ReachParams(method=method, full_geometry=False))
     assert full.collisions == fast.collisions
+
+
+def _ring_track() -> TrackBounds:
+    phi = np.linspace(0.0, 2 * np.pi, 200, endpoint=False)
+    circle = np.stack([np.cos(phi), np.sin(phi)], axis=1)
+    return TrackBounds(left_m=94.0 * circle, right_m=106.0 * circle)
+
+
+def test_closed_track_wraps_around_the_start():
+    """Reference defect: the closed-track branch compared unshifted arc lengths."""
+    phi0 = -0.15
+    t = np.linspace(0.0, 3.0, 30)
+    ang = phi0 + 20.0 * t / 100.0
+    ego = EgoTrajectory(
+        x_m=100 * np.cos(ang),
+        y_m=100 * np.sin(ang),
+        yaw_rad=ang + np.pi / 2,
+        speed_mps=np.full(30, 20.0),
+        t_s=t,
+    )
+    objs = objects((100 * np.cos(0.1), 100 * np.sin(0.1), 0.1 + np.pi / 2, 0.0))
+    res, state = evaluate(ReachInputs(ego=ego, objects=objs, track=_ring_track()), ReachParams())
+    assert state.track is not None
+    assert state.track.closed
+    assert list(res.object_ids) == ["o0"]
+    assert not res.is_safe
+
+
+def test_standing_vehicle_never_triggers_roborace():
+    """Reference defect: the trigger time gap divided by a zero speed."""
+    centre = np.stack([np.linspace(-100, 500, 61), np.zeros(61)], axis=1)
+    zones = zones_from_json(
+        {"Centre": centre.tolist(), "Zone": [{"Type": 1, "ID": 1, "Start": 0, "End": 60}]}
+    )
+    objs = objects((30.0, 0.0, 0.0, 0.0), (60.0, 0.0, 0.0, 0.0))
+    inp = ReachInputs(
+        ego=straight_ego(speed=0.0), objects=objs, track=straight_track(), zones=zones
+    )
+    res, _ = evaluate(inp, ReachParams())
+    assert res.patches == ()
+
+
+def test_reference_largest_part_mode_is_available():
+    reach = np.array([[shapely.MultiPolygon([shapely.box(0, 0, 1, 1), shapely.box(5, 0, 9, 3)])]])
+    out = keep_largest_part(reach)
+    assert shapely.area(out[0, 0]) == pytest.approx(12.0)
