@@ -120,7 +120,8 @@ def object_extents(obj: ObjectArrays, road: RoadAreaArrays) -> Extents:
     region = obj.region_lane_id[:, :, None, None]  # (C, K, 1, 1)
     match = (road.lane_id[:, None, :, :] == region) & (region >= 0)  # (C, K, R, L)
     hit = match.any(axis=(2, 3))  # (C, K)
-    flat = match.reshape(match.shape[0], match.shape[1], -1).argmax(axis=2)
+    c_count, k_count, r_count, l_count = match.shape
+    flat = match.reshape(c_count, k_count, r_count * l_count).argmax(axis=2)
     n_lanes = road.lane_id.shape[2]
     r_idx, l_idx = np.divmod(flat, n_lanes)  # (C, K)
     c_idx = np.arange(match.shape[0])[:, None]
