@@ -6,6 +6,7 @@ from typing import TYPE_CHECKING
 
 from workbench.samples.foxglove_writer import write_foxglove_mcap
 from workbench.samples.lanelet2_writer import to_osm_bytes
+from workbench.samples.racing import write_racing_sample
 from workbench.samples.ros_writers import write_bag, write_mcap, write_rosbag2
 from workbench.samples.scenarios_roads import hard_braking_lead, highway_cut_in, wrong_way_oncoming
 from workbench.samples.scenarios_urban import parking_lot, pedestrian_crossing, urban_intersection
@@ -52,7 +53,7 @@ def generate_scenario(sc: Scenario, outdir: Path) -> list[Path]:
 
 
 def generate(outdir: Path, names: Iterable[str] | None = None) -> list[Path]:
-    """Generate the named scenarios (default: all) into ``outdir``.
+    """Generate the named scenarios (default: all, plus the racing sample) into ``outdir``.
 
     Raises:
         KeyError: for an unknown scenario name.
@@ -60,4 +61,6 @@ def generate(outdir: Path, names: Iterable[str] | None = None) -> list[Path]:
     written: list[Path] = []
     for name in names if names is not None else SCENARIOS:
         written += generate_scenario(SCENARIOS[name](), outdir)
+    if names is None:
+        written += write_racing_sample(outdir)
     return written
