@@ -3,10 +3,11 @@
 ::
 
     +-------------------------------------+------------------------+
-    |                                     | plots (time series)    |
+    |                                     | ego speed, accel       |
     |  world: 3-D scene, camera follows   +------------------------+
-    |  the ego from above and behind      | rss | reach (tabs)     |
-    |                                     |                        |
+    |  the ego from above and behind      | actors: count, nearest |
+    |                                     +------------------------+
+    |                                     | rss | reach (tabs)     |
     +-------------------------------------+------------------------+
     | time panel on the ``frame`` timeline                         |
     +--------------------------------------------------------------+
@@ -71,16 +72,17 @@ def replay_blueprint(ego_start_m: tuple[float, float] | None = None) -> rrb.Blue
         overrides={"world/ego/trail": _trail_ranges()},
     )
     side = rrb.Vertical(
-        rrb.TimeSeriesView(name="plots", origin="/plots"),
+        rrb.TimeSeriesView(name="ego", origin="/plots/ego"),
+        rrb.TimeSeriesView(name="actors", origin="/plots/actors"),
         rrb.Tabs(
             rrb.StateTimelineView(name="rss", origin="/rss"),
             rrb.Spatial3DView(name="reach", origin="/reach"),
         ),
-        row_shares=[3, 2],
+        row_shares=[2, 2, 1],
     )
     return rrb.Blueprint(
         rrb.Horizontal(scene, side, column_shares=[3, 1]),
-        rrb.TimePanel(timeline=FRAME_TIMELINE),
+        rrb.TimePanel(timeline=FRAME_TIMELINE, play_state="paused", state="collapsed"),
         rrb.SelectionPanel(state="hidden"),
         rrb.BlueprintPanel(state="hidden"),
         collapse_panels=False,

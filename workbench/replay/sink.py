@@ -10,7 +10,7 @@ Entity paths (they mirror the scene; see ``docs/replay.md``)::
     world/ego/trail            Points3D, one point per frame (the blueprint shows the recent ones)
     world/ego/plan             LineStrips3D, the plan valid at the frame
     world/actors               Boxes3D with class ids and id labels
-    world/actors/velocity      Arrows3D, one second of travel at the current velocity
+    world/actors/velocity      Arrows3D, one second of travel, coloured by class
     plots/ego/speed_mps        Scalars
     plots/ego/accel_mps2       Scalars
     plots/actors/count         Scalars
@@ -193,7 +193,7 @@ class RerunSink:
             columns=rr.Arrows3D.columns(
                 origins=actors.centre_m,
                 vectors=actors.velocity_mps,
-                colors=_u32(style.VELOCITY_COLOR, len(actors.labels)),
+                class_ids=actors.class_ids,
             ).partition(actors.counts),
         )
 

@@ -20,7 +20,6 @@ __all__ = [
     "EGO_TRAIL_RADIUS_M",
     "PLAN_COLOR",
     "PLAN_RADIUS_M",
-    "VELOCITY_COLOR",
 ]
 
 #: Box colour per object class (the annotation context on ``world``).
@@ -38,8 +37,6 @@ CLASS_COLORS: dict[ObjectClass, int] = {
 EGO_COLOR = 0x00E676FF
 #: The plan is drawn in magenta, the conventional "intent" colour.
 PLAN_COLOR = 0xFF40FFFF
-#: Velocity arrows are pale so they do not compete with the boxes.
-VELOCITY_COLOR = 0xB0BEC5FF
 
 #: Lane border colour per ``LineType`` value.
 BORDER_COLORS: dict[str, int] = {
