@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from rss.batch import BoolArray, FloatArray, IntArray
+from rss.batch import BoolArray, FloatArray, IntArray, take_rows
 from rss.model import ConstellationType, LaneDrivingDirection, ObjectType, RoadSegmentType
 from rss.physics import DISTANCE_PRECISION, gt, lt
 from rss.states import InvalidReason, LateralPosition, LongitudinalPosition
@@ -243,6 +243,25 @@ def _invalid_objects(batch: ConstellationBatch) -> IntArray:
     return np.where(same & (reason == 0), InvalidReason.SameObjectIds, reason).astype(np.int64)
 
 
+def _other_extents(batch: ConstellationBatch, intersection: BoolArray) -> Extents:
+    """The other object in the ego road (non-intersection) or its own road (intersection),
+    each computed only for the constellations that need it."""
+    if not intersection.any():
+        return object_extents(batch.other, batch.ego_road)
+    if intersection.all():
+        return object_extents(batch.other, batch.intersecting_road)
+    cross_rows, same_rows = np.flatnonzero(intersection), np.flatnonzero(~intersection)
+    cross = object_extents(take_rows(batch.other, cross_rows), take_rows(batch.intersecting_road, cross_rows))
+    same = object_extents(take_rows(batch.other, same_rows), take_rows(batch.ego_road, same_rows))
+    fields = {}
+    for name in Extents.__dataclass_fields__:
+        a = getattr(same, name)
+        merged = np.empty(batch.size, dtype=a.dtype)
+        merged[same_rows], merged[cross_rows] = a, getattr(cross, name)
+        fields[name] = merged
+    return Extents(**fields)
+
+
 def extract(batch: ConstellationBatch) -> Relative:
     """Relative situation of all constellations of a frame.
 
@@ -256,15 +275,7 @@ def extract(batch: ConstellationBatch) -> Relative:
     ctype = batch.constellation_type
     intersection = ctype >= ConstellationType.IntersectionEgoHasPriority
     ego = object_extents(batch.ego, batch.ego_road)
-    other_same = object_extents(batch.other, batch.ego_road)
-    other_cross = object_extents(batch.other, batch.intersecting_road)
-
-    def pick(a: FloatArray, b: FloatArray) -> FloatArray:
-        return np.where(intersection, b, a)
-
-    other = Extents(
-        *(pick(getattr(other_same, f), getattr(other_cross, f)) for f in Extents.__dataclass_fields__)
-    )
+    other = _other_extents(batch, intersection)
     lon_pos, lon_dist = relative_position(ego.lon_min_m, ego.lon_max_m, other.lon_min_m, other.lon_max_m)
     lat_code, lat_dist = relative_position(ego.lat_min_m, ego.lat_max_m, other.lat_min_m, other.lat_max_m)
     lat_pos = _LAT_FROM_LON[lat_code]

@@ -76,18 +76,6 @@ def is_dangerous(states: RawStates) -> BoolArray:
     return np.asarray(~states.lon_is_safe & ~lateral_safe, dtype=np.bool_)
 
 
-def _keys(memory: RssMemory, batch: ConstellationBatch) -> tuple[IntArray, IntArray]:
-    """Dense key numbers of the memory rows ``(M,)`` and of the constellations ``(C,)``."""
-    dtype = np.dtype([("e", np.int64), ("o", np.int64), ("t", np.int64)])
-    keys = np.empty(memory.size + batch.size, dtype=dtype)
-    keys["e"] = np.concatenate([memory.ego_id, batch.ego.object_id])
-    keys["o"] = np.concatenate([memory.object_id, batch.other.object_id])
-    keys["t"] = np.concatenate([memory.constellation_type, batch.constellation_type])
-    _, inverse = np.unique(keys, return_inverse=True)
-    inverse = inverse.reshape(-1)
-    return inverse[: memory.size], inverse[memory.size :]
-
-
 def _side(side: LateralSide, clear: BoolArray) -> LateralSide:
     return dataclasses.replace(side, response=np.where(clear, LateralResponse.None_, side.response))
 
@@ -102,16 +90,36 @@ class _Runs:
 
 
 def _runs(memory: RssMemory, batch: ConstellationBatch, frame: IntArray) -> _Runs:
-    mem_key, key = _keys(memory, batch)
-    order = np.lexsort((frame, key))
-    k, f = key[order], frame[order]
-    pos = np.arange(order.size)
-    new_run = np.ones(order.size, dtype=np.bool_)
-    new_run[1:] = (k[1:] != k[:-1]) | (f[1:] - f[:-1] > 1)
-    start = np.maximum.accumulate(np.where(new_run, pos, 0))
-    table = np.full(int(key.max(initial=-1)) + 1, -1, dtype=np.int64)
-    table[mem_key[mem_key < table.size]] = np.flatnonzero(mem_key < table.size)
-    initial = np.where(f[start] == 0, table[k], -1)
+    """Sort by (key, frame) with the memory rows as pseudo-frame -1 in front of their key."""
+    m, c = memory.size, batch.size
+    ego = np.concatenate([memory.ego_id, batch.ego.object_id])
+    other = np.concatenate([memory.object_id, batch.other.object_id])
+    ctype = np.concatenate([memory.constellation_type, batch.constellation_type])
+    when = np.concatenate([np.full(m, -1, dtype=np.int64), frame])
+    order_all = np.lexsort((when, ctype, other, ego))
+    same_key = np.zeros(order_all.size, dtype=np.bool_)
+    same_key[1:] = (
+        (ego[order_all[1:]] == ego[order_all[:-1]])
+        & (other[order_all[1:]] == other[order_all[:-1]])
+        & (ctype[order_all[1:]] == ctype[order_all[:-1]])
+    )
+    prev_row = np.concatenate([[-1], order_all[:-1]])
+    is_batch = order_all >= m
+    # the memory row directly before a key's frame-0 row is its initial memory
+    initial_all = np.where(
+        same_key & (prev_row < m) & (prev_row >= 0) & (when[order_all] == 0), prev_row, -1
+    )
+    order = order_all[is_batch] - m
+    initial_sorted = initial_all[is_batch]
+    f = frame[order]
+    key_start = ~same_key[is_batch]
+    new_run = np.ones(c, dtype=np.bool_)
+    new_run[1:] = key_start[1:] | (f[1:] - f[:-1] > 1)
+    if c:
+        new_run[0] = True
+    pos = np.arange(c)
+    start = np.maximum.accumulate(np.where(new_run, pos, 0)) if c else pos
+    initial = np.where(f[start] == 0, initial_sorted[start], -1) if c else pos
     return _Runs(order, start, initial)
 
 
