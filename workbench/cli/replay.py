@@ -83,7 +83,11 @@ def run_with_progress(
 
 
 def _wait_for_ctrl_c(url: str) -> None:
-    typer.echo(f"serving on 127.0.0.1 only; open {url}")
+    typer.echo(f"open {url}")
+    typer.echo(
+        "the data (gRPC) is served on 127.0.0.1 only; the web viewer page itself is served "
+        "on every interface by rerun 0.41 (it holds no data)"
+    )
     typer.echo("press Ctrl-C to stop")
     try:
         while True:

@@ -8,9 +8,11 @@ from __future__ import annotations
 import contextlib
 import itertools
 import os
+import sys
 import time
 import uuid
 from dataclasses import dataclass
+from pathlib import Path
 from typing import TYPE_CHECKING
 
 import rerun as rr
@@ -23,7 +25,6 @@ from workbench.replay.sink import RerunSink
 
 if TYPE_CHECKING:
     from collections.abc import Callable, Iterator
-    from pathlib import Path
 
     from loaders.drive import Drive
     from loaders.records import Frame
@@ -124,8 +125,18 @@ def _attach(
         rec.save(out, default_blueprint=blueprint)
         return str(out)
     if spawn:
-        with _viewer_analytics_off():
-            rec.spawn(default_blueprint=blueprint)
+        # The viewer shipped with rerun-sdk sits next to this interpreter, which need not be
+        # on PATH (``.venv/bin/workbench`` run without activating the venv).
+        viewer = Path(sys.executable).with_name("rerun")
+        try:
+            with _viewer_analytics_off():
+                rr.spawn(
+                    recording=rec,
+                    default_blueprint=blueprint,
+                    executable_path=str(viewer) if viewer.exists() else None,
+                )
+        except RuntimeError as err:
+            raise ReplayError(f"cannot start the Rerun viewer: {err}".splitlines()[0]) from err
         return "viewer"
     grpc_port, web_port = ports
     with _viewer_analytics_off():

@@ -1,5 +1,6 @@
 """Write an .rrd from a fake drive and read it back without a viewer."""
 
+import socket
 from pathlib import Path
 from typing import Any
 
@@ -89,3 +90,20 @@ def test_exactly_one_destination(tmp_path):
         replay_drive(FakeDrive(n_frames=1), out=tmp_path / "x.rrd", spawn=True)
     with pytest.raises(ReplayError, match="exactly one"):
         replay_drive(FakeDrive(n_frames=1))
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return int(s.getsockname()[1])
+
+
+def test_serve_binds_grpc_to_localhost_and_calls_back_with_the_url():
+    grpc_port, web_port = _free_port(), _free_port()
+    seen = []
+    summary = replay_drive(
+        FakeDrive(n_frames=5), serve=True, ports=(grpc_port, web_port), on_served=seen.append
+    )
+    assert seen == [summary.output]
+    assert f"rerun+http://127.0.0.1:{grpc_port}/proxy" in summary.output
+    assert summary.output.startswith(f"http://127.0.0.1:{web_port}/")
