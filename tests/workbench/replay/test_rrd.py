@@ -100,7 +100,7 @@ def _free_port() -> int:
 
 def test_serve_binds_grpc_to_localhost_and_calls_back_with_the_url():
     grpc_port, web_port = _free_port(), _free_port()
-    seen = []
+    seen: list[str] = []
     summary = replay_drive(
         FakeDrive(n_frames=5), serve=True, ports=(grpc_port, web_port), on_served=seen.append
     )
