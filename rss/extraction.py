@@ -22,7 +22,7 @@ from rss.states import InvalidReason, LateralPosition, LongitudinalPosition
 if TYPE_CHECKING:
     from rss.batch import ConstellationBatch, ObjectArrays, RoadAreaArrays
 
-__all__ = ["Extents", "Relative", "extract", "object_extents", "relative_position"]
+__all__ = ["Extents", "LaneTable", "Relative", "extract", "lane_table", "object_extents", "place", "relative_position"]
 
 _P = DISTANCE_PRECISION
 #: Rounding slack of parametric region bounds.
@@ -92,23 +92,48 @@ def _exclusive_cumsum(values: FloatArray, axis: int) -> FloatArray:
     return np.asarray(total - values, dtype=np.float64)
 
 
-def object_extents(obj: ObjectArrays, road: RoadAreaArrays) -> Extents:
-    """Metric extents of one object per constellation in a road area.
+@dataclass(frozen=True)
+class LaneTable:
+    """Per-lane metric quantities of ``C`` road areas, lanes flattened to ``(C, R*L)``.
 
-    Args:
-        obj: Objects with ``(C, K)`` occupied regions.
-        road: Road areas with ``(C, R, L)`` lanes.
-
-    Returns:
-        The extents; ``found`` is False where no region lies in the road area.
+    Attributes:
+        lane_id: Lane ids (-1 = none).
+        direction: :class:`LaneDrivingDirection` codes.
+        lon0_min_m: Start of the lane's segment along the road area (min lengths before it).
+        lon0_max_m: Same with max lengths.
+        length_min_m: Lane length (min).
+        length_max_m: Lane length (max).
+        lat0_min_m: Start of the lane's column from the left border (min widths left of it).
+        lat0_max_m: Same with max widths.
+        width_min_m: Lane width (min).
+        width_max_m: Lane width (max).
+        intersection_min_m: ``(C,)`` entry of the intersecting area (NaN if none).
+        intersection_max_m: ``(C,)`` exit of the intersecting area (NaN if none).
     """
+
+    lane_id: IntArray
+    direction: IntArray
+    lon0_min_m: FloatArray
+    lon0_max_m: FloatArray
+    length_min_m: FloatArray
+    length_max_m: FloatArray
+    lat0_min_m: FloatArray
+    lat0_max_m: FloatArray
+    width_min_m: FloatArray
+    width_max_m: FloatArray
+    intersection_min_m: FloatArray
+    intersection_max_m: FloatArray
+
+
+def lane_table(road: RoadAreaArrays) -> LaneTable:
+    """Segment starts (sums of min / max segment lengths), lane-column starts (sums of the
+    min / max column widths over all segments) and the intersecting area of each road."""
     lane_ok = road.lane_id >= 0  # (C, R, L)
     inf = np.inf
-    seg_len_min = np.where(lane_ok, road.length_min_m, inf).min(axis=2)
-    seg_len_max = np.where(lane_ok, road.length_max_m, -inf).max(axis=2)
+    c, r, n_lanes = road.lane_id.shape
     seg_ok = lane_ok.any(axis=2)
-    seg_len_min = np.where(seg_ok, seg_len_min, 0.0)
-    seg_len_max = np.where(seg_ok, seg_len_max, 0.0)
+    seg_len_min = np.where(seg_ok, np.where(lane_ok, road.length_min_m, inf).min(axis=2), 0.0)
+    seg_len_max = np.where(seg_ok, np.where(lane_ok, road.length_max_m, -inf).max(axis=2), 0.0)
     start_min = _exclusive_cumsum(seg_len_min, axis=1)  # (C, R)
     start_max = _exclusive_cumsum(seg_len_max, axis=1)
     col_ok = lane_ok.any(axis=1)  # (C, L)
@@ -117,27 +142,57 @@ def object_extents(obj: ObjectArrays, road: RoadAreaArrays) -> Extents:
     lat_start_min = _exclusive_cumsum(col_w_min, axis=1)  # (C, L)
     lat_start_max = _exclusive_cumsum(col_w_max, axis=1)
 
-    region = obj.region_lane_id[:, :, None, None]  # (C, K, 1, 1)
-    match = (road.lane_id[:, None, :, :] == region) & (region >= 0)  # (C, K, R, L)
-    hit = match.any(axis=(2, 3))  # (C, K)
-    c_count, k_count, r_count, l_count = match.shape
-    flat = match.reshape(c_count, k_count, r_count * l_count).argmax(axis=2)
-    n_lanes = road.lane_id.shape[2]
-    r_idx, l_idx = np.divmod(flat, n_lanes)  # (C, K)
-    c_idx = np.arange(match.shape[0])[:, None]
-
-    lon_min = start_min[c_idx, r_idx] + obj.region_lon_min * road.length_min_m[c_idx, r_idx, l_idx]
-    lon_max = start_max[c_idx, r_idx] + obj.region_lon_max * road.length_max_m[c_idx, r_idx, l_idx]
-    lat_min = lat_start_min[c_idx, l_idx] + obj.region_lat_min * road.width_min_m[c_idx, r_idx, l_idx]
-    lat_max = lat_start_max[c_idx, l_idx] + obj.region_lat_max * road.width_max_m[c_idx, r_idx, l_idx]
-    direction = road.driving_direction[c_idx, r_idx, l_idx]
-
     is_intersection = road.segment_type == RoadSegmentType.Intersection  # (C, R)
     has_intersection = is_intersection.any(axis=1)
     first = is_intersection.argmax(axis=1)
-    rows = np.arange(first.shape[0])
+    rows = np.arange(c)
     i_min = start_min[rows, first] + road.before_intersection_m[rows, first]
     i_max = start_max[rows, first] + seg_len_max[rows, first] - road.after_intersection_m[rows, first]
+
+    def flat(values: np.ndarray) -> np.ndarray:
+        return np.broadcast_to(values, (c, r, n_lanes)).reshape(c, r * n_lanes)
+
+    return LaneTable(
+        lane_id=road.lane_id.reshape(c, r * n_lanes),
+        direction=road.driving_direction.reshape(c, r * n_lanes),
+        lon0_min_m=flat(start_min[:, :, None]),
+        lon0_max_m=flat(start_max[:, :, None]),
+        length_min_m=road.length_min_m.reshape(c, r * n_lanes),
+        length_max_m=road.length_max_m.reshape(c, r * n_lanes),
+        lat0_min_m=flat(lat_start_min[:, None, :]),
+        lat0_max_m=flat(lat_start_max[:, None, :]),
+        width_min_m=road.width_min_m.reshape(c, r * n_lanes),
+        width_max_m=road.width_max_m.reshape(c, r * n_lanes),
+        intersection_min_m=np.where(has_intersection, i_min, np.nan),
+        intersection_max_m=np.where(has_intersection, i_max, np.nan),
+    )
+
+
+def place(obj: ObjectArrays, table: LaneTable) -> Extents:
+    """Metric extents of one object per constellation in a road area (its lane table).
+
+    Args:
+        obj: Objects with ``(C, K)`` occupied regions.
+        table: Lane table of their road areas.
+
+    Returns:
+        The extents; ``found`` is False where no region lies in the road area. Regions
+        whose lane is not in the road area are ignored (as ad-rss does).
+    """
+    inf = np.inf
+    region = obj.region_lane_id[:, :, None]  # (C, K, 1)
+    match = (table.lane_id[:, None, :] == region) & (region >= 0)  # (C, K, RL)
+    hit = match.any(axis=2)  # (C, K)
+    idx = match.argmax(axis=2)  # (C, K)
+
+    def at(values: np.ndarray) -> np.ndarray:
+        return np.take_along_axis(values, idx, axis=1)
+
+    lon_min = at(table.lon0_min_m) + obj.region_lon_min * at(table.length_min_m)
+    lon_max = at(table.lon0_max_m) + obj.region_lon_max * at(table.length_max_m)
+    lat_min = at(table.lat0_min_m) + obj.region_lat_min * at(table.width_min_m)
+    lat_max = at(table.lat0_max_m) + obj.region_lat_max * at(table.width_max_m)
+    direction = at(table.direction)
     return Extents(
         lon_min_m=np.where(hit, lon_min, inf).min(axis=1),
         lon_max_m=np.where(hit, lon_max, -inf).max(axis=1),
@@ -146,9 +201,14 @@ def object_extents(obj: ObjectArrays, road: RoadAreaArrays) -> Extents:
         on_positive_lane=(hit & (direction == LaneDrivingDirection.Positive)).any(axis=1),
         on_negative_lane=(hit & (direction == LaneDrivingDirection.Negative)).any(axis=1),
         found=hit.any(axis=1),
-        intersection_min_m=np.where(has_intersection, i_min, np.nan),
-        intersection_max_m=np.where(has_intersection, i_max, np.nan),
+        intersection_min_m=table.intersection_min_m,
+        intersection_max_m=table.intersection_max_m,
     )
+
+
+def object_extents(obj: ObjectArrays, road: RoadAreaArrays) -> Extents:
+    """Metric extents of one object per constellation in a road area (``(C,)`` each)."""
+    return place(obj, lane_table(road))
 
 
 def relative_position(
@@ -243,11 +303,11 @@ def _invalid_objects(batch: ConstellationBatch) -> IntArray:
     return np.where(same & (reason == 0), InvalidReason.SameObjectIds, reason).astype(np.int64)
 
 
-def _other_extents(batch: ConstellationBatch, intersection: BoolArray) -> Extents:
+def _other_extents(batch: ConstellationBatch, intersection: BoolArray, ego_table: LaneTable) -> Extents:
     """The other object in the ego road (non-intersection) or its own road (intersection),
     each computed only for the constellations that need it."""
     if not intersection.any():
-        return object_extents(batch.other, batch.ego_road)
+        return place(batch.other, ego_table)
     if intersection.all():
         return object_extents(batch.other, batch.intersecting_road)
     cross_rows, same_rows = np.flatnonzero(intersection), np.flatnonzero(~intersection)
@@ -274,8 +334,9 @@ def extract(batch: ConstellationBatch) -> Relative:
     """
     ctype = batch.constellation_type
     intersection = ctype >= ConstellationType.IntersectionEgoHasPriority
-    ego = object_extents(batch.ego, batch.ego_road)
-    other = _other_extents(batch, intersection)
+    ego_table = lane_table(batch.ego_road)
+    ego = place(batch.ego, ego_table)
+    other = _other_extents(batch, intersection, ego_table)
     lon_pos, lon_dist = relative_position(ego.lon_min_m, ego.lon_max_m, other.lon_min_m, other.lon_max_m)
     lat_code, lat_dist = relative_position(ego.lat_min_m, ego.lat_max_m, other.lat_min_m, other.lat_max_m)
     lat_pos = _LAT_FROM_LON[lat_code]
