@@ -36,6 +36,27 @@ def find_sample_logs(samples_dir: Path) -> list[Path]:
     return sorted(found, key=lambda p: p.name)
 
 
+#: Which log keeps the plain ``<stem>.rrd`` name when several share a stem (lowest first).
+_NAME_PRIORITY = {".mcap": 0, "": 1, ".bag": 2, ".xml": 3}
+
+
+def output_names(logs: list[Path]) -> dict[Path, str]:
+    """``.rrd`` file name per log, never the same for two logs.
+
+    A log gets ``<stem>.rrd``, or ``<stem>_<suffix>.rrd`` when its stem is already taken; an
+    ``.mcap`` keeps the plain name first, then a rosbag2 directory, then a ``.bag``.
+    """
+    taken: set[str] = set()
+    names: dict[Path, str] = {}
+    for log in sorted(logs, key=lambda p: (_NAME_PRIORITY.get(p.suffix.lower(), 9), p.name)):
+        stem = default_output(log, Path()).stem
+        if stem in taken:
+            stem = f"{stem}_{log.suffix.lstrip('.').lower() or 'dir'}"
+        taken.add(stem)
+        names[log] = f"{stem}.rrd"
+    return names
+
+
 @dataclass(frozen=True, slots=True)
 class DemoRow:
     """One line of the summary table; ``error`` is set when the log could not be replayed."""
@@ -50,8 +71,7 @@ class DemoRow:
     error: str = ""
 
 
-def _replay_one(log: Path, out_dir: Path) -> DemoRow:
-    target = default_output(log, out_dir)
+def _replay_one(log: Path, target: Path) -> DemoRow:
     try:
         drive = open_log(log, map_path=None, profile=None, ego_id=None)
         try:
@@ -69,7 +89,7 @@ def _replay_one(log: Path, out_dir: Path) -> DemoRow:
         actors=s.actors_seen,
         duration_s=s.duration_s,
         frames_per_s=s.frames_per_s,
-        output=str(target),
+        output=target.name,
     )
 
 
@@ -108,14 +128,14 @@ def demo(
     logs = find_sample_logs(samples_dir)
     if not logs:
         raise ReplayError(f"{samples_dir}: no .mcap, .bag, rosbag2 directory or .xml found")
-    rows = [_replay_one(log, out) for log in logs]
+    names = output_names(logs)
+    rows = [_replay_one(log, out / names[log]) for log in logs]
     console = Console(width=max(Console().width, 120))
     console.print(_table(rows))
     done = [r for r in rows if not r.error]
     if done:
-        console.print("open one with:")
-        for r in done[:3]:
-            console.print(f"  rerun {r.output}", highlight=False)
+        console.print(f"{len(done)} of {len(rows)} logs written to {out}/; open one with:")
+        console.print(f"  rerun {out / done[0].output}", highlight=False)
     if not done:
         raise typer.Exit(1)
 

@@ -9,7 +9,7 @@ from typer.testing import CliRunner
 import loaders
 from loaders.errors import UnsupportedFormatError
 from tests.workbench.fakes import FakeDrive
-from workbench.cli.demo import find_sample_logs
+from workbench.cli.demo import find_sample_logs, output_names
 from workbench.cli.main import app, main
 
 runner = CliRunner()
@@ -108,6 +108,16 @@ def test_demo_replays_every_log_and_reports_failures(tmp_path, opened):
     assert "failed" in result.output
     assert "not a drive" in result.output
     assert f"rerun {out / 'one.rrd'}" in result.output
+    assert "2 of 3 logs" in result.output
+
+
+def test_demo_output_names_never_collide():
+    logs = [Path("s/a.bag"), Path("s/a.mcap"), Path("s/a.xml"), Path("s/b.bag")]
+    names = output_names(logs)
+    assert names[Path("s/a.mcap")] == "a.rrd"
+    assert names[Path("s/a.bag")] == "a_bag.rrd"
+    assert names[Path("s/a.xml")] == "a_xml.rrd"
+    assert names[Path("s/b.bag")] == "b.rrd"
 
 
 def test_demo_without_logs_is_an_error(tmp_path, capsys):
