@@ -88,6 +88,8 @@ class Relative:
 
 
 def _exclusive_cumsum(values: FloatArray, axis: int) -> FloatArray:
+    if values.shape[axis] == 1:
+        return np.zeros_like(values)
     total = np.cumsum(values, axis=axis)
     return np.asarray(total - values, dtype=np.float64)
 
@@ -131,14 +133,18 @@ def lane_table(road: RoadAreaArrays) -> LaneTable:
     lane_ok = road.lane_id >= 0  # (C, R, L)
     inf = np.inf
     c, r, n_lanes = road.lane_id.shape
-    seg_ok = lane_ok.any(axis=2)
-    seg_len_min = np.where(seg_ok, np.where(lane_ok, road.length_min_m, inf).min(axis=2), 0.0)
-    seg_len_max = np.where(seg_ok, np.where(lane_ok, road.length_max_m, -inf).max(axis=2), 0.0)
+    if lane_ok.all():  # no padding: plain reductions
+        seg_len_min, seg_len_max = road.length_min_m.min(axis=2), road.length_max_m.max(axis=2)
+        col_w_min, col_w_max = road.width_min_m.min(axis=1), road.width_max_m.max(axis=1)
+    else:
+        seg_ok = lane_ok.any(axis=2)
+        seg_len_min = np.where(seg_ok, np.where(lane_ok, road.length_min_m, inf).min(axis=2), 0.0)
+        seg_len_max = np.where(seg_ok, np.where(lane_ok, road.length_max_m, -inf).max(axis=2), 0.0)
+        col_ok = lane_ok.any(axis=1)  # (C, L)
+        col_w_min = np.where(col_ok, np.where(lane_ok, road.width_min_m, inf).min(axis=1), 0.0)
+        col_w_max = np.where(col_ok, np.where(lane_ok, road.width_max_m, -inf).max(axis=1), 0.0)
     start_min = _exclusive_cumsum(seg_len_min, axis=1)  # (C, R)
     start_max = _exclusive_cumsum(seg_len_max, axis=1)
-    col_ok = lane_ok.any(axis=1)  # (C, L)
-    col_w_min = np.where(col_ok, np.where(lane_ok, road.width_min_m, inf).min(axis=1), 0.0)
-    col_w_max = np.where(col_ok, np.where(lane_ok, road.width_max_m, -inf).max(axis=1), 0.0)
     lat_start_min = _exclusive_cumsum(col_w_min, axis=1)  # (C, L)
     lat_start_max = _exclusive_cumsum(col_w_max, axis=1)
 
@@ -184,6 +190,8 @@ def place(obj: ObjectArrays, table: LaneTable) -> Extents:
     match = (table.lane_id[:, None, :] == region) & (region >= 0)  # (C, K, RL)
     hit = match.any(axis=2)  # (C, K)
     idx = match.argmax(axis=2)  # (C, K)
+    if hit.shape[1] == 1:  # one region per object: no reduction over regions needed
+        return _place_single(obj, table, hit[:, 0], idx)
 
     def at(values: np.ndarray) -> np.ndarray:
         return np.take_along_axis(values, idx, axis=1)
@@ -201,6 +209,24 @@ def place(obj: ObjectArrays, table: LaneTable) -> Extents:
         on_positive_lane=(hit & (direction == LaneDrivingDirection.Positive)).any(axis=1),
         on_negative_lane=(hit & (direction == LaneDrivingDirection.Negative)).any(axis=1),
         found=hit.any(axis=1),
+        intersection_min_m=table.intersection_min_m,
+        intersection_max_m=table.intersection_max_m,
+    )
+
+
+def _place_single(obj: ObjectArrays, table: LaneTable, hit: BoolArray, idx: IntArray) -> Extents:
+    rows = np.arange(hit.shape[0])
+    lane = idx[:, 0]
+    direction = table.direction[rows, lane]
+    nan = np.where(hit, 0.0, np.nan)
+    return Extents(
+        lon_min_m=table.lon0_min_m[rows, lane] + obj.region_lon_min[:, 0] * table.length_min_m[rows, lane] + nan,
+        lon_max_m=table.lon0_max_m[rows, lane] + obj.region_lon_max[:, 0] * table.length_max_m[rows, lane] + nan,
+        lat_min_m=table.lat0_min_m[rows, lane] + obj.region_lat_min[:, 0] * table.width_min_m[rows, lane] + nan,
+        lat_max_m=table.lat0_max_m[rows, lane] + obj.region_lat_max[:, 0] * table.width_max_m[rows, lane] + nan,
+        on_positive_lane=hit & (direction == LaneDrivingDirection.Positive),
+        on_negative_lane=hit & (direction == LaneDrivingDirection.Negative),
+        found=hit,
         intersection_min_m=table.intersection_min_m,
         intersection_max_m=table.intersection_max_m,
     )
