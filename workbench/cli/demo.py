@@ -96,7 +96,11 @@ def _replay_one(log: Path, target: Path) -> DemoRow:
 def _table(rows: list[DemoRow]) -> Table:
     table = Table(title="workbench demo", title_justify="left")
     for name in ("log", "format", "frames", "actors", "duration", "frames/s", "output"):
-        table.add_column(name, justify="right" if name in {"frames", "actors"} else "left")
+        table.add_column(
+            name,
+            justify="right" if name in {"frames", "actors", "frames/s"} else "left",
+            overflow="fold",
+        )
     for r in rows:
         if r.error:
             table.add_row(r.log, "[red]failed[/red]", "", "", "", "", f"[red]{r.error}[/red]")
