@@ -34,7 +34,10 @@ LANE_M = 3.5
 
 
 def _frame(n: int, rng: np.random.Generator) -> list[Constellation]:
-    lanes = tuple(LaneSegment(i + 1, LaneDrivingDirection.Positive, ROAD_M, ROAD_M, LANE_M, LANE_M) for i in range(3))
+    lanes = tuple(
+        LaneSegment(i + 1, LaneDrivingDirection.Positive, ROAD_M, ROAD_M, LANE_M, LANE_M)
+        for i in range(3)
+    )
     road = (RoadSegment(lanes),)
     ego_region = OccupiedRegion(2, 0.300, 0.3045, 0.2, 0.8)
     ego = LaneObject(0, ObjectType.EgoVehicle, (ego_region,), SpeedInterval(20.0, 20.0, 0.0, 0.0))
@@ -44,9 +47,18 @@ def _frame(n: int, rng: np.random.Generator) -> list[Constellation]:
         lane = int(rng.integers(1, 4))
         region = OccupiedRegion(lane, start, start + 0.0045, 0.2, 0.8)
         v = float(rng.uniform(0.0, 30.0))
-        other = LaneObject(i + 1, ObjectType.OtherVehicle, (region,), SpeedInterval(v, v, -0.2, 0.2))
+        other = LaneObject(
+            i + 1, ObjectType.OtherVehicle, (region,), SpeedInterval(v, v, -0.2, 0.2)
+        )
         out.append(
-            Constellation(ConstellationType.SameDirection, ego, other, DEFAULT_EGO_DYNAMICS, DEFAULT_VEHICLE_DYNAMICS, road)
+            Constellation(
+                ConstellationType.SameDirection,
+                ego,
+                other,
+                DEFAULT_EGO_DYNAMICS,
+                DEFAULT_VEHICLE_DYNAMICS,
+                road,
+            )
         )
     return out
 
@@ -93,9 +105,9 @@ def run(quick: bool) -> str:  # noqa: FBT001
     for n in SIZES:
         frame = _frame(n, rng)
         batch = stack_constellations(frame)
-        state = {"memory": None}
+        state: dict[str, object] = {"memory": None}
 
-        def ours_frame(batch: object = batch, state: dict = state) -> None:
+        def ours_frame(batch: object = batch, state: dict[str, object] = state) -> None:
             _, state["memory"] = check_frame(batch, DEFAULT_EGO_DYNAMICS, state["memory"])  # type: ignore[arg-type]
 
         per_frame = _rate(ours_frame, budget) * n
@@ -103,7 +115,9 @@ def run(quick: bool) -> str:  # noqa: FBT001
         many = stack_constellations(frame * n_frames)
         frames = np.repeat(np.arange(n_frames), n)
 
-        def ours_batched(many: object = many, frames: np.ndarray = frames, n_frames: int = n_frames) -> None:
+        def ours_batched(
+            many: object = many, frames: np.ndarray = frames, n_frames: int = n_frames
+        ) -> None:
             check_frames(many, frames, n_frames, DEFAULT_EGO_DYNAMICS)  # type: ignore[arg-type]
 
         batched = _rate(ours_batched, budget) * n * n_frames
@@ -113,19 +127,26 @@ def run(quick: bool) -> str:  # noqa: FBT001
     lines = [
         "## Structured RSS engine vs ad-rss 5.0 binding",
         "",
-        "Constellations per second (one ego, N other vehicles, 3-lane same-direction road). "
-        "Binding: `RssCheck.calculateProperResponse` on a pre-built world, one call per frame. "
-        "Ours per frame: `rss.engine.check_frame`, one call per frame, memory carried. "
-        "Ours batched: `rss.engine.check_frames` over F consecutive frames in one call "
-        "(memory carried through them), as a replay of a recorded drive does.",
+        (
+            "Constellations per second (one ego, N other vehicles, 3-lane same-direction road). "
+            "Binding: `RssCheck.calculateProperResponse` on a pre-built world, one call per "
+            "frame. Ours per frame: `rss.engine.check_frame`, one call per frame, memory "
+            "carried. Ours batched: `rss.engine.check_frames` over F consecutive frames in one "
+            "call (memory carried through them), as a replay of a recorded drive does."
+        ),
         "",
-        "| N objects | ad-rss binding | ours, per frame | ours, batched (F frames) | batched / binding |",
+        (
+            "| N objects | ad-rss binding | ours, per frame | ours, batched (F frames) "
+            "| batched / binding |"
+        ),
         "|---:|---:|---:|---:|---:|",
     ]
     for n, binding_rate, per_frame, batched, n_frames in rows:
         ratio = f"{batched / binding_rate:.0f}x" if binding_rate else "n/a"
         bind = f"{binding_rate:,.0f}" if binding_rate else "not installed"
-        lines.append(f"| {n} | {bind} | {per_frame:,.0f} | {batched:,.0f} (F={n_frames}) | {ratio} |")
+        lines.append(
+            f"| {n} | {bind} | {per_frame:,.0f} | {batched:,.0f} (F={n_frames}) | {ratio} |"
+        )
     return "\n".join(lines) + "\n"
 
 

@@ -43,16 +43,24 @@ FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.int64]
 
 
-def _frozen(array: npt.ArrayLike, dtype: type) -> npt.NDArray[np.generic]:
-    out = np.array(array, dtype=dtype)
+def _ints(array: npt.ArrayLike) -> IntArray:
+    out: IntArray = np.array(array, dtype=np.int64)
+    out.flags.writeable = False
+    return out
+
+
+def _floats(array: npt.ArrayLike) -> FloatArray:
+    out: FloatArray = np.array(array, dtype=np.float64)
     out.flags.writeable = False
     return out
 
 
 @dataclass(frozen=True)
 class DynamicsArrays:
-    """RSS dynamics of ``C`` participants; every field ``(C,)`` float64, units as in
-    :class:`rss.dynamics.RssDynamics` (same field names)."""
+    """RSS dynamics of ``C`` participants.
+
+    Every field is ``(C,)`` float64, named and in units as in :class:`rss.dynamics.RssDynamics`.
+    """
 
     accel_max_mps2: FloatArray
     brake_max_mps2: FloatArray
@@ -69,10 +77,7 @@ class DynamicsArrays:
 def stack_dynamics(dynamics: Sequence[RssDynamics]) -> DynamicsArrays:
     """Stack validated dynamics into ``(C,)`` arrays."""
     return DynamicsArrays(
-        **{
-            name: _frozen([getattr(d, name) for d in dynamics], np.float64)
-            for name in DYNAMICS_KEYS.values()
-        }
+        **{name: _floats([getattr(d, name) for d in dynamics]) for name in DYNAMICS_KEYS.values()}
     )
 
 
@@ -175,7 +180,7 @@ def stack_constellations(constellations: Sequence[Constellation]) -> Constellati
     for c in constellations:
         _check_structure(c)
     return ConstellationBatch(
-        constellation_type=_frozen([int(c.constellation_type) for c in constellations], np.int64),
+        constellation_type=_ints([int(c.constellation_type) for c in constellations]),
         ego=_stack_objects([c.ego for c in constellations]),
         other=_stack_objects([c.other for c in constellations]),
         ego_dynamics=stack_dynamics([c.ego_dynamics for c in constellations]),
@@ -200,26 +205,30 @@ def _check_structure(c: Constellation) -> None:
         except ValueError as err:
             raise RssConstellationError("object_type", obj.object_type, "unknown") from err
     for road in (c.ego_road, c.intersecting_road):
-        seen: set[int] = set()
-        for segment in road:
+        _check_road(road)
+
+
+def _check_road(road: tuple[RoadSegment, ...]) -> None:
+    seen: set[int] = set()
+    for segment in road:
+        try:
+            RoadSegmentType(segment.segment_type)
+        except ValueError as err:
+            raise RssConstellationError("segment_type", segment.segment_type, "unknown") from err
+        if not segment.lanes:
+            raise RssConstellationError("road segment", segment, "has no lanes")
+        for lane in segment.lanes:
+            _check_lane(lane.lane_id, "length", lane.length_min_m, lane.length_max_m)
+            _check_lane(lane.lane_id, "width", lane.width_min_m, lane.width_max_m)
             try:
-                RoadSegmentType(segment.segment_type)
+                LaneDrivingDirection(lane.driving_direction)
             except ValueError as err:
-                raise RssConstellationError("segment_type", segment.segment_type, "unknown") from err
-            if not segment.lanes:
-                raise RssConstellationError("road segment", segment, "has no lanes")
-            for lane in segment.lanes:
-                _check_lane(lane.lane_id, "length", lane.length_min_m, lane.length_max_m)
-                _check_lane(lane.lane_id, "width", lane.width_min_m, lane.width_max_m)
-                try:
-                    LaneDrivingDirection(lane.driving_direction)
-                except ValueError as err:
-                    raise RssConstellationError(
-                        f"lane {lane.lane_id} driving_direction", lane.driving_direction, "unknown"
-                    ) from err
-                if lane.lane_id in seen or lane.lane_id < 0:
-                    raise RssConstellationError("lane id", lane.lane_id, "duplicate or negative")
-                seen.add(lane.lane_id)
+                raise RssConstellationError(
+                    f"lane {lane.lane_id} driving_direction", lane.driving_direction, "unknown"
+                ) from err
+            if lane.lane_id in seen or lane.lane_id < 0:
+                raise RssConstellationError("lane id", lane.lane_id, "duplicate or negative")
+            seen.add(lane.lane_id)
 
 
 def _check_lane(lane_id: int, what: str, low: float, high: float) -> None:
@@ -241,17 +250,17 @@ def _stack_objects(objects: Sequence[LaneObject]) -> ObjectArrays:
     speeds = np.array([dataclasses.astuple(o.speed) for o in objects], dtype=np.float64)
     speeds = speeds.reshape(count, 4)
     return ObjectArrays(
-        object_id=_frozen([o.object_id for o in objects], np.int64),
-        object_type=_frozen([int(o.object_type) for o in objects], np.int64),
-        region_lane_id=_frozen(lane, np.int64),
-        region_lon_min=_frozen(params[0], np.float64),
-        region_lon_max=_frozen(params[1], np.float64),
-        region_lat_min=_frozen(params[2], np.float64),
-        region_lat_max=_frozen(params[3], np.float64),
-        speed_lon_min_mps=_frozen(speeds[:, 0], np.float64),
-        speed_lon_max_mps=_frozen(speeds[:, 1], np.float64),
-        speed_lat_min_mps=_frozen(speeds[:, 2], np.float64),
-        speed_lat_max_mps=_frozen(speeds[:, 3], np.float64),
+        object_id=_ints([o.object_id for o in objects]),
+        object_type=_ints([int(o.object_type) for o in objects]),
+        region_lane_id=_ints(lane),
+        region_lon_min=_floats(params[0]),
+        region_lon_max=_floats(params[1]),
+        region_lat_min=_floats(params[2]),
+        region_lat_max=_floats(params[3]),
+        speed_lon_min_mps=_floats(speeds[:, 0]),
+        speed_lon_max_mps=_floats(speeds[:, 1]),
+        speed_lat_min_mps=_floats(speeds[:, 2]),
+        speed_lat_max_mps=_floats(speeds[:, 3]),
     )
 
 
@@ -281,15 +290,15 @@ def _stack_roads(roads: Sequence[tuple[RoadSegment, ...]]) -> RoadAreaArrays:
                     lane.width_max_m,
                 )
     return RoadAreaArrays(
-        lane_id=_frozen(lane_id, np.int64),
-        driving_direction=_frozen(direction, np.int64),
-        length_min_m=_frozen(metric[0], np.float64),
-        length_max_m=_frozen(metric[1], np.float64),
-        width_min_m=_frozen(metric[2], np.float64),
-        width_max_m=_frozen(metric[3], np.float64),
-        segment_type=_frozen(segment_type, np.int64),
-        before_intersection_m=_frozen(lengths[0], np.float64),
-        after_intersection_m=_frozen(lengths[1], np.float64),
+        lane_id=_ints(lane_id),
+        driving_direction=_ints(direction),
+        length_min_m=_floats(metric[0]),
+        length_max_m=_floats(metric[1]),
+        width_min_m=_floats(metric[2]),
+        width_max_m=_floats(metric[3]),
+        segment_type=_ints(segment_type),
+        before_intersection_m=_floats(lengths[0]),
+        after_intersection_m=_floats(lengths[1]),
     )
 
 
@@ -298,7 +307,5 @@ def take_rows(records: _T, rows: IntArray) -> _T:
     values = {}
     for f in dataclasses.fields(records):  # type: ignore[arg-type]
         value = getattr(records, f.name)
-        values[f.name] = (
-            value[rows] if isinstance(value, np.ndarray) else take_rows(value, rows)
-        )
+        values[f.name] = value[rows] if isinstance(value, np.ndarray) else take_rows(value, rows)
     return dataclasses.replace(records, **values)  # type: ignore[type-var]

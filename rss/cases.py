@@ -17,7 +17,6 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
-from rss.dynamics import RssDynamics
 from rss.errors import RssCaseError, RssError
 from rss.model import (
     Constellation,
@@ -35,6 +34,8 @@ from rss.params import DEFAULT_EGO_DYNAMICS, DEFAULT_PEDESTRIAN_DYNAMICS, DEFAUL
 
 if TYPE_CHECKING:
     from collections.abc import Mapping
+
+    from rss.dynamics import RssDynamics
 
 __all__ = [
     "EGO_ID",
@@ -95,8 +96,12 @@ def parse_defaults(document: Mapping[str, Any]) -> CaseDefaults:
     """
     section = document.get("defaults", {}) or {}
     return CaseDefaults(
-        ego=DEFAULT_EGO_DYNAMICS.with_overrides(section.get("ego_dynamics", {}), "defaults.ego_dynamics."),
-        vehicle=DEFAULT_VEHICLE_DYNAMICS.with_overrides(section.get("vehicle_dynamics", {}), "defaults.vehicle_dynamics."),
+        ego=DEFAULT_EGO_DYNAMICS.with_overrides(
+            section.get("ego_dynamics", {}), "defaults.ego_dynamics."
+        ),
+        vehicle=DEFAULT_VEHICLE_DYNAMICS.with_overrides(
+            section.get("vehicle_dynamics", {}), "defaults.vehicle_dynamics."
+        ),
         pedestrian=DEFAULT_PEDESTRIAN_DYNAMICS.with_overrides(
             section.get("pedestrian_dynamics", {}), "defaults.pedestrian_dynamics."
         ),
@@ -151,7 +156,9 @@ def _straight_road(case_id: str, road: Mapping[str, Any]) -> tuple[tuple[RoadSeg
     if not isinstance(directions, list) or len(directions) != len(widths):
         raise RssCaseError(case_id, "road.lane_directions must list one direction per lane")
     lanes = []
-    for index, (width, direction) in enumerate(zip(reversed(widths), reversed(directions), strict=True)):
+    for index, (width, direction) in enumerate(
+        zip(reversed(widths), reversed(directions), strict=True)
+    ):
         try:
             lane_direction = LaneDrivingDirection[direction]
         except KeyError as err:
@@ -162,7 +169,11 @@ def _straight_road(case_id: str, road: Mapping[str, Any]) -> tuple[tuple[RoadSeg
 
 
 def _straight_object(
-    case_id: str, obj: Mapping[str, Any], road: tuple[RoadSegment, ...], object_id: int, object_type: ObjectType
+    case_id: str,
+    obj: Mapping[str, Any],
+    road: tuple[RoadSegment, ...],
+    object_id: int,
+    object_type: ObjectType,
 ) -> LaneObject:
     lanes = road[0].lanes
     road_length = lanes[0].length_max_m
@@ -194,20 +205,35 @@ def _speeds(case_id: str, obj: Mapping[str, Any]) -> SpeedInterval:
     return SpeedInterval(lon_min, lon_max, -lat_max, -lat_min)
 
 
-def _intersection_road(case_id: str, spec: Mapping[str, Any], who: str, first_id: int) -> tuple[RoadSegment, ...]:
+def _intersection_road(
+    case_id: str, spec: Mapping[str, Any], who: str, first_id: int
+) -> tuple[RoadSegment, ...]:
     approach = _number(case_id, spec, f"{who}_approach")
     crossing = _number(case_id, spec, f"{who}_crossing")
     exit_length = _number(case_id, spec, "exit", _INTERSECTION_DEFAULTS["exit"])
     width = _number(case_id, spec, "lane_width", _INTERSECTION_DEFAULTS["lane_width"])
     kinds = (RoadSegmentType.Normal, RoadSegmentType.Intersection, RoadSegmentType.Normal)
     return tuple(
-        RoadSegment((LaneSegment(first_id + i, LaneDrivingDirection.Positive, length, length, width, width),), kind)
-        for i, (length, kind) in enumerate(zip((approach, crossing, exit_length), kinds, strict=True))
+        RoadSegment(
+            (
+                LaneSegment(
+                    first_id + i, LaneDrivingDirection.Positive, length, length, width, width
+                ),
+            ),
+            kind,
+        )
+        for i, (length, kind) in enumerate(
+            zip((approach, crossing, exit_length), kinds, strict=True)
+        )
     )
 
 
 def _intersection_object(
-    case_id: str, obj: Mapping[str, Any], road: tuple[RoadSegment, ...], object_id: int, object_type: ObjectType
+    case_id: str,
+    obj: Mapping[str, Any],
+    road: tuple[RoadSegment, ...],
+    object_id: int,
+    object_type: ObjectType,
 ) -> LaneObject:
     front = road[0].lanes[0].length_max_m - _number(case_id, obj, "dist_to_enter")
     rear = front - _number(case_id, obj, "length")
@@ -293,11 +319,7 @@ def parse_case(
     case_id = str(case.get("id", fallback_id)) if sequence_id is None else fallback_id
     kind = case.get("kind")
     expected = case.get("expected", {}) or {}
-    common = {"raw": case, "expected": expected, "sequence_id": sequence_id, "step": step}
-    if kind == "structured":
-        constellation = _structured(case_id, case, defaults)
-        return ParsedCase(case_id, kind, defaults.ego, constellation, **common)
-    if kind in {"unstructured", "formula"}:
-        return ParsedCase(case_id, kind, defaults.ego, None, **common)
-    raise RssCaseError(case_id, f"unknown kind {kind!r}")
-
+    if kind not in {"structured", "unstructured", "formula"}:
+        raise RssCaseError(case_id, f"unknown kind {kind!r}")
+    constellation = _structured(case_id, case, defaults) if kind == "structured" else None
+    return ParsedCase(case_id, kind, defaults.ego, constellation, case, expected, sequence_id, step)

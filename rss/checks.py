@@ -144,8 +144,10 @@ def safe_longitudinal_distance_opposite(
     opposite: DynamicsArrays,
     opposite_speed_max: FloatArray,
 ) -> FloatArray:
-    """Safe distance of two oncoming vehicles (``(C,)``, m); the one in its correct lane
-    brakes with ``brake_min_correct``, the other with ``brake_min``."""
+    """Safe distance of two oncoming vehicles (``(C,)``, m).
+
+    The one in its correct lane brakes with ``brake_min_correct``, the other with ``brake_min``.
+    """
     d_correct = _stated_braking(correct, correct_speed_max, correct.brake_min_correct_mps2)
     d_opposite = _stated_braking(opposite, opposite_speed_max, opposite.brake_min_mps2)
     margin = tmax(
@@ -155,10 +157,16 @@ def safe_longitudinal_distance_opposite(
 
 
 def safe_lateral_distance(
-    left: DynamicsArrays, left_speed_max: FloatArray, right: DynamicsArrays, right_speed_min: FloatArray
+    left: DynamicsArrays,
+    left_speed_max: FloatArray,
+    right: DynamicsArrays,
+    right_speed_min: FloatArray,
 ) -> FloatArray:
-    """Safe lateral distance between a left and a right vehicle (``(C,)``, m); lateral
-    speeds positive to the right; the margin is the mean of both fluctuation margins."""
+    """Safe lateral distance between a left and a right vehicle (``(C,)``, m).
+
+    Lateral speeds are positive to the right; the margin is the mean of both fluctuation
+    margins.
+    """
     d_left = stated_braking_lateral(
         left_speed_max, left.response_time_s, left.lat_accel_max_mps2, left.lat_brake_min_mps2
     )
@@ -169,22 +177,42 @@ def safe_lateral_distance(
     return tmax(d_left - d_right + margin, 0.0, _P)
 
 
-def _longitudinal(batch: ConstellationBatch, rel: Relative) -> tuple[BoolArray, IntArray, IntArray, FloatArray]:
+def _longitudinal(
+    batch: ConstellationBatch, rel: Relative
+) -> tuple[BoolArray, IntArray, IntArray, FloatArray]:
     ego_d, oth_d = batch.ego_dynamics, batch.other_dynamics
     ego, oth = batch.ego, batch.other
     # same direction
-    ego_leads = np.isin(rel.lon_position, [LongitudinalPosition.InFront, LongitudinalPosition.OverlapFront])
-    safe_other_front = safe_longitudinal_distance_same(ego_d, ego.speed_lon_max_mps, oth_d, oth.speed_lon_min_mps)
-    safe_ego_front = safe_longitudinal_distance_same(oth_d, oth.speed_lon_max_mps, ego_d, ego.speed_lon_min_mps)
+    ego_leads = np.isin(
+        rel.lon_position, [LongitudinalPosition.InFront, LongitudinalPosition.OverlapFront]
+    )
+    safe_other_front = safe_longitudinal_distance_same(
+        ego_d, ego.speed_lon_max_mps, oth_d, oth.speed_lon_min_mps
+    )
+    safe_ego_front = safe_longitudinal_distance_same(
+        oth_d, oth.speed_lon_max_mps, ego_d, ego.speed_lon_min_mps
+    )
     sd_safe_dist = _pick(ego_leads, safe_ego_front, safe_other_front)
-    sd_eval = np.where(ego_leads, _E.LongitudinalDistanceSameDirectionEgoFront, _E.LongitudinalDistanceSameDirectionOtherInFront)
+    sd_eval = np.where(
+        ego_leads,
+        _E.LongitudinalDistanceSameDirectionEgoFront,
+        _E.LongitudinalDistanceSameDirectionOtherInFront,
+    )
     sd_resp = np.where(ego_leads, _LON.None_, _LON.BrakeMin)
     # opposite direction
     ego_correct = rel.ego_in_correct_lane
-    safe_ego_correct = safe_longitudinal_distance_opposite(ego_d, ego.speed_lon_max_mps, oth_d, oth.speed_lon_max_mps)
-    safe_other_correct = safe_longitudinal_distance_opposite(oth_d, oth.speed_lon_max_mps, ego_d, ego.speed_lon_max_mps)
+    safe_ego_correct = safe_longitudinal_distance_opposite(
+        ego_d, ego.speed_lon_max_mps, oth_d, oth.speed_lon_max_mps
+    )
+    safe_other_correct = safe_longitudinal_distance_opposite(
+        oth_d, oth.speed_lon_max_mps, ego_d, ego.speed_lon_max_mps
+    )
     od_safe_dist = _pick(ego_correct, safe_ego_correct, safe_other_correct)
-    od_eval = np.where(ego_correct, _E.LongitudinalDistanceOppositeDirectionEgoCorrectLane, _E.LongitudinalDistanceOppositeDirection)
+    od_eval = np.where(
+        ego_correct,
+        _E.LongitudinalDistanceOppositeDirectionEgoCorrectLane,
+        _E.LongitudinalDistanceOppositeDirection,
+    )
     od_resp = np.where(ego_correct, _LON.BrakeMinCorrect, _LON.BrakeMin)
 
     opposite = batch.constellation_type == ConstellationType.OppositeDirection
@@ -200,30 +228,44 @@ def _lateral(batch: ConstellationBatch, rel: Relative) -> tuple[LateralSide, Lat
     ego, oth = batch.ego, batch.other
     ego_left = rel.lat_position == LateralPosition.AtLeft
     ego_right = rel.lat_position == LateralPosition.AtRight
-    safe_ego_left = safe_lateral_distance(ego_d, ego.speed_lat_max_mps, oth_d, oth.speed_lat_min_mps)
-    safe_ego_right = safe_lateral_distance(oth_d, oth.speed_lat_max_mps, ego_d, ego.speed_lat_min_mps)
+    safe_ego_left = safe_lateral_distance(
+        ego_d, ego.speed_lat_max_mps, oth_d, oth.speed_lat_min_mps
+    )
+    safe_ego_right = safe_lateral_distance(
+        oth_d, oth.speed_lat_max_mps, ego_d, ego.speed_lat_min_mps
+    )
     gap_safe_right = gt(rel.lat_distance_m, safe_ego_left, _P)
     gap_safe_left = gt(rel.lat_distance_m, safe_ego_right, _P)
     overlap = ~(ego_left | ego_right)
     zero = np.zeros_like(rel.lat_distance_m)
     far = np.full_like(zero, DISTANCE_MAX_M)
 
-    def side(evaluated: BoolArray, gap_safe: BoolArray, safe_dist: FloatArray, overlap_safe: BoolArray) -> LateralSide:
-        is_safe = np.where(evaluated, gap_safe, np.where(overlap, overlap_safe, True))
+    def side(
+        evaluated: BoolArray, gap_safe: BoolArray, safe_dist: FloatArray, overlap_safe: BoolArray
+    ) -> LateralSide:
+        is_safe = np.where(evaluated, gap_safe, np.where(overlap, overlap_safe, np.True_))
         return LateralSide(
             is_safe=np.asarray(is_safe, dtype=np.bool_),
             response=np.where(is_safe, _LAT.None_, _LAT.BrakeMin).astype(np.int64),
             evaluator=np.where(evaluated | overlap, _E.LateralDistance, _E.None_).astype(np.int64),
-            current_distance_m=np.where(evaluated, rel.lat_distance_m, np.where(overlap, zero, far)),
+            current_distance_m=np.where(
+                evaluated, rel.lat_distance_m, np.where(overlap, zero, far)
+            ),
             safe_distance_m=np.where(evaluated, safe_dist, np.where(overlap, zero, far)),
         )
 
-    left = side(ego_right, gap_safe_left, safe_ego_right, rel.lat_position == LateralPosition.OverlapLeft)
-    right = side(ego_left, gap_safe_right, safe_ego_left, rel.lat_position == LateralPosition.OverlapRight)
+    left = side(
+        ego_right, gap_safe_left, safe_ego_right, rel.lat_position == LateralPosition.OverlapLeft
+    )
+    right = side(
+        ego_left, gap_safe_right, safe_ego_left, rel.lat_position == LateralPosition.OverlapRight
+    )
     return left, right
 
 
-def _intersection(batch: ConstellationBatch, rel: Relative) -> tuple[BoolArray, IntArray, FloatArray, FloatArray, IntArray]:
+def _intersection(
+    batch: ConstellationBatch, rel: Relative
+) -> tuple[BoolArray, IntArray, FloatArray, FloatArray, IntArray]:
     """Intersection checks in ad-rss' order; the first success wins."""
     ego_d, oth_d = batch.ego_dynamics, batch.other_dynamics
     ego, oth = batch.ego, batch.other
@@ -231,42 +273,96 @@ def _intersection(batch: ConstellationBatch, rel: Relative) -> tuple[BoolArray, 
     ego_prio = ctype == ConstellationType.IntersectionEgoHasPriority
     other_prio = ctype == ConstellationType.IntersectionObjectHasPriority
 
-    ego_stop = _stated_braking(ego_d, ego.speed_lon_max_mps, ego_d.brake_min_mps2) + ego_d.min_longitudinal_safety_distance_m
-    other_stop = _stated_braking(oth_d, oth.speed_lon_max_mps, oth_d.brake_min_mps2) + oth_d.min_longitudinal_safety_distance_m
+    ego_stop = (
+        _stated_braking(ego_d, ego.speed_lon_max_mps, ego_d.brake_min_mps2)
+        + ego_d.min_longitudinal_safety_distance_m
+    )
+    other_stop = (
+        _stated_braking(oth_d, oth.speed_lon_max_mps, oth_d.brake_min_mps2)
+        + oth_d.min_longitudinal_safety_distance_m
+    )
     safe1 = ~ego_prio & lt(ego_stop, rel.ego_dist_to_enter_m, _P)
     try2 = ~safe1 & ~other_prio
     safe2 = try2 & lt(other_stop, rel.other_dist_to_enter_m, _P)
     able = safe1 | safe2
 
     ego_in_front = rel.lon_position == LongitudinalPosition.InFront
-    safe_ego_front = safe_longitudinal_distance_same(oth_d, oth.speed_lon_max_mps, ego_d, ego.speed_lon_min_mps)
-    safe_other_front = safe_longitudinal_distance_same(ego_d, ego.speed_lon_max_mps, oth_d, oth.speed_lon_min_mps)
+    safe_ego_front = safe_longitudinal_distance_same(
+        oth_d, oth.speed_lon_max_mps, ego_d, ego.speed_lon_min_mps
+    )
+    safe_other_front = safe_longitudinal_distance_same(
+        ego_d, ego.speed_lon_max_mps, oth_d, oth.speed_lon_min_mps
+    )
     front_dist = _pick(ego_in_front, safe_ego_front, safe_other_front)
     safe3 = ~able & gt(rel.lon_distance_m, front_dist, _P)
 
     cap = ego_d.max_speed_on_acceleration_mps  # ad-rss uses the ego's cap for both vehicles
-    reach_ego = time_to_cover_distance(ego.speed_lon_max_mps, cap, ego_d.response_time_s, ego_d.accel_max_mps2, ego_d.brake_min_mps2, rel.ego_dist_to_enter_m)
-    leave_ego = time_to_cover_distance(ego.speed_lon_min_mps, cap, ego_d.response_time_s, ego_d.brake_max_mps2, ego_d.brake_max_mps2, rel.ego_dist_to_leave_m)
-    reach_oth = time_to_cover_distance(oth.speed_lon_max_mps, cap, oth_d.response_time_s, oth_d.accel_max_mps2, oth_d.brake_min_mps2, rel.other_dist_to_enter_m)
-    leave_oth = time_to_cover_distance(oth.speed_lon_min_mps, cap, oth_d.response_time_s, oth_d.brake_max_mps2, oth_d.brake_max_mps2, rel.other_dist_to_leave_m)
-    never = eq(reach_ego, DURATION_MAX_S, DURATION_PRECISION) & eq(reach_oth, DURATION_MAX_S, DURATION_PRECISION)
-    no_overlap = gt(reach_ego, leave_oth, DURATION_PRECISION) | gt(reach_oth, leave_ego, DURATION_PRECISION) | never
+    reach_ego = time_to_cover_distance(
+        ego.speed_lon_max_mps,
+        cap,
+        ego_d.response_time_s,
+        ego_d.accel_max_mps2,
+        ego_d.brake_min_mps2,
+        rel.ego_dist_to_enter_m,
+    )
+    leave_ego = time_to_cover_distance(
+        ego.speed_lon_min_mps,
+        cap,
+        ego_d.response_time_s,
+        ego_d.brake_max_mps2,
+        ego_d.brake_max_mps2,
+        rel.ego_dist_to_leave_m,
+    )
+    reach_oth = time_to_cover_distance(
+        oth.speed_lon_max_mps,
+        cap,
+        oth_d.response_time_s,
+        oth_d.accel_max_mps2,
+        oth_d.brake_min_mps2,
+        rel.other_dist_to_enter_m,
+    )
+    leave_oth = time_to_cover_distance(
+        oth.speed_lon_min_mps,
+        cap,
+        oth_d.response_time_s,
+        oth_d.brake_max_mps2,
+        oth_d.brake_max_mps2,
+        rel.other_dist_to_leave_m,
+    )
+    never = eq(reach_ego, DURATION_MAX_S, DURATION_PRECISION) & eq(
+        reach_oth, DURATION_MAX_S, DURATION_PRECISION
+    )
+    no_overlap = (
+        gt(reach_ego, leave_oth, DURATION_PRECISION)
+        | gt(reach_oth, leave_ego, DURATION_PRECISION)
+        | never
+    )
     safe4 = ~able & ~safe3 & no_overlap
 
     overlap = ~able & ~safe3
     in_front_eval = np.where(ego_in_front, _E.IntersectionEgoInFront, _E.IntersectionOtherInFront)
     evaluator = np.select(
         [safe1, safe2, overlap],
-        [_E.IntersectionOtherPriorityEgoAbleToStop, _E.IntersectionEgoPriorityOtherAbleToStop, _E.IntersectionOverlap],
+        [
+            _E.IntersectionOtherPriorityEgoAbleToStop,
+            _E.IntersectionEgoPriorityOtherAbleToStop,
+            _E.IntersectionOverlap,
+        ],
         in_front_eval,
     ).astype(np.int64)
     current = np.select(
-        [safe1, safe2, overlap], [rel.ego_dist_to_enter_m, rel.other_dist_to_enter_m, 0.0], rel.lon_distance_m
+        [safe1, safe2, overlap],
+        [rel.ego_dist_to_enter_m, rel.other_dist_to_enter_m, 0.0],
+        rel.lon_distance_m,
     )
     safe_dist = np.select([safe1, safe2, overlap], [ego_stop, other_stop, 0.0], front_dist)
     state = np.select(
         [able, safe3, safe4],
-        [IntersectionState.NON_PRIO_ABLE_TO_BREAK, IntersectionState.SAFE_LONGITUDINAL_DISTANCE, IntersectionState.NO_TIME_OVERLAP],
+        [
+            IntersectionState.NON_PRIO_ABLE_TO_BREAK,
+            IntersectionState.SAFE_LONGITUDINAL_DISTANCE,
+            IntersectionState.NO_TIME_OVERLAP,
+        ],
         IntersectionState.NONE,
     ).astype(np.int64)
     return able | safe3 | safe4, evaluator, current, safe_dist, state
@@ -286,7 +382,9 @@ def _scatter_intersection(
     )
     rows = np.flatnonzero(intersection)
     if rows.size:
-        for target, values in zip(out, _intersection(take_rows(batch, rows), take_rows(rel, rows)), strict=True):
+        for target, values in zip(
+            out, _intersection(take_rows(batch, rows), take_rows(rel, rows)), strict=True
+        ):
             target[rows] = values
     return out
 
@@ -305,7 +403,9 @@ def check_all(batch: ConstellationBatch, rel: Relative) -> RawStates:
     left, right = _lateral(batch, rel)
     ctype = batch.constellation_type
     intersection = ctype >= ConstellationType.IntersectionEgoHasPriority
-    i_safe, i_eval, i_current, i_safe_dist, i_state = _scatter_intersection(batch, rel, intersection)
+    i_safe, i_eval, i_current, i_safe_dist, i_state = _scatter_intersection(
+        batch, rel, intersection
+    )
     relevant = ctype != ConstellationType.NotRelevant
 
     lon_safe = np.where(intersection, i_safe, lon_safe) | ~relevant
@@ -321,10 +421,14 @@ def check_all(batch: ConstellationBatch, rel: Relative) -> RawStates:
     def adjust(side: LateralSide) -> LateralSide:
         fixed = intersection | ~relevant
         return LateralSide(
-            is_safe=np.where(intersection, False, side.is_safe) | ~relevant,
+            is_safe=np.where(intersection, np.False_, side.is_safe) | ~relevant,
             response=np.where(fixed, _LAT.None_, side.response).astype(np.int64),
-            evaluator=np.select([intersection, ~relevant], [_E.LateralDistance, _E.None_], side.evaluator),
-            current_distance_m=np.select([intersection, ~relevant], [zero, far], side.current_distance_m),
+            evaluator=np.select(
+                [intersection, ~relevant], [_E.LateralDistance, _E.None_], side.evaluator
+            ),
+            current_distance_m=np.select(
+                [intersection, ~relevant], [zero, far], side.current_distance_m
+            ),
             safe_distance_m=np.select([intersection, ~relevant], [zero, far], side.safe_distance_m),
         )
 
@@ -336,5 +440,7 @@ def check_all(batch: ConstellationBatch, rel: Relative) -> RawStates:
         lon_safe_distance_m=np.where(relevant, lon_safe_dist, far),
         left=adjust(left),
         right=adjust(right),
-        intersection_state=np.where(intersection & i_safe, i_state, IntersectionState.NONE).astype(np.int64),
+        intersection_state=np.where(intersection & i_safe, i_state, IntersectionState.NONE).astype(
+            np.int64
+        ),
     )

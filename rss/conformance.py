@@ -1,5 +1,7 @@
-"""Evaluate a conformance case file and produce the JSON-line records of
-``conformance/rss-cases-format.md`` (pure: the CLI does the file I/O and printing)."""
+"""Evaluate a conformance case file into the records of ``conformance/rss-cases-format.md``.
+
+Pure: the CLI does the file I/O and prints one JSON line per record.
+"""
 
 from __future__ import annotations
 
@@ -8,16 +10,26 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from rss.batch import stack_constellations
+from rss.batch import stack_constellations, stack_dynamics
 from rss.cases import CaseDefaults, ParsedCase, other_dynamics_for, parse_case, parse_defaults
-from rss.checks import safe_lateral_distance, safe_longitudinal_distance_opposite, safe_longitudinal_distance_same
-from rss.batch import stack_dynamics
+from rss.checks import (
+    safe_lateral_distance,
+    safe_longitudinal_distance_opposite,
+    safe_longitudinal_distance_same,
+)
 from rss.engine import check_frame
 from rss.errors import RssCaseError, RssError
 from rss.memory import RssMemory
 from rss.model import ConstellationType, ObjectType
 from rss.physics import DISTANCE_MAX_M, stated_braking_longitudinal, stopping_distance
-from rss.states import InvalidReason, LateralPosition, LateralResponse, LongitudinalPosition, LongitudinalResponse, RssStateEvaluator
+from rss.states import (
+    InvalidReason,
+    LateralPosition,
+    LateralResponse,
+    LongitudinalPosition,
+    LongitudinalResponse,
+    RssStateEvaluator,
+)
 
 if TYPE_CHECKING:
     from collections.abc import Iterator, Mapping
@@ -37,6 +49,10 @@ __all__ = [
 
 #: Error text of unstructured cases (issue 6).
 UNSUPPORTED_UNSTRUCTURED = "unsupported: unstructured (issue 6)"
+#: Tolerance of list-valued expectations (e.g. acceleration ranges).
+_LIST_TOLERANCE = 1e-5
+#: An expected ``[value, tol]`` pair.
+_VALUE_AND_TOLERANCE = 2
 
 
 def _num(value: float) -> float | None:
@@ -86,7 +102,9 @@ def frame_record(result: FrameResult, batch: ConstellationBatch, index: int = 0)
                 "object_id": int(object_ids[i]),
                 "constellation_type": ConstellationType(int(constellation_types[i])).name,
                 "is_dangerous": bool(result.dangerous[i]),
-                "invalid": InvalidReason(int(result.invalid[i])).name if result.invalid[i] else None,
+                "invalid": InvalidReason(int(result.invalid[i])).name
+                if result.invalid[i]
+                else None,
                 "longitudinal": {
                     "is_safe": bool(st.lon_is_safe[i]),
                     "response": str(LongitudinalResponse(int(st.lon_response[i]))),
@@ -94,8 +112,8 @@ def frame_record(result: FrameResult, batch: ConstellationBatch, index: int = 0)
                     "current_distance": _num(float(st.lon_current_distance_m[i])),
                     "safe_distance": _num(float(st.lon_safe_distance_m[i])),
                 },
-                "lateral_left": _lateral(st.left, i),
-                "lateral_right": _lateral(st.right, i),
+                "lateral_left": _lateral(st.left, int(i)),
+                "lateral_right": _lateral(st.right, int(i)),
                 "unstructured": None,
             }
         )
@@ -118,24 +136,40 @@ def response_record(result: FrameResult, object_ids: np.ndarray, index: int) -> 
         "acceleration_restrictions": {
             "longitudinal": [_num(pr.lon_min_mps2[index]), _num(pr.lon_max_mps2[index])],
             "lateral_left": [_num(pr.lat_left_min_mps2[index]), _num(pr.lat_left_max_mps2[index])],
-            "lateral_right": [_num(pr.lat_right_min_mps2[index]), _num(pr.lat_right_max_mps2[index])],
+            "lateral_right": [
+                _num(pr.lat_right_min_mps2[index]),
+                _num(pr.lat_right_max_mps2[index]),
+            ],
         },
     }
 
 
-def _formula_object(case_id: str, obj: Mapping[str, Any], defaults: CaseDefaults) -> tuple[Any, dict[str, float]]:
+def _formula_object(
+    case_id: str, obj: Mapping[str, Any], defaults: CaseDefaults
+) -> tuple[Any, dict[str, float]]:
     if not isinstance(obj, dict):
         raise RssCaseError(case_id, "formula objects must be JSON objects")
     try:
-        dyn = other_dynamics_for(defaults, ObjectType.OtherVehicle).with_overrides(obj.get("dynamics", {}))
+        dyn = other_dynamics_for(defaults, ObjectType.OtherVehicle).with_overrides(
+            obj.get("dynamics", {})
+        )
     except RssError as err:
         raise RssCaseError(case_id, str(err)) from err
     speeds = {}
     for name in ("v_lon", "v_lat"):
         low = obj.get(name, obj.get(f"{name}_min", 0.0))
         high = obj.get(name, obj.get(f"{name}_max", 0.0))
-        speeds[f"{name}_min"], speeds[f"{name}_max"] = float(low), float(high)
+        speeds[f"{name}_min"], speeds[f"{name}_max"] = (
+            _as_float(case_id, low),
+            _as_float(case_id, high),
+        )
     return stack_dynamics([dyn]), speeds
+
+
+def _as_float(case_id: str, value: object) -> float:
+    if not isinstance(value, int | float) or isinstance(value, bool):
+        raise RssCaseError(case_id, f"expected a number, got {value!r}")
+    return float(value)
 
 
 def evaluate_formula(case: Mapping[str, Any], defaults: CaseDefaults, case_id: str) -> float:
@@ -154,7 +188,11 @@ def evaluate_formula(case: Mapping[str, Any], defaults: CaseDefaults, case_id: s
 
     if function == "stated_braking_lon":
         value = stated_braking_longitudinal(
-            arg("speed"), arg("max_speed_on_acceleration"), arg("response_time"), arg("accel"), arg("decel")
+            arg("speed"),
+            arg("max_speed_on_acceleration"),
+            arg("response_time"),
+            arg("accel"),
+            arg("decel"),
         )
     elif function == "stopping_distance":
         value = stopping_distance(arg("speed"), arg("decel"))
@@ -164,13 +202,21 @@ def evaluate_formula(case: Mapping[str, Any], defaults: CaseDefaults, case_id: s
             "lon_opposite_direction": ("correct", "opposite"),
             "lateral": ("left", "right"),
         }[function]
-        (d_a, v_a), (d_b, v_b) = (_formula_object(case_id, case.get(n, {}), defaults) for n in names)
+        (d_a, v_a), (d_b, v_b) = (
+            _formula_object(case_id, case.get(n, {}), defaults) for n in names
+        )
         if function == "lon_same_direction":
-            value = safe_longitudinal_distance_same(d_a, arr([v_a["v_lon_max"]]), d_b, arr([v_b["v_lon_min"]]))
+            value = safe_longitudinal_distance_same(
+                d_a, arr([v_a["v_lon_max"]]), d_b, arr([v_b["v_lon_min"]])
+            )
         elif function == "lon_opposite_direction":
-            value = safe_longitudinal_distance_opposite(d_a, arr([v_a["v_lon_max"]]), d_b, arr([v_b["v_lon_max"]]))
+            value = safe_longitudinal_distance_opposite(
+                d_a, arr([v_a["v_lon_max"]]), d_b, arr([v_b["v_lon_max"]])
+            )
         else:
-            value = safe_lateral_distance(d_a, arr([v_a["v_lat_max"]]), d_b, arr([v_b["v_lat_min"]]))
+            value = safe_lateral_distance(
+                d_a, arr([v_a["v_lat_max"]]), d_b, arr([v_b["v_lat_min"]])
+            )
     else:
         raise RssCaseError(case_id, f"unknown formula function {function!r}")
     return float(np.asarray(value).reshape(-1)[0])
@@ -191,11 +237,18 @@ def _resolve_path(record: Mapping[str, Any], path: str) -> Any:
 def _matches(actual: Any, expected: Any) -> bool:
     if isinstance(actual, list) and isinstance(expected, list):
         return len(actual) == len(expected) and all(
-            _matches(a, e) if not isinstance(a, int | float) or isinstance(a, bool) else a is not None and abs(a - e) <= 1e-5
+            _matches(a, e)
+            if not isinstance(a, int | float) or isinstance(a, bool)
+            else a is not None and abs(a - e) <= _LIST_TOLERANCE
             for a, e in zip(actual, expected, strict=True)
         )
-    if isinstance(expected, list) and len(expected) == 2 and isinstance(actual, int | float) and not isinstance(actual, bool):  # noqa: PLR2004
-        return abs(actual - expected[0]) <= expected[1]
+    if (
+        isinstance(expected, list)
+        and len(expected) == _VALUE_AND_TOLERANCE
+        and isinstance(actual, int | float)
+        and not isinstance(actual, bool)
+    ):
+        return bool(abs(actual - expected[0]) <= expected[1])
     return bool(actual == expected)
 
 
@@ -213,14 +266,23 @@ def check_expected(record: Mapping[str, Any], expected: Mapping[str, Any]) -> di
     return {"passed": not failures, "failures": failures}
 
 
-def _evaluate(parsed: ParsedCase, defaults: CaseDefaults, memory: RssMemory) -> tuple[dict[str, Any], RssMemory]:
+def _evaluate(
+    parsed: ParsedCase, defaults: CaseDefaults, memory: RssMemory
+) -> tuple[dict[str, Any], RssMemory]:
     record: dict[str, Any] = {"id": parsed.case_id, "kind": parsed.kind}
     if parsed.sequence_id is not None:
         record |= {"sequence_id": parsed.sequence_id, "step": parsed.step}
     if parsed.kind == "unstructured":
-        return record | {"ok": False, "unsupported": True, "error": UNSUPPORTED_UNSTRUCTURED}, memory
+        return record | {
+            "ok": False,
+            "unsupported": True,
+            "error": UNSUPPORTED_UNSTRUCTURED,
+        }, memory
     if parsed.kind == "formula":
-        record |= {"ok": True, "value": _num(evaluate_formula(parsed.raw, defaults, parsed.case_id))}
+        record |= {
+            "ok": True,
+            "value": _num(evaluate_formula(parsed.raw, defaults, parsed.case_id)),
+        }
     else:
         assert parsed.constellation is not None
         try:
@@ -231,7 +293,10 @@ def _evaluate(parsed: ParsedCase, defaults: CaseDefaults, memory: RssMemory) -> 
         record |= {"ok": True, "constellation_type": parsed.constellation.constellation_type.name}
         record |= frame_record(result, batch)
         if result.invalid.any():
-            record |= {"ok": False, "error": f"invalid input: {InvalidReason(int(result.invalid[0])).name}"}
+            record |= {
+                "ok": False,
+                "error": f"invalid input: {InvalidReason(int(result.invalid[0])).name}",
+            }
     if parsed.expected:
         record["expected_check"] = check_expected(record, parsed.expected)
     return record, memory
@@ -260,7 +325,13 @@ def evaluate_document(document: Mapping[str, Any]) -> Iterator[dict[str, Any]]:
                     parsed = parse_case(raw_step, defaults, step_id, case_id, step)
                     record, memory = _evaluate(parsed, defaults, memory)
                 except RssError as err:
-                    record = {"id": step_id, "sequence_id": case_id, "step": step, "ok": False, "error": str(err)}
+                    record = {
+                        "id": step_id,
+                        "sequence_id": case_id,
+                        "step": step,
+                        "ok": False,
+                        "error": str(err),
+                    }
                 yield record
             continue
         try:

@@ -82,8 +82,8 @@ class RssDynamics:
             [brake_min, 0).
         lat_accel_max_mps2: Max lateral acceleration during the response time, in [0, 100].
         lat_brake_min_mps2: Min lateral braking (negative), in [-100, 0).
-        lateral_fluctuation_margin_m: Lateral margin μ in [0, 1]; a pair adds ½(μ_a + μ_b).
-        response_time_s: Response time ρ in (0, 10].
+        lateral_fluctuation_margin_m: Lateral margin mu in [0, 1]; a pair adds ½(mu_a + mu_b).
+        response_time_s: Response time rho in (0, 10].
         max_speed_on_acceleration_mps: Speed cap of the acceleration phase, in [0, 1000].
         min_longitudinal_safety_distance_m: Added to longitudinal safe distances, >= 0.
         unstructured: Trajectory-set settings (unstructured constellations).
@@ -122,14 +122,26 @@ class RssDynamics:
             # key, value, lower, upper, upper bound exclusive
             ("accel_max", self.accel_max_mps2, 0.0, 100.0, False),
             ("brake_max", self.brake_max_mps2, -100.0, self.brake_min_mps2, False),
-            ("brake_min", self.brake_min_mps2, self.brake_max_mps2, self.brake_min_correct_mps2, False),
+            (
+                "brake_min",
+                self.brake_min_mps2,
+                self.brake_max_mps2,
+                self.brake_min_correct_mps2,
+                False,
+            ),
             ("brake_min_correct", self.brake_min_correct_mps2, self.brake_min_mps2, 0.0, True),
             ("lat_accel_max", self.lat_accel_max_mps2, 0.0, 100.0, False),
             ("lat_brake_min", self.lat_brake_min_mps2, -100.0, 0.0, True),
             ("lateral_fluctuation_margin", self.lateral_fluctuation_margin_m, 0.0, 1.0, False),
             ("response_time", self.response_time_s, 0.0, 10.0, False),
             ("max_speed_on_acceleration", self.max_speed_on_acceleration_mps, 0.0, 1000.0, False),
-            ("min_longitudinal_safety_distance", self.min_longitudinal_safety_distance_m, 0.0, 1e9, False),
+            (
+                "min_longitudinal_safety_distance",
+                self.min_longitudinal_safety_distance_m,
+                0.0,
+                1e9,
+                False,
+            ),
         )
         for key, value, lower, upper, upper_open in checks:
             name = prefix + key
@@ -177,6 +189,7 @@ class RssDynamics:
             return dataclasses.replace(self, **top)  # type: ignore[arg-type]
         except RssParameterError as err:
             raise RssParameterError(prefix + err.field, err.value, err.reason) from err
+
 
 def _unstructured_value(name: str, value: object) -> float | int:
     """Check one unstructured-settings value: step counts are ints >= 0, others floats > 0."""

@@ -22,11 +22,22 @@ from rss.states import InvalidReason, LateralPosition, LongitudinalPosition
 if TYPE_CHECKING:
     from rss.batch import ConstellationBatch, ObjectArrays, RoadAreaArrays
 
-__all__ = ["Extents", "LaneTable", "Relative", "extract", "lane_table", "object_extents", "place", "relative_position"]
+__all__ = [
+    "Extents",
+    "LaneTable",
+    "Relative",
+    "extract",
+    "lane_table",
+    "object_extents",
+    "place",
+    "relative_position",
+]
 
 _P = DISTANCE_PRECISION
 #: Rounding slack of parametric region bounds.
 _PARAM_EPS = 1e-9
+#: ad-rss input range of lane-frame speeds [m/s].
+_SPEED_LIMIT_MPS = 100.0
 
 
 @dataclass(frozen=True)
@@ -128,8 +139,11 @@ class LaneTable:
 
 
 def lane_table(road: RoadAreaArrays) -> LaneTable:
-    """Segment starts (sums of min / max segment lengths), lane-column starts (sums of the
-    min / max column widths over all segments) and the intersecting area of each road."""
+    """Lane table of ``C`` road areas.
+
+    Segment starts are sums of min / max segment lengths, lane-column starts sums of the
+    min / max column widths over all segments.
+    """
     lane_ok = road.lane_id >= 0  # (C, R, L)
     inf = np.inf
     c, r, n_lanes = road.lane_id.shape
@@ -153,7 +167,9 @@ def lane_table(road: RoadAreaArrays) -> LaneTable:
     first = is_intersection.argmax(axis=1)
     rows = np.arange(c)
     i_min = start_min[rows, first] + road.before_intersection_m[rows, first]
-    i_max = start_max[rows, first] + seg_len_max[rows, first] - road.after_intersection_m[rows, first]
+    i_max = (
+        start_max[rows, first] + seg_len_max[rows, first] - road.after_intersection_m[rows, first]
+    )
 
     def flat(values: np.ndarray) -> np.ndarray:
         return np.broadcast_to(values, (c, r, n_lanes)).reshape(c, r * n_lanes)
@@ -220,10 +236,18 @@ def _place_single(obj: ObjectArrays, table: LaneTable, hit: BoolArray, idx: IntA
     direction = table.direction[rows, lane]
     nan = np.where(hit, 0.0, np.nan)
     return Extents(
-        lon_min_m=table.lon0_min_m[rows, lane] + obj.region_lon_min[:, 0] * table.length_min_m[rows, lane] + nan,
-        lon_max_m=table.lon0_max_m[rows, lane] + obj.region_lon_max[:, 0] * table.length_max_m[rows, lane] + nan,
-        lat_min_m=table.lat0_min_m[rows, lane] + obj.region_lat_min[:, 0] * table.width_min_m[rows, lane] + nan,
-        lat_max_m=table.lat0_max_m[rows, lane] + obj.region_lat_max[:, 0] * table.width_max_m[rows, lane] + nan,
+        lon_min_m=table.lon0_min_m[rows, lane]
+        + obj.region_lon_min[:, 0] * table.length_min_m[rows, lane]
+        + nan,
+        lon_max_m=table.lon0_max_m[rows, lane]
+        + obj.region_lon_max[:, 0] * table.length_max_m[rows, lane]
+        + nan,
+        lat_min_m=table.lat0_min_m[rows, lane]
+        + obj.region_lat_min[:, 0] * table.width_min_m[rows, lane]
+        + nan,
+        lat_max_m=table.lat0_max_m[rows, lane]
+        + obj.region_lat_max[:, 0] * table.width_max_m[rows, lane]
+        + nan,
         on_positive_lane=hit & (direction == LaneDrivingDirection.Positive),
         on_negative_lane=hit & (direction == LaneDrivingDirection.Negative),
         found=hit,
@@ -240,8 +264,9 @@ def object_extents(obj: ObjectArrays, road: RoadAreaArrays) -> Extents:
 def relative_position(
     ego_min: FloatArray, ego_max: FloatArray, other_min: FloatArray, other_max: FloatArray
 ) -> tuple[IntArray, FloatArray]:
-    """Position of the ego interval relative to the other one (codes of
-    :class:`LongitudinalPosition`; for lateral use the same codes: InFront <-> AtRight).
+    """Position of the ego interval relative to the other one.
+
+    Codes of :class:`LongitudinalPosition`; lateral uses the same codes (InFront <-> AtRight).
 
     Args:
         ego_min: ``(C,)`` ego interval start (larger = further ahead / right).
@@ -296,7 +321,12 @@ def _invalid_objects(batch: ConstellationBatch) -> IntArray:
     reason = np.zeros(batch.size, dtype=np.int64)
     for obj in (batch.other, batch.ego):
         speeds = np.stack(
-            [obj.speed_lon_min_mps, obj.speed_lon_max_mps, obj.speed_lat_min_mps, obj.speed_lat_max_mps]
+            [
+                obj.speed_lon_min_mps,
+                obj.speed_lon_max_mps,
+                obj.speed_lat_min_mps,
+                obj.speed_lat_max_mps,
+            ]
         )
         used = obj.region_lane_id >= 0
         params = np.stack(
@@ -307,10 +337,10 @@ def _invalid_objects(batch: ConstellationBatch) -> IntArray:
             bad_speed = (
                 (obj.speed_lon_min_mps < 0.0)
                 | (obj.speed_lon_max_mps < obj.speed_lon_min_mps)
-                | (obj.speed_lon_max_mps > 100.0)  # noqa: PLR2004 (ad-rss speed input range)
-                | (obj.speed_lat_min_mps < -100.0)  # noqa: PLR2004
+                | (obj.speed_lon_max_mps > _SPEED_LIMIT_MPS)
+                | (obj.speed_lat_min_mps < -_SPEED_LIMIT_MPS)
                 | (obj.speed_lat_max_mps < obj.speed_lat_min_mps)
-                | (obj.speed_lat_max_mps > 100.0)  # noqa: PLR2004
+                | (obj.speed_lat_max_mps > _SPEED_LIMIT_MPS)
             )
             bad_region = (
                 ((params < -_PARAM_EPS) | (params > 1.0 + _PARAM_EPS)).any(axis=0)
@@ -329,15 +359,21 @@ def _invalid_objects(batch: ConstellationBatch) -> IntArray:
     return np.where(same & (reason == 0), InvalidReason.SameObjectIds, reason).astype(np.int64)
 
 
-def _other_extents(batch: ConstellationBatch, intersection: BoolArray, ego_table: LaneTable) -> Extents:
-    """The other object in the ego road (non-intersection) or its own road (intersection),
-    each computed only for the constellations that need it."""
+def _other_extents(
+    batch: ConstellationBatch, intersection: BoolArray, ego_table: LaneTable
+) -> Extents:
+    """The other object in the ego road (non-intersection) or its own road (intersection).
+
+    Each is computed only for the constellations that need it.
+    """
     if not intersection.any():
         return place(batch.other, ego_table)
     if intersection.all():
         return object_extents(batch.other, batch.intersecting_road)
     cross_rows, same_rows = np.flatnonzero(intersection), np.flatnonzero(~intersection)
-    cross = object_extents(take_rows(batch.other, cross_rows), take_rows(batch.intersecting_road, cross_rows))
+    cross = object_extents(
+        take_rows(batch.other, cross_rows), take_rows(batch.intersecting_road, cross_rows)
+    )
     same = object_extents(take_rows(batch.other, same_rows), take_rows(batch.ego_road, same_rows))
     fields = {}
     for name in Extents.__dataclass_fields__:
@@ -363,8 +399,12 @@ def extract(batch: ConstellationBatch) -> Relative:
     ego_table = lane_table(batch.ego_road)
     ego = place(batch.ego, ego_table)
     other = _other_extents(batch, intersection, ego_table)
-    lon_pos, lon_dist = relative_position(ego.lon_min_m, ego.lon_max_m, other.lon_min_m, other.lon_max_m)
-    lat_code, lat_dist = relative_position(ego.lat_min_m, ego.lat_max_m, other.lat_min_m, other.lat_max_m)
+    lon_pos, lon_dist = relative_position(
+        ego.lon_min_m, ego.lon_max_m, other.lon_min_m, other.lon_max_m
+    )
+    lat_code, lat_dist = relative_position(
+        ego.lat_min_m, ego.lat_max_m, other.lat_min_m, other.lat_max_m
+    )
     lat_pos = _LAT_FROM_LON[lat_code]
 
     ego_enter, ego_leave = _distances_to_intersection(ego)
@@ -385,7 +425,9 @@ def extract(batch: ConstellationBatch) -> Relative:
     invalid = _invalid_objects(batch)
     not_found = ~(ego.found & other.found)
     invalid = np.where((invalid == 0) & not_found, InvalidReason.NotInRoadArea, invalid)
-    no_area = intersection & ~(np.isfinite(ego.intersection_min_m) & np.isfinite(other.intersection_min_m))
+    no_area = intersection & ~(
+        np.isfinite(ego.intersection_min_m) & np.isfinite(other.intersection_min_m)
+    )
     invalid = np.where((invalid == 0) & no_area, InvalidReason.NoIntersection, invalid)
     opposite = ctype == ConstellationType.OppositeDirection
     return Relative(

@@ -21,17 +21,16 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from rss.batch import BoolArray, IntArray
 from rss.checks import IntersectionState, LateralSide, RawStates
 from rss.model import ConstellationType
 from rss.states import LateralPosition, LateralResponse, LongitudinalPosition, LongitudinalResponse
 
 if TYPE_CHECKING:
-    from rss.batch import ConstellationBatch
+    from rss.batch import BoolArray, ConstellationBatch, IntArray
     from rss.extraction import Relative
 
 __all__ = ["RssMemory", "apply_memory", "is_dangerous"]
@@ -132,7 +131,7 @@ def _previous(store: BoolArray, runs: _Runs) -> IntArray:
     return np.where(prev >= runs.start, prev, -1)
 
 
-def apply_memory(
+def apply_memory(  # noqa: PLR0917  (structure-of-arrays engine step)
     batch: ConstellationBatch,
     rel: Relative,
     raw: RawStates,
@@ -170,7 +169,8 @@ def apply_memory(
 
     base = ok & np.where(intersection, lon_safe_now, ~dangerous)
     lat_overlap = np.isin(
-        rel.lat_position[o], [LateralPosition.OverlapLeft, LateralPosition.Overlap, LateralPosition.OverlapRight]
+        rel.lat_position[o],
+        [LateralPosition.OverlapLeft, LateralPosition.Overlap, LateralPosition.OverlapRight],
     )
     candidate = dangerous & ~intersection & (ctype == ConstellationType.SameDirection) & lat_overlap
     first_event = _previous(base | candidate, runs) < 0
@@ -180,16 +180,18 @@ def apply_memory(
     has_initial = runs.initial >= 0
     init_row = np.where(has_initial, runs.initial, 0)
 
-    def remembered(now: np.ndarray, initial: np.ndarray, fill: object) -> np.ndarray:
+    def remembered(now: np.ndarray, initial: np.ndarray, fill: Any) -> np.ndarray:
         from_initial = initial[init_row] if memory.size else np.full(now.shape, fill)
-        return np.where(prev >= 0, now[np.maximum(prev, 0)], np.where(has_initial, from_initial, fill))
+        return np.where(
+            prev >= 0, now[np.maximum(prev, 0)], np.where(has_initial, from_initial, fill)
+        )
 
-    stored_lon = np.where(synthetic, True, lon_safe_now)
-    stored_lat = np.where(synthetic, False, lat_safe_now)
+    stored_lon = np.where(synthetic, np.True_, lon_safe_now)
+    stored_lat = np.where(synthetic, np.False_, lat_safe_now)
     stored_int = np.where(intersection & base, raw.intersection_state[o], IntersectionState.NONE)
     known = (prev >= 0) | has_initial
-    prev_lon = remembered(stored_lon, memory.lon_safe, False)
-    prev_lat = remembered(stored_lat, memory.lat_safe, False)
+    prev_lon = remembered(stored_lon, memory.lon_safe, np.False_)
+    prev_lat = remembered(stored_lat, memory.lat_safe, np.False_)
     prev_int = remembered(stored_int, memory.intersection_state, IntersectionState.NONE)
 
     structured = dangerous & ~intersection
@@ -209,14 +211,28 @@ def apply_memory(
     clear_lat_rows[o] = clear_lat | calm
     states = dataclasses.replace(
         raw,
-        lon_response=np.where(clear_lon_rows, LongitudinalResponse.None_, raw.lon_response).astype(np.int64),
+        lon_response=np.where(clear_lon_rows, LongitudinalResponse.None_, raw.lon_response).astype(
+            np.int64
+        ),
         left=_side(raw.left, clear_lat_rows),
         right=_side(raw.right, clear_lat_rows),
     )
-    return states, _memory_after(batch, frame, runs, store, known, stored_lon, stored_lat, stored_int, prev_lon, prev_lat, prev_int)
+    return states, _memory_after(
+        batch,
+        frame,
+        runs,
+        store,
+        known,
+        stored_lon,
+        stored_lat,
+        stored_int,
+        prev_lon,
+        prev_lat,
+        prev_int,
+    )
 
 
-def _memory_after(
+def _memory_after(  # noqa: PLR0917  (internal: arrays of one scan)
     batch: ConstellationBatch,
     frame: IntArray,
     runs: _Runs,

@@ -22,8 +22,10 @@ from __future__ import annotations
 
 import enum
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
-from rss.dynamics import RssDynamics
+if TYPE_CHECKING:
+    from rss.dynamics import RssDynamics
 
 __all__ = [
     "Constellation",

@@ -10,7 +10,7 @@ TOML layout (``--rss-params``, see ``conformance/rss_params_example.toml``)::
                   ego_length, ego_width, ego_height
 
 Keys not given keep the documented defaults: ad-rss-lib's unit-test dynamics for the ego
-(ρ = 1 s) and for vehicles (ρ = 2 s), CARLA's pedestrian dynamics for pedestrians.
+(rho = 1 s) and for vehicles (rho = 2 s), CARLA's pedestrian dynamics for pedestrians.
 """
 
 from __future__ import annotations
@@ -18,9 +18,8 @@ from __future__ import annotations
 import enum
 import math
 import tomllib
-from typing import TypeVar
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypeVar
 
 from rss.dynamics import RssDynamics
 from rss.errors import RssParameterError
@@ -112,7 +111,9 @@ class SceneSettings:
         ego_height_m: Ego height, > 0.
     """
 
-    restrict_speed_limit_mode: RestrictSpeedLimitMode = RestrictSpeedLimitMode.INCREASED_SPEED_LIMIT_10
+    restrict_speed_limit_mode: RestrictSpeedLimitMode = (
+        RestrictSpeedLimitMode.INCREASED_SPEED_LIMIT_10
+    )
     constellation_creation_mode: ConstellationCreationMode = ConstellationCreationMode.STRUCTURED
     ego_length_m: float = 4.5
     ego_width_m: float = 2.0
@@ -173,7 +174,9 @@ def rss_params_from_mapping(data: Mapping[str, object]) -> RssParams:
     known = {c.value for c in ObjectClass} | {"vehicle", "scene"}
     for table, content in data.items():
         if table not in known:
-            raise RssParameterError(table, content, f"unknown table; expected one of {sorted(known)}")
+            raise RssParameterError(
+                table, content, f"unknown table; expected one of {sorted(known)}"
+            )
         if not isinstance(content, dict):
             raise RssParameterError(table, content, "must be a table")
     classes = _default_classes()

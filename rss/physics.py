@@ -8,9 +8,12 @@ over arrays of any shape ``(...)``.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
-from rss.batch import FloatArray
+if TYPE_CHECKING:
+    from rss.batch import FloatArray
 
 __all__ = [
     "ACCELERATION_LOWEST_MPS2",
@@ -29,9 +32,9 @@ __all__ = [
     "stated_braking_lateral",
     "stated_braking_longitudinal",
     "stopping_distance",
+    "time_to_cover_distance",
     "tmax",
     "tmin",
-    "time_to_cover_distance",
 ]
 
 DISTANCE_PRECISION = 1e-3
@@ -145,9 +148,13 @@ def stated_braking_longitudinal(
     accel_mps2: FloatArray,
     decel_mps2: FloatArray,
 ) -> FloatArray:
-    """Distance of the longitudinal stated braking pattern: capped acceleration during the
-    response time, then braking to standstill (shapes broadcast, result [m])."""
-    v_rho, d_rho = accelerated_limited_movement(speed_mps, max_speed_mps, accel_mps2, response_time_s)
+    """Distance of the longitudinal stated braking pattern [m] (shapes broadcast).
+
+    Capped acceleration during the response time, then braking to standstill.
+    """
+    v_rho, d_rho = accelerated_limited_movement(
+        speed_mps, max_speed_mps, accel_mps2, response_time_s
+    )
     return np.asarray(d_rho + _stop_if_moving_against(v_rho, decel_mps2), dtype=np.float64)
 
 
@@ -157,18 +164,25 @@ def stated_braking_lateral(
     accel_mps2: FloatArray,
     decel_mps2: FloatArray,
 ) -> FloatArray:
-    """Distance of the lateral stated braking pattern: plain kinematics during the response
-    time (no cap, no clamp at a zero crossing), then braking if still moving in the
-    acceleration direction (shapes broadcast, result [m], signed)."""
+    """Signed distance of the lateral stated braking pattern [m] (shapes broadcast).
+
+    Plain kinematics during the response time (no cap, no clamp at a zero crossing), then
+    braking if still moving in the acceleration direction.
+    """
     v_rho = speed_mps + accel_mps2 * response_time_s
     d_rho = speed_mps * response_time_s + 0.5 * accel_mps2 * response_time_s * response_time_s
     return np.asarray(d_rho + _stop_if_moving_against(v_rho, decel_mps2), dtype=np.float64)
 
 
-def _quadratic_time(speed_mps: FloatArray, accel_mps2: FloatArray, distance_m: FloatArray) -> FloatArray:
-    """Root of ``v t + a t² / 2 = s`` chosen as ad-physics does: the smaller root when both
-    are (tolerantly) positive, else the larger one (so ``s ≈ 0`` while braking yields the
-    *second* crossing ``2 v / |a|`` — a reference quirk kept for agreement)."""
+def _quadratic_time(
+    speed_mps: FloatArray, accel_mps2: FloatArray, distance_m: FloatArray
+) -> FloatArray:
+    """Root of ``v t + a t² / 2 = s`` chosen as ad-physics does.
+
+    The smaller root when both are (tolerantly) positive, else the larger one (so ``s ≈ 0``
+    while braking yields the *second* crossing ``2 v / |a|`` — a reference quirk kept for
+    agreement).
+    """
     safe_a = np.where(accel_mps2 == 0.0, 1.0, accel_mps2)
     root = np.sqrt(np.maximum(speed_mps * speed_mps + 2.0 * accel_mps2 * distance_m, 0.0))
     r1 = (-speed_mps + root) / safe_a
@@ -180,8 +194,10 @@ def _quadratic_time(speed_mps: FloatArray, accel_mps2: FloatArray, distance_m: F
 def _time_for_distance(
     speed_mps: FloatArray, max_speed_mps: FloatArray, accel_mps2: FloatArray, distance_m: FloatArray
 ) -> FloatArray:
-    """Time to cover ``distance`` from ``speed`` with one constant acceleration (speed capped
-    when accelerating); no stop check (the caller does it)."""
+    """Time to cover ``distance`` from ``speed`` with one constant acceleration.
+
+    The speed is capped when accelerating; no stop check (the caller does it).
+    """
     v, cap, a, s = np.broadcast_arrays(speed_mps, max_speed_mps, accel_mps2, distance_m)
     no_accel = eq(a, 0.0, ACCELERATION_PRECISION)
     standing = eq(v, 0.0, SPEED_PRECISION)
@@ -198,7 +214,7 @@ def _time_for_distance(
     return np.asarray(result, dtype=np.float64)
 
 
-def time_to_cover_distance(
+def time_to_cover_distance(  # noqa: PLR0917  (kernel over arrays)
     speed_mps: FloatArray,
     max_speed_mps: FloatArray,
     response_time_s: FloatArray,
@@ -206,8 +222,9 @@ def time_to_cover_distance(
     accel_after_mps2: FloatArray,
     distance_m: FloatArray,
 ) -> FloatArray:
-    """Time to travel a distance with one acceleration during the response time and a
-    braking deceleration afterwards (ad-rss ``calculateTimeToCoverDistance``).
+    """Time to travel a distance (ad-rss ``calculateTimeToCoverDistance``).
+
+    One acceleration during the response time, a braking deceleration afterwards.
 
     Args:
         speed_mps: Initial speed >= 0, shape ``(...)``.
@@ -228,7 +245,9 @@ def time_to_cover_distance(
     remaining = distance_m - d_rho
     t_after = _time_for_distance(v_rho, max_speed_mps, accel_after_mps2, remaining)
     braking = np.asarray(accel_after_mps2) < 0.0
-    stops_first = braking & le(stopping_distance(v_rho, accel_after_mps2), remaining, DISTANCE_PRECISION)
+    stops_first = braking & le(
+        stopping_distance(v_rho, accel_after_mps2), remaining, DISTANCE_PRECISION
+    )
     never = stops_first | (t_after >= DURATION_MAX_S)
     t_after = np.where(never, DURATION_MAX_S, t_after + response_time_s)
     return np.asarray(np.where(within, t_within, t_after), dtype=np.float64)

@@ -1,5 +1,6 @@
-"""Slow, obvious scalar reference of the kinematic kernels in :mod:`rss.physics` and the
-safe-distance formulas in :mod:`rss.checks` (plain floats, one value at a time).
+"""Slow, obvious scalar reference of the kernels in :mod:`rss.physics` and :mod:`rss.checks`.
+
+Plain floats, one value at a time.
 
 Tests check that the vectorised kernels agree with these on random inputs.
 """
@@ -34,7 +35,9 @@ def _lt(a: float, b: float, p: float) -> bool:
     return a < b and not _eq(a, b, p)
 
 
-def accelerated_limited_movement(v0: float, v_cap: float, a: float, t: float) -> tuple[float, float]:
+def accelerated_limited_movement(
+    v0: float, v_cap: float, a: float, t: float
+) -> tuple[float, float]:
     """Speed and distance after accelerating ``a`` for ``t`` seconds, capped, never < 0."""
     v1 = v0 + a * t
     if _lt(v1, 0.0, SPEED_PRECISION) or _eq(v1, 0.0, SPEED_PRECISION):
@@ -51,7 +54,9 @@ def _stop(v: float, decel: float) -> float:
     return v * v / (-2.0 * decel)
 
 
-def stated_braking_longitudinal(v: float, v_cap: float, rho: float, accel: float, decel: float) -> float:
+def stated_braking_longitudinal(
+    v: float, v_cap: float, rho: float, accel: float, decel: float
+) -> float:
     """Capped acceleration during ``rho``, then braking to standstill."""
     v_rho, d_rho = accelerated_limited_movement(v, v_cap, accel, rho)
     return d_rho + _stop(v_rho, decel)
@@ -82,7 +87,9 @@ def _time_for_distance(v: float, v_cap: float, a: float, s: float) -> float:
     return t_cap + (s - d_cap) / v_cap
 
 
-def time_to_cover_distance(v: float, v_cap: float, rho: float, a_during: float, a_after: float, s: float) -> float:
+def time_to_cover_distance(  # noqa: PLR0917  (mirrors the kernel)
+    v: float, v_cap: float, rho: float, a_during: float, a_after: float, s: float
+) -> float:
     """Time to travel ``s`` (``a_during`` for ``rho``, then braking ``a_after`` < 0)."""
     v_rho, d_rho = accelerated_limited_movement(v, v_cap, a_during, rho)
     if not _lt(d_rho, s, DISTANCE_PRECISION):
@@ -100,16 +107,31 @@ def safe_longitudinal_distance_same(
 ) -> float:
     """Follower behind leader; ``follower`` holds ad-rss-named dynamics keys."""
     d_f = stated_braking_longitudinal(
-        v_follower, follower["max_speed_on_acceleration"], follower["response_time"],
-        follower["accel_max"], follower["brake_min"],
+        v_follower,
+        follower["max_speed_on_acceleration"],
+        follower["response_time"],
+        follower["accel_max"],
+        follower["brake_min"],
     )
     d = d_f - _stop(v_leader, leader_brake_max)
-    return (0.0 if _lt(d, 0.0, DISTANCE_PRECISION) else d) + follower["min_longitudinal_safety_distance"]
+    return (0.0 if _lt(d, 0.0, DISTANCE_PRECISION) else d) + follower[
+        "min_longitudinal_safety_distance"
+    ]
 
 
-def safe_lateral_distance(v_left: float, left: dict[str, float], v_right: float, right: dict[str, float]) -> float:
+def safe_lateral_distance(
+    v_left: float, left: dict[str, float], v_right: float, right: dict[str, float]
+) -> float:
     """Left and right vehicle, lateral speeds positive to the right."""
-    d_left = stated_braking_lateral(v_left, left["response_time"], left["lat_accel_max"], left["lat_brake_min"])
-    d_right = stated_braking_lateral(v_right, right["response_time"], -right["lat_accel_max"], -right["lat_brake_min"])
-    d = d_left - d_right + 0.5 * (left["lateral_fluctuation_margin"] + right["lateral_fluctuation_margin"])
+    d_left = stated_braking_lateral(
+        v_left, left["response_time"], left["lat_accel_max"], left["lat_brake_min"]
+    )
+    d_right = stated_braking_lateral(
+        v_right, right["response_time"], -right["lat_accel_max"], -right["lat_brake_min"]
+    )
+    d = (
+        d_left
+        - d_right
+        + 0.5 * (left["lateral_fluctuation_margin"] + right["lateral_fluctuation_margin"])
+    )
     return 0.0 if _lt(d, 0.0, DISTANCE_PRECISION) else d

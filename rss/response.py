@@ -6,7 +6,8 @@ and narrows the acceleration restrictions, starting from the default ego dynamic
 
     longitudinal  [brake_max, accel_max] -> max = min(.., brake_min | brake_min_correct | accel_max)
                                             min = max(.., brake_max)
-    lateral L/R   [-1000, lat_accel_max] -> max = min(.., lat_brake_min if BrakeMin else lat_accel_max)
+    lateral L/R   [-1000, lat_accel_max] -> max = min(.., lat_brake_min | lat_accel_max)
+                                            (lat_brake_min when the response is BrakeMin)
 
 Frames are reduced with unbuffered ufuncs (``np.minimum.at``), so ``F`` frames resolve in
 one call.
@@ -19,12 +20,11 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from rss.batch import BoolArray, FloatArray, IntArray
 from rss.physics import ACCELERATION_LOWEST_MPS2
 from rss.states import LateralResponse, LongitudinalResponse
 
 if TYPE_CHECKING:
-    from rss.batch import ConstellationBatch
+    from rss.batch import BoolArray, ConstellationBatch, FloatArray, IntArray
     from rss.checks import LateralSide, RawStates
     from rss.dynamics import RssDynamics
 
@@ -62,7 +62,11 @@ class ProperResponses:
 
 
 def _lateral(
-    side: LateralSide, frame: IntArray, ego_lat_brake: FloatArray, ego_lat_accel: FloatArray, initial: FloatArray
+    side: LateralSide,
+    frame: IntArray,
+    ego_lat_brake: FloatArray,
+    ego_lat_accel: FloatArray,
+    initial: FloatArray,
 ) -> tuple[IntArray, FloatArray]:
     response = np.zeros(initial.shape, dtype=np.int64)
     np.maximum.at(response, frame, side.response)
@@ -72,7 +76,7 @@ def _lateral(
     return response, maximum
 
 
-def resolve(
+def resolve(  # noqa: PLR0917  (structure-of-arrays engine step)
     batch: ConstellationBatch,
     states: RawStates,
     dangerous: BoolArray,

@@ -30,7 +30,9 @@ class Report:
     max_safe_distance_error_m: float = 0.0
     failures: list[str] = field(default_factory=list)
 
-    def add(self, case_id: str, ours: dict[str, Any], diffs: list[str], oracle_states: dict[int, Any]) -> None:
+    def add(
+        self, case_id: str, ours: dict[str, Any], diffs: list[str], oracle_states: dict[int, Any]
+    ) -> None:
         """Record one compared frame."""
         self.steps += 1
         for st in ours["states"]:
@@ -52,14 +54,18 @@ def run_random_cases(seed: int, count: int, defaults: CaseDefaults | None = None
     defaults = defaults or parse_defaults({})
     rng = np.random.default_rng(seed)
     cases = random_cases(rng, defaults, count)
-    parsed = [renumber(parse_case(c, defaults, c["id"]), 2 * i, 2 * i + 1) for i, c in enumerate(cases)]
+    parsed = [
+        renumber(parse_case(c, defaults, c["id"]), 2 * i, 2 * i + 1) for i, c in enumerate(cases)
+    ]
     ours = evaluate_ours(parsed)
     oracle = AdRssOracle()
     report = Report(cases=count)
     for case, p, record in zip(cases, parsed, ours, strict=True):
         assert p.constellation is not None
         frame = oracle.step([p.constellation], p.default_ego)
-        report.add(f"seed {seed} {case['id']} {case}", record, compare_frames(record, frame), frame.states)
+        report.add(
+            f"seed {seed} {case['id']} {case}", record, compare_frames(record, frame), frame.states
+        )
     return report
 
 
@@ -68,12 +74,18 @@ def run_random_sequences(seed: int, count: int, defaults: CaseDefaults | None = 
     evaluates all sequences in one multi-frame engine call."""
     defaults = defaults or parse_defaults({})
     rng = np.random.default_rng(seed)
-    sequences = [random_sequence(rng, defaults, f"seq{i}", int(rng.integers(3, 9))) for i in range(count)]
+    sequences = [
+        random_sequence(rng, defaults, f"seq{i}", int(rng.integers(3, 9))) for i in range(count)
+    ]
     parsed: list[ParsedCase] = []
     frames: list[int] = []
     for j, seq in enumerate(sequences):
         for k, step in enumerate(seq["steps"]):
-            parsed.append(renumber(parse_case(step, defaults, f"{seq['id']}#{k}", seq["id"], k), 2 * j, 2 * j + 1))
+            parsed.append(
+                renumber(
+                    parse_case(step, defaults, f"{seq['id']}#{k}", seq["id"], k), 2 * j, 2 * j + 1
+                )
+            )
             frames.append(len(frames))
     ours = iter(evaluate_ours(parsed, np.asarray(frames)))
     report = Report(cases=count)
@@ -84,5 +96,10 @@ def run_random_sequences(seed: int, count: int, defaults: CaseDefaults | None = 
             p, record = next(steps), next(ours)
             assert p.constellation is not None
             frame = oracle.step([p.constellation], p.default_ego)
-            report.add(f"seed {seed} {p.case_id} {seq}", record, compare_frames(record, frame), frame.states)
+            report.add(
+                f"seed {seed} {p.case_id} {seq}",
+                record,
+                compare_frames(record, frame),
+                frame.states,
+            )
     return report

@@ -14,10 +14,18 @@ import numpy as np
 
 from rss.batch import stack_constellations
 from rss.cases import CaseDefaults, ParsedCase, parse_case
-from rss.engine import check_frame
+from rss.conformance import frame_record
+from rss.engine import check_frame, check_frames
 from rss.physics import stated_braking_longitudinal
 
-__all__ = ["evaluate_ours", "random_case", "random_cases", "random_dynamics", "random_sequence", "renumber"]
+__all__ = [
+    "evaluate_ours",
+    "random_case",
+    "random_cases",
+    "random_dynamics",
+    "random_sequence",
+    "renumber",
+]
 
 _TYPES = (
     ("SameDirection", 0.34),
@@ -27,7 +35,15 @@ _TYPES = (
     ("IntersectionSamePriority", 0.11),
     ("NotRelevant", 0.04),
 )
-_OTHER_TYPES = ("OtherVehicle", "OtherVehicle", "OtherVehicle", "Pedestrian", "Bicycle", "ArtificialVehicle", "OtherObject")
+_OTHER_TYPES = (
+    "OtherVehicle",
+    "OtherVehicle",
+    "OtherVehicle",
+    "Pedestrian",
+    "Bicycle",
+    "ArtificialVehicle",
+    "OtherObject",
+)
 _BOUNDARY_CM = 0.02
 
 
@@ -62,7 +78,10 @@ def _speeds(rng: np.random.Generator, lateral: bool) -> dict[str, float]:
     v = 0.0 if rng.random() < 0.1 else float(rng.uniform(0.0, 35.0))
     out: dict[str, float] = {}
     if rng.random() < 0.3:
-        out |= {"v_lon_min": round(v * float(rng.uniform(0.6, 1.0)), 4), "v_lon_max": round(min(v * float(rng.uniform(1.0, 1.2)), 99.0), 4)}
+        out |= {
+            "v_lon_min": round(v * float(rng.uniform(0.6, 1.0)), 4),
+            "v_lon_max": round(min(v * float(rng.uniform(1.0, 1.2)), 99.0), 4),
+        }
     else:
         out["v_lon"] = round(v, 4)
     if lateral and rng.random() < 0.45:
@@ -76,8 +95,14 @@ def _speeds(rng: np.random.Generator, lateral: bool) -> dict[str, float]:
 
 def _vehicle(rng: np.random.Generator, pedestrian: bool) -> dict[str, float]:
     if pedestrian:
-        return {"length": round(float(rng.uniform(0.4, 0.8)), 3), "width": round(float(rng.uniform(0.4, 0.8)), 3)}
-    return {"length": round(float(rng.uniform(3.5, 6.0)), 3), "width": round(float(rng.uniform(1.6, 2.3)), 3)}
+        return {
+            "length": round(float(rng.uniform(0.4, 0.8)), 3),
+            "width": round(float(rng.uniform(0.4, 0.8)), 3),
+        }
+    return {
+        "length": round(float(rng.uniform(3.5, 6.0)), 3),
+        "width": round(float(rng.uniform(1.6, 2.3)), 3),
+    }
 
 
 def _straight(rng: np.random.Generator, ctype: str) -> dict[str, Any]:
@@ -99,15 +124,27 @@ def _straight(rng: np.random.Generator, ctype: str) -> dict[str, Any]:
     else:
         ego_lane = int(rng.integers(0, n))
         r = rng.random()
-        other_lane = ego_lane if r < 0.4 else int(np.clip(ego_lane + rng.choice([-1, 1]), 0, n - 1)) if r < 0.8 else int(rng.integers(0, n))
+        other_lane = (
+            ego_lane
+            if r < 0.4
+            else int(np.clip(ego_lane + rng.choice([-1, 1]), 0, n - 1))
+            if r < 0.8
+            else int(rng.integers(0, n))
+        )
     other_type = str(rng.choice(_OTHER_TYPES))
     ego = {"s": 0.0, "y": 0.0} | _vehicle(rng, pedestrian=False) | _speeds(rng, lateral=True)
-    other = {"s": 0.0, "y": 0.0} | _vehicle(rng, other_type == "Pedestrian") | _speeds(rng, lateral=True)
-    other["object_type"] = other_type
+    other = (
+        {"s": 0.0, "y": 0.0}
+        | _vehicle(rng, other_type == "Pedestrian")
+        | _speeds(rng, lateral=True)
+    )
+    other["object_type"] = other_type  # type: ignore[assignment]
     for obj, lane in ((ego, ego_lane), (other, other_lane)):
         half = obj["width"] / 2.0
         offset = float(rng.uniform(-0.4, 0.4))
-        obj["y"] = round(float(np.clip(centers[lane] + offset, half + 0.01, sum(widths) - half - 0.01)), 4)
+        obj["y"] = round(
+            float(np.clip(centers[lane] + offset, half + 0.01, sum(widths) - half - 0.01)), 4
+        )
     ego["s"] = round(float(rng.uniform(200.0, 500.0)), 4)
     gap = float(rng.uniform(-4.0, 150.0))
     sign = 1.0 if rng.random() < 0.6 else -1.0
@@ -141,8 +178,6 @@ def _intersection(rng: np.random.Generator, ctype: str) -> dict[str, Any]:
 
 
 def _evaluate(case: dict[str, Any], defaults: CaseDefaults) -> tuple[ParsedCase, dict[str, Any]]:
-    from rss.conformance import frame_record  # noqa: PLC0415
-
     parsed = parse_case(case, defaults, "gen")
     assert parsed.constellation is not None
     batch = stack_constellations([parsed.constellation])
@@ -151,7 +186,10 @@ def _evaluate(case: dict[str, Any], defaults: CaseDefaults) -> tuple[ParsedCase,
 
 
 def _to_boundary(
-    rng: np.random.Generator, case: dict[str, Any], defaults: CaseDefaults, record: dict[str, Any] | None = None
+    rng: np.random.Generator,
+    case: dict[str, Any],
+    defaults: CaseDefaults,
+    record: dict[str, Any] | None = None,
 ) -> None:
     """Move the other object so that a distance lies within ±2 cm of its safe distance."""
     parsed = parse_case(case, defaults, "gen") if "intersection" in case else None
@@ -162,17 +200,31 @@ def _to_boundary(
         assert parsed is not None
         c = parsed.constellation
         assert c is not None
-        who, obj, dyn = ("other", c.other, c.other_dynamics) if rng.random() < 0.5 else ("ego", c.ego, c.ego_dynamics)
-        stop = stated_braking_longitudinal(
-            np.array(obj.speed.lon_max_mps), np.array(dyn.max_speed_on_acceleration_mps),
-            np.array(dyn.response_time_s), np.array(dyn.accel_max_mps2), np.array(dyn.brake_min_mps2),
-        ) + dyn.min_longitudinal_safety_distance_m
+        who, obj, dyn = (
+            ("other", c.other, c.other_dynamics)
+            if rng.random() < 0.5
+            else ("ego", c.ego, c.ego_dynamics)
+        )
+        stop = (
+            stated_braking_longitudinal(
+                np.array(obj.speed.lon_max_mps),
+                np.array(dyn.max_speed_on_acceleration_mps),
+                np.array(dyn.response_time_s),
+                np.array(dyn.accel_max_mps2),
+                np.array(dyn.brake_min_mps2),
+            )
+            + dyn.min_longitudinal_safety_distance_m
+        )
         limit = case["intersection"][f"{who}_approach"] - case[who]["length"] - 0.5
         case[who]["dist_to_enter"] = round(float(min(float(stop) + delta, limit)), 6)
         return
     assert record is not None
     state = record["states"][0]
-    lat_sides = [s for s in ("lateral_left", "lateral_right") if state[s]["current_distance"] not in (None, 0.0)]
+    lat_sides = [
+        s
+        for s in ("lateral_left", "lateral_right")
+        if state[s]["current_distance"] not in (None, 0.0)
+    ]
     ego, other = case["ego"], case["other"]
     if lat_sides and rng.random() < 0.4:
         side = state[lat_sides[0]]
@@ -188,10 +240,16 @@ def _to_boundary(
     if lon["safe_distance"] is None:
         return
     direction = 1.0 if other["s"] >= ego["s"] else -1.0
-    target = ego["s"] + direction * ((ego["length"] + other["length"]) / 2.0 + lon["safe_distance"] + delta)
-    if not 10.0 < target < 990.0:  # noqa: PLR2004 (stay on the 1 km road)
+    target = ego["s"] + direction * (
+        (ego["length"] + other["length"]) / 2.0 + lon["safe_distance"] + delta
+    )
+    if not 10.0 < target < 990.0:
         return
-    other["s"] = round(ego["s"] + direction * ((ego["length"] + other["length"]) / 2.0 + lon["safe_distance"] + delta), 6)
+    other["s"] = round(
+        ego["s"]
+        + direction * ((ego["length"] + other["length"]) / 2.0 + lon["safe_distance"] + delta),
+        6,
+    )
 
 
 def random_case(
@@ -211,28 +269,31 @@ def random_case(
     return case
 
 
-def random_cases(rng: np.random.Generator, defaults: CaseDefaults, count: int) -> list[dict[str, Any]]:
+def random_cases(
+    rng: np.random.Generator, defaults: CaseDefaults, count: int
+) -> list[dict[str, Any]]:
     """``count`` random cases; 45 % moved within ±2 cm of a safe distance (one batched
     engine call computes the safe distances)."""
     cases = [random_case(rng, defaults, f"case{i}", boundary=False) for i in range(count)]
-    chosen = [c for c in cases if rng.random() < 0.45]  # noqa: PLR2004
+    chosen = [c for c in cases if rng.random() < 0.45]
     straight = [c for c in chosen if "intersection" not in c]
     for case in chosen:
         if "intersection" in case:
             _to_boundary(rng, case, defaults)
-    parsed = [renumber(parse_case(c, defaults, "gen"), 2 * i, 2 * i + 1) for i, c in enumerate(straight)]
+    parsed = [
+        renumber(parse_case(c, defaults, "gen"), 2 * i, 2 * i + 1) for i, c in enumerate(straight)
+    ]
     records = evaluate_ours(parsed)
     for case, record in zip(straight, records, strict=True):
         _to_boundary(rng, case, defaults, record)
     return cases
 
 
-def evaluate_ours(parsed: list[ParsedCase], frame: np.ndarray | None = None) -> list[dict[str, Any]]:
+def evaluate_ours(
+    parsed: list[ParsedCase], frame: np.ndarray | None = None
+) -> list[dict[str, Any]]:
     """Our records of many cases in ONE engine call (one frame per case unless ``frame``
     says otherwise; ids must keep independent cases apart)."""
-    from rss.conformance import frame_record  # noqa: PLC0415
-    from rss.engine import check_frames  # noqa: PLC0415
-
     if not parsed:
         return []
     batch = stack_constellations([p.constellation for p in parsed if p.constellation is not None])
@@ -242,7 +303,9 @@ def evaluate_ours(parsed: list[ParsedCase], frame: np.ndarray | None = None) -> 
     return [frame_record(result, batch, i) for i in range(n_frames)]
 
 
-def random_sequence(rng: np.random.Generator, defaults: CaseDefaults, case_id: str, steps: int) -> dict[str, Any]:
+def random_sequence(
+    rng: np.random.Generator, defaults: CaseDefaults, case_id: str, steps: int
+) -> dict[str, Any]:
     """A random multi-step sequence: objects move so that gaps cross safe distances."""
     base = random_case(rng, defaults, case_id)
     base.pop("id")
@@ -255,15 +318,21 @@ def random_sequence(rng: np.random.Generator, defaults: CaseDefaults, case_id: s
         if "intersection" in base:
             for who in ("ego", "other"):
                 low = -(base["intersection"][f"{who}_crossing"] + 50.0 - base[who]["length"] - 1.0)
-                base[who]["dist_to_enter"] = round(max(base[who]["dist_to_enter"] - float(rng.uniform(0.0, 6.0)), low), 4)
+                base[who]["dist_to_enter"] = round(
+                    max(base[who]["dist_to_enter"] - float(rng.uniform(0.0, 6.0)), low), 4
+                )
         else:
             base["other"]["s"] = round(base["other"]["s"] + ds + float(rng.normal(0.0, 0.5)), 4)
             half = base["other"]["width"] / 2.0
             total = sum(base["road"]["lane_widths"])
-            base["other"]["y"] = round(float(np.clip(base["other"]["y"] + dy, half + 0.01, total - half - 0.01)), 4)
+            base["other"]["y"] = round(
+                float(np.clip(base["other"]["y"] + dy, half + 0.01, total - half - 0.01)), 4
+            )
             if rng.random() < 0.05:
                 flip = {"SameDirection": "OppositeDirection", "OppositeDirection": "SameDirection"}
-                base["constellation_type"] = flip.get(base["constellation_type"], base["constellation_type"])
+                base["constellation_type"] = flip.get(
+                    base["constellation_type"], base["constellation_type"]
+                )
         if rng.random() < 0.15:
             _to_boundary(rng, base, defaults)
     return {"id": case_id, "kind": "sequence", "steps": out}

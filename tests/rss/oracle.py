@@ -29,7 +29,7 @@ __all__ = ["AdRssOracle", "OracleFrame", "compare_frames", "load_ad_rss"]
 def load_ad_rss() -> Any:
     """Import the binding; skip without it, but fail under ``CI=true``."""
     if os.environ.get("CI", "").lower() == "true":
-        import ad_rss  # noqa: PLC0415
+        import ad_rss  # noqa: PLC0415  (optional test dependency)
 
         return ad_rss
     return pytest.importorskip("ad_rss", reason="ad-rss 5.0 binding (pip ad-rss) not installed")
@@ -100,8 +100,14 @@ class AdRssOracle:
             r.lat_range.maximum = p.ParametricValue(region.lat_max)
             out.occupied_regions.append(r)
         v = out.velocity
-        v.speed_lon_min, v.speed_lon_max = p.Speed(obj.speed.lon_min_mps), p.Speed(obj.speed.lon_max_mps)
-        v.speed_lat_min, v.speed_lat_max = p.Speed(obj.speed.lat_min_mps), p.Speed(obj.speed.lat_max_mps)
+        v.speed_lon_min, v.speed_lon_max = (
+            p.Speed(obj.speed.lon_min_mps),
+            p.Speed(obj.speed.lon_max_mps),
+        )
+        v.speed_lat_min, v.speed_lat_max = (
+            p.Speed(obj.speed.lat_min_mps),
+            p.Speed(obj.speed.lat_max_mps),
+        )
         st = out.state
         st.yaw, st.yaw_rate, st.steering_angle = p.Angle(0.0), p.AngularVelocity(0.0), p.Angle(0.0)
         st.dimension.length, st.dimension.width = p.Distance(4.0), p.Distance(2.0)
@@ -114,14 +120,24 @@ class AdRssOracle:
         for segment in road:
             seg = self.world.RoadSegment()
             seg.type = self.world.RoadSegmentType(int(segment.segment_type))
-            seg.minimum_length_before_intersecting_area = p.Distance(segment.min_length_before_intersecting_area_m)
-            seg.minimum_length_after_intersecting_area = p.Distance(segment.min_length_after_intersecting_area_m)
+            seg.minimum_length_before_intersecting_area = p.Distance(
+                segment.min_length_before_intersecting_area_m
+            )
+            seg.minimum_length_after_intersecting_area = p.Distance(
+                segment.min_length_after_intersecting_area_m
+            )
             for lane in segment.lanes:
                 ls = self.world.LaneSegment()
                 ls.id = lane.lane_id
                 ls.driving_direction = self.world.LaneDrivingDirection(int(lane.driving_direction))
-                ls.length.minimum, ls.length.maximum = p.Distance(lane.length_min_m), p.Distance(lane.length_max_m)
-                ls.width.minimum, ls.width.maximum = p.Distance(lane.width_min_m), p.Distance(lane.width_max_m)
+                ls.length.minimum, ls.length.maximum = (
+                    p.Distance(lane.length_min_m),
+                    p.Distance(lane.length_max_m),
+                )
+                ls.width.minimum, ls.width.maximum = (
+                    p.Distance(lane.width_min_m),
+                    p.Distance(lane.width_max_m),
+                )
                 seg.lane_segments.append(ls)
             area.append(seg)
         return area
@@ -148,11 +164,17 @@ class AdRssOracle:
     def run(self, world_model: Any) -> tuple[bool, Any, Any]:
         """``calculateProperResponse`` on a built world: ``(ok, state snapshot, response)``."""
         core, state = self.ad.rss.core, self.ad.rss.state
-        situation, snapshot, response = core.RssSituationSnapshot(), state.RssStateSnapshot(), state.ProperResponse()
+        situation, snapshot, response = (
+            core.RssSituationSnapshot(),
+            state.RssStateSnapshot(),
+            state.ProperResponse(),
+        )
         ok = self.check.calculateProperResponse(world_model, situation, snapshot, response)
         return bool(ok), snapshot, response
 
-    def step(self, constellations: Sequence[Constellation], default_ego: RssDynamics) -> OracleFrame:
+    def step(
+        self, constellations: Sequence[Constellation], default_ego: RssDynamics
+    ) -> OracleFrame:
         """Evaluate one frame with this instance's history."""
         ok, snapshot, response = self.run(self.world_model(constellations, default_ego))
         if not ok:
@@ -199,11 +221,14 @@ class AdRssOracle:
 _DISTANCE_KEYS = ("current_distance", "safe_distance")
 
 
-def _compare_state(prefix: str, ours: dict[str, Any], theirs: dict[str, Any], tol: float) -> list[str]:
-    diffs = []
-    for key in ("is_safe", "response", "evaluator"):
-        if ours[key] != theirs[key]:
-            diffs.append(f"{prefix}.{key}: ours {ours[key]!r} ad-rss {theirs[key]!r}")
+def _compare_state(
+    prefix: str, ours: dict[str, Any], theirs: dict[str, Any], tol: float
+) -> list[str]:
+    diffs = [
+        f"{prefix}.{key}: ours {ours[key]!r} ad-rss {theirs[key]!r}"
+        for key in ("is_safe", "response", "evaluator")
+        if ours[key] != theirs[key]
+    ]
     for key in _DISTANCE_KEYS:
         a, b = ours[key], theirs[key]
         if (a is None) != (b is None) or (a is not None and b is not None and abs(a - b) > tol):
@@ -211,12 +236,42 @@ def _compare_state(prefix: str, ours: dict[str, Any], theirs: dict[str, Any], to
     return diffs
 
 
+def _compare_response(pr: dict[str, Any], ref_pr: dict[str, Any], tol: float) -> list[str]:
+    diffs = [
+        f"proper_response.{key}: ours {pr[key]!r} ad-rss {ref_pr[key]!r}"
+        for key in (
+            "is_safe",
+            "longitudinal_response",
+            "lateral_response_left",
+            "lateral_response_right",
+        )
+        if pr[key] != ref_pr[key]
+    ]
+    if sorted(pr["dangerous_objects"]) != ref_pr["dangerous_objects"]:
+        diffs.append(
+            f"dangerous_objects: ours {pr['dangerous_objects']} "
+            f"ad-rss {ref_pr['dangerous_objects']}"
+        )
+    for name, (lo, hi) in pr["acceleration_restrictions"].items():
+        ref_lo, ref_hi = ref_pr["acceleration_restrictions"][name]
+        if abs(lo - ref_lo) > tol or abs(hi - ref_hi) > tol:
+            diffs.append(
+                f"acceleration_restrictions.{name}: ours {[lo, hi]} ad-rss {[ref_lo, ref_hi]}"
+            )
+    return diffs
+
+
 def compare_frames(ours: dict[str, Any], theirs: OracleFrame, tol: float = 1e-4) -> list[str]:
-    """Differences between our frame record (:func:`rss.conformance.frame_record`) and
-    ad-rss' answer; empty when they agree."""
+    """Differences between our frame record and ad-rss' answer; empty when they agree.
+
+    Frames with an invalid object agree when ad-rss rejected the world (it fails whole
+    worlds where we flag the object).
+    """
     invalid = any(st.get("invalid") for st in ours["states"])
     if not theirs.ok or invalid:
-        return [] if invalid == (not theirs.ok) else [f"ad-rss ok={theirs.ok}, ours invalid={invalid}"]
+        return (
+            [] if invalid == (not theirs.ok) else [f"ad-rss ok={theirs.ok}, ours invalid={invalid}"]
+        )
     diffs: list[str] = []
     for st in ours["states"]:
         ref = theirs.states.get(st["object_id"])
@@ -224,17 +279,10 @@ def compare_frames(ours: dict[str, Any], theirs: OracleFrame, tol: float = 1e-4)
             diffs.append(f"object {st['object_id']}: missing in ad-rss")
             continue
         if st["is_dangerous"] != ref["is_dangerous"]:
-            diffs.append(f"{st['object_id']}.is_dangerous: ours {st['is_dangerous']} ad-rss {ref['is_dangerous']}")
+            diffs.append(
+                f"{st['object_id']}.is_dangerous: "
+                f"ours {st['is_dangerous']} ad-rss {ref['is_dangerous']}"
+            )
         for side in ("longitudinal", "lateral_left", "lateral_right"):
             diffs += _compare_state(f"{st['object_id']}.{side}", st[side], ref[side], tol)
-    pr, ref_pr = ours["proper_response"], theirs.proper_response
-    for key in ("is_safe", "longitudinal_response", "lateral_response_left", "lateral_response_right"):
-        if pr[key] != ref_pr[key]:
-            diffs.append(f"proper_response.{key}: ours {pr[key]!r} ad-rss {ref_pr[key]!r}")
-    if sorted(pr["dangerous_objects"]) != ref_pr["dangerous_objects"]:
-        diffs.append(f"dangerous_objects: ours {pr['dangerous_objects']} ad-rss {ref_pr['dangerous_objects']}")
-    for name, (lo, hi) in pr["acceleration_restrictions"].items():
-        ref_lo, ref_hi = ref_pr["acceleration_restrictions"][name]
-        if abs(lo - ref_lo) > tol or abs(hi - ref_hi) > tol:
-            diffs.append(f"acceleration_restrictions.{name}: ours {[lo, hi]} ad-rss {[ref_lo, ref_hi]}")
-    return diffs
+    return diffs + _compare_response(ours["proper_response"], theirs.proper_response, tol)

@@ -4,11 +4,14 @@ the command is a thin wrapper of :mod:`rss.conformance`)."""
 from __future__ import annotations
 
 import json
-from pathlib import Path
+from typing import TYPE_CHECKING
 
 from typer.testing import CliRunner
 
 from workbench.cli.main import app
+
+if TYPE_CHECKING:
+    from pathlib import Path
 
 CASES = {
     "cases": [
@@ -22,7 +25,13 @@ CASES = {
             "ego_dynamics": {"response_time": 2.0, "accel_max": 2.0},
         },
         {"id": "u", "kind": "unstructured", "ego": {}, "other": {}},
-        {"id": "seq", "kind": "sequence", "steps": [{"kind": "formula", "function": "stopping_distance", "speed": 10, "decel": -5}]},
+        {
+            "id": "seq",
+            "kind": "sequence",
+            "steps": [
+                {"kind": "formula", "function": "stopping_distance", "speed": 10, "decel": -5}
+            ],
+        },
     ]
 }
 
@@ -39,7 +48,13 @@ def test_conformance_rss_json_lines(tmp_path: Path) -> None:
     assert gap58["states"][0]["longitudinal"]["safe_distance"] == 59.722994
     assert gap58["proper_response"]["longitudinal_response"] == "BrakeMin"
     assert gap58["proper_response"]["dangerous_objects"] == [1]
-    assert lines[1] == {"id": "u", "kind": "unstructured", "ok": False, "unsupported": True, "error": "unsupported: unstructured (issue 6)"}
+    assert lines[1] == {
+        "id": "u",
+        "kind": "unstructured",
+        "ok": False,
+        "unsupported": True,
+        "error": "unsupported: unstructured (issue 6)",
+    }
     assert lines[2]["value"] == 10.0
     assert (lines[2]["sequence_id"], lines[2]["step"]) == ("seq", 0)
 

@@ -34,7 +34,9 @@ def test_random_cases_agree_with_ad_rss(seed: int) -> None:
     assert 0.2 * report.steps < report.dangerous < 0.8 * report.steps
 
 
-@pytest.mark.skipif("RSS_FUZZ_SEED" not in os.environ, reason="set RSS_FUZZ_SEED=<int> to fuzz a new seed")
+@pytest.mark.skipif(
+    "RSS_FUZZ_SEED" not in os.environ, reason="set RSS_FUZZ_SEED=<int> to fuzz a new seed"
+)
 def test_fuzz_seed_cases() -> None:
     load_ad_rss()
     seed = int(os.environ["RSS_FUZZ_SEED"])

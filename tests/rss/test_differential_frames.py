@@ -28,7 +28,9 @@ def test_multi_object_frames_agree() -> None:
     for _ in range(40):
         oracle = AdRssOracle()  # independent frames: no shared history
         n = int(rng.integers(1, 40))
-        parsed = _frame_of([parse_case(random_case(rng, defaults, "c"), defaults, "c") for _ in range(n)])
+        parsed = _frame_of(
+            [parse_case(random_case(rng, defaults, "c"), defaults, "c") for _ in range(n)]
+        )
         (record,) = evaluate_ours(parsed, np.zeros(n, dtype=np.int64))
         frame = oracle.step([p.constellation for p in parsed if p.constellation], defaults.ego)
         assert not compare_frames(record, frame)
@@ -50,7 +52,10 @@ def test_multi_object_drive_agrees() -> None:
         records = evaluate_ours(parsed, np.asarray(frames))
         oracle = AdRssOracle()
         for t in range(steps):
-            answer = oracle.step([p.constellation for p in parsed[t * n : (t + 1) * n] if p.constellation], defaults.ego)
+            answer = oracle.step(
+                [p.constellation for p in parsed[t * n : (t + 1) * n] if p.constellation],
+                defaults.ego,
+            )
             assert not compare_frames(records[t], answer), t
 
 
@@ -58,10 +63,14 @@ def test_invalid_object_is_skipped_not_fatal() -> None:
     load_ad_rss()
     defaults = parse_defaults({})
     rng = np.random.default_rng(5)
-    parsed = _frame_of([parse_case(random_case(rng, defaults, "c"), defaults, "c") for _ in range(8)])
+    parsed = _frame_of(
+        [parse_case(random_case(rng, defaults, "c"), defaults, "c") for _ in range(8)]
+    )
     bad = parsed[3].constellation
     assert bad is not None
-    broken = dataclasses.replace(bad, other=dataclasses.replace(bad.other, speed=SpeedInterval(float("nan"), 1.0, 0.0, 0.0)))
+    broken = dataclasses.replace(
+        bad, other=dataclasses.replace(bad.other, speed=SpeedInterval(float("nan"), 1.0, 0.0, 0.0))
+    )
     with_bad = [*parsed[:3], dataclasses.replace(parsed[3], constellation=broken), *parsed[4:]]
     (record,) = evaluate_ours(with_bad, np.zeros(8, dtype=np.int64))
     flagged = [s for s in record["states"] if s["invalid"]]
@@ -69,7 +78,11 @@ def test_invalid_object_is_skipped_not_fatal() -> None:
     assert flagged[0]["invalid"] == "NonFiniteValue"
     assert not flagged[0]["is_dangerous"]
     # ad-rss fails the whole world; without the bad object it agrees with our other answers
-    assert not AdRssOracle().step([p.constellation for p in with_bad if p.constellation], defaults.ego).ok
+    assert (
+        not AdRssOracle()
+        .step([p.constellation for p in with_bad if p.constellation], defaults.ego)
+        .ok
+    )
     rest = [p for i, p in enumerate(parsed) if i != 3]
     answer = AdRssOracle().step([p.constellation for p in rest if p.constellation], defaults.ego)
     record["states"] = [s for s in record["states"] if not s["invalid"]]

@@ -27,8 +27,12 @@ def test_random_sequences_agree_with_ad_rss(seed: int) -> None:
     assert report.dangerous > 0
 
 
-@pytest.mark.skipif("RSS_FUZZ_SEED" not in os.environ, reason="set RSS_FUZZ_SEED=<int> to fuzz a new seed")
+@pytest.mark.skipif(
+    "RSS_FUZZ_SEED" not in os.environ, reason="set RSS_FUZZ_SEED=<int> to fuzz a new seed"
+)
 def test_fuzz_seed_sequences() -> None:
     load_ad_rss()
-    report = run_random_sequences(int(os.environ["RSS_FUZZ_SEED"]), int(os.environ.get("RSS_FUZZ_COUNT", "200")))
+    report = run_random_sequences(
+        int(os.environ["RSS_FUZZ_SEED"]), int(os.environ.get("RSS_FUZZ_COUNT", "200"))
+    )
     assert not report.failures, "\n".join(report.failures[:5])

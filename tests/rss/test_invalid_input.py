@@ -5,6 +5,7 @@ from __future__ import annotations
 import dataclasses
 import json
 import math
+from typing import Any
 
 import numpy as np
 import pytest
@@ -14,10 +15,10 @@ from rss.cases import parse_case, parse_defaults
 from rss.conformance import evaluate_document
 from rss.engine import check_frame
 from rss.errors import RssCaseError, RssConstellationError
-from rss.model import LaneSegment, RoadSegment, SpeedInterval
+from rss.model import Constellation, LaneSegment, RoadSegment, SpeedInterval
 from rss.states import InvalidReason
 
-CASE = {
+CASE: dict[str, Any] = {
     "id": "base",
     "kind": "structured",
     "constellation_type": "SameDirection",
@@ -27,7 +28,7 @@ CASE = {
 }
 
 
-def _constellation(case: dict | None = None):
+def _constellation(case: dict[str, Any] | None = None) -> Constellation:
     parsed = parse_case(case or CASE, parse_defaults({}), "x")
     assert parsed.constellation is not None
     return parsed.constellation

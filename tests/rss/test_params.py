@@ -38,7 +38,9 @@ def test_example_toml_loads() -> None:
 
 
 def test_vehicle_table_then_class_refinement() -> None:
-    params = parse_rss_params("[vehicle]\nresponse_time = 1.5\n[truck]\nbrake_min = -3.0\nbrake_min_correct = -2.0\n")
+    params = parse_rss_params(
+        "[vehicle]\nresponse_time = 1.5\n[truck]\nbrake_min = -3.0\nbrake_min_correct = -2.0\n"
+    )
     assert params.for_class(ObjectClass.CAR).response_time_s == 1.5
     truck = params.for_class(ObjectClass.TRUCK)
     assert (truck.response_time_s, truck.brake_min_mps2) == (1.5, -3.0)
@@ -56,7 +58,10 @@ def test_vehicle_table_then_class_refinement() -> None:
         ("[bogus]\nx = 1", "bogus"),
         ("[scene]\nrestrict_speed_limit_mode = 'Fast'", "scene.restrict_speed_limit_mode"),
         ("[scene]\nego_length = -1", "scene.ego_length"),
-        ("[pedestrian]\nvehicle_trajectory_calculation_step = 0", "pedestrian.vehicle_trajectory_calculation_step"),
+        (
+            "[pedestrian]\nvehicle_trajectory_calculation_step = 0",
+            "pedestrian.vehicle_trajectory_calculation_step",
+        ),
         ("[ego\n", "<toml>"),
     ],
 )

@@ -9,7 +9,7 @@ from rss import physics, reference
 from tests.rss.oracle import load_ad_rss
 
 
-def _inputs(seed: int, n: int) -> list[tuple[float, ...]]:
+def _inputs(seed: int, n: int) -> list[tuple[float, float, float, float, float, float]]:
     rng = np.random.default_rng(seed)
     out = []
     for _ in range(n):
@@ -38,10 +38,14 @@ def test_kernels_match_scalar_reference() -> None:
         ref_v, ref_d = reference.accelerated_limited_movement(row[0], row[1], row[3], row[2])
         assert (v1[i], d1[i]) == pytest.approx((ref_v, ref_d), abs=1e-9)
         assert stated[i] == pytest.approx(
-            reference.stated_braking_longitudinal(row[0], row[1], row[2], abs(row[3]), row[4]), abs=1e-9
+            reference.stated_braking_longitudinal(row[0], row[1], row[2], abs(row[3]), row[4]),
+            abs=1e-9,
         )
         assert lateral[i] == pytest.approx(
-            reference.stated_braking_lateral(row[0] - 20.0, row[2], abs(row[3]) / 10.0, row[4] / 10.0), abs=1e-9
+            reference.stated_braking_lateral(
+                row[0] - 20.0, row[2], abs(row[3]) / 10.0, row[4] / 10.0
+            ),
+            abs=1e-9,
         )
 
 
@@ -54,17 +58,29 @@ def test_kernels_match_binding_functions() -> None:
         out = p.Duration(0.0)
         try:
             ok = core.calculateTimeToCoverDistance(
-                p.Speed(v), p.Speed(cap), p.Duration(rho), p.Acceleration(a1), p.Acceleration(a2), p.Distance(s), out
+                p.Speed(v),
+                p.Speed(cap),
+                p.Duration(rho),
+                p.Acceleration(a1),
+                p.Acceleration(a2),
+                p.Distance(s),
+                out,
             )
         except IndexError:  # the binding computes a NaN for some inputs and throws
             continue
         assert ok
-        ours = physics.time_to_cover_distance(*(np.float64(x) for x in row))
+        ours = physics.time_to_cover_distance(*(np.array(x) for x in row))
         assert float(ours) == pytest.approx(out.mDuration, abs=1e-6), row
         speed, dist = p.Speed(0.0), p.Distance(0.0)
-        assert core.calculateAcceleratedLimitedMovement(p.Speed(v), p.Speed(cap), p.Acceleration(a1), p.Duration(rho), speed, dist)
-        ours_v, ours_d = physics.accelerated_limited_movement(*(np.float64(x) for x in (v, cap, a1, rho)))
-        assert (float(ours_v), float(ours_d)) == pytest.approx((speed.mSpeed, dist.mDistance), abs=1e-9)
+        assert core.calculateAcceleratedLimitedMovement(
+            p.Speed(v), p.Speed(cap), p.Acceleration(a1), p.Duration(rho), speed, dist
+        )
+        ours_v, ours_d = physics.accelerated_limited_movement(
+            *(np.array(x) for x in (v, cap, a1, rho))
+        )
+        assert (float(ours_v), float(ours_d)) == pytest.approx(
+            (speed.mSpeed, dist.mDistance), abs=1e-9
+        )
 
 
 def test_tolerant_comparisons() -> None:

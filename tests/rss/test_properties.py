@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import copy
+from typing import Any
 
 import numpy as np
 from hypothesis import given, settings
@@ -10,7 +11,11 @@ from hypothesis import strategies as st
 
 from rss.batch import stack_constellations, stack_dynamics
 from rss.cases import parse_case, parse_defaults
-from rss.checks import safe_lateral_distance, safe_longitudinal_distance_opposite, safe_longitudinal_distance_same
+from rss.checks import (
+    safe_lateral_distance,
+    safe_longitudinal_distance_opposite,
+    safe_longitudinal_distance_same,
+)
 from rss.conformance import frame_record
 from rss.dynamics import RssDynamics
 from rss.engine import check_frame
@@ -30,7 +35,9 @@ def _dyn(rho: float) -> object:
 
 @settings(max_examples=300, deadline=None)
 @given(speeds, speeds, response_times, response_times, st.floats(0.0, 10.0))
-def test_longitudinal_safe_distance_monotone(v: float, v_other: float, rho: float, rho2: float, dv: float) -> None:
+def test_longitudinal_safe_distance_monotone(
+    v: float, v_other: float, rho: float, rho2: float, dv: float
+) -> None:
     lo, hi = sorted((rho, rho2))
     a = np.array([v])
     o = np.array([v_other])
@@ -48,7 +55,9 @@ def test_longitudinal_safe_distance_monotone(v: float, v_other: float, rho: floa
 
 @settings(max_examples=300, deadline=None)
 @given(approach_speeds, approach_speeds, response_times, response_times, st.floats(0.0, 2.0))
-def test_lateral_safe_distance_monotone(v_left: float, v_right: float, rho: float, rho2: float, dv: float) -> None:
+def test_lateral_safe_distance_monotone(
+    v_left: float, v_right: float, rho: float, rho2: float, dv: float
+) -> None:
     """Vehicles not moving apart laterally (a receding one may gain distance with time)."""
     lo, hi = sorted((rho, rho2))
     left, right = np.array([v_left]), np.array([-v_right])
@@ -60,7 +69,7 @@ def test_lateral_safe_distance_monotone(v_left: float, v_right: float, rho: floa
     assert closer[0] >= base[0] - _SLACK
 
 
-def _evaluate(case: dict) -> dict:
+def _evaluate(case: dict[str, Any]) -> dict[str, Any]:
     defaults = parse_defaults({})
     parsed = parse_case(case, defaults, "p")
     batch = stack_constellations([parsed.constellation])  # type: ignore[list-item]
@@ -68,7 +77,7 @@ def _evaluate(case: dict) -> dict:
     return frame_record(result, batch)
 
 
-def _mirror_lateral(case: dict) -> dict:
+def _mirror_lateral(case: dict[str, Any]) -> dict[str, Any]:
     out = copy.deepcopy(case)
     road = out["road"]
     total = sum(road["lane_widths"])
@@ -115,6 +124,9 @@ def test_opposite_direction_ignores_in_front_or_behind(seed: int, gap: float) ->
     ahead, behind = copy.deepcopy(case), copy.deepcopy(case)
     ahead["other"]["s"] = case["ego"]["s"] + half + gap
     behind["other"]["s"] = case["ego"]["s"] - half - gap
-    la, lb = _evaluate(ahead)["states"][0]["longitudinal"], _evaluate(behind)["states"][0]["longitudinal"]
+    la, lb = (
+        _evaluate(ahead)["states"][0]["longitudinal"],
+        _evaluate(behind)["states"][0]["longitudinal"],
+    )
     assert la["safe_distance"] == lb["safe_distance"]
     assert la["is_safe"] == lb["is_safe"]

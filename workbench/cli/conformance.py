@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 import json
-from pathlib import Path
+from pathlib import Path  # noqa: TC003  (typer reads the annotations at runtime)
+from typing import Annotated
 
 import typer
 
@@ -12,12 +13,17 @@ from rss.errors import RssCaseError
 
 __all__ = ["register"]
 
-conformance_app = typer.Typer(help="Conformance runs against reference case files.", no_args_is_help=True)
+conformance_app = typer.Typer(
+    help="Conformance runs against reference case files.", no_args_is_help=True
+)
 
 
 @conformance_app.command("rss")
 def rss_cases(
-    cases: Path = typer.Argument(..., exists=True, dir_okay=False, help="Case file (rss-cases-format.md)."),
+    cases: Annotated[
+        Path,
+        typer.Argument(exists=True, dir_okay=False, help="Case file (rss-cases-format.md)."),
+    ],
 ) -> None:
     """Evaluate every case (and sequence step) and print one JSON object per line."""
     try:
