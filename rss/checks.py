@@ -13,22 +13,15 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from rss.batch import BoolArray, FloatArray, IntArray, take_rows
-from rss.model import ConstellationType
-from rss.physics import (
-    DISTANCE_MAX_M,
-    DISTANCE_PRECISION,
-    DURATION_MAX_S,
-    DURATION_PRECISION,
-    eq,
-    gt,
-    lt,
-    stated_braking_lateral,
-    stated_braking_longitudinal,
-    stopping_distance,
-    time_to_cover_distance,
-    tmax,
+from rss.formulas import (
+    pick,
+    safe_lateral_distance,
+    safe_longitudinal_distance_opposite,
+    safe_longitudinal_distance_same,
 )
+from rss.intersection import IntersectionState, intersection_checks
+from rss.model import ConstellationType
+from rss.physics import DISTANCE_MAX_M, DISTANCE_PRECISION, gt
 from rss.states import (
     LateralPosition,
     LateralResponse,
@@ -38,32 +31,15 @@ from rss.states import (
 )
 
 if TYPE_CHECKING:
-    from rss.batch import ConstellationBatch, DynamicsArrays
+    from rss.batch import BoolArray, ConstellationBatch, FloatArray, IntArray
     from rss.extraction import Relative
 
-__all__ = [
-    "IntersectionState",
-    "LateralSide",
-    "RawStates",
-    "check_all",
-    "safe_lateral_distance",
-    "safe_longitudinal_distance_opposite",
-    "safe_longitudinal_distance_same",
-]
+__all__ = ["IntersectionState", "LateralSide", "RawStates", "check_all"]
 
 _P = DISTANCE_PRECISION
 _E = RssStateEvaluator
 _LON = LongitudinalResponse
 _LAT = LateralResponse
-
-
-class IntersectionState:
-    """Codes of the intersection check that last made a constellation safe."""
-
-    NONE = 0
-    NON_PRIO_ABLE_TO_BREAK = 1
-    SAFE_LONGITUDINAL_DISTANCE = 2
-    NO_TIME_OVERLAP = 3
 
 
 @dataclass(frozen=True)
@@ -110,73 +86,6 @@ class RawStates:
     intersection_state: IntArray
 
 
-def _pick(mask: BoolArray, a: FloatArray, b: FloatArray) -> FloatArray:
-    return np.asarray(np.where(mask, a, b), dtype=np.float64)
-
-
-def _stated_braking(
-    dyn: DynamicsArrays, speed: FloatArray, decel: FloatArray, cap: FloatArray | None = None
-) -> FloatArray:
-    return stated_braking_longitudinal(
-        speed,
-        dyn.max_speed_on_acceleration_mps if cap is None else cap,
-        dyn.response_time_s,
-        dyn.accel_max_mps2,
-        decel,
-    )
-
-
-def safe_longitudinal_distance_same(
-    follower: DynamicsArrays,
-    follower_speed_max: FloatArray,
-    leader: DynamicsArrays,
-    leader_speed_min: FloatArray,
-) -> FloatArray:
-    """Safe distance of a follower behind a leader, same direction (``(C,)``, m)."""
-    d_follower = _stated_braking(follower, follower_speed_max, follower.brake_min_mps2)
-    d_leader = stopping_distance(leader_speed_min, leader.brake_max_mps2)
-    return tmax(d_follower - d_leader, 0.0, _P) + follower.min_longitudinal_safety_distance_m
-
-
-def safe_longitudinal_distance_opposite(
-    correct: DynamicsArrays,
-    correct_speed_max: FloatArray,
-    opposite: DynamicsArrays,
-    opposite_speed_max: FloatArray,
-) -> FloatArray:
-    """Safe distance of two oncoming vehicles (``(C,)``, m).
-
-    The one in its correct lane brakes with ``brake_min_correct``, the other with ``brake_min``.
-    """
-    d_correct = _stated_braking(correct, correct_speed_max, correct.brake_min_correct_mps2)
-    d_opposite = _stated_braking(opposite, opposite_speed_max, opposite.brake_min_mps2)
-    margin = tmax(
-        correct.min_longitudinal_safety_distance_m, opposite.min_longitudinal_safety_distance_m, _P
-    )
-    return np.asarray(d_correct + d_opposite + margin, dtype=np.float64)
-
-
-def safe_lateral_distance(
-    left: DynamicsArrays,
-    left_speed_max: FloatArray,
-    right: DynamicsArrays,
-    right_speed_min: FloatArray,
-) -> FloatArray:
-    """Safe lateral distance between a left and a right vehicle (``(C,)``, m).
-
-    Lateral speeds are positive to the right; the margin is the mean of both fluctuation
-    margins.
-    """
-    d_left = stated_braking_lateral(
-        left_speed_max, left.response_time_s, left.lat_accel_max_mps2, left.lat_brake_min_mps2
-    )
-    d_right = stated_braking_lateral(
-        right_speed_min, right.response_time_s, -right.lat_accel_max_mps2, -right.lat_brake_min_mps2
-    )
-    margin = 0.5 * (left.lateral_fluctuation_margin_m + right.lateral_fluctuation_margin_m)
-    return tmax(d_left - d_right + margin, 0.0, _P)
-
-
 def _longitudinal(
     batch: ConstellationBatch, rel: Relative
 ) -> tuple[BoolArray, IntArray, IntArray, FloatArray]:
@@ -192,7 +101,7 @@ def _longitudinal(
     safe_ego_front = safe_longitudinal_distance_same(
         oth_d, oth.speed_lon_max_mps, ego_d, ego.speed_lon_min_mps
     )
-    sd_safe_dist = _pick(ego_leads, safe_ego_front, safe_other_front)
+    sd_safe_dist = pick(ego_leads, safe_ego_front, safe_other_front)
     sd_eval = np.where(
         ego_leads,
         _E.LongitudinalDistanceSameDirectionEgoFront,
@@ -207,7 +116,7 @@ def _longitudinal(
     safe_other_correct = safe_longitudinal_distance_opposite(
         oth_d, oth.speed_lon_max_mps, ego_d, ego.speed_lon_max_mps
     )
-    od_safe_dist = _pick(ego_correct, safe_ego_correct, safe_other_correct)
+    od_safe_dist = pick(ego_correct, safe_ego_correct, safe_other_correct)
     od_eval = np.where(
         ego_correct,
         _E.LongitudinalDistanceOppositeDirectionEgoCorrectLane,
@@ -216,7 +125,7 @@ def _longitudinal(
     od_resp = np.where(ego_correct, _LON.BrakeMinCorrect, _LON.BrakeMin)
 
     opposite = batch.constellation_type == ConstellationType.OppositeDirection
-    safe_dist = _pick(opposite, od_safe_dist, sd_safe_dist)
+    safe_dist = pick(opposite, od_safe_dist, sd_safe_dist)
     is_safe = gt(rel.lon_distance_m, safe_dist, _P)
     response = np.where(is_safe, _LON.None_, np.where(opposite, od_resp, sd_resp)).astype(np.int64)
     evaluator = np.where(opposite, od_eval, sd_eval).astype(np.int64)
@@ -263,132 +172,6 @@ def _lateral(batch: ConstellationBatch, rel: Relative) -> tuple[LateralSide, Lat
     return left, right
 
 
-def _intersection(
-    batch: ConstellationBatch, rel: Relative
-) -> tuple[BoolArray, IntArray, FloatArray, FloatArray, IntArray]:
-    """Intersection checks in ad-rss' order; the first success wins."""
-    ego_d, oth_d = batch.ego_dynamics, batch.other_dynamics
-    ego, oth = batch.ego, batch.other
-    ctype = batch.constellation_type
-    ego_prio = ctype == ConstellationType.IntersectionEgoHasPriority
-    other_prio = ctype == ConstellationType.IntersectionObjectHasPriority
-
-    ego_stop = (
-        _stated_braking(ego_d, ego.speed_lon_max_mps, ego_d.brake_min_mps2)
-        + ego_d.min_longitudinal_safety_distance_m
-    )
-    other_stop = (
-        _stated_braking(oth_d, oth.speed_lon_max_mps, oth_d.brake_min_mps2)
-        + oth_d.min_longitudinal_safety_distance_m
-    )
-    safe1 = ~ego_prio & lt(ego_stop, rel.ego_dist_to_enter_m, _P)
-    try2 = ~safe1 & ~other_prio
-    safe2 = try2 & lt(other_stop, rel.other_dist_to_enter_m, _P)
-    able = safe1 | safe2
-
-    ego_in_front = rel.lon_position == LongitudinalPosition.InFront
-    safe_ego_front = safe_longitudinal_distance_same(
-        oth_d, oth.speed_lon_max_mps, ego_d, ego.speed_lon_min_mps
-    )
-    safe_other_front = safe_longitudinal_distance_same(
-        ego_d, ego.speed_lon_max_mps, oth_d, oth.speed_lon_min_mps
-    )
-    front_dist = _pick(ego_in_front, safe_ego_front, safe_other_front)
-    safe3 = ~able & gt(rel.lon_distance_m, front_dist, _P)
-
-    cap = ego_d.max_speed_on_acceleration_mps  # ad-rss uses the ego's cap for both vehicles
-    reach_ego = time_to_cover_distance(
-        ego.speed_lon_max_mps,
-        cap,
-        ego_d.response_time_s,
-        ego_d.accel_max_mps2,
-        ego_d.brake_min_mps2,
-        rel.ego_dist_to_enter_m,
-    )
-    leave_ego = time_to_cover_distance(
-        ego.speed_lon_min_mps,
-        cap,
-        ego_d.response_time_s,
-        ego_d.brake_max_mps2,
-        ego_d.brake_max_mps2,
-        rel.ego_dist_to_leave_m,
-    )
-    reach_oth = time_to_cover_distance(
-        oth.speed_lon_max_mps,
-        cap,
-        oth_d.response_time_s,
-        oth_d.accel_max_mps2,
-        oth_d.brake_min_mps2,
-        rel.other_dist_to_enter_m,
-    )
-    leave_oth = time_to_cover_distance(
-        oth.speed_lon_min_mps,
-        cap,
-        oth_d.response_time_s,
-        oth_d.brake_max_mps2,
-        oth_d.brake_max_mps2,
-        rel.other_dist_to_leave_m,
-    )
-    never = eq(reach_ego, DURATION_MAX_S, DURATION_PRECISION) & eq(
-        reach_oth, DURATION_MAX_S, DURATION_PRECISION
-    )
-    no_overlap = (
-        gt(reach_ego, leave_oth, DURATION_PRECISION)
-        | gt(reach_oth, leave_ego, DURATION_PRECISION)
-        | never
-    )
-    safe4 = ~able & ~safe3 & no_overlap
-
-    overlap = ~able & ~safe3
-    in_front_eval = np.where(ego_in_front, _E.IntersectionEgoInFront, _E.IntersectionOtherInFront)
-    evaluator = np.select(
-        [safe1, safe2, overlap],
-        [
-            _E.IntersectionOtherPriorityEgoAbleToStop,
-            _E.IntersectionEgoPriorityOtherAbleToStop,
-            _E.IntersectionOverlap,
-        ],
-        in_front_eval,
-    ).astype(np.int64)
-    current = np.select(
-        [safe1, safe2, overlap],
-        [rel.ego_dist_to_enter_m, rel.other_dist_to_enter_m, 0.0],
-        rel.lon_distance_m,
-    )
-    safe_dist = np.select([safe1, safe2, overlap], [ego_stop, other_stop, 0.0], front_dist)
-    state = np.select(
-        [able, safe3, safe4],
-        [
-            IntersectionState.NON_PRIO_ABLE_TO_BREAK,
-            IntersectionState.SAFE_LONGITUDINAL_DISTANCE,
-            IntersectionState.NO_TIME_OVERLAP,
-        ],
-        IntersectionState.NONE,
-    ).astype(np.int64)
-    return able | safe3 | safe4, evaluator, current, safe_dist, state
-
-
-def _scatter_intersection(
-    batch: ConstellationBatch, rel: Relative, intersection: BoolArray
-) -> tuple[BoolArray, IntArray, FloatArray, FloatArray, IntArray]:
-    """Run the (costly) intersection checks only on intersection constellations."""
-    size = batch.size
-    out = (
-        np.zeros(size, dtype=np.bool_),
-        np.zeros(size, dtype=np.int64),
-        np.zeros(size),
-        np.zeros(size),
-        np.zeros(size, dtype=np.int64),
-    )
-    rows = np.flatnonzero(intersection)
-    if rows.size:
-        for target, values in zip(
-            out, _intersection(take_rows(batch, rows), take_rows(rel, rows)), strict=True
-        ):
-            target[rows] = values
-    return out
-
-
 def check_all(batch: ConstellationBatch, rel: Relative) -> RawStates:
     """Run every structured check for every constellation.
 
@@ -403,9 +186,7 @@ def check_all(batch: ConstellationBatch, rel: Relative) -> RawStates:
     left, right = _lateral(batch, rel)
     ctype = batch.constellation_type
     intersection = ctype >= ConstellationType.IntersectionEgoHasPriority
-    i_safe, i_eval, i_current, i_safe_dist, i_state = _scatter_intersection(
-        batch, rel, intersection
-    )
+    i_safe, i_eval, i_current, i_safe_dist, i_state = intersection_checks(batch, rel, intersection)
     relevant = ctype != ConstellationType.NotRelevant
 
     lon_safe = np.where(intersection, i_safe, lon_safe) | ~relevant

@@ -12,13 +12,13 @@ import numpy as np
 
 from rss.batch import stack_constellations, stack_dynamics
 from rss.cases import CaseDefaults, ParsedCase, other_dynamics_for, parse_case, parse_defaults
-from rss.checks import (
+from rss.engine import check_frame
+from rss.errors import RssCaseError, RssError
+from rss.formulas import (
     safe_lateral_distance,
     safe_longitudinal_distance_opposite,
     safe_longitudinal_distance_same,
 )
-from rss.engine import check_frame
-from rss.errors import RssCaseError, RssError
 from rss.memory import RssMemory
 from rss.model import ConstellationType, ObjectType
 from rss.physics import DISTANCE_MAX_M, stated_braking_longitudinal, stopping_distance

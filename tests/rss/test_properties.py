@@ -11,14 +11,14 @@ from hypothesis import strategies as st
 
 from rss.batch import stack_constellations, stack_dynamics
 from rss.cases import parse_case, parse_defaults
-from rss.checks import (
+from rss.conformance import frame_record
+from rss.dynamics import RssDynamics
+from rss.engine import check_frame
+from rss.formulas import (
     safe_lateral_distance,
     safe_longitudinal_distance_opposite,
     safe_longitudinal_distance_same,
 )
-from rss.conformance import frame_record
-from rss.dynamics import RssDynamics
-from rss.engine import check_frame
 from tests.rss.generators import random_case
 
 #: ad-physics' tolerant ``max(d, 0)`` keeps values in (-1 mm, 0): monotone up to 1 mm.
