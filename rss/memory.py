@@ -12,8 +12,9 @@ provider. A key absent from a frame loses its memory (ad-rss forgets ids not see
 previous step); an *invalid* constellation keeps its previous entry.
 
 What is remembered (non-intersection): ``{lon_safe, lat_safe}`` of the last non-dangerous
-frame; a same-direction pair that is dangerous without memory while overlapping laterally
-is remembered as "longitudinally safe" (ad-rss' assumption). Intersection: which check
+frame. A pair that is dangerous without memory is remembered as ad-rss assumes it: "both
+were safe" (keep all responses), or, for a same-direction pair already overlapping
+laterally, "longitudinally safe" (no lateral response). Intersection: which check
 made the pair safe the last time it was safe.
 """
 
@@ -172,7 +173,10 @@ def apply_memory(  # noqa: PLR0917  (structure-of-arrays engine step)
         rel.lat_position[o],
         [LateralPosition.OverlapLeft, LateralPosition.Overlap, LateralPosition.OverlapRight],
     )
-    candidate = dangerous & ~intersection & (ctype == ConstellationType.SameDirection) & lat_overlap
+    # dangerous without memory: ad-rss assumes (and remembers) "both were safe", except a
+    # same-direction pair already overlapping laterally: "longitudinally safe" only
+    candidate = dangerous & ~intersection
+    overlap_assumption = (ctype == ConstellationType.SameDirection) & lat_overlap
     first_event = _previous(base | candidate, runs) < 0
     synthetic = candidate & first_event & (runs.initial < 0)
     store = base | synthetic
@@ -187,7 +191,7 @@ def apply_memory(  # noqa: PLR0917  (structure-of-arrays engine step)
         )
 
     stored_lon = np.where(synthetic, np.True_, lon_safe_now)
-    stored_lat = np.where(synthetic, np.False_, lat_safe_now)
+    stored_lat = np.where(synthetic, ~overlap_assumption, lat_safe_now)
     stored_int = np.where(intersection & base, raw.intersection_state[o], IntersectionState.NONE)
     known = (prev >= 0) | has_initial
     prev_lon = remembered(stored_lon, memory.lon_safe, np.False_)
@@ -196,7 +200,7 @@ def apply_memory(  # noqa: PLR0917  (structure-of-arrays engine step)
 
     structured = dangerous & ~intersection
     clear_lon = structured & known & prev_lat & ~prev_lon
-    clear_lat = structured & ((known & prev_lon & ~prev_lat) | synthetic)
+    clear_lat = structured & ((known & prev_lon & ~prev_lat) | (synthetic & overlap_assumption))
     unsafe_int = ok & intersection & ~lon_safe_now & known
     ego_prio = ctype == ConstellationType.IntersectionEgoHasPriority
     ego_front = rel.lon_position[o] == LongitudinalPosition.InFront

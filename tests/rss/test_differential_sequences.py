@@ -12,8 +12,8 @@ from tests.rss.oracle import load_ad_rss
 
 pytestmark = pytest.mark.oracle
 
-#: 2 x 160 = 320 sequences (>= 300) of 3-8 steps.
-SEEDS = (7, 20261123)
+#: 3 x 160 = 480 sequences (>= 300) of 3-8 steps.
+SEEDS = (7, 20261123, 8675309)  # 8675309 found the "dangerous without memory" rule
 SEQUENCES_PER_SEED = 160
 
 

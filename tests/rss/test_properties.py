@@ -6,7 +6,7 @@ import copy
 from typing import Any
 
 import numpy as np
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from rss.batch import stack_constellations, stack_dynamics
@@ -99,6 +99,13 @@ def test_invariant_under_lateral_mirror(seed: int) -> None:
     case = random_case(np.random.default_rng(seed), parse_defaults({}), "m", boundary=False)
     if "road" not in case:
         return
+    edges = [
+        obj["y"] + sign * obj["width"] / 2.0
+        for obj in (case["ego"], case["other"])
+        for sign in (-1, 1)
+    ]
+    # mirroring changes float rounding: edges within the 1 mm tolerance may flip overlaps
+    assume(all(abs(a - b) > 2e-3 for a in edges[:2] for b in edges[2:]))
     a, b = _evaluate(case), _evaluate(_mirror_lateral(case))
     sa, sb = a["states"][0], b["states"][0]
     assert sa["is_dangerous"] == sb["is_dangerous"]
