@@ -4,9 +4,6 @@ VENV   ?= .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 OUT    ?= out
-# Rerun's telemetry stays off for everything started from here.
-export RERUN_ANALYTICS ?= 0
-export RERUN_TELEMETRY ?= 0
 
 .PHONY: all setup demo test lint typecheck layers pytest bench samples screenshot clean
 

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import logging
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import shapely
@@ -68,11 +68,19 @@ class Collision:
 
 @dataclass(frozen=True, slots=True)
 class AppliedPatch:
-    """A rule patch that was subtracted (``step`` None = every step)."""
+    """A rule patch that was subtracted (``step`` None = every step).
+
+    Attributes:
+        object_id: The object whose reachable set was reduced.
+        rule: Rule name (e.g. ``f1.alongside``).
+        step: Grid step the patch applies to; ``None`` means every step.
+        geometry: The deleted region (map frame, shapely geometry), for display.
+    """
 
     object_id: str
     rule: str
     step: int | None
+    geometry: Any = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -248,7 +256,9 @@ def evaluate(
     result = ReachResult(
         is_safe=not collisions,
         collisions=tuple(collisions),
-        patches=tuple(AppliedPatch(str(objs.ids[p.object_index]), p.rule, p.step) for p in patches),
+        patches=tuple(
+            AppliedPatch(str(objs.ids[p.object_index]), p.rule, p.step, p.geometry) for p in patches
+        ),
         object_ids=objs.ids,
         skipped_ids=skipped,
         reach_sets=sets,

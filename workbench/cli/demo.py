@@ -1,7 +1,9 @@
-"""``workbench demo``: replay every sample log of a directory and print one summary table."""
+"""``workbench demo``: re-evaluate and replay every sample log of a directory, then summarise."""
 
 from __future__ import annotations
 
+import shutil
+import sys
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Annotated
@@ -10,12 +12,24 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
+from workbench.cli.engines import build_engines, parse_engines
 from workbench.cli.replay import default_output, open_log, run_with_progress
 from workbench.errors import USER_ERRORS
 
 __all__ = ["DemoRow", "demo", "find_sample_logs", "register"]
 
-_LOG_SUFFIXES = (".mcap", ".bag", ".xml")
+#: The log the closing hint suggests opening first.
+_FEATURED = "highway_cut_in.mcap"
+
+_LOG_SUFFIXES = (".mcap", ".bag", ".xml", ".saa", ".scn")
+
+
+def _viewer_command() -> str:
+    """``rerun``, or the venv's viewer path when the venv is not on PATH."""
+    venv_viewer = Path(sys.executable).with_name("rerun")
+    if shutil.which("rerun") is None and venv_viewer.exists():
+        return str(venv_viewer)
+    return "rerun"
 
 
 def _is_rosbag2_dir(path: Path) -> bool:
@@ -25,8 +39,8 @@ def _is_rosbag2_dir(path: Path) -> bool:
 def find_sample_logs(samples_dir: Path) -> list[Path]:
     """Drives directly in ``samples_dir``, sorted by name.
 
-    Drives are ``*.mcap``, ``*.bag`` and CommonRoad ``*.xml`` files and rosbag2 directories
-    (a directory holding ``metadata.yaml``).
+    Drives are ``*.mcap``, ``*.bag``, CommonRoad ``*.xml`` and ScenarioArchitect
+    ``*.saa``/``*.scn`` files and rosbag2 directories (a directory holding ``metadata.yaml``).
     """
     found = [
         p
@@ -68,15 +82,23 @@ class DemoRow:
     duration_s: float = 0.0
     frames_per_s: float = 0.0
     output: str = ""
+    unsafe: int = 0
+    violations: int = 0
     error: str = ""
 
 
-def _replay_one(log: Path, target: Path) -> DemoRow:
+def _replay_one(log: Path, target: Path, engine_names: list[str]) -> DemoRow:
     try:
         drive = open_log(log, map_path=None, profile=None, ego_id=None)
         try:
+            engines = build_engines(drive, engine_names, "turn", full_geometry=True)
             s = run_with_progress(
-                drive, label=f"replay {log.name}", start_s=None, end_s=None, out=target
+                drive,
+                label=f"evaluate + replay {log.name}",
+                start_s=None,
+                end_s=None,
+                out=target,
+                engines=engines,
             )
         finally:
             drive.close()
@@ -90,20 +112,21 @@ def _replay_one(log: Path, target: Path) -> DemoRow:
         duration_s=s.duration_s,
         frames_per_s=s.frames_per_s,
         output=target.name,
+        unsafe=sum(s.unsafe_frames.values()),
+        violations=len(s.violations),
     )
 
 
 def _table(rows: list[DemoRow]) -> Table:
     table = Table(title="workbench demo", title_justify="left")
-    for name in ("log", "format", "frames", "actors", "duration", "frames/s", "output"):
-        table.add_column(
-            name,
-            justify="right" if name in {"frames", "actors", "frames/s"} else "left",
-            overflow="fold",
-        )
+    numeric = {"frames", "actors", "unsafe", "violations", "frames/s"}
+    columns = ("log", "format", "frames", "actors", "duration", "unsafe", "violations")
+    for name in (*columns, "frames/s", "output"):
+        table.add_column(name, justify="right" if name in numeric else "left", overflow="fold")
     for r in rows:
         if r.error:
-            table.add_row(r.log, "[red]failed[/red]", "", "", "", "", f"[red]{r.error}[/red]")
+            blank = [""] * 6
+            table.add_row(r.log, "[red]failed[/red]", *blank, f"[red]{r.error}[/red]")
             continue
         table.add_row(
             r.log,
@@ -111,6 +134,8 @@ def _table(rows: list[DemoRow]) -> Table:
             str(r.frames),
             str(r.actors),
             f"{r.duration_s:.1f} s",
+            str(r.unsafe),
+            str(r.violations),
             f"{r.frames_per_s:.0f}",
             r.output,
         )
@@ -123,8 +148,11 @@ def demo(
     out: Annotated[Path, typer.Option("--out", help="Directory for the .rrd files.")] = Path(
         "out/demo"
     ),
+    engines: Annotated[
+        str, typer.Option("--engines", help="Engines evaluated on every frame ('' for none).")
+    ] = "reachsets",
 ) -> None:
-    """Replay every sample log in SAMPLES_DIR into OUT/<name>.rrd and summarise."""
+    """Re-evaluate every sample log in SAMPLES_DIR, replay it into OUT/<name>.rrd, summarise."""
     from workbench.replay.run import ReplayError  # noqa: PLC0415
 
     if not samples_dir.is_dir():
@@ -133,13 +161,20 @@ def demo(
     if not logs:
         raise ReplayError(f"{samples_dir}: no .mcap, .bag, rosbag2 directory or .xml found")
     names = output_names(logs)
-    rows = [_replay_one(log, out / names[log]) for log in logs]
+    engine_names = parse_engines(engines)
+    rows = [_replay_one(log, out / names[log], engine_names) for log in logs]
     console = Console(width=max(Console().width, 120))
     console.print(_table(rows))
     done = [r for r in rows if not r.error]
     if done:
-        console.print(f"{len(done)} of {len(rows)} logs written to {out}/; open one with:")
-        console.print(f"  rerun {out / done[0].output}", highlight=False)
+        console.print(f"{len(done)} of {len(rows)} logs written to {out.resolve()}/")
+        if engine_names:
+            console.print(
+                f"unsafe frames and violation intervals are from: {', '.join(engine_names)}"
+            )
+        first = next((r for r in done if r.output == names.get(samples_dir / _FEATURED)), done[0])
+        console.print("open one in the Rerun viewer with:")
+        console.print(f"  {_viewer_command()} {out / first.output}", highlight=False)
     if not done:
         raise typer.Exit(1)
 

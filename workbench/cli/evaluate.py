@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import enum
 import json
 from pathlib import Path  # noqa: TC003 - typer reads the annotations at run time
 from typing import TYPE_CHECKING, Annotated
@@ -12,50 +11,16 @@ from rich.console import Console
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
+from workbench.cli.engines import ReachMethodOption, build_engines, parse_engines
 from workbench.cli.replay import open_log, window_ns
 from workbench.errors import WorkbenchError
 
 if TYPE_CHECKING:
-    from loaders.drive import Drive
-    from workbench.evaluate.pipeline import EngineRunner
     from workbench.evaluate.violations import Violation
 
-__all__ = ["build_engines", "register"]
+__all__ = ["register"]
 
 _console = Console(stderr=True)
-
-#: Engines that evaluate recorded drives in this build.
-AVAILABLE_ENGINES = ("reachsets",)
-#: Engines that exist but cannot run on recorded drives yet, with the reason.
-PENDING_ENGINES = {
-    "rss": "structured RSS on recorded drives needs scene creation from the lane map, which "
-    "is not built yet; use 'workbench conformance rss CASES.json' for constellation cases",
-    "unstructured": "unstructured RSS is not built yet",
-}
-
-
-class ReachMethodOption(enum.StrEnum):
-    """``--reach-method`` values."""
-
-    simple = "simple"
-    turn = "turn"
-    bound = "bound"
-
-
-def build_engines(drive: Drive, names: list[str], reach_method: str) -> list[EngineRunner]:
-    """Engine runners for ``names`` (validated), bound to the drive's lane map."""
-    from reachsets.params import ReachMethod  # noqa: PLC0415 - keeps CLI start-up light
-    from workbench.evaluate.reach_runner import ReachRunner  # noqa: PLC0415
-
-    engines: list[EngineRunner] = []
-    for name in names:
-        if name in PENDING_ENGINES:
-            raise WorkbenchError(f"--engines {name}: {PENDING_ENGINES[name]}")
-        if name not in AVAILABLE_ENGINES:
-            known = ", ".join([*AVAILABLE_ENGINES, *PENDING_ENGINES])
-            raise WorkbenchError(f"--engines: unknown engine {name!r} (known: {known})")
-        engines.append(ReachRunner(drive.lane_map, method=ReachMethod(reach_method)))
-    return engines
 
 
 def _summary_table(violations: list[Violation], t0_ns: int) -> Table:
@@ -103,7 +68,7 @@ def evaluate(
         write_violations,
     )
 
-    names = [n.strip() for n in engines.split(",") if n.strip()]
+    names = parse_engines(engines)
     if not names:
         raise WorkbenchError("--engines: name at least one engine")
     drive = open_log(log, map_path=map_path, profile=profile, ego_id=ego_id)

@@ -10,6 +10,8 @@ import typer
 from rich.console import Console
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
+from workbench.cli.engines import ReachMethodOption, build_engines, parse_engines
+
 if TYPE_CHECKING:
     from loaders.drive import Drive
     from workbench.replay.run import ReplaySummary
@@ -125,6 +127,13 @@ def replay(
     end: Annotated[
         float | None, typer.Option("--end", help="Seconds from the drive start.")
     ] = None,
+    engines: Annotated[
+        str,
+        typer.Option("--engines", help="Also evaluate and show these engines, e.g. reachsets."),
+    ] = "",
+    reach_method: Annotated[
+        ReachMethodOption, typer.Option("--reach-method", help="Reachable-set method.")
+    ] = ReachMethodOption.turn,
 ) -> None:
     """Replay a drive into Rerun: map, ego, actors, plan and plots on timelines frame/log_time."""
     from workbench.replay.run import ReplayError  # noqa: PLC0415
@@ -134,6 +143,9 @@ def replay(
     target = out if (out is not None or spawn or serve) else default_output(log, out_dir)
     drive = open_log(log, map_path=map_path, profile=profile, ego_id=ego_id)
     try:
+        runners = build_engines(
+            drive, parse_engines(engines), reach_method.value, full_geometry=True
+        )
         summary = run_with_progress(
             drive,
             label=f"replay {log.name}",
@@ -143,6 +155,7 @@ def replay(
             spawn=spawn,
             serve=serve,
             on_served=_wait_for_ctrl_c,
+            engines=runners,
         )
     finally:
         drive.close()
@@ -150,6 +163,9 @@ def replay(
         f"{summary.frames} frames, {summary.actors_seen} actors, {summary.duration_s:.1f} s of "
         f"drive in {summary.elapsed_s:.2f} s ({summary.frames_per_s:.0f} frames/s)"
     )
+    for name, unsafe in summary.unsafe_frames.items():
+        count = sum(1 for v in summary.violations if v.engine == name)
+        typer.echo(f"{name}: {unsafe} unsafe frames in {count} violation interval(s)")
     if target is not None:
         typer.echo(f"wrote {target}")
         typer.echo(f"open it with: rerun {target}")

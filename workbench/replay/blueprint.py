@@ -17,9 +17,14 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import rerun.blueprint as rrb
 
 from workbench.replay.sink import FRAME_TIMELINE, TIME_TIMELINE
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
 
 __all__ = ["TRAIL_FRAMES", "TRAIL_SECONDS", "replay_blueprint"]
 
@@ -49,12 +54,16 @@ def _trail_ranges() -> rrb.VisibleTimeRanges:
     )
 
 
-def replay_blueprint(ego_start_m: tuple[float, float] | None = None) -> rrb.Blueprint:
+def replay_blueprint(
+    ego_start_m: tuple[float, float] | None = None, engines: Sequence[str] = ()
+) -> rrb.Blueprint:
     """The default blueprint: scene, plots, engine result views, time panel on ``frame``.
 
     Args:
         ego_start_m: Ego position at the first frame ``(x, y)``; the camera starts there and
             then tracks ``world/ego``.
+        engines: Names of the engines whose results are logged; the first one's state lane
+            is the active tab.
     """
     x0, y0 = ego_start_m or (0.0, 0.0)
     dx, dy, dz = _EYE_OFFSET_M
@@ -71,15 +80,22 @@ def replay_blueprint(ego_start_m: tuple[float, float] | None = None) -> rrb.Blue
         ),
         overrides={"world/ego/trail": _trail_ranges()},
     )
-    side = rrb.Vertical(
+    views: list[rrb.View | rrb.Container] = [
         rrb.TimeSeriesView(name="ego", origin="/plots/ego"),
         rrb.TimeSeriesView(name="actors", origin="/plots/actors"),
+    ]
+    if "reachsets" in engines:
+        views.append(
+            rrb.TimeSeriesView(name="first collision [s into plan]", origin="/plots/reach")
+        )
+    views.append(
         rrb.Tabs(
+            rrb.StateTimelineView(name="reach sets", origin="/reach"),
             rrb.StateTimelineView(name="rss", origin="/rss"),
-            rrb.Spatial3DView(name="reach", origin="/reach"),
-        ),
-        row_shares=[2, 2, 1],
+            active_tab="rss" if engines and engines[0] == "rss" else "reach sets",
+        )
     )
+    side = rrb.Vertical(*views, row_shares=[2] * (len(views) - 1) + [1])
     return rrb.Blueprint(
         rrb.Horizontal(scene, side, column_shares=[3, 1]),
         rrb.TimePanel(timeline=FRAME_TIMELINE, play_state="paused", state="collapsed"),

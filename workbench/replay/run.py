@@ -11,23 +11,27 @@ import os
 import sys
 import time
 import uuid
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 import rerun as rr
 
 from workbench.errors import WorkbenchError
+from workbench.evaluate.violations import detect_violations
 from workbench.replay.blueprint import replay_blueprint
+from workbench.replay.engines import EngineResultSink
 from workbench.replay.layout import ChunkLayout, layout_chunk, layout_map
 from workbench.replay.properties import drive_properties, recording_name
 from workbench.replay.sink import RerunSink
 
 if TYPE_CHECKING:
-    from collections.abc import Callable, Iterator
+    from collections.abc import Callable, Iterator, Mapping, Sequence
 
     from loaders.drive import Drive
     from loaders.records import Frame
+    from workbench.evaluate.pipeline import EngineRunner
+    from workbench.evaluate.violations import Violation
 
 __all__ = [
     "APPLICATION_ID",
@@ -60,6 +64,8 @@ class ReplaySummary:
         duration_s: Drive time covered by the frames sent.
         output: The ``.rrd`` path, the viewer URL, or ``"viewer"`` for a spawned viewer.
         elapsed_s: Wall-clock time for loading and logging.
+        violations: Violation intervals found by the engines, if any ran.
+        unsafe_frames: Unsafe frames per engine.
     """
 
     log: Path
@@ -69,6 +75,8 @@ class ReplaySummary:
     duration_s: float
     output: str
     elapsed_s: float
+    violations: tuple[Violation, ...] = ()
+    unsafe_frames: Mapping[str, int] = field(default_factory=dict)
 
     @property
     def frames_per_s(self) -> float:
@@ -158,6 +166,7 @@ def replay_drive(
     chunk_frames: int = CHUNK_FRAMES,
     ports: tuple[int, int] = (9876, 9090),
     on_served: Callable[[str], None] | None = None,
+    engines: Sequence[EngineRunner] = (),
 ) -> ReplaySummary:
     """Send a drive's map and frames to exactly one destination.
 
@@ -173,6 +182,8 @@ def replay_drive(
         ports: ``(grpc_port, web_port)`` for ``serve``.
         on_served: With ``serve``, called with the viewer URL once everything was sent; the
             server lives until it returns (the CLI waits for Ctrl-C there).
+        engines: Engine runners evaluated on every frame; their verdicts and geometry are
+            logged beside the scene and merged into violation intervals.
 
     Returns:
         Counts and timings of the replay.
@@ -189,7 +200,12 @@ def replay_drive(
     rec = rr.RecordingStream(APPLICATION_ID, recording_id=_recording_id(drive, start_ns, end_ns))
     sink = RerunSink(rec)
     output = _attach(
-        rec, replay_blueprint(ego_start), out=out, spawn=spawn, serve=serve, ports=ports
+        rec,
+        replay_blueprint(ego_start, engines=[e.name for e in engines]),
+        out=out,
+        spawn=spawn,
+        serve=serve,
+        ports=ports,
     )
     lane_map = drive.lane_map
     sink.send_static(
@@ -198,12 +214,17 @@ def replay_drive(
         properties=drive_properties(info),
         map_layout=layout_map(lane_map) if lane_map is not None else None,
     )
+    engine_sink = EngineResultSink(rec, engines)
     frames = 0
     ids: set[str] = set()
     t_first = t_last = 0
-    layouts = itertools.chain([first_layout] if first_layout else [], map(layout_chunk, chunks))
-    for layout in layouts:
+    pairs = itertools.chain(
+        [(first, first_layout)] if first and first_layout else [],
+        ((chunk, layout_chunk(chunk)) for chunk in chunks),
+    )
+    for chunk, layout in pairs:
         sink.send_chunk(layout)
+        engine_sink.send_chunk(chunk, layout)
         if frames == 0:
             t_first = int(layout.t_ns[0])
         t_last = int(layout.t_ns[-1])
@@ -224,4 +245,6 @@ def replay_drive(
         duration_s=(t_last - t_first) / 1e9,
         output=output,
         elapsed_s=time.perf_counter() - t0,
+        violations=tuple(detect_violations(engine_sink.results, info.path.name)),
+        unsafe_frames=engine_sink.unsafe_frames,
     )

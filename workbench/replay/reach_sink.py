@@ -1,0 +1,100 @@
+"""Sends reach-set results (``reach_layout``) to Rerun; thin, like ``sink``.
+
+Entity paths::
+
+    world/reach/sets          LineStrips3D, every object's set at every step, time-coloured
+    world/reach/occupancy     LineStrips3D, ego footprints along the plan, time-coloured
+    world/reach/patches       LineStrips3D, regions deleted by rule patches (cyan)
+    world/reach/collisions    Points3D on objects whose set hits the ego, labelled id @ t
+    reach/state               StateChange safe / unsafe (state lane)
+    plots/reach/first_collision_s   Scalars, earliest collision offset (unsafe frames)
+
+DESIGN.md sketches one entity per object and step (``reach/<object>/step_<k>``); we send one
+batched entity per kind instead (one columnar call per chunk, colour = step) because
+thousands of small entities make the viewer slow (Rerun issue #7115).
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+import rerun as rr
+
+from workbench.replay.sink import FRAME_TIMELINE, TIME_TIMELINE
+
+if TYPE_CHECKING:
+    from numpy.typing import NDArray
+
+    from workbench.replay.reach_layout import ReachColumns, StripColumns
+
+__all__ = ["STATE_COLORS", "ReachSink"]
+
+#: State-lane colours of the verdict.
+STATE_COLORS = {"safe": 0x4CAF50FF, "unsafe": 0xEF5350FF}
+
+
+def _index(frame: NDArray[np.int64], t_ns: NDArray[np.int64]) -> list[rr.TimeColumn]:
+    return [
+        rr.TimeColumn(FRAME_TIMELINE, sequence=frame),
+        rr.TimeColumn(TIME_TIMELINE, timestamp=t_ns.astype("datetime64[ns]")),
+    ]
+
+
+class ReachSink:
+    """Sends reach-set columns on the ``frame`` and ``log_time`` timelines."""
+
+    def __init__(self, recording: rr.RecordingStream) -> None:
+        """Remember the stream and send the static state configuration."""
+        self.recording = recording
+        recording.log(
+            "reach/state",
+            rr.StateConfiguration(
+                values=list(STATE_COLORS),
+                colors=np.array(list(STATE_COLORS.values()), dtype=np.uint32),
+            ),
+            static=True,
+        )
+
+    def _strips(self, path: str, index: list[rr.TimeColumn], cols: StripColumns) -> None:
+        if cols.strips.shape[0] == 0 and not cols.counts.any():
+            empty = np.zeros((0, 2, 3), dtype=np.float32)
+            strips, colors = empty, np.zeros(0, dtype=np.uint32)
+        else:
+            strips, colors = cols.strips, cols.colors
+        self.recording.send_columns(
+            path,
+            indexes=index,
+            columns=rr.LineStrips3D.columns(
+                strips=strips, colors=colors, radii=np.full(len(strips), 0.08, dtype=np.float32)
+            ).partition(cols.counts),
+        )
+
+    def send_chunk(
+        self, frame: NDArray[np.int64], t_ns: NDArray[np.int64], cols: ReachColumns
+    ) -> None:
+        """Send one chunk of reach-set results."""
+        rec = self.recording
+        index = _index(frame, t_ns)
+        self._strips("world/reach/sets", index, cols.sets)
+        self._strips("world/reach/occupancy", index, cols.occupancy)
+        self._strips("world/reach/patches", index, cols.patches)
+        rec.send_columns(
+            "world/reach/collisions",
+            indexes=index,
+            columns=rr.Points3D.columns(
+                positions=cols.hit_points_m,
+                labels=cols.hit_labels,
+                colors=np.full(len(cols.hit_labels), STATE_COLORS["unsafe"], dtype=np.uint32),
+                radii=np.full(len(cols.hit_labels), 0.8, dtype=np.float32),
+            ).partition(cols.hit_counts),
+        )
+        states = np.where(cols.is_safe, "safe", "unsafe")
+        rec.send_columns("reach/state", indexes=index, columns=rr.StateChange.columns(state=states))
+        unsafe = np.isfinite(cols.first_collision_s)
+        if unsafe.any():
+            rec.send_columns(
+                "plots/reach/first_collision_s",
+                indexes=_index(frame[unsafe], t_ns[unsafe]),
+                columns=rr.Scalars.columns(scalars=cols.first_collision_s[unsafe]),
+            )
