@@ -15,6 +15,7 @@ import numpy as np
 
 from rss.formulas import (
     pick,
+    pick_dynamics,
     safe_lateral_distance,
     safe_longitudinal_distance_opposite,
     safe_longitudinal_distance_same,
@@ -92,16 +93,13 @@ def _longitudinal(
     ego_d, oth_d = batch.ego_dynamics, batch.other_dynamics
     ego, oth = batch.ego, batch.other
     # same direction
-    ego_leads = np.isin(
-        rel.lon_position, [LongitudinalPosition.InFront, LongitudinalPosition.OverlapFront]
+    ego_leads = rel.lon_position <= int(LongitudinalPosition.OverlapFront)  # InFront, OverlapFront
+    sd_safe_dist = safe_longitudinal_distance_same(
+        pick_dynamics(ego_leads, oth_d, ego_d),
+        pick(ego_leads, oth.speed_lon_max_mps, ego.speed_lon_max_mps),
+        pick_dynamics(ego_leads, ego_d, oth_d),
+        pick(ego_leads, ego.speed_lon_min_mps, oth.speed_lon_min_mps),
     )
-    safe_other_front = safe_longitudinal_distance_same(
-        ego_d, ego.speed_lon_max_mps, oth_d, oth.speed_lon_min_mps
-    )
-    safe_ego_front = safe_longitudinal_distance_same(
-        oth_d, oth.speed_lon_max_mps, ego_d, ego.speed_lon_min_mps
-    )
-    sd_safe_dist = pick(ego_leads, safe_ego_front, safe_other_front)
     sd_eval = np.where(
         ego_leads,
         _E.LongitudinalDistanceSameDirectionEgoFront,
@@ -110,21 +108,21 @@ def _longitudinal(
     sd_resp = np.where(ego_leads, _LON.None_, _LON.BrakeMin)
     # opposite direction
     ego_correct = rel.ego_in_correct_lane
-    safe_ego_correct = safe_longitudinal_distance_opposite(
-        ego_d, ego.speed_lon_max_mps, oth_d, oth.speed_lon_max_mps
-    )
-    safe_other_correct = safe_longitudinal_distance_opposite(
-        oth_d, oth.speed_lon_max_mps, ego_d, ego.speed_lon_max_mps
-    )
-    od_safe_dist = pick(ego_correct, safe_ego_correct, safe_other_correct)
+    opposite = batch.constellation_type == ConstellationType.OppositeDirection
+    od_safe_dist = sd_safe_dist
+    if opposite.any():
+        od_safe_dist = safe_longitudinal_distance_opposite(
+            pick_dynamics(ego_correct, ego_d, oth_d),
+            pick(ego_correct, ego.speed_lon_max_mps, oth.speed_lon_max_mps),
+            pick_dynamics(ego_correct, oth_d, ego_d),
+            pick(ego_correct, oth.speed_lon_max_mps, ego.speed_lon_max_mps),
+        )
     od_eval = np.where(
         ego_correct,
         _E.LongitudinalDistanceOppositeDirectionEgoCorrectLane,
         _E.LongitudinalDistanceOppositeDirection,
     )
     od_resp = np.where(ego_correct, _LON.BrakeMinCorrect, _LON.BrakeMin)
-
-    opposite = batch.constellation_type == ConstellationType.OppositeDirection
     safe_dist = pick(opposite, od_safe_dist, sd_safe_dist)
     is_safe = gt(rel.lon_distance_m, safe_dist, _P)
     response = np.where(is_safe, _LON.None_, np.where(opposite, od_resp, sd_resp)).astype(np.int64)
@@ -137,14 +135,14 @@ def _lateral(batch: ConstellationBatch, rel: Relative) -> tuple[LateralSide, Lat
     ego, oth = batch.ego, batch.other
     ego_left = rel.lat_position == LateralPosition.AtLeft
     ego_right = rel.lat_position == LateralPosition.AtRight
-    safe_ego_left = safe_lateral_distance(
-        ego_d, ego.speed_lat_max_mps, oth_d, oth.speed_lat_min_mps
+    # only one side is evaluated per pair: left vehicle = ego if it is AtLeft, else the other
+    safe_dist = safe_lateral_distance(
+        pick_dynamics(ego_left, ego_d, oth_d),
+        pick(ego_left, ego.speed_lat_max_mps, oth.speed_lat_max_mps),
+        pick_dynamics(ego_left, oth_d, ego_d),
+        pick(ego_left, oth.speed_lat_min_mps, ego.speed_lat_min_mps),
     )
-    safe_ego_right = safe_lateral_distance(
-        oth_d, oth.speed_lat_max_mps, ego_d, ego.speed_lat_min_mps
-    )
-    gap_safe_right = gt(rel.lat_distance_m, safe_ego_left, _P)
-    gap_safe_left = gt(rel.lat_distance_m, safe_ego_right, _P)
+    gap_safe = gt(rel.lat_distance_m, safe_dist, _P)
     overlap = ~(ego_left | ego_right)
     zero = np.zeros_like(rel.lat_distance_m)
     far = np.full_like(zero, DISTANCE_MAX_M)
@@ -163,12 +161,8 @@ def _lateral(batch: ConstellationBatch, rel: Relative) -> tuple[LateralSide, Lat
             safe_distance_m=np.where(evaluated, safe_dist, np.where(overlap, zero, far)),
         )
 
-    left = side(
-        ego_right, gap_safe_left, safe_ego_right, rel.lat_position == LateralPosition.OverlapLeft
-    )
-    right = side(
-        ego_left, gap_safe_right, safe_ego_left, rel.lat_position == LateralPosition.OverlapRight
-    )
+    left = side(ego_right, gap_safe, safe_dist, rel.lat_position == LateralPosition.OverlapLeft)
+    right = side(ego_left, gap_safe, safe_dist, rel.lat_position == LateralPosition.OverlapRight)
     return left, right
 
 
@@ -204,13 +198,17 @@ def check_all(batch: ConstellationBatch, rel: Relative) -> RawStates:
         return LateralSide(
             is_safe=np.where(intersection, np.False_, side.is_safe) | ~relevant,
             response=np.where(fixed, _LAT.None_, side.response).astype(np.int64),
-            evaluator=np.select(
-                [intersection, ~relevant], [_E.LateralDistance, _E.None_], side.evaluator
+            evaluator=np.where(
+                intersection,
+                int(_E.LateralDistance),
+                np.where(relevant, side.evaluator, int(_E.None_)),
             ),
-            current_distance_m=np.select(
-                [intersection, ~relevant], [zero, far], side.current_distance_m
+            current_distance_m=np.where(
+                intersection, zero, np.where(relevant, side.current_distance_m, far)
             ),
-            safe_distance_m=np.select([intersection, ~relevant], [zero, far], side.safe_distance_m),
+            safe_distance_m=np.where(
+                intersection, zero, np.where(relevant, side.safe_distance_m, far)
+            ),
         )
 
     return RawStates(

@@ -30,6 +30,11 @@ _P = DISTANCE_PRECISION
 _PARAM_EPS = 1e-9
 #: ad-rss input range of lane-frame speeds [m/s].
 _SPEED_LIMIT_MPS = 100.0
+_IN_FRONT = int(LongitudinalPosition.InFront)
+_OVERLAP_FRONT = int(LongitudinalPosition.OverlapFront)
+_OVERLAP = int(LongitudinalPosition.Overlap)
+_OVERLAP_BACK = int(LongitudinalPosition.OverlapBack)
+_AT_BACK = int(LongitudinalPosition.AtBack)
 
 
 @dataclass(frozen=True)
@@ -83,17 +88,18 @@ def relative_position(
     behind = ~ahead & gt(other_min, ego_max, _P)
     overlap_front = gt(ego_min, other_min, _P) & gt(ego_max, other_max, _P)
     overlap_back = lt(ego_min, other_min, _P) & lt(ego_max, other_max, _P)
-    position = np.select(
-        [ahead, behind, overlap_front, overlap_back],
-        [
-            LongitudinalPosition.InFront,
-            LongitudinalPosition.AtBack,
-            LongitudinalPosition.OverlapFront,
-            LongitudinalPosition.OverlapBack,
-        ],
-        LongitudinalPosition.Overlap,
+    position = np.where(
+        ahead,
+        _IN_FRONT,
+        np.where(
+            behind,
+            _AT_BACK,
+            np.where(
+                overlap_front, _OVERLAP_FRONT, np.where(overlap_back, _OVERLAP_BACK, _OVERLAP)
+            ),
+        ),
     ).astype(np.int64)
-    distance = np.select([ahead, behind], [ego_min - other_max, other_min - ego_max], 0.0)
+    distance = np.where(ahead, ego_min - other_max, np.where(behind, other_min - ego_max, 0.0))
     return position, distance
 
 
@@ -153,8 +159,11 @@ def _invalid_objects(batch: ConstellationBatch) -> IntArray:
         reason = np.where(bad_speed, InvalidReason.SpeedOutOfRange, reason)
         finite = np.isfinite(speeds).all(axis=0) & np.isfinite(params).all(axis=(0, 2))
         reason = np.where(~finite, InvalidReason.NonFiniteValue, reason)
-    bad_type = (batch.ego.object_type != ObjectType.EgoVehicle) | np.isin(
-        batch.other.object_type, [ObjectType.Invalid, ObjectType.EgoVehicle]
+    other_type = batch.other.object_type
+    bad_type = (
+        (batch.ego.object_type != ObjectType.EgoVehicle)
+        | (other_type == ObjectType.Invalid)
+        | (other_type == ObjectType.EgoVehicle)
     )
     reason = np.where(bad_type & (reason == 0), InvalidReason.InvalidObjectType, reason)
     same = batch.ego.object_id == batch.other.object_id
@@ -211,15 +220,16 @@ def extract(batch: ConstellationBatch) -> Relative:
 
     ego_enter, ego_leave = _distances_to_intersection(ego)
     other_enter, other_leave = _distances_to_intersection(other)
-    # intersection-centric frame: smaller "distance to the entry" = further ahead
-    int_pos, int_dist = relative_position(
-        -(ego.intersection_min_m - ego.lon_min_m),
-        -(ego.intersection_min_m - ego.lon_max_m),
-        -(other.intersection_min_m - other.lon_min_m),
-        -(other.intersection_min_m - other.lon_max_m),
-    )
-    lon_pos = np.where(intersection, int_pos, lon_pos)
-    lon_dist = np.where(intersection, int_dist, lon_dist)
+    if intersection.any():
+        # intersection-centric frame: position relative to the own intersection entry
+        int_pos, int_dist = relative_position(
+            ego.lon_min_m - ego.intersection_min_m,
+            ego.lon_max_m - ego.intersection_min_m,
+            other.lon_min_m - other.intersection_min_m,
+            other.lon_max_m - other.intersection_min_m,
+        )
+        lon_pos = np.where(intersection, int_pos, lon_pos)
+        lon_dist = np.where(intersection, int_dist, lon_dist)
     lat_pos = np.where(intersection, LateralPosition.Overlap, lat_pos)
     lat_dist = np.where(intersection, 0.0, lat_dist)
     zero = np.zeros(batch.size)

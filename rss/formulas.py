@@ -23,6 +23,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "pick",
+    "pick_dynamics",
     "safe_lateral_distance",
     "safe_longitudinal_distance_opposite",
     "safe_longitudinal_distance_same",
@@ -30,6 +31,16 @@ __all__ = [
 ]
 
 _P = DISTANCE_PRECISION
+
+
+def pick_dynamics(mask: BoolArray, a: DynamicsArrays, b: DynamicsArrays) -> DynamicsArrays:
+    """Row-wise choice between two dynamics arrays (``a`` where ``mask``)."""
+    return type(a)(
+        **{
+            name: np.where(mask, getattr(a, name), getattr(b, name))
+            for name in a.__dataclass_fields__
+        }
+    )
 
 
 def pick(mask: BoolArray, a: FloatArray, b: FloatArray) -> FloatArray:

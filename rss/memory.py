@@ -169,9 +169,9 @@ def apply_memory(  # noqa: PLR0917  (structure-of-arrays engine step)
     ok = valid[o]
 
     base = ok & np.where(intersection, lon_safe_now, ~dangerous)
-    lat_overlap = np.isin(
-        rel.lat_position[o],
-        [LateralPosition.OverlapLeft, LateralPosition.Overlap, LateralPosition.OverlapRight],
+    lat_code = rel.lat_position[o]
+    lat_overlap = (lat_code >= int(LateralPosition.OverlapLeft)) & (
+        lat_code <= int(LateralPosition.OverlapRight)
     )
     # dangerous without memory: ad-rss assumes (and remembers) "both were safe", except a
     # same-direction pair already overlapping laterally: "longitudinally safe" only

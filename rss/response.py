@@ -105,10 +105,14 @@ def resolve(  # noqa: PLR0917  (structure-of-arrays engine step)
     lon = states.lon_response[rows]
     lon_response = np.zeros(n_frames, dtype=np.int64)
     np.maximum.at(lon_response, f, lon)
-    lon_limit = np.select(
-        [lon == LongitudinalResponse.BrakeMin, lon == LongitudinalResponse.BrakeMinCorrect],
-        [ego.brake_min_mps2[rows], ego.brake_min_correct_mps2[rows]],
-        ego.accel_max_mps2[rows],
+    lon_limit = np.where(
+        lon == int(LongitudinalResponse.BrakeMin),
+        ego.brake_min_mps2[rows],
+        np.where(
+            lon == int(LongitudinalResponse.BrakeMinCorrect),
+            ego.brake_min_correct_mps2[rows],
+            ego.accel_max_mps2[rows],
+        ),
     )
     lon_max = np.full(n_frames, default_ego.accel_max_mps2)
     np.minimum.at(lon_max, f, lon_limit)
