@@ -125,8 +125,7 @@ def _table(rows: list[DemoRow]) -> Table:
         table.add_column(name, justify="right" if name in numeric else "left", overflow="fold")
     for r in rows:
         if r.error:
-            blank = [""] * 6
-            table.add_row(r.log, "[red]failed[/red]", *blank, f"[red]{r.error}[/red]")
+            table.add_row(r.log, "[red]failed[/red]", *[""] * 7)
             continue
         table.add_row(
             r.log,
@@ -165,6 +164,9 @@ def demo(
     rows = [_replay_one(log, out / names[log], engine_names) for log in logs]
     console = Console(width=max(Console().width, 120))
     console.print(_table(rows))
+    for r in rows:
+        if r.error:
+            console.print(f"[red]failed:[/red] {r.error}", highlight=False, soft_wrap=True)
     done = [r for r in rows if not r.error]
     if done:
         console.print(f"{len(done)} of {len(rows)} logs written to {out.resolve()}/")
