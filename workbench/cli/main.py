@@ -8,6 +8,7 @@ traceback instead.
 from __future__ import annotations
 
 import sys
+from typing import Annotated
 
 import typer
 
@@ -27,11 +28,10 @@ app = typer.Typer(
 
 @app.callback()
 def _root(
-    debug: bool = typer.Option(  # noqa: FBT001
-        False,  # noqa: FBT003
-        "--debug",
-        help="Show full tracebacks instead of one-line errors.",
-    ),
+    *,
+    debug: Annotated[
+        bool, typer.Option("--debug", help="Show full tracebacks instead of one-line errors.")
+    ] = False,
 ) -> None:
     """Replay, re-evaluate and review recorded drives for automated-driving safety."""
     del debug  # read in main() before typer runs
