@@ -50,10 +50,15 @@ class Extents:
 
 
 def _exclusive_cumsum(values: FloatArray, axis: int) -> FloatArray:
-    if values.shape[axis] == 1:
-        return np.zeros_like(values)
-    total = np.cumsum(values, axis=axis)
-    return np.asarray(total - values, dtype=np.float64)
+    """Sums of the preceding entries along ``axis`` of a ``(C, n)`` array.
+
+    Accumulated left to right exactly as ad-rss does (``cumsum - values`` would differ in
+    the last bit and flip 1 mm tolerance decisions).
+    """
+    out = np.zeros_like(values)
+    if values.shape[axis] > 1:
+        out[:, 1:] = np.cumsum(values[:, :-1], axis=axis)
+    return out
 
 
 @dataclass(frozen=True)
