@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from rss.model import LaneDrivingDirection, RoadSegmentType
+from rss.physics import DISTANCE_PRECISION, gt, lt
 
 if TYPE_CHECKING:
     from rss.batch import BoolArray, FloatArray, IntArray, ObjectArrays, RoadAreaArrays
@@ -157,33 +158,58 @@ def place(obj: ObjectArrays, table: LaneTable) -> Extents:
         The extents; ``found`` is False where no region lies in the road area. Regions
         whose lane is not in the road area are ignored (as ad-rss does).
     """
-    inf = np.inf
-    region = obj.region_lane_id[:, :, None]  # (C, K, 1)
-    match = (table.lane_id[:, None, :] == region) & (region >= 0)  # (C, K, RL)
+    lane = obj.region_lane_id[:, :, None]  # (C, K, 1)
+    match = (table.lane_id[:, None, :] == lane) & (lane >= 0)  # (C, K, RL)
     hit = match.any(axis=2)  # (C, K)
     idx = match.argmax(axis=2)  # (C, K)
     if hit.shape[1] == 1:  # one region per object: no reduction over regions needed
         return _place_single(obj, table, hit[:, 0], idx)
 
+    # ad-rss walks the road area segment by segment, lane by lane, and merges each region
+    # with a tolerant std::min / std::max (a region within 1 mm does not widen the extent)
+    order = np.argsort(np.where(hit, idx, np.iinfo(np.int64).max), axis=1, kind="stable")
+    idx = np.take_along_axis(idx, order, axis=1)
+    hit = np.asarray(np.take_along_axis(hit, order, axis=1), dtype=np.bool_)
+
     def at(values: np.ndarray) -> np.ndarray:
         return np.take_along_axis(values, idx, axis=1)
 
-    lon_min = at(table.lon0_min_m) + obj.region_lon_min * at(table.length_min_m)
-    lon_max = at(table.lon0_max_m) + obj.region_lon_max * at(table.length_max_m)
-    lat_min = at(table.lat0_min_m) + obj.region_lat_min * at(table.width_min_m)
-    lat_max = at(table.lat0_max_m) + obj.region_lat_max * at(table.width_max_m)
+    def region(values: np.ndarray) -> np.ndarray:
+        return np.take_along_axis(values, order, axis=1)
+
+    lon_min = at(table.lon0_min_m) + region(obj.region_lon_min) * at(table.length_min_m)
+    lon_max = at(table.lon0_max_m) + region(obj.region_lon_max) * at(table.length_max_m)
+    lat_min = at(table.lat0_min_m) + region(obj.region_lat_min) * at(table.width_min_m)
+    lat_max = at(table.lat0_max_m) + region(obj.region_lat_max) * at(table.width_max_m)
     direction = at(table.direction)
     return Extents(
-        lon_min_m=np.where(hit, lon_min, inf).min(axis=1),
-        lon_max_m=np.where(hit, lon_max, -inf).max(axis=1),
-        lat_min_m=np.where(hit, lat_min, inf).min(axis=1),
-        lat_max_m=np.where(hit, lat_max, -inf).max(axis=1),
+        lon_min_m=_merge(lon_min, hit, smaller=True),
+        lon_max_m=_merge(lon_max, hit, smaller=False),
+        lat_min_m=_merge(lat_min, hit, smaller=True),
+        lat_max_m=_merge(lat_max, hit, smaller=False),
         on_positive_lane=(hit & (direction == LaneDrivingDirection.Positive)).any(axis=1),
         on_negative_lane=(hit & (direction == LaneDrivingDirection.Negative)).any(axis=1),
         found=hit.any(axis=1),
         intersection_min_m=table.intersection_min_m,
         intersection_max_m=table.intersection_max_m,
     )
+
+
+def _merge(values: FloatArray, hit: BoolArray, *, smaller: bool) -> FloatArray:
+    """Tolerant running min / max over the ``K`` sorted regions (``(C, K)`` -> ``(C,)``).
+
+    The loop runs over the region slots ``K`` (a handful), each step vectorised over ``C``.
+    """
+    current = np.full(values.shape[0], np.nan)
+    for k in range(values.shape[1]):
+        value, first = values[:, k], np.isnan(current)
+        better = (
+            lt(value, current, DISTANCE_PRECISION)
+            if smaller
+            else gt(value, current, DISTANCE_PRECISION)
+        )
+        current = np.where(hit[:, k] & (first | better), value, current)
+    return current
 
 
 def _place_single(obj: ObjectArrays, table: LaneTable, hit: BoolArray, idx: IntArray) -> Extents:
