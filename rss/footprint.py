@@ -189,7 +189,7 @@ def place(obj: ObjectArrays, table: LaneTable) -> Extents:
         lat_max_m=_merge(lat_max, hit, smaller=False),
         on_positive_lane=(hit & (direction == LaneDrivingDirection.Positive)).any(axis=1),
         on_negative_lane=(hit & (direction == LaneDrivingDirection.Negative)).any(axis=1),
-        found=hit.any(axis=1),
+        found=np.asarray(hit.any(axis=1), dtype=np.bool_),
         intersection_min_m=table.intersection_min_m,
         intersection_max_m=table.intersection_max_m,
     )
