@@ -102,18 +102,17 @@ def lane_table(road: RoadAreaArrays) -> LaneTable:
     min / max column widths over all segments.
     """
     lane_ok = road.lane_id >= 0  # (C, R, L)
-    inf = np.inf
     c, r, n_lanes = road.lane_id.shape
-    if lane_ok.all():  # no padding: plain reductions
-        seg_len_min, seg_len_max = road.length_min_m.min(axis=2), road.length_max_m.max(axis=2)
-        col_w_min, col_w_max = road.width_min_m.min(axis=1), road.width_max_m.max(axis=1)
-    else:
-        seg_ok = lane_ok.any(axis=2)
-        seg_len_min = np.where(seg_ok, np.where(lane_ok, road.length_min_m, inf).min(axis=2), 0.0)
-        seg_len_max = np.where(seg_ok, np.where(lane_ok, road.length_max_m, -inf).max(axis=2), 0.0)
-        col_ok = lane_ok.any(axis=1)  # (C, L)
-        col_w_min = np.where(col_ok, np.where(lane_ok, road.width_min_m, inf).min(axis=1), 0.0)
-        col_w_max = np.where(col_ok, np.where(lane_ok, road.width_max_m, -inf).max(axis=1), 0.0)
+    # ad-rss reduces with the tolerant std::min / std::max: lengths lane by lane within a
+    # segment, column widths segment by segment (values within 1 mm keep the first one)
+    seg_len_min = _reduce(road.length_min_m, lane_ok, smaller=True)  # (C, R)
+    seg_len_max = _reduce(road.length_max_m, lane_ok, smaller=False)
+    col_w_min = _reduce(
+        road.width_min_m.transpose(0, 2, 1), lane_ok.transpose(0, 2, 1), smaller=True
+    )
+    col_w_max = _reduce(
+        road.width_max_m.transpose(0, 2, 1), lane_ok.transpose(0, 2, 1), smaller=False
+    )
     start_min = _exclusive_cumsum(seg_len_min, axis=1)  # (C, R)
     start_max = _exclusive_cumsum(seg_len_max, axis=1)
     lat_start_min = _exclusive_cumsum(col_w_min, axis=1)  # (C, L)
@@ -193,6 +192,16 @@ def place(obj: ObjectArrays, table: LaneTable) -> Extents:
         intersection_min_m=table.intersection_min_m,
         intersection_max_m=table.intersection_max_m,
     )
+
+
+def _reduce(values: FloatArray, valid: BoolArray, *, smaller: bool) -> FloatArray:
+    """Tolerant running min / max over the last axis: ``(C, A, B)`` -> ``(C, A)``.
+
+    Entries where nothing is valid are 0.
+    """
+    c, a, b = values.shape
+    merged = _merge(values.reshape(c * a, b), valid.reshape(c * a, b), smaller=smaller)
+    return np.nan_to_num(merged, nan=0.0).reshape(c, a)
 
 
 def _merge(values: FloatArray, hit: BoolArray, *, smaller: bool) -> FloatArray:

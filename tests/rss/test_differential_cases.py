@@ -34,11 +34,9 @@ def test_random_cases_agree_with_ad_rss(seed: int) -> None:
     assert 0.2 * report.steps < report.dangerous < 0.8 * report.steps
 
 
-@pytest.mark.skipif(
-    "RSS_FUZZ_SEED" not in os.environ, reason="set RSS_FUZZ_SEED=<int> to fuzz a new seed"
-)
 def test_fuzz_seed_cases() -> None:
+    """Try a new seed: ``RSS_FUZZ_SEED=<int> [RSS_FUZZ_COUNT=<n>]`` (default: a small run)."""
     load_ad_rss()
-    seed = int(os.environ["RSS_FUZZ_SEED"])
-    report = run_random_cases(seed, int(os.environ.get("RSS_FUZZ_COUNT", "2000")))
+    seed = int(os.environ.get("RSS_FUZZ_SEED", "1"))
+    report = run_random_cases(seed, int(os.environ.get("RSS_FUZZ_COUNT", "200")))
     assert not report.failures, "\n".join(report.failures[:5])

@@ -1,0 +1,111 @@
+"""Road areas beyond the case format: several segments, curved / narrowing lanes
+(min != max lengths and widths), objects spanning segments and lanes, mixed directions."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from rss.batch import stack_constellations
+from rss.conformance import frame_record
+from rss.engine import check_frames
+from rss.model import (
+    Constellation,
+    ConstellationType,
+    LaneDrivingDirection,
+    LaneObject,
+    LaneSegment,
+    ObjectType,
+    OccupiedRegion,
+    RoadSegment,
+    SpeedInterval,
+)
+from rss.params import DEFAULT_EGO_DYNAMICS, DEFAULT_VEHICLE_DYNAMICS
+from tests.rss.oracle import AdRssOracle, compare_frames, load_ad_rss
+
+pytestmark = pytest.mark.oracle
+
+
+def _road(rng: np.random.Generator) -> tuple[RoadSegment, ...]:
+    n_segments, n_lanes = int(rng.integers(1, 4)), int(rng.integers(1, 4))
+    directions = [LaneDrivingDirection(int(d)) for d in rng.choice([0, 1, 1, 1, 2], n_lanes)]
+    segments = []
+    for r in range(n_segments):
+        lanes = []
+        for m in range(n_lanes):
+            length = float(rng.uniform(20.0, 120.0))
+            width = float(rng.uniform(2.5, 4.0))
+            lanes.append(
+                LaneSegment(
+                    10 * r + m + 1,
+                    directions[m],
+                    length,
+                    length * float(rng.uniform(1.0, 1.05)),
+                    width * float(rng.uniform(0.9, 1.0)),
+                    width,
+                )
+            )
+        segments.append(RoadSegment(tuple(lanes)))
+    return tuple(segments)
+
+
+def _object(
+    rng: np.random.Generator, road: tuple[RoadSegment, ...], object_id: int, kind: ObjectType
+) -> LaneObject:
+    r0 = int(rng.integers(0, len(road)))
+    r1 = min(len(road) - 1, r0 + int(rng.integers(0, 2)))
+    m0 = int(rng.integers(0, len(road[0].lanes)))
+    m1 = min(len(road[0].lanes) - 1, m0 + int(rng.integers(0, 2)))
+    lon0, lat0 = float(rng.uniform(0.0, 0.9)), float(rng.uniform(0.0, 0.7))
+    regions = []
+    for r in range(r0, r1 + 1):
+        for m in range(m0, m1 + 1):
+            lon = (
+                lon0 if r == r0 else 0.0,
+                1.0 if r < r1 else min(1.0, lon0 + float(rng.uniform(0.02, 0.1))),
+            )
+            lat = (
+                lat0 if m == m0 else 0.0,
+                1.0 if m < m1 else min(1.0, lat0 + float(rng.uniform(0.2, 0.3))),
+            )
+            regions.append(
+                OccupiedRegion(road[r].lanes[m].lane_id, lon[0], max(lon), lat[0], max(lat))
+            )
+    v = float(rng.uniform(0.0, 30.0))
+    lat_v = float(rng.uniform(-1.0, 1.0))
+    return LaneObject(
+        object_id, kind, tuple(regions), SpeedInterval(v * 0.9, v, lat_v - 0.1, lat_v)
+    )
+
+
+@pytest.mark.parametrize("seed", [11, 12, 13])
+def test_multi_segment_roads_agree(seed: int) -> None:
+    load_ad_rss()
+    rng = np.random.default_rng(seed)
+    constellations = []
+    for i in range(500):
+        road = _road(rng)
+        ctype = (
+            ConstellationType.SameDirection
+            if rng.random() < 0.6
+            else ConstellationType.OppositeDirection
+        )
+        constellations.append(
+            Constellation(
+                ctype,
+                _object(rng, road, 2 * i, ObjectType.EgoVehicle),
+                _object(rng, road, 2 * i + 1, ObjectType.OtherVehicle),
+                DEFAULT_EGO_DYNAMICS,
+                DEFAULT_VEHICLE_DYNAMICS,
+                road,
+            )
+        )
+    batch = stack_constellations(constellations)
+    result, _ = check_frames(batch, np.arange(batch.size), batch.size, DEFAULT_EGO_DYNAMICS)
+    failures = []
+    for i, c in enumerate(constellations):
+        answer = AdRssOracle().step([c], DEFAULT_EGO_DYNAMICS)
+        diffs = compare_frames(frame_record(result, batch, i), answer)
+        if diffs:
+            failures.append((i, diffs))
+    assert not failures, failures[:3]
