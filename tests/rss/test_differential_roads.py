@@ -18,6 +18,7 @@ from rss.model import (
     ObjectType,
     OccupiedRegion,
     RoadSegment,
+    RoadSegmentType,
     SpeedInterval,
 )
 from rss.params import DEFAULT_EGO_DYNAMICS, DEFAULT_VEHICLE_DYNAMICS
@@ -106,6 +107,80 @@ def test_multi_segment_roads_agree(seed: int) -> None:
     for i, c in enumerate(constellations):
         answer = AdRssOracle().step([c], DEFAULT_EGO_DYNAMICS)
         diffs = compare_frames(frame_record(result, batch, i), answer)
+        if diffs:
+            failures.append((i, diffs))
+    assert not failures, failures[:3]
+
+
+def _intersection_road(rng: np.random.Generator, first_id: int) -> tuple[RoadSegment, ...]:
+    road = list(_road(rng))
+    n_lanes = len(road[0].lanes)
+    crossing = []
+    for m in range(n_lanes):
+        length = float(rng.uniform(8.0, 25.0))
+        crossing.append(
+            LaneSegment(
+                first_id + m, LaneDrivingDirection.Positive, length, length * 1.02, 3.0, 3.2
+            )
+        )
+    before = float(rng.uniform(0.0, 3.0)) if rng.random() < 0.5 else 0.0
+    after = float(rng.uniform(0.0, 3.0)) if rng.random() < 0.5 else 0.0
+    position = int(rng.integers(1, len(road) + 1))
+    road.insert(position, RoadSegment(tuple(crossing), RoadSegmentType.Intersection, before, after))
+    renumbered = []
+    for r, seg in enumerate(road):
+        lanes = tuple(
+            LaneSegment(
+                first_id + 10 * r + m,
+                lane.driving_direction,
+                lane.length_min_m,
+                lane.length_max_m,
+                lane.width_min_m,
+                lane.width_max_m,
+            )
+            for m, lane in enumerate(seg.lanes)
+        )
+        renumbered.append(
+            RoadSegment(
+                lanes,
+                seg.segment_type,
+                seg.min_length_before_intersecting_area_m,
+                seg.min_length_after_intersecting_area_m,
+            )
+        )
+    return tuple(renumbered)
+
+
+@pytest.mark.parametrize("seed", [21, 22])
+def test_intersection_road_areas_agree(seed: int) -> None:
+    load_ad_rss()
+    rng = np.random.default_rng(seed)
+    kinds = (
+        ConstellationType.IntersectionEgoHasPriority,
+        ConstellationType.IntersectionObjectHasPriority,
+        ConstellationType.IntersectionSamePriority,
+    )
+    constellations = []
+    for i in range(400):
+        ego_road, other_road = _intersection_road(rng, 1000), _intersection_road(rng, 5000)
+        constellations.append(
+            Constellation(
+                kinds[int(rng.integers(0, 3))],
+                _object(rng, ego_road, 2 * i, ObjectType.EgoVehicle),
+                _object(rng, other_road, 2 * i + 1, ObjectType.OtherVehicle),
+                DEFAULT_EGO_DYNAMICS,
+                DEFAULT_VEHICLE_DYNAMICS,
+                ego_road,
+                other_road,
+            )
+        )
+    batch = stack_constellations(constellations)
+    result, _ = check_frames(batch, np.arange(batch.size), batch.size, DEFAULT_EGO_DYNAMICS)
+    failures = []
+    for i, c in enumerate(constellations):
+        diffs = compare_frames(
+            frame_record(result, batch, i), AdRssOracle().step([c], DEFAULT_EGO_DYNAMICS)
+        )
         if diffs:
             failures.append((i, diffs))
     assert not failures, failures[:3]
