@@ -44,6 +44,7 @@ __all__ = [
     "evaluate_document",
     "evaluate_formula",
     "frame_record",
+    "json_number",
     "response_record",
 ]
 
@@ -55,7 +56,7 @@ _LIST_TOLERANCE = 1e-5
 _VALUE_AND_TOLERANCE = 2
 
 
-def _num(value: float) -> float | None:
+def json_number(value: float) -> float | None:
     """JSON number rounded to 1e-6; "max" distances and non-finite values become null."""
     if not math.isfinite(value) or value >= DISTANCE_MAX_M:
         return None
@@ -67,8 +68,8 @@ def _lateral(side: LateralSide, i: int) -> dict[str, Any]:
         "is_safe": bool(side.is_safe[i]),
         "response": str(LateralResponse(int(side.response[i]))),
         "evaluator": str(RssStateEvaluator(int(side.evaluator[i]))),
-        "current_distance": _num(float(side.current_distance_m[i])),
-        "safe_distance": _num(float(side.safe_distance_m[i])),
+        "current_distance": json_number(float(side.current_distance_m[i])),
+        "safe_distance": json_number(float(side.safe_distance_m[i])),
     }
 
 
@@ -90,9 +91,9 @@ def frame_record(result: FrameResult, batch: ConstellationBatch, index: int = 0)
         situation.append(
             {
                 "longitudinal_position": LongitudinalPosition(int(rel.lon_position[i])).name,
-                "longitudinal_distance": _num(float(rel.lon_distance_m[i])),
+                "longitudinal_distance": json_number(float(rel.lon_distance_m[i])),
                 "lateral_position": LateralPosition(int(rel.lat_position[i])).name,
-                "lateral_distance": _num(float(rel.lat_distance_m[i])),
+                "lateral_distance": json_number(float(rel.lat_distance_m[i])),
                 "ego": {"is_in_correct_lane": bool(rel.ego_in_correct_lane[i])},
                 "other": {"is_in_correct_lane": bool(rel.other_in_correct_lane[i])},
             }
@@ -109,8 +110,8 @@ def frame_record(result: FrameResult, batch: ConstellationBatch, index: int = 0)
                     "is_safe": bool(st.lon_is_safe[i]),
                     "response": str(LongitudinalResponse(int(st.lon_response[i]))),
                     "evaluator": str(RssStateEvaluator(int(st.lon_evaluator[i]))),
-                    "current_distance": _num(float(st.lon_current_distance_m[i])),
-                    "safe_distance": _num(float(st.lon_safe_distance_m[i])),
+                    "current_distance": json_number(float(st.lon_current_distance_m[i])),
+                    "safe_distance": json_number(float(st.lon_safe_distance_m[i])),
                 },
                 "lateral_left": _lateral(st.left, int(i)),
                 "lateral_right": _lateral(st.right, int(i)),
@@ -134,11 +135,17 @@ def response_record(result: FrameResult, object_ids: np.ndarray, index: int) -> 
         "unstructured_constellation_response": "None",
         "heading_ranges": [],
         "acceleration_restrictions": {
-            "longitudinal": [_num(pr.lon_min_mps2[index]), _num(pr.lon_max_mps2[index])],
-            "lateral_left": [_num(pr.lat_left_min_mps2[index]), _num(pr.lat_left_max_mps2[index])],
+            "longitudinal": [
+                json_number(pr.lon_min_mps2[index]),
+                json_number(pr.lon_max_mps2[index]),
+            ],
+            "lateral_left": [
+                json_number(pr.lat_left_min_mps2[index]),
+                json_number(pr.lat_left_max_mps2[index]),
+            ],
             "lateral_right": [
-                _num(pr.lat_right_min_mps2[index]),
-                _num(pr.lat_right_max_mps2[index]),
+                json_number(pr.lat_right_min_mps2[index]),
+                json_number(pr.lat_right_max_mps2[index]),
             ],
         },
     }
@@ -281,7 +288,7 @@ def _evaluate(
     if parsed.kind == "formula":
         record |= {
             "ok": True,
-            "value": _num(evaluate_formula(parsed.raw, defaults, parsed.case_id)),
+            "value": json_number(evaluate_formula(parsed.raw, defaults, parsed.case_id)),
         }
     else:
         assert parsed.constellation is not None

@@ -7,7 +7,6 @@ our package object merely gains the binding's ``world``/``core``/... attributes)
 
 from __future__ import annotations
 
-import math
 import os
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
@@ -15,7 +14,7 @@ from typing import TYPE_CHECKING, Any
 import pytest
 
 import rss  # noqa: F401  (must precede ad_rss, see module docstring)
-from rss.physics import DISTANCE_MAX_M
+from rss.conformance import json_number
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -42,12 +41,6 @@ class OracleFrame:
     ok: bool
     states: dict[int, dict[str, Any]] = field(default_factory=dict)
     proper_response: dict[str, Any] = field(default_factory=dict)
-
-
-def _num(value: float) -> float | None:
-    if not math.isfinite(value) or value >= DISTANCE_MAX_M:
-        return None
-    return round(float(value), 6)
 
 
 class AdRssOracle:
@@ -196,7 +189,7 @@ class AdRssOracle:
             "lateral_response_left": str(response.lateral_response_left),
             "lateral_response_right": str(response.lateral_response_right),
             "acceleration_restrictions": {
-                name: [_num(r.minimum.mAcceleration), _num(r.maximum.mAcceleration)]
+                name: [json_number(r.minimum.mAcceleration), json_number(r.maximum.mAcceleration)]
                 for name, r in (
                     ("longitudinal", ar.longitudinal_range),
                     ("lateral_left", ar.lateral_left_range),
@@ -213,8 +206,8 @@ class AdRssOracle:
             "is_safe": bool(s.is_safe),
             "response": str(s.response),
             "evaluator": str(info.evaluator),
-            "current_distance": _num(info.current_distance.mDistance),
-            "safe_distance": _num(info.safe_distance.mDistance),
+            "current_distance": json_number(info.current_distance.mDistance),
+            "safe_distance": json_number(info.safe_distance.mDistance),
         }
 
 
