@@ -119,8 +119,12 @@ def replay(
     ] = Path("out"),
     spawn: Annotated[bool, typer.Option("--spawn", help="Stream to a new native viewer.")] = False,
     serve: Annotated[
-        bool, typer.Option("--serve", help="Serve gRPC + web viewer on 127.0.0.1.")
+        bool, typer.Option("--serve", help="Serve gRPC + web viewer (on 127.0.0.1 by default).")
     ] = False,
+    bind: Annotated[
+        str,
+        typer.Option("--bind", help="Address --serve listens on; 0.0.0.0 exposes it to the LAN."),
+    ] = "127.0.0.1",
     start: Annotated[
         float | None, typer.Option("--start", help="Seconds from the drive start.")
     ] = None,
@@ -156,6 +160,7 @@ def replay(
             serve=serve,
             on_served=_wait_for_ctrl_c,
             engines=runners,
+            bind=bind,
         )
     finally:
         drive.close()

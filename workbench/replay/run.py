@@ -8,6 +8,9 @@ from __future__ import annotations
 import contextlib
 import itertools
 import os
+import signal
+import socket
+import subprocess
 import sys
 import time
 import uuid
@@ -21,7 +24,7 @@ from workbench.errors import WorkbenchError
 from workbench.evaluate.violations import detect_violations
 from workbench.replay.blueprint import replay_blueprint
 from workbench.replay.engines import EngineResultSink
-from workbench.replay.layout import ChunkLayout, layout_chunk, layout_map
+from workbench.replay.layout import layout_chunk, layout_map
 from workbench.replay.properties import drive_properties, recording_name
 from workbench.replay.sink import RerunSink
 
@@ -113,7 +116,8 @@ def _viewer_analytics_off() -> Iterator[None]:
         os.environ.pop("CI", None)
 
 
-def _attach(
+@contextlib.contextmanager
+def _attached(
     rec: rr.RecordingStream,
     blueprint: rr.blueprint.Blueprint,
     *,
@@ -121,8 +125,12 @@ def _attach(
     spawn: bool,
     serve: bool,
     ports: tuple[int, int],
-) -> str:
-    """Set the stream's sink; return where the data goes (path or URL)."""
+    bind: str,
+) -> Iterator[str]:
+    """Set the stream's sink and yield where the data goes (path or URL).
+
+    A server started for ``serve`` is stopped when the block ends.
+    """
     if sum((out is not None, spawn, serve)) != 1:
         raise ReplayError("choose exactly one of an output file, spawn or serve")
     if out is not None:
@@ -131,7 +139,8 @@ def _attach(
         except OSError as err:
             raise ReplayError(f"cannot create {out.parent}: {err.strerror}") from err
         rec.save(out, default_blueprint=blueprint)
-        return str(out)
+        yield str(out)
+        return
     if spawn:
         # The viewer shipped with rerun-sdk sits next to this interpreter, which need not be
         # on PATH (``.venv/bin/workbench`` run without activating the venv).
@@ -145,13 +154,85 @@ def _attach(
                 )
         except RuntimeError as err:
             raise ReplayError(f"cannot start the Rerun viewer: {err}".splitlines()[0]) from err
-        return "viewer"
+        yield "viewer"
+        return
+    url, server = _serve(rec, blueprint, ports=ports, bind=bind)
+    try:
+        yield url
+    finally:
+        rec.disconnect()
+        _stop(server)
+
+
+def _group_alive(pgid: int) -> bool:
+    try:
+        os.killpg(pgid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+def _stop(proc: subprocess.Popen[bytes]) -> None:
+    """Terminate the server's whole process group and wait until it is gone."""
+    for sig in (signal.SIGTERM, signal.SIGKILL):
+        with contextlib.suppress(ProcessLookupError):
+            os.killpg(proc.pid, sig)
+        deadline = time.monotonic() + 10.0
+        while time.monotonic() < deadline:
+            proc.poll()
+            if not _group_alive(proc.pid):
+                return
+            time.sleep(0.05)
+
+
+def _wait_for_port(host: str, port: int, proc: subprocess.Popen[bytes], timeout_s: float) -> None:
+    deadline = time.monotonic() + timeout_s
+    while time.monotonic() < deadline:
+        if proc.poll() is not None:
+            raise ReplayError(f"the Rerun server exited with code {proc.returncode}")
+        with contextlib.suppress(OSError), socket.create_connection((host, port), timeout=0.2):
+            return
+        time.sleep(0.1)
+    raise ReplayError(f"the Rerun server did not listen on {host}:{port} within {timeout_s} s")
+
+
+def _serve(
+    rec: rr.RecordingStream,
+    blueprint: rr.blueprint.Blueprint,
+    *,
+    ports: tuple[int, int],
+    bind: str,
+) -> tuple[str, subprocess.Popen[bytes]]:
+    """Start ``rerun --serve-web --bind BIND`` and connect the stream to its gRPC proxy.
+
+    The SDK's in-process web server has no bind option and listens on every interface; the
+    viewer's own server binds both the gRPC proxy and the web page to ``bind``.
+    """
     grpc_port, web_port = ports
+    viewer = Path(sys.executable).with_name("rerun")
+    exe = str(viewer) if viewer.exists() else "rerun"
+    cmd = [exe, "--serve-web", "--bind", bind, "--port", str(grpc_port)]
+    cmd += ["--web-viewer-port", str(web_port)]
     with _viewer_analytics_off():
-        server = rr.GrpcServerSink(bind_ip=LOCALHOST, port=grpc_port)
-        rec.set_sinks(server, default_blueprint=blueprint)
-        rr.serve_web_viewer(web_port=web_port, open_browser=False, connect_to=server.uri)
-    return f"http://{LOCALHOST}:{web_port}/?url={server.uri}"
+        try:
+            # Own session: the ``rerun`` entry point runs the viewer binary as a child, and the
+            # whole group must stop with the replay.
+            proc = subprocess.Popen(  # noqa: S603 - fixed argv, no shell
+                cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True
+            )
+        except OSError as err:
+            raise ReplayError(f"cannot start the Rerun server {exe}: {err.strerror}") from err
+    host = "127.0.0.1" if bind in {"0.0.0.0", "::"} else bind  # noqa: S104 - compared, not bound
+    try:
+        _wait_for_port(host, grpc_port, proc, timeout_s=20.0)
+    except ReplayError:
+        _stop(proc)
+        raise
+    uri = f"rerun+http://{host}:{grpc_port}/proxy"
+    rec.connect_grpc(uri, default_blueprint=blueprint)
+    return f"http://{host}:{web_port}/?url={uri}", proc
 
 
 def replay_drive(
@@ -167,6 +248,7 @@ def replay_drive(
     ports: tuple[int, int] = (9876, 9090),
     on_served: Callable[[str], None] | None = None,
     engines: Sequence[EngineRunner] = (),
+    bind: str = LOCALHOST,
 ) -> ReplaySummary:
     """Send a drive's map and frames to exactly one destination.
 
@@ -182,35 +264,61 @@ def replay_drive(
         ports: ``(grpc_port, web_port)`` for ``serve``.
         on_served: With ``serve``, called with the viewer URL once everything was sent; the
             server lives until it returns (the CLI waits for Ctrl-C there).
+        bind: With ``serve``, the address the gRPC proxy and the web viewer listen on.
         engines: Engine runners evaluated on every frame; their verdicts and geometry are
             logged beside the scene and merged into violation intervals.
 
     Returns:
         Counts and timings of the replay.
     """
-    info = drive.info
     t0 = time.perf_counter()
     chunks = _chunks(iter(drive.frames(start_ns, end_ns)), chunk_frames)
     first = next(chunks, None)
-    first_layout: ChunkLayout | None = layout_chunk(first) if first else None
-    ego_start = None
-    if first_layout is not None:
-        x, y = first_layout.ego.centre_m[0, :2]
-        ego_start = (float(x), float(y))
+    ego_start = (first[0].ego.x_m, first[0].ego.y_m) if first else None
     rec = rr.RecordingStream(APPLICATION_ID, recording_id=_recording_id(drive, start_ns, end_ns))
     sink = RerunSink(rec)
-    output = _attach(
+    with _attached(
         rec,
         replay_blueprint(ego_start, engines=[e.name for e in engines]),
         out=out,
         spawn=spawn,
         serve=serve,
         ports=ports,
-    )
+        bind=bind,
+    ) as output:
+        return _stream(
+            drive,
+            rec,
+            sink,
+            output=output,
+            engines=engines,
+            chunks=itertools.chain([first] if first else [], chunks),
+            t0=t0,
+            progress=progress,
+            on_served=on_served if serve else None,
+        )
+
+
+def _stream(
+    drive: Drive,
+    rec: rr.RecordingStream,
+    sink: RerunSink,
+    *,
+    output: str,
+    engines: Sequence[EngineRunner],
+    chunks: Iterator[list[Frame]],
+    t0: float,
+    progress: Callable[[int], None] | None,
+    on_served: Callable[[str], None] | None,
+) -> ReplaySummary:
+    """Send the static data and every chunk; then hand a served URL to ``on_served``."""
+    info = drive.info
     lane_map = drive.lane_map
+    pairs = ((chunk, layout_chunk(chunk)) for chunk in chunks)
+    head = next(pairs, None)
     sink.send_static(
         name=recording_name(info),
-        start_ns=int(first_layout.t_ns[0]) if first_layout is not None else info.start_ns,
+        start_ns=int(head[1].t_ns[0]) if head is not None else info.start_ns,
         properties=drive_properties(info),
         map_layout=layout_map(lane_map) if lane_map is not None else None,
     )
@@ -218,11 +326,7 @@ def replay_drive(
     frames = 0
     ids: set[str] = set()
     t_first = t_last = 0
-    pairs = itertools.chain(
-        [(first, first_layout)] if first and first_layout else [],
-        ((chunk, layout_chunk(chunk)) for chunk in chunks),
-    )
-    for chunk, layout in pairs:
+    for chunk, layout in itertools.chain([head] if head is not None else [], pairs):
         sink.send_chunk(layout)
         engine_sink.send_chunk(chunk, layout)
         if frames == 0:
@@ -233,10 +337,9 @@ def replay_drive(
         if progress is not None:
             progress(frames)
     sink.flush()
-    if serve and on_served is not None:
+    if on_served is not None:
         on_served(output)
-    if out is not None:
-        rec.disconnect()
+    rec.disconnect()
     return ReplaySummary(
         log=info.path,
         source_format=info.source_format,

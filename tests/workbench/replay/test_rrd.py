@@ -1,5 +1,6 @@
 """Write an .rrd from a fake drive and read it back without a viewer."""
 
+import contextlib
 import socket
 from pathlib import Path
 from typing import Any
@@ -98,12 +99,34 @@ def _free_port() -> int:
         return int(s.getsockname()[1])
 
 
-def test_serve_binds_grpc_to_localhost_and_calls_back_with_the_url():
+def _listeners(port: int) -> set[str]:
+    """Local addresses (hex, as in /proc/net/tcp*) listening on ``port``."""
+    found = set()
+    for table in ("/proc/net/tcp", "/proc/net/tcp6"):
+        with contextlib.suppress(OSError), Path(table).open() as fh:
+            for line in fh.readlines()[1:]:
+                fields = line.split()
+                addr, port_hex = fields[1].rsplit(":", 1)
+                if int(port_hex, 16) == port and fields[3] == "0A":  # 0A = LISTEN
+                    found.add(addr)
+    return found
+
+
+def test_serve_binds_grpc_and_web_viewer_to_localhost_only():
     grpc_port, web_port = _free_port(), _free_port()
     seen: list[str] = []
+    bound: dict[int, set[str]] = {}
+
+    def served(url: str) -> None:
+        seen.append(url)
+        bound.update({port: _listeners(port) for port in (grpc_port, web_port)})
+
     summary = replay_drive(
-        FakeDrive(n_frames=5), serve=True, ports=(grpc_port, web_port), on_served=seen.append
+        FakeDrive(n_frames=5), serve=True, ports=(grpc_port, web_port), on_served=served
     )
     assert seen == [summary.output]
     assert f"rerun+http://127.0.0.1:{grpc_port}/proxy" in summary.output
     assert summary.output.startswith(f"http://127.0.0.1:{web_port}/")
+    loopback = "0100007F"  # 127.0.0.1 in /proc/net/tcp byte order
+    assert bound == {grpc_port: {loopback}, web_port: {loopback}}
+    assert _listeners(grpc_port) == set(), "the server must stop with the replay"
