@@ -1,0 +1,132 @@
+"""Agents of an unstructured check: a structure of arrays in the ENU map frame.
+
+::
+
+      y ▲   yaw 0 = +x, counter-clockwise positive; yaw_rate > 0 turns left;
+        │   (x, y) is the centre of the footprint (length along the heading).
+        └──────▶ x
+
+The object type (ad-rss ``ObjectType`` codes, :class:`rss.model.ObjectType`) picks the
+motion model: pedestrians (``Pedestrian``, ``ArtificialPedestrian``) or vehicles
+(``EgoVehicle``, ``OtherVehicle``, ``ArtificialVehicle``, ``Bicycle``, ``OtherObject``).
+``ArtificialObject`` has no model in ad-rss and makes the agent invalid.
+"""
+
+from __future__ import annotations
+
+import enum
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from rss.model import ObjectType
+from rss.unstructured.errors import UnstructuredInputError
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+
+    from rss.batch import FloatArray, IntArray
+
+__all__ = ["MotionModel", "UnstructuredAgents", "motion_model"]
+
+_ANGLE_LIMIT_RAD = 2.0 * np.pi
+
+
+class MotionModel(enum.IntEnum):
+    """Trajectory-set model of an object type."""
+
+    INVALID = 0
+    VEHICLE = 1
+    PEDESTRIAN = 2
+
+
+_MODEL = np.full(len(ObjectType), MotionModel.VEHICLE, dtype=np.int64)
+_MODEL[[ObjectType.Invalid, ObjectType.ArtificialObject]] = MotionModel.INVALID
+_MODEL[[ObjectType.Pedestrian, ObjectType.ArtificialPedestrian]] = MotionModel.PEDESTRIAN
+
+
+def motion_model(object_type: IntArray) -> IntArray:
+    """:class:`MotionModel` codes of ad-rss object type codes ``(N,)``."""
+    return np.asarray(_MODEL[np.asarray(object_type, dtype=np.int64)])
+
+
+@dataclass(frozen=True)
+class UnstructuredAgents:
+    """``N`` traffic participants of one frame (every field ``(N,)``, read-only).
+
+    Attributes:
+        object_id: Object ids (memory keys).
+        object_type: :class:`rss.model.ObjectType` codes.
+        x_m: Centre x (ENU) [m].
+        y_m: Centre y [m].
+        yaw_rad: Heading [rad], within ±2π.
+        speed_min_mps: Lower bound of the speed [m/s], >= 0.
+        speed_max_mps: Upper bound of the speed [m/s].
+        yaw_rate_radps: Yaw rate [rad/s], positive = turning left.
+        steering_angle_rad: Steering angle [rad] (only the ego's is used: drive-away).
+        length_m: Footprint length [m].
+        width_m: Footprint width [m].
+    """
+
+    object_id: IntArray
+    object_type: IntArray
+    x_m: FloatArray
+    y_m: FloatArray
+    yaw_rad: FloatArray
+    speed_min_mps: FloatArray
+    speed_max_mps: FloatArray
+    yaw_rate_radps: FloatArray
+    steering_angle_rad: FloatArray
+    length_m: FloatArray
+    width_m: FloatArray
+
+    def __post_init__(self) -> None:
+        """Freeze the arrays and check their shapes.
+
+        Raises:
+            UnstructuredInputError: Fields of different lengths or not 1-D.
+        """
+        n = None
+        for name in self.__dataclass_fields__:
+            value = np.array(
+                getattr(self, name), dtype=np.int64 if name.startswith("object") else np.float64
+            )
+            if value.ndim != 1 or (n is not None and value.shape[0] != n):
+                raise UnstructuredInputError(
+                    name, f"must be 1-D of length {n}, got shape {value.shape}"
+                )
+            n = value.shape[0]
+            value.setflags(write=False)
+            object.__setattr__(self, name, value)
+
+    def __len__(self) -> int:
+        """Number of agents."""
+        return int(self.object_id.shape[0])
+
+    @staticmethod
+    def from_rows(rows: Sequence[dict[str, float]]) -> UnstructuredAgents:
+        """Build from one mapping per agent (keys = field names; steering, yaw rate default 0)."""
+        defaults = {"yaw_rate_radps": 0.0, "steering_angle_rad": 0.0}
+        names = UnstructuredAgents.__dataclass_fields__
+        return UnstructuredAgents(**{n: [r.get(n, defaults.get(n)) for r in rows] for n in names})  # type: ignore[arg-type]
+
+    def take(self, index: IntArray) -> UnstructuredAgents:
+        """The agents at ``index``."""
+        return UnstructuredAgents(**{n: getattr(self, n)[index] for n in self.__dataclass_fields__})
+
+    def valid(self) -> np.ndarray:
+        """``(N,)`` agents ad-rss accepts (finite, angles within ±2π, speeds ordered, a model)."""
+        values = np.stack(
+            [getattr(self, n) for n in self.__dataclass_fields__ if not n.startswith("object")]
+        )
+        angles = np.stack((self.yaw_rad, self.steering_angle_rad))
+        return np.asarray(
+            np.isfinite(values).all(axis=0)
+            & (np.abs(angles) <= _ANGLE_LIMIT_RAD).all(axis=0)
+            & (self.speed_min_mps >= 0.0)
+            & (self.speed_min_mps <= self.speed_max_mps)
+            & (self.length_m > 0.0)
+            & (self.width_m > 0.0)
+            & (motion_model(self.object_type) != MotionModel.INVALID)
+        )

@@ -1,0 +1,269 @@
+"""Motion kernels of the trajectory sets, vectorised over trajectory points ``(M,)``.
+
+ENU map frame, yaw 0 = +x, counter-clockwise positive. A trajectory point is a pose with a
+speed and a yaw rate (:class:`Points`). Vehicles move on circles of radius ``v / yaw_rate``
+(at least ``vehicle_min_radius``); pedestrians on circles of radius
+``pedestrian_turning_radius / ratio`` or straight lines::
+
+          y ▲      circle origin = p + r · (-sin ψ, cos ψ)   (r > 0: turning left)
+            │   ╭─╮
+            │  /   ╲    after an arc of length d:  Δψ = d / r,
+            │ p ──▶ ψ   p' = origin + R(Δψ) (p - origin),  ψ' = ψ + Δψ
+            └────────▶ x
+
+Comparisons use ad-physics' tolerances (``rss.physics``). The scalar twins of these kernels
+are in :mod:`rss.unstructured.reference`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from rss.physics import (
+    DISTANCE_MAX_M,
+    DISTANCE_PRECISION,
+    DURATION_PRECISION,
+    SPEED_PRECISION,
+    accelerated_limited_movement,
+    eq,
+    ge,
+    gt,
+    lt,
+)
+
+if TYPE_CHECKING:
+    from rss.batch import FloatArray
+
+#: A float or a float array broadcast against the points (rss.physics kernels take both).
+Real = Any
+
+__all__ = [
+    "ANGULAR_VELOCITY_PRECISION",
+    "Points",
+    "Real",
+    "footprints",
+    "pedestrian_move",
+    "pedestrian_move_timed",
+    "straight_move",
+    "time_in_movement",
+    "time_to_stop",
+    "vehicle_arc",
+    "vehicle_integrate",
+]
+
+#: ad-physics ``AngularVelocity`` precision [rad/s].
+ANGULAR_VELOCITY_PRECISION = 1e-3
+#: Pedestrian ratios with ``|ratio| <= radius / 1000 m`` move straight (ad-rss ``maxRadius``).
+PEDESTRIAN_MAX_RADIUS_M = 1000.0
+
+
+@dataclass(frozen=True)
+class Points:
+    """Trajectory points (every field ``(M,)``).
+
+    Attributes:
+        x_m: Centre x (ENU) [m].
+        y_m: Centre y [m].
+        yaw_rad: Heading [rad] (not normalised).
+        speed_mps: Speed >= 0 [m/s].
+        yaw_rate_radps: Yaw rate, positive = turning left [rad/s].
+    """
+
+    x_m: Real
+    y_m: FloatArray
+    yaw_rad: Real
+    speed_mps: FloatArray
+    yaw_rate_radps: Real
+
+    def broadcast(self) -> Points:
+        """All fields broadcast to their common shape."""
+        return Points(
+            *np.broadcast_arrays(
+                self.x_m, self.y_m, self.yaw_rad, self.speed_mps, self.yaw_rate_radps
+            )
+        )
+
+    def take(self, mask: np.ndarray, other: Points) -> Points:
+        """Elementwise ``where(mask, other, self)``."""
+        return Points(
+            *(
+                np.where(mask, getattr(other, f), getattr(self, f))
+                for f in ("x_m", "y_m", "yaw_rad", "speed_mps", "yaw_rate_radps")
+            )
+        )
+
+
+def time_to_stop(
+    speed_mps: Real,
+    response_time_s: Real,
+    max_speed_mps: Real,
+    accel_mps2: Real,
+    brake_mps2: Real,
+) -> FloatArray:
+    """Time until standstill: ``accel`` during the response time, ``brake`` (< 0) after.
+
+    ad-rss ``calculateTimeToStop`` for ``accel >= 0`` (the only use here).
+
+    Returns:
+        Stop time [s], shape of the broadcast inputs.
+    """
+    v_rt, _ = accelerated_limited_movement(speed_mps, max_speed_mps, accel_mps2, response_time_s)
+    standing = eq(v_rt, 0.0, SPEED_PRECISION)
+    return np.where(standing, 0.0, response_time_s + v_rt / -np.asarray(brake_mps2))
+
+
+def time_in_movement(speed_mps: Real, accel_mps2: Real, duration_s: Real) -> FloatArray:
+    """``duration`` cut at the standstill time ``v / |a|`` when braking (``getTimeInMovement``)."""
+    braking = np.asarray(accel_mps2) < 0.0
+    safe_a = np.where(braking, accel_mps2, -1.0)
+    stop = np.where(eq(speed_mps, 0.0, SPEED_PRECISION), 0.0, speed_mps / -safe_a)
+    return np.where(
+        braking, np.where(lt(stop, duration_s, DURATION_PRECISION), stop, duration_s), duration_s
+    )
+
+
+def vehicle_arc(
+    p: Points,
+    accel_mps2: Real,
+    duration_s: Real,
+    max_speed_mps: Real,
+    min_radius_m: Real,
+) -> Points:
+    """Drive one arc of constant radius ``v / yaw_rate`` with a constant acceleration.
+
+    ad-rss ``calculateTrajectoryPointOnCircle``; the radius uses the speed at the start.
+
+    Args:
+        p: Start points ``(M,)``.
+        accel_mps2: Acceleration ``(M,)`` or scalar.
+        duration_s: Duration >= 0.
+        max_speed_mps: Speed cap of the acceleration.
+        min_radius_m: Minimal turning radius.
+
+    Returns:
+        The end points (speed updated).
+    """
+    v1, dist = accelerated_limited_movement(p.speed_mps, max_speed_mps, accel_mps2, duration_s)
+    turning = ~eq(p.yaw_rate_radps, 0.0, ANGULAR_VELOCITY_PRECISION)
+    safe_rate = np.where(turning, p.yaw_rate_radps, 1.0)
+    radius = np.where(turning, p.speed_mps / safe_rate, DISTANCE_MAX_M)
+    small = lt(np.abs(radius), min_radius_m, DISTANCE_PRECISION)
+    radius = np.where(
+        small, np.where(radius >= 0.0, min_radius_m, -np.asarray(min_radius_m)), radius
+    )
+    dpsi = dist / radius
+    sin_a, cos_a = np.sin(p.yaw_rad), np.cos(p.yaw_rad)
+    ox, oy = p.x_m - radius * sin_a, p.y_m + radius * cos_a
+    rx, ry = p.x_m - ox, p.y_m - oy
+    c, s = np.cos(dpsi), np.sin(dpsi)
+    x = np.where(turning | small, ox + c * rx - s * ry, p.x_m + dist * cos_a)
+    y = np.where(turning | small, oy + s * rx + c * ry, p.y_m + dist * sin_a)
+    yaw = np.where(turning | small, p.yaw_rad + dpsi, p.yaw_rad)
+    moved = Points(x, y, yaw, v1, np.broadcast_to(p.yaw_rate_radps, x.shape))
+    skip = eq(duration_s, 0.0, DURATION_PRECISION) & np.ones(x.shape, dtype=bool)
+    return moved.take(skip, p)
+
+
+def vehicle_integrate(  # noqa: PLR0917  (kernel over arrays)
+    p: Points,
+    accel_mps2: Real,
+    duration_s: Real,
+    ratio: Real,
+    yaw_rate_change_radps2: float,
+    step_s: float,
+    max_speed_mps: float,
+    min_radius_m: float,
+) -> Points:
+    """Drive ``duration`` in steps while the yaw rate changes linearly (``ratio`` ∈ [-1, 1]).
+
+    ad-rss ``calculateTrajectoryPoint`` of the vehicle model: at the end of each step the
+    yaw rate is ``yaw_rate_0 + ratio · change · t``, then one arc of the step length.
+
+    Returns:
+        The end points ``(M,)``.
+    """
+    shape = np.broadcast(p.x_m, duration_s, ratio).shape
+    duration = np.broadcast_to(duration_s, shape)
+    t = np.zeros(shape)
+    zero = np.zeros(shape)
+    cur = Points(
+        p.x_m + zero, p.y_m + zero, p.yaw_rad + zero, p.speed_mps + zero, p.yaw_rate_radps + zero
+    )
+    rate0 = cur.yaw_rate_radps
+    while True:
+        active = lt(t, duration, DURATION_PRECISION)
+        if not active.any():
+            return cur
+        full = ge(duration, t + step_s, DURATION_PRECISION)
+        dt = np.where(full, step_s, duration - t)
+        t = np.where(active, np.where(full, t + step_s, duration), t)
+        rate = rate0 + yaw_rate_change_radps2 * t * ratio
+        stepped = vehicle_arc(
+            replace(cur, yaw_rate_radps=rate), accel_mps2, dt, max_speed_mps, min_radius_m
+        )
+        cur = cur.take(active, stepped)
+
+
+def straight_move(p: Points, distance_m: Real) -> Points:
+    """Move along the heading by ``distance`` where it is > 0 (speed unchanged)."""
+    go = gt(distance_m, 0.0, DISTANCE_PRECISION)
+    d = np.where(go, distance_m, 0.0)
+    return replace(p, x_m=p.x_m + np.cos(p.yaw_rad) * d, y_m=p.y_m + np.sin(p.yaw_rad) * d)
+
+
+def pedestrian_move(p: Points, distance_m: Real, ratio: Real, turning_radius_m: float) -> Points:
+    """Move a distance on the circle of radius ``turning_radius / ratio`` (straight near 0).
+
+    ad-rss ``TrajectoryPedestrian::calculateTrajectoryPoint`` (distance variant).
+    """
+    ratio = np.broadcast_to(ratio, np.broadcast(p.x_m, ratio).shape)
+    turning = np.abs(ratio) > turning_radius_m / PEDESTRIAN_MAX_RADIUS_M
+    radius = turning_radius_m / np.where(turning, ratio, 1.0)
+    start = p.yaw_rad - np.pi / 2.0
+    ox, oy = p.x_m - np.cos(start) * radius, p.y_m - np.sin(start) * radius
+    dpsi = distance_m / radius
+    x = np.where(
+        turning, ox + np.cos(start + dpsi) * radius, p.x_m + np.cos(p.yaw_rad) * distance_m
+    )
+    y = np.where(
+        turning, oy + np.sin(start + dpsi) * radius, p.y_m + np.sin(p.yaw_rad) * distance_m
+    )
+    yaw = np.where(turning, p.yaw_rad + dpsi, p.yaw_rad)
+    moved = replace(p, x_m=x, y_m=y, yaw_rad=yaw).broadcast()
+    return moved.take(eq(distance_m, 0.0, DISTANCE_PRECISION) & np.ones(x.shape, dtype=bool), p)
+
+
+def pedestrian_move_timed(  # noqa: PLR0917  (kernel over arrays)
+    p: Points,
+    accel_mps2: Real,
+    duration_s: Real,
+    ratio: Real,
+    turning_radius_m: float,
+    max_speed_mps: Real,
+) -> Points:
+    """Accelerate for ``duration`` and move the covered distance (pedestrian model)."""
+    v1, dist = accelerated_limited_movement(p.speed_mps, max_speed_mps, accel_mps2, duration_s)
+    return replace(pedestrian_move(p, dist, ratio, turning_radius_m), speed_mps=v1).broadcast()
+
+
+def footprints(p: Points, length_m: Real, width_m: Real, front_extra_m: FloatArray) -> FloatArray:
+    """Corners of the footprints at the points: ``(..., 4, 2)`` in the order FR, FL, BL, BR.
+
+    Args:
+        p: Points of any shape ``(...)``.
+        length_m: Length [m], broadcast to the points' shape.
+        width_m: Width [m].
+        front_extra_m: Added in front (the ego's ``min_longitudinal_safety_distance``).
+    """
+    front = np.asarray(length_m) / 2.0 + front_extra_m
+    back = -np.asarray(length_m) / 2.0
+    half_w = np.asarray(width_m) / 2.0
+    lon = np.stack(np.broadcast_arrays(front, front, back, back), axis=-1)
+    lat = np.stack(np.broadcast_arrays(-half_w, half_w, half_w, -half_w), axis=-1)
+    c, s = np.cos(p.yaw_rad)[..., None], np.sin(p.yaw_rad)[..., None]
+    x = p.x_m[..., None] + c * lon - s * lat
+    y = p.y_m[..., None] + s * lon + c * lat
+    return np.stack((x, y), axis=-1)
