@@ -30,6 +30,7 @@ from rss.states import (
     LongitudinalResponse,
     RssStateEvaluator,
 )
+from rss.unstructured.conformance import unstructured_record
 
 if TYPE_CHECKING:
     from collections.abc import Iterator, Mapping
@@ -37,9 +38,9 @@ if TYPE_CHECKING:
     from rss.batch import ConstellationBatch
     from rss.checks import LateralSide
     from rss.engine import FrameResult
+    from rss.unstructured.memory import UnstructuredMemory
 
 __all__ = [
-    "UNSUPPORTED_UNSTRUCTURED",
     "check_expected",
     "evaluate_document",
     "evaluate_formula",
@@ -48,8 +49,6 @@ __all__ = [
     "response_record",
 ]
 
-#: Error text of unstructured cases (issue 6).
-UNSUPPORTED_UNSTRUCTURED = "unsupported: unstructured (issue 6)"
 #: Tolerance of list-valued expectations (e.g. acceleration ranges).
 _LIST_TOLERANCE = 1e-5
 #: An expected ``[value, tol]`` pair.
@@ -274,18 +273,20 @@ def check_expected(record: Mapping[str, Any], expected: Mapping[str, Any]) -> di
 
 
 def _evaluate(
-    parsed: ParsedCase, defaults: CaseDefaults, memory: RssMemory
-) -> tuple[dict[str, Any], RssMemory]:
+    parsed: ParsedCase,
+    defaults: CaseDefaults,
+    memory: RssMemory,
+    unstructured: UnstructuredMemory | None = None,
+) -> tuple[dict[str, Any], RssMemory, UnstructuredMemory | None]:
     record: dict[str, Any] = {"id": parsed.case_id, "kind": parsed.kind}
     if parsed.sequence_id is not None:
         record |= {"sequence_id": parsed.sequence_id, "step": parsed.step}
     if parsed.kind == "unstructured":
-        return record | {
-            "ok": False,
-            "unsupported": True,
-            "error": UNSUPPORTED_UNSTRUCTURED,
-        }, memory
-    if parsed.kind == "formula":
+        values, unstructured = unstructured_record(
+            parsed.raw, defaults, parsed.case_id, unstructured, json_number
+        )
+        record |= values
+    elif parsed.kind == "formula":
         record |= {
             "ok": True,
             "value": json_number(evaluate_formula(parsed.raw, defaults, parsed.case_id)),
@@ -295,7 +296,7 @@ def _evaluate(
         try:
             batch = stack_constellations([parsed.constellation])
         except RssError as err:
-            return record | {"ok": False, "error": str(err)}, memory
+            return record | {"ok": False, "error": str(err)}, memory, unstructured
         result, memory = check_frame(batch, parsed.default_ego, memory)
         record |= {"ok": True, "constellation_type": parsed.constellation.constellation_type.name}
         record |= frame_record(result, batch)
@@ -306,7 +307,7 @@ def _evaluate(
             }
     if parsed.expected:
         record["expected_check"] = check_expected(record, parsed.expected)
-    return record, memory
+    return record, memory, unstructured
 
 
 def evaluate_document(document: Mapping[str, Any]) -> Iterator[dict[str, Any]]:
@@ -326,11 +327,12 @@ def evaluate_document(document: Mapping[str, Any]) -> Iterator[dict[str, Any]]:
         case_id = str(case.get("id", f"#{index}")) if isinstance(case, dict) else f"#{index}"
         if isinstance(case, dict) and case.get("kind") == "sequence":
             memory = RssMemory.empty()
+            unstructured: UnstructuredMemory | None = None
             for step, raw_step in enumerate(case.get("steps", [])):
                 step_id = f"{case_id}#{step}"
                 try:
                     parsed = parse_case(raw_step, defaults, step_id, case_id, step)
-                    record, memory = _evaluate(parsed, defaults, memory)
+                    record, memory, unstructured = _evaluate(parsed, defaults, memory, unstructured)
                 except RssError as err:
                     record = {
                         "id": step_id,
@@ -342,7 +344,9 @@ def evaluate_document(document: Mapping[str, Any]) -> Iterator[dict[str, Any]]:
                 yield record
             continue
         try:
-            record, _ = _evaluate(parse_case(case, defaults, case_id), defaults, RssMemory.empty())
+            record, _, _ = _evaluate(
+                parse_case(case, defaults, case_id), defaults, RssMemory.empty()
+            )
         except RssError as err:
             kind = case.get("kind") if isinstance(case, dict) else None
             record = {"id": case_id, "kind": kind, "ok": False, "error": str(err)}

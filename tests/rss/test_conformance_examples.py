@@ -12,7 +12,7 @@ import pytest
 
 from rss.batch import stack_constellations
 from rss.cases import ParsedCase, parse_case, parse_defaults
-from rss.conformance import UNSUPPORTED_UNSTRUCTURED, evaluate_document, frame_record
+from rss.conformance import evaluate_document, frame_record
 from rss.engine import check_frame
 from tests.rss.differential import run_random_sequences
 from tests.rss.generators import evaluate_ours, random_sequence, renumber
@@ -47,13 +47,11 @@ def test_expected_values_hold(document: dict[str, Any]) -> None:
     records = list(evaluate_document(document))
     assert len(records) == 21
     checked = [r for r in records if "expected_check" in r]
-    assert len(checked) == 17  # 20 minus 3 unstructured ones with expectations (issue 6)
+    assert len(checked) == 20  # incl. 3 unstructured ones (rss.unstructured)
     assert all(r["expected_check"]["passed"] for r in checked), [
         r for r in checked if not r["expected_check"]["passed"]
     ]
-    unsupported = [r for r in records if r.get("unsupported")]
-    assert len(unsupported) == 4
-    assert all(r["error"] == UNSUPPORTED_UNSTRUCTURED and r["ok"] is False for r in unsupported)
+    assert all(r["ok"] for r in records if r["kind"] == "unstructured")
 
 
 def test_reference_answers_of_notes(document: dict[str, Any]) -> None:
