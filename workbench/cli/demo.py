@@ -32,6 +32,19 @@ def _viewer_command() -> str:
     return "rerun"
 
 
+def _drive_key(log: Path) -> str:
+    """Name of the drive a log holds: ``x.mcap``, ``x.bag`` and ``x_rosbag2/`` hold drive ``x``."""
+    return log.name.removesuffix(log.suffix).removesuffix("_rosbag2")
+
+
+def primary_logs(logs: list[Path]) -> set[Path]:
+    """One log per drive to evaluate: the ``.mcap`` if there is one, else a rosbag2, else a bag."""
+    best: dict[str, Path] = {}
+    for log in sorted(logs, key=lambda p: (_NAME_PRIORITY.get(p.suffix.lower(), 9), p.name)):
+        best.setdefault(_drive_key(log), log)
+    return set(best.values())
+
+
 def _is_rosbag2_dir(path: Path) -> bool:
     return path.is_dir() and (path / "metadata.yaml").is_file()
 
@@ -82,8 +95,8 @@ class DemoRow:
     duration_s: float = 0.0
     frames_per_s: float = 0.0
     output: str = ""
-    unsafe: int = 0
-    violations: int = 0
+    unsafe: int | None = None
+    violations: int | None = None
     error: str = ""
 
 
@@ -112,8 +125,8 @@ def _replay_one(log: Path, target: Path, engine_names: list[str]) -> DemoRow:
         duration_s=s.duration_s,
         frames_per_s=s.frames_per_s,
         output=target.name,
-        unsafe=sum(s.unsafe_frames.values()),
-        violations=len(s.violations),
+        unsafe=sum(s.unsafe_frames.values()) if engine_names else None,
+        violations=len(s.violations) if engine_names else None,
     )
 
 
@@ -133,8 +146,8 @@ def _table(rows: list[DemoRow]) -> Table:
             str(r.frames),
             str(r.actors),
             f"{r.duration_s:.1f} s",
-            str(r.unsafe),
-            str(r.violations),
+            "-" if r.unsafe is None else str(r.unsafe),
+            "-" if r.violations is None else str(r.violations),
             f"{r.frames_per_s:.0f}",
             r.output,
         )
@@ -161,7 +174,12 @@ def demo(
         raise ReplayError(f"{samples_dir}: no .mcap, .bag, rosbag2 directory or .xml found")
     names = output_names(logs)
     engine_names = parse_engines(engines)
-    rows = [_replay_one(log, out / names[log], engine_names) for log in logs]
+    # The .bag and rosbag2 variants hold the same drive as the .mcap of that name: evaluate
+    # one log per drive (the one keeping the plain name), replay the others only.
+    primary = primary_logs(logs)
+    rows = [
+        _replay_one(log, out / names[log], engine_names if log in primary else []) for log in logs
+    ]
     console = Console(width=max(Console().width, 120))
     console.print(_table(rows))
     for r in rows:
@@ -172,7 +190,8 @@ def demo(
         console.print(f"{len(done)} of {len(rows)} logs written to {out.resolve()}/")
         if engine_names:
             console.print(
-                f"unsafe frames and violation intervals are from: {', '.join(engine_names)}"
+                f"unsafe frames and violation intervals: {', '.join(engine_names)}, evaluated "
+                "once per drive ('-': another format of a drive already evaluated)"
             )
         first = next((r for r in done if r.output == names.get(samples_dir / _FEATURED)), done[0])
         console.print("open one in the Rerun viewer with:")

@@ -9,7 +9,7 @@ from typer.testing import CliRunner
 import loaders
 from loaders.errors import UnsupportedFormatError
 from tests.workbench.fakes import FakeDrive
-from workbench.cli.demo import find_sample_logs, output_names
+from workbench.cli.demo import find_sample_logs, output_names, primary_logs
 from workbench.cli.main import app, main
 
 runner = CliRunner()
@@ -125,3 +125,15 @@ def test_demo_without_logs_is_an_error(tmp_path, capsys):
         main(["demo", str(tmp_path), "--out", str(tmp_path / "o")])
     assert exc.value.code == 2
     assert "no .mcap" in capsys.readouterr().err
+
+
+def test_demo_evaluates_one_log_per_drive():
+    logs = [
+        Path("d/a.bag"),
+        Path("d/a.mcap"),
+        Path("d/a_rosbag2"),
+        Path("d/b.bag"),
+        Path("d/b_rosbag2"),
+        Path("d/c.xml"),
+    ]
+    assert primary_logs(logs) == {Path("d/a.mcap"), Path("d/b_rosbag2"), Path("d/c.xml")}
