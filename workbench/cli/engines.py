@@ -34,11 +34,9 @@ def parse_engines(text: str) -> list[str]:
 
 
 #: Engines that evaluate recorded drives in this build.
-AVAILABLE_ENGINES = ("reachsets",)
+AVAILABLE_ENGINES = ("reachsets", "rss")
 #: Engines that exist but cannot run on recorded drives yet, with the reason.
 PENDING_ENGINES = {
-    "rss": "structured RSS on recorded drives needs scene creation from the lane map, which "
-    "is not built yet; use 'workbench conformance rss CASES.json' for constellation cases",
     "unstructured": "unstructured RSS is not built yet",
 }
 
@@ -56,6 +54,7 @@ def build_engines(
     """
     from reachsets.params import ReachMethod  # noqa: PLC0415 - keeps CLI start-up light
     from workbench.evaluate.reach_runner import ReachRunner  # noqa: PLC0415
+    from workbench.evaluate.rss_runner import RssRunner  # noqa: PLC0415
 
     engines: list[EngineRunner] = []
     for name in names:
@@ -64,6 +63,9 @@ def build_engines(
         if name not in AVAILABLE_ENGINES:
             known = ", ".join([*AVAILABLE_ENGINES, *PENDING_ENGINES])
             raise WorkbenchError(f"--engines: unknown engine {name!r} (known: {known})")
+        if name == "rss":
+            engines.append(RssRunner(drive.lane_map))
+            continue
         engines.append(
             ReachRunner(
                 drive.lane_map, method=ReachMethod(reach_method), full_geometry=full_geometry

@@ -1,0 +1,84 @@
+"""Same- and opposite-direction road areas along a connecting route.
+
+The connecting route (a path in the :class:`~rss.scene.routes.RouteTree`) gives the
+longitudinal range ``k`` of the road area; every segment is the cross-section of lanes
+side by side at that ``k``, restricted to the lateral range ``j`` that the route and the
+two vehicles' lanes span ("restricted road area")::
+
+        j = -1   ░░░░░░░░░░░░░░░░░░░░░░░░░   dropped (neither vehicle nor route)
+        j =  0   ──ego──▶ ── route ──┐
+        j = +1   ───────── ──────── ─┴ object ─▶
+                 k = 0      k = 1      k = 2
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from rss.scene.roadarea import SegmentPlan, cut_window
+from rss.scene.routes import lateral
+
+if TYPE_CHECKING:
+    from rss.scene.lanegraph import PreparedGraph
+    from rss.scene.matching import Matches
+    from rss.scene.routes import RouteTree, Step
+
+__all__ = ["corridor_plans"]
+
+
+def _cross_section(prep: PreparedGraph, base: Step, j: int, j_lo: int, j_hi: int) -> list[Step]:
+    left: list[Step] = []
+    step: Step | None = base
+    jj = j
+    while step is not None and jj > j_lo:
+        step = lateral(prep, step[0], forward=step[1], right=False)
+        jj -= 1
+        if step is not None:
+            left.append(step)
+    right: list[Step] = []
+    step, jj = base, j
+    while step is not None and jj < j_hi:
+        step = lateral(prep, step[0], forward=step[1], right=True)
+        jj += 1
+        if step is not None:
+            right.append(step)
+    lanes = [*left[::-1], base, *right]
+    return lanes if j_lo <= j <= j_hi else []
+
+
+def corridor_plans(
+    prep: PreparedGraph, tree: RouteTree, target: int, matches: Matches, boxes: tuple[int, int]
+) -> list[SegmentPlan]:
+    """Segment plans from the ego's lane to ``target`` for the two ``boxes`` (ego first)."""
+    path = tree.path(target)
+    occupied = {
+        int(lane) for lane in matches.lane[np.isin(matches.box, boxes)] if int(lane) in tree.k
+    }
+    ks = [tree.k[lane] for lane in path]
+    k_lo, k_hi = min(ks) - 1, max(ks) + 1
+    extra = [lane for lane in occupied if k_lo <= tree.k[lane] <= k_hi]
+    members = path + [lane for lane in extra if lane not in path]
+    k_lo = min(tree.k[lane] for lane in members)
+    k_hi = max(tree.k[lane] for lane in members)
+    j_lo = min(tree.j[lane] for lane in members)
+    j_hi = max(tree.j[lane] for lane in members)
+    plans: list[SegmentPlan] = []
+    for k in range(k_lo, k_hi + 1):
+        bases = [lane for lane in members if tree.k[lane] == k]
+        if not bases:
+            continue
+        base = bases[0]
+        lanes = _cross_section(prep, (base, tree.forward[base]), tree.j[base], j_lo, j_hi)
+        seen: set[int] = set()
+        unique = [s for s in lanes if not (s[0] in seen or seen.add(s[0]))]  # type: ignore[func-returns-value]
+        if unique:
+            plans.append(SegmentPlan(lanes=unique))
+    used: set[int] = set()
+    for plan in plans:
+        plan.lanes = [s for s in plan.lanes if s[0] not in used]
+        used.update(s[0] for s in plan.lanes)
+    plans = [p for p in plans if p.lanes]
+    cut_window(plans, matches, boxes)
+    return plans

@@ -1,0 +1,335 @@
+"""Scene creation: ego + objects on a lane graph -> ``rss.model`` constellations.
+
+Per frame (ad-rss ``RssWorldModelCreation.appendConstellations`` for every object)::
+
+    match boxes ─▶ connecting routes from the ego (direction ignored) ─▶ per object:
+      far apart (> max(stop_ego + stop_obj, 100 m))              -> NotRelevant
+      route without intersection lanes, or following through one  -> Same/OppositeDirection
+      otherwise: ego routes (plan or prediction) x object routes  -> Intersection* per
+                 conflicting lane pair (merged: one per lane pair), else the connecting route
+
+The result feeds ``rss.batch.stack_constellations`` and ``rss.engine.check_frame``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from rss.model import Constellation, ConstellationType, ObjectType
+from rss.params import RestrictSpeedLimitMode, SceneSettings
+from rss.scene.corridor import corridor_plans
+from rss.scene.intersection import (
+    conflict,
+    intersection_plans,
+    intersection_type,
+    route_priority,
+)
+from rss.scene.matching import BoxArrays, match_boxes
+from rss.scene.roadarea import build_road, cut_window, place_object
+from rss.scene.routes import RouteTree, connect, follows_traffic, predict_routes
+
+if TYPE_CHECKING:
+    from rss.batch import FloatArray, IntArray
+    from rss.dynamics import RssDynamics
+    from rss.model import RoadSegment
+    from rss.scene.lanegraph import PreparedGraph
+    from rss.scene.matching import Matches
+    from rss.scene.roadarea import SegmentPlan
+    from rss.scene.routes import Step
+
+__all__ = ["Scene", "SceneEgo", "SceneObjects", "conservative_stop_m", "create_scene"]
+
+_MIN_RELEVANT_M = 100.0
+_SPEED_FACTOR = {
+    RestrictSpeedLimitMode.NONE: None,
+    RestrictSpeedLimitMode.EXACT_SPEED_LIMIT: 1.0,
+    RestrictSpeedLimitMode.INCREASED_SPEED_LIMIT_5: 1.05,
+    RestrictSpeedLimitMode.INCREASED_SPEED_LIMIT_10: 1.1,
+}
+
+
+@dataclass(frozen=True)
+class SceneEgo:
+    """The ego (map frame, ENU).
+
+    Attributes:
+        object_id: Id in the constellations.
+        x_m: Centre x.
+        y_m: Centre y.
+        yaw_rad: Heading.
+        speed_mps: Speed along the heading.
+        length_m: Length.
+        width_m: Width.
+        dynamics: RSS dynamics.
+        route: Planned route as ``(lane, forward)`` steps; empty = predict the routes.
+    """
+
+    object_id: int
+    x_m: float
+    y_m: float
+    yaw_rad: float
+    speed_mps: float
+    length_m: float
+    width_m: float
+    dynamics: RssDynamics
+    route: tuple[Step, ...] = ()
+
+
+@dataclass(frozen=True)
+class SceneObjects:
+    """Other objects, ``(N,)`` arrays (map frame).
+
+    Attributes:
+        ids: Ids.
+        object_type: :class:`rss.model.ObjectType` codes.
+        x_m: Centre x.
+        y_m: Centre y.
+        yaw_rad: Heading.
+        vx_mps: Velocity x.
+        vy_mps: Velocity y.
+        length_m: Length.
+        width_m: Width.
+        dynamics: RSS dynamics per object.
+    """
+
+    ids: IntArray
+    object_type: IntArray
+    x_m: FloatArray
+    y_m: FloatArray
+    yaw_rad: FloatArray
+    vx_mps: FloatArray
+    vy_mps: FloatArray
+    length_m: FloatArray
+    width_m: FloatArray
+    dynamics: tuple[RssDynamics, ...]
+
+
+@dataclass(frozen=True)
+class Scene:
+    """Constellations of one frame.
+
+    Attributes:
+        constellations: Constellations (several per object at intersections).
+        not_relevant: Ids of objects without a constellation (far, off the map, no route).
+        ego_on_map: Whether the ego touches a lane.
+    """
+
+    constellations: tuple[Constellation, ...]
+    not_relevant: tuple[int, ...]
+    ego_on_map: bool
+
+
+def conservative_stop_m(speed_mps: float, dyn: RssDynamics) -> float:
+    """Stopping distance: accelerate for the response time, then brake_min_correct."""
+    rho, a = dyn.response_time_s, dyn.accel_max_mps2
+    v = abs(speed_mps) + a * rho
+    return (
+        abs(speed_mps) * rho + 0.5 * a * rho * rho + v * v / (2.0 * abs(dyn.brake_min_correct_mps2))
+    )
+
+
+def _limited(dyn: RssDynamics, limit: float, mode: RestrictSpeedLimitMode) -> RssDynamics:
+    factor = _SPEED_FACTOR[mode]
+    if factor is None or not np.isfinite(limit):
+        return dyn
+    return dataclasses.replace(dyn, max_speed_on_acceleration_mps=limit * factor)
+
+
+@dataclass
+class _Frame:
+    prep: PreparedGraph
+    ego: SceneEgo
+    objects: SceneObjects
+    settings: SceneSettings
+    matches: Matches
+    tree: RouteTree
+    headings: dict[int, dict[int, float]]
+    ego_velocity: tuple[float, float]
+
+    def forward(self, box: int) -> bool:
+        yaw = self.ego.yaw_rad if box == 0 else float(self.objects.yaw_rad[box - 1])
+        return bool(np.cos(yaw - self.matches.anchor_heading_rad[box]) >= 0.0)
+
+    def constellation(
+        self,
+        kind: ConstellationType,
+        i: int,
+        ego_plans: list[SegmentPlan],
+        obj_plans: list[SegmentPlan] | None,
+    ) -> Constellation | None:
+        ego_road, ego_placed, limit = build_road(self.prep, ego_plans)
+        obj_road: tuple[RoadSegment, ...] = ()
+        obj_placed = ego_placed
+        if obj_plans is not None:
+            obj_road, obj_placed, limit2 = build_road(self.prep, obj_plans, len(self.prep.graph))
+            limit = np.nanmax([limit, limit2]) if np.isfinite([limit, limit2]).any() else limit
+        o = self.objects
+        ego = place_object(
+            self.matches,
+            0,
+            ego_placed,
+            self.ego.object_id,
+            ObjectType.EgoVehicle,
+            self.ego_velocity,
+            self.headings[0],
+        )
+        other = place_object(
+            self.matches,
+            i + 1,
+            obj_placed,
+            int(o.ids[i]),
+            ObjectType(int(o.object_type[i])),
+            (float(o.vx_mps[i]), float(o.vy_mps[i])),
+            self.headings[i + 1],
+        )
+        if ego is None or other is None:
+            return None
+        mode = self.settings.restrict_speed_limit_mode
+        return Constellation(
+            constellation_type=kind,
+            ego=ego,
+            other=other,
+            ego_dynamics=_limited(self.ego.dynamics, float(limit), mode),
+            other_dynamics=_limited(o.dynamics[i], float(limit), mode),
+            ego_road=ego_road,
+            intersecting_road=obj_road,
+        )
+
+
+def _headings(matches: Matches, n: int) -> dict[int, dict[int, float]]:
+    out: dict[int, dict[int, float]] = {b: {} for b in range(n)}
+    for b, lane, h in zip(matches.box, matches.lane, matches.heading_rad, strict=True):
+        out[int(b)][int(lane)] = float(h)
+    return out
+
+
+def _ego_routes(f: _Frame, horizon_m: float) -> list[tuple[Step, ...]]:
+    root = (int(f.matches.anchor[0]), f.forward(0))
+    planned = tuple(s for s in f.ego.route if s[0] != root[0])
+    base = (root, *planned)
+    tails = predict_routes(f.prep, base[-1][0], forward=base[-1][1], horizon_m=horizon_m)
+    return [base + tail[1:] for tail in tails]
+
+
+def _intersections(
+    f: _Frame, i: int, ego_routes: list[tuple[Step, ...]], horizon_m: float, green: frozenset[int]
+) -> list[Constellation]:
+    box = i + 1
+    anchor = int(f.matches.anchor[box])
+    out: list[Constellation] = []
+    seen: set[tuple[int, int]] = set()
+    for obj_route in predict_routes(f.prep, anchor, forward=f.forward(box), horizon_m=horizon_m):
+        for ego_route in ego_routes:
+            hit = conflict(f.prep, ego_route, obj_route)
+            if hit is None:
+                continue
+            ie, io = hit
+            key = (ego_route[ie][0], obj_route[io][0])
+            if key in seen:
+                continue
+            seen.add(key)
+            ego_plans = intersection_plans(f.prep, ego_route, ie, key[1])
+            obj_plans = intersection_plans(f.prep, obj_route, io, key[0])
+            cut_window(ego_plans, f.matches, (0,), cut_end=False)
+            cut_window(obj_plans, f.matches, (box,), cut_end=False)
+            kind = intersection_type(
+                route_priority(f.prep, ego_route[: ie + 1], green),
+                route_priority(f.prep, obj_route[: io + 1], green),
+            )
+            c = f.constellation(kind, i, ego_plans, obj_plans)
+            if c is not None:
+                out.append(c)
+    return out
+
+
+def _target(f: _Frame, box: int) -> int | None:
+    lanes = [int(lane) for lane in f.matches.lanes_of(box) if int(lane) in f.tree.k]
+    if not lanes:
+        return None
+    anchor = int(f.matches.anchor[box])
+    return anchor if anchor in lanes else min(lanes, key=lambda lane: f.tree.cost_m[lane])
+
+
+def _object(
+    f: _Frame, i: int, ego_routes: list[tuple[Step, ...]], horizon_m: float, green: frozenset[int]
+) -> list[Constellation]:
+    box = i + 1
+    target = _target(f, box)
+    if target is None:
+        return []
+    path = f.tree.path(target)
+    road_heading = f.headings[box][target] + (0.0 if f.tree.forward[target] else np.pi)
+    along = bool(np.cos(float(f.objects.yaw_rad[i]) - road_heading) >= 0.0)
+    through = bool(f.prep.graph.is_intersection[path].any())
+    ks = np.diff([f.tree.k[lane] for lane in path])
+    following = along and (bool((ks >= 0).all()) or bool((ks <= 0).all()))
+    following &= all(follows_traffic(f.prep, lane, forward=f.tree.forward[lane]) for lane in path)
+    if through and not following:
+        found = _intersections(f, i, ego_routes, horizon_m, green)
+        if found:
+            return found
+    kind = ConstellationType.SameDirection if along else ConstellationType.OppositeDirection
+    plans = corridor_plans(f.prep, f.tree, target, f.matches, (0, box))
+    c = f.constellation(kind, i, plans, None)
+    return [] if c is None else [c]
+
+
+def create_scene(
+    prep: PreparedGraph,
+    ego: SceneEgo,
+    objects: SceneObjects,
+    settings: SceneSettings,
+    green_lights: frozenset[int] = frozenset(),
+) -> Scene:
+    """Constellations between the ego and every object (see module docstring).
+
+    Args:
+        prep: The prepared lane graph.
+        ego: The ego; its ``route`` (if any) replaces the route prediction.
+        objects: The other objects.
+        settings: Scene settings (speed-limit mode).
+        green_lights: Indices of traffic lights known to be green (empty: none).
+    """
+    n = len(objects.ids)
+    boxes = BoxArrays(
+        x_m=np.concatenate([[ego.x_m], objects.x_m]),
+        y_m=np.concatenate([[ego.y_m], objects.y_m]),
+        yaw_rad=np.concatenate([[ego.yaw_rad], objects.yaw_rad]),
+        length_m=np.concatenate([[ego.length_m], objects.length_m]),
+        width_m=np.concatenate([[ego.width_m], objects.width_m]),
+    )
+    matches = match_boxes(prep, boxes)
+    ids = tuple(int(v) for v in objects.ids)
+    if matches.anchor[0] < 0:
+        return Scene((), ids, ego_on_map=False)
+    speeds = np.hypot(objects.vx_mps, objects.vy_mps)
+    ego_stop = conservative_stop_m(ego.speed_mps, ego.dynamics)
+    reach = np.array(
+        [
+            max(ego_stop + conservative_stop_m(float(v), d), _MIN_RELEVANT_M)
+            for v, d in zip(speeds, objects.dynamics, strict=True)
+        ]
+    )
+    gap = np.hypot(objects.x_m - ego.x_m, objects.y_m - ego.y_m)
+    gap -= (objects.length_m + ego.length_m) / 2.0
+    relevant = (gap <= reach) & (matches.anchor[1:] >= 0)
+    horizon = float(reach[relevant].max()) + ego.length_m if relevant.any() else 0.0
+    velocity = (ego.speed_mps * np.cos(ego.yaw_rad), ego.speed_mps * np.sin(ego.yaw_rad))
+    frame = _Frame(
+        prep, ego, objects, settings, matches, RouteTree(), _headings(matches, n + 1), velocity
+    )
+    frame.tree = connect(prep, int(matches.anchor[0]), forward=frame.forward(0), horizon_m=horizon)
+    ego_routes = _ego_routes(frame, horizon) if relevant.any() else []
+    out: list[Constellation] = []
+    skipped: list[int] = []
+    for i in np.flatnonzero(relevant):
+        found = _object(frame, int(i), ego_routes, float(reach[i]), green_lights)
+        out.extend(found)
+        if not found:
+            skipped.append(ids[i])
+    skipped.extend(ids[i] for i in np.flatnonzero(~relevant))
+    return Scene(tuple(out), tuple(sorted(skipped)), ego_on_map=True)

@@ -1,0 +1,99 @@
+"""Intersection constellations from pairs of predicted routes.
+
+For an ego route and an object route the first pair of intersection lanes whose areas
+overlap (or that merge into one successor) is the conflict. Each vehicle gets its own
+road area: its route up to and including its conflict lane, typed ``Intersection``, with
+the lengths before and after the part of that lane that overlaps the other's lane::
+
+    ego route ──▶ ──▶ ┌──────── conflict lane a ────────┐
+                      │ before │ overlaps lane b │ after│
+                      └────────┴─────────────────┴──────┘
+
+Priority comes from right of way and traffic lights (a light not listed green means the
+route must yield, as ad-map does with an empty set of green lights).
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+import shapely
+
+from rss.model import ConstellationType, RoadSegmentType
+from rss.scene.roadarea import SegmentPlan
+
+if TYPE_CHECKING:
+    from rss.scene.lanegraph import PreparedGraph
+    from rss.scene.routes import Step
+
+__all__ = ["conflict", "intersection_plans", "intersection_type", "route_priority"]
+
+
+def conflict(
+    prep: PreparedGraph, ego_route: tuple[Step, ...], obj_route: tuple[Step, ...]
+) -> tuple[int, int] | None:
+    """Indices ``(ie, io)`` of the first conflicting intersection lanes, or ``None``."""
+    inter = prep.graph.is_intersection
+    obj_lanes = [(io, lane) for io, (lane, _) in enumerate(obj_route) if inter[lane]]
+    for ie, (a, _) in enumerate(ego_route):
+        if not inter[a]:
+            continue
+        for io, b in obj_lanes:
+            if prep.conflicts[a, b]:
+                return ie, io
+    return None
+
+
+def _overlap_range(prep: PreparedGraph, lane: int, other: int) -> tuple[float, float]:
+    """Lengths of ``lane`` before and after the part overlapping ``other``'s area."""
+    length = float(prep.centre_length_m[lane])
+    shared = shapely.intersection(prep.centre_lines[lane], prep.polygons[other])
+    if shapely.is_empty(shared):
+        return max(0.0, length - 1e-3), 0.0
+    points = shapely.points(shapely.get_coordinates(shared))
+    s = shapely.line_locate_point(prep.centre_lines[lane], points)
+    scale = float(prep.length_min_m[lane]) / length if length > 0 else 1.0
+    return float(np.min(s)) * scale, max(0.0, length - float(np.max(s))) * scale
+
+
+def intersection_plans(
+    prep: PreparedGraph, route: tuple[Step, ...], upto: int, other_lane: int
+) -> list[SegmentPlan]:
+    """Single-lane segments along ``route[:upto + 1]``, the last one the intersection."""
+    plans = [SegmentPlan(lanes=[step]) for step in route[:upto]]
+    lane, fwd = route[upto]
+    before, after = _overlap_range(prep, lane, other_lane)
+    if not fwd:
+        before, after = after, before
+    plans.append(
+        SegmentPlan(
+            lanes=[(lane, fwd)],
+            segment_type=RoadSegmentType.Intersection,
+            before_m=before,
+            after_m=after,
+        )
+    )
+    return plans
+
+
+def route_priority(prep: PreparedGraph, route: tuple[Step, ...], green: frozenset[int]) -> int:
+    """Right of way of ``route``: the last regulated lane up to its end (+1, 0, -1)."""
+    g = prep.graph
+    level = 0
+    for lane, _ in route:
+        light = int(g.traffic_light[lane])
+        if light >= 0:
+            level = 1 if light in green else -1
+        elif g.priority[lane] != 0:
+            level = int(g.priority[lane])
+    return level
+
+
+def intersection_type(ego_level: int, obj_level: int) -> ConstellationType:
+    """Constellation type from the two routes' right of way."""
+    if ego_level > obj_level:
+        return ConstellationType.IntersectionEgoHasPriority
+    if ego_level < obj_level:
+        return ConstellationType.IntersectionObjectHasPriority
+    return ConstellationType.IntersectionSamePriority

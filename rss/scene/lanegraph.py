@@ -1,0 +1,206 @@
+"""The pure lane-graph input of scene creation and its prepared geometry.
+
+A :class:`LaneGraph` is what scene creation needs from a lane map, as plain arrays
+(``rss`` never imports the map loaders). Borders are polylines in the map frame (ENU, m)
+ordered along each lane's *reference direction*; ``direction`` says which way traffic
+flows relative to that order::
+
+      left border   o----o----o----o---->   reference direction (point order)
+      centre line   o----o----o----o          lat param 0 = left border,
+      right border  o----o----o----o          lat param 1 = right border
+
+:func:`prepare` builds the derived geometry once per map (polygons, an STRtree, centre
+lines, border lengths, widths at stations, intersection conflicts).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+import shapely
+
+from rss.errors import RssConstellationError
+
+if TYPE_CHECKING:
+    from rss.batch import BoolArray, FloatArray, IntArray
+    from rss.model import LaneDrivingDirection
+
+__all__ = ["WIDTH_STATIONS", "LaneGraph", "PreparedGraph", "prepare"]
+
+#: Number of parametric stations at which lane widths are sampled.
+WIDTH_STATIONS = 21
+_MIN_CONFLICT_AREA_M2 = 0.5
+
+
+@dataclass(frozen=True)
+class LaneGraph:
+    """Lanes of a map as arrays (``L`` lanes, indices into these arrays everywhere).
+
+    Attributes:
+        ids: Lane ids from the source map, ``(L,)``.
+        left_m: Left borders, each ``(K, 2)``.
+        right_m: Right borders, each ``(M, 2)``.
+        centre_m: Centre lines, each ``(C, 2)``.
+        direction: ``(L,)`` traffic direction relative to the point order
+            (:class:`rss.model.LaneDrivingDirection` codes: Positive = along it).
+        speed_limit_mps: ``(L,)`` speed limits, NaN where unknown.
+        successors: Per lane, the lanes its end leads into.
+        predecessors: Per lane, the lanes leading into its start.
+        left_neighbour: ``(L,)`` adjacent lane on the left, -1 for none.
+        right_neighbour: ``(L,)`` adjacent lane on the right, -1 for none.
+        left_opposite: ``(L,)`` the left neighbour's point order is reversed.
+        right_opposite: ``(L,)`` the right neighbour's point order is reversed.
+        is_intersection: ``(L,)`` lane lies inside an intersection.
+        priority: ``(L,)`` right of way: +1 has way, 0 unregulated, -1 must yield.
+        traffic_light: ``(L,)`` index into ``light_ids`` of the controlling light, -1 none.
+        light_ids: Traffic-light ids.
+    """
+
+    ids: tuple[str, ...]
+    left_m: tuple[FloatArray, ...]
+    right_m: tuple[FloatArray, ...]
+    centre_m: tuple[FloatArray, ...]
+    direction: IntArray
+    speed_limit_mps: FloatArray
+    successors: tuple[tuple[int, ...], ...]
+    predecessors: tuple[tuple[int, ...], ...]
+    left_neighbour: IntArray
+    right_neighbour: IntArray
+    left_opposite: BoolArray
+    right_opposite: BoolArray
+    is_intersection: BoolArray
+    priority: IntArray
+    traffic_light: IntArray
+    light_ids: tuple[str, ...] = ()
+
+    def __len__(self) -> int:
+        """Number of lanes."""
+        return len(self.ids)
+
+    def lane_direction(self, lane: int) -> LaneDrivingDirection:
+        """Traffic direction of ``lane`` relative to its point order."""
+        from rss.model import LaneDrivingDirection  # noqa: PLC0415 - cheap, avoids a cycle
+
+        return LaneDrivingDirection(int(self.direction[lane]))
+
+
+@dataclass(frozen=True)
+class PreparedGraph:
+    """A lane graph with its derived geometry.
+
+    Attributes:
+        graph: The input graph.
+        polygons: ``(L,)`` lane polygons.
+        centre_lines: ``(L,)`` centre line strings.
+        tree: STRtree over ``polygons``.
+        centre_length_m: ``(L,)`` centre-line lengths.
+        length_min_m: ``(L,)`` shorter border length (inner side of a curve).
+        length_max_m: ``(L,)`` longer border length.
+        width_m: ``(L, WIDTH_STATIONS)`` widths at evenly spaced parametric stations.
+        conflicts: ``(L, L)`` intersection lanes whose areas overlap or that merge into
+            one successor (a lane never conflicts with itself).
+    """
+
+    graph: LaneGraph
+    polygons: np.ndarray
+    centre_lines: np.ndarray
+    tree: shapely.STRtree
+    centre_length_m: FloatArray
+    length_min_m: FloatArray
+    length_max_m: FloatArray
+    width_m: FloatArray
+    conflicts: BoolArray
+
+    def width_range(self, lane: int, p0: float, p1: float) -> tuple[float, float]:
+        """Min and max width of ``lane`` between parametric positions ``p0 <= p1``."""
+        stations = np.linspace(0.0, 1.0, WIDTH_STATIONS)
+        row = self.width_m[lane]
+        ends = np.interp([p0, p1], stations, row)
+        inside = row[(stations > p0) & (stations < p1)]
+        values = np.concatenate([ends, inside])
+        return float(values.min()), float(values.max())
+
+
+def _polyline_length(points: FloatArray) -> float:
+    steps = np.diff(points, axis=0)
+    return float(np.hypot(steps[:, 0], steps[:, 1]).sum())
+
+
+def _polygon(left: FloatArray, right: FloatArray) -> shapely.Geometry:
+    ring = np.vstack([left, right[::-1]])
+    poly = shapely.polygons(ring)
+    if not shapely.is_valid(poly):
+        poly = shapely.make_valid(poly)
+        if not isinstance(poly, shapely.Polygon | shapely.MultiPolygon):
+            poly = shapely.convex_hull(poly)
+    return poly
+
+
+def _widths(left: shapely.LineString, right: shapely.LineString) -> FloatArray:
+    stations = np.linspace(0.0, 1.0, WIDTH_STATIONS)
+    lp = shapely.line_interpolate_point(left, stations, normalized=True)
+    rp = shapely.line_interpolate_point(right, stations, normalized=True)
+    out: FloatArray = shapely.distance(lp, rp)
+    return out
+
+
+def _conflicts(graph: LaneGraph, polygons: np.ndarray) -> BoolArray:
+    n = len(graph)
+    out = np.zeros((n, n), dtype=np.bool_)
+    lanes = np.flatnonzero(graph.is_intersection)
+    if lanes.size == 0:
+        return out
+    tree = shapely.STRtree(polygons[lanes])
+    a, b = tree.query(polygons[lanes], predicate="intersects")
+    keep = a != b
+    a, b = lanes[a[keep]], lanes[b[keep]]
+    area = shapely.area(shapely.intersection(polygons[a], polygons[b]))
+    big = area > _MIN_CONFLICT_AREA_M2
+    out[a[big], b[big]] = True
+    for a_lane in lanes.tolist():
+        for b_lane in lanes.tolist():
+            if a_lane != b_lane and set(graph.successors[a_lane]) & set(graph.successors[b_lane]):
+                out[a_lane, b_lane] = True
+    for i in range(n):
+        for nb in (graph.left_neighbour[i], graph.right_neighbour[i]):
+            if nb >= 0:
+                out[i, nb] = out[nb, i] = False
+    return out
+
+
+def prepare(graph: LaneGraph) -> PreparedGraph:
+    """Build the derived geometry of ``graph`` (once per map).
+
+    Raises:
+        RssConstellationError: A lane has fewer than two border or centre points.
+    """
+    for i, lane_id in enumerate(graph.ids):
+        for name, line in (("left", graph.left_m[i]), ("right", graph.right_m[i])):
+            if len(line) < 2:  # noqa: PLR2004 - a polyline needs two points
+                raise RssConstellationError(f"lane {lane_id} {name} border", len(line), ">= 2")
+        if len(graph.centre_m[i]) < 2:  # noqa: PLR2004
+            raise RssConstellationError(f"lane {lane_id} centre", len(graph.centre_m[i]), ">= 2")
+    polygons = np.array(
+        [_polygon(graph.left_m[i], graph.right_m[i]) for i in range(len(graph))], dtype=object
+    )
+    centre = np.array([shapely.LineString(line) for line in graph.centre_m], dtype=object)
+    lefts = [shapely.LineString(line) for line in graph.left_m]
+    rights = [shapely.LineString(line) for line in graph.right_m]
+    left_len = np.array([_polyline_length(p) for p in graph.left_m])
+    right_len = np.array([_polyline_length(p) for p in graph.right_m])
+    widths = np.array([_widths(lefts[i], rights[i]) for i in range(len(graph))]).reshape(
+        len(graph), WIDTH_STATIONS
+    )
+    return PreparedGraph(
+        graph=graph,
+        polygons=polygons,
+        centre_lines=np.asarray(centre, dtype=object),
+        tree=shapely.STRtree(polygons),
+        centre_length_m=np.asarray(shapely.length(centre), dtype=np.float64).reshape(-1),
+        length_min_m=np.minimum(left_len, right_len),
+        length_max_m=np.maximum(left_len, right_len),
+        width_m=widths,
+        conflicts=_conflicts(graph, polygons),
+    )

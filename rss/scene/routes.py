@@ -1,0 +1,140 @@
+"""Connecting routes (driving direction ignored) and predicted routes (driving direction kept).
+
+Every lane reached from the ego gets a longitudinal index ``k`` (road segments along the
+ego's driving direction, 0 = the ego's lane), a lateral index ``j`` (lanes to the right
+in that direction are ``j + 1``) and an orientation ``forward`` (its point order runs
+along the ego's driving direction)::
+
+        k = -1          k = 0            k = 1
+     ┌───────────┬────────────────┬───────────────┐  j = -1  (left)
+     │           │   ego ───▶     │               │  j =  0
+     └───────────┴────────────────┴───────────────┘  j = +1  (right)
+
+The search is a Dijkstra over successor / predecessor and neighbour links in both
+longitudinal directions, bounded by a metric horizon; the shortest path to an object's
+lane is its connecting route.
+"""
+
+from __future__ import annotations
+
+import heapq
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+from rss.model import LaneDrivingDirection
+
+if TYPE_CHECKING:
+    from rss.scene.lanegraph import PreparedGraph
+
+__all__ = ["RouteTree", "Step", "connect", "follows_traffic", "predict_routes"]
+
+_LATERAL_COST_M = 0.1
+_MAX_ROUTES = 16
+
+#: One lane of a route: ``(lane index, forward)``.
+Step = tuple[int, bool]
+
+
+@dataclass
+class RouteTree:
+    """Shortest connecting routes from the ego's lane (see module docstring).
+
+    Attributes:
+        k: Longitudinal index per reached lane.
+        j: Lateral index per reached lane.
+        forward: Orientation per reached lane.
+        parent: Previous lane on the shortest route (-1 for the root).
+        cost_m: Route length from the ego's lane.
+    """
+
+    k: dict[int, int] = field(default_factory=dict)
+    j: dict[int, int] = field(default_factory=dict)
+    forward: dict[int, bool] = field(default_factory=dict)
+    parent: dict[int, int] = field(default_factory=dict)
+    cost_m: dict[int, float] = field(default_factory=dict)
+
+    def path(self, lane: int) -> list[int]:
+        """Lanes from the root to ``lane`` (which must be reached)."""
+        out = [lane]
+        while self.parent[out[-1]] >= 0:
+            out.append(self.parent[out[-1]])
+        return out[::-1]
+
+
+def lateral(prep: PreparedGraph, lane: int, *, forward: bool, right: bool) -> Step | None:
+    """The neighbour of ``lane`` to the right (or left) of the road-area direction."""
+    g = prep.graph
+    use_right = right == forward
+    nb = int(g.right_neighbour[lane] if use_right else g.left_neighbour[lane])
+    if nb < 0:
+        return None
+    opposite = bool(g.right_opposite[lane] if use_right else g.left_opposite[lane])
+    return nb, forward != opposite
+
+
+def longitudinal(prep: PreparedGraph, lane: int, *, forward: bool, ahead: bool) -> list[Step]:
+    """Lanes before (``ahead=False``) or after ``lane`` along the road-area direction."""
+    g = prep.graph
+    links = g.successors[lane] if ahead == forward else g.predecessors[lane]
+    return [(nxt, forward) for nxt in links]
+
+
+def connect(prep: PreparedGraph, root: int, *, forward: bool, horizon_m: float) -> RouteTree:
+    """Dijkstra from ``root`` over all links, ignoring driving directions."""
+    tree = RouteTree()
+    heap: list[tuple[float, int, int, int, int, bool, int]] = [(0.0, 0, root, 0, 0, forward, -1)]
+    counter = 0
+    lengths = prep.centre_length_m
+    while heap:
+        cost, _, lane, k, j, fwd, parent = heapq.heappop(heap)
+        if lane in tree.k:
+            continue
+        tree.k[lane], tree.j[lane], tree.forward[lane] = k, j, fwd
+        tree.parent[lane], tree.cost_m[lane] = parent, cost
+        moves: list[tuple[Step, int, int, float]] = []
+        for right, dj in ((True, 1), (False, -1)):
+            step = lateral(prep, lane, forward=fwd, right=right)
+            if step is not None:
+                moves.append((step, k, j + dj, _LATERAL_COST_M))
+        step_len = lengths[lane] if lane != root else lengths[lane] / 2.0
+        for ahead, dk in ((True, 1), (False, -1)):
+            moves.extend(
+                (step, k + dk, j, float(step_len))
+                for step in longitudinal(prep, lane, forward=fwd, ahead=ahead)
+            )
+        for (nxt, nfwd), nk, nj, extra in moves:
+            if nxt not in tree.k and cost + extra <= horizon_m:
+                counter += 1
+                heapq.heappush(heap, (cost + extra, counter, nxt, nk, nj, nfwd, lane))
+    return tree
+
+
+def follows_traffic(prep: PreparedGraph, lane: int, *, forward: bool) -> bool:
+    """Whether travelling ``lane`` with orientation ``forward`` is its traffic direction."""
+    direction = int(prep.graph.direction[lane])
+    if direction == LaneDrivingDirection.Bidirectional:
+        return True
+    return (direction == LaneDrivingDirection.Positive) == forward
+
+
+def predict_routes(
+    prep: PreparedGraph, start: int, *, forward: bool, horizon_m: float
+) -> list[tuple[Step, ...]]:
+    """Routes a vehicle on ``start`` may take in its driving direction, up to ``horizon_m``.
+
+    Branches at every lane with several successors (at most 16 routes); a route ends at
+    the horizon or where the map ends.
+    """
+    routes: list[tuple[Step, ...]] = []
+    stack: list[tuple[tuple[Step, ...], float]] = [(((start, forward),), 0.0)]
+    lengths = prep.centre_length_m
+    while stack and len(routes) < _MAX_ROUTES:
+        route, dist = stack.pop()
+        lane, fwd = route[-1]
+        nxt = [s for s in longitudinal(prep, lane, forward=fwd, ahead=True) if s not in route]
+        dist += float(lengths[lane])
+        if not nxt or dist > horizon_m:
+            routes.append(route)
+            continue
+        stack.extend(((*route, s), dist) for s in nxt)
+    return routes

@@ -1,0 +1,92 @@
+"""Tiny synthetic lane graphs for scene-creation tests."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from rss.model import LaneDrivingDirection
+from rss.params import DEFAULT_EGO_DYNAMICS, DEFAULT_VEHICLE_DYNAMICS
+from rss.scene import LaneGraph, SceneEgo, SceneObjects
+
+WIDTH = 3.5
+
+
+def straight_road(
+    n_lanes: int = 3, length: float = 200.0, *, opposite_left: bool = False
+) -> LaneGraph:
+    """``n_lanes`` parallel lanes along +x, lane 0 leftmost (largest y).
+
+    With ``opposite_left`` the leftmost lane is stored and driven in -x direction.
+    """
+    xs = np.linspace(0.0, length, 21)
+    left, right, centre, direction = [], [], [], []
+    for i in range(n_lanes):
+        y_left = (n_lanes / 2 - i) * WIDTH
+        y_right = y_left - WIDTH
+        lane_l = np.stack([xs, np.full_like(xs, y_left)], axis=1)
+        lane_r = np.stack([xs, np.full_like(xs, y_right)], axis=1)
+        if opposite_left and i == 0:
+            lane_l, lane_r = lane_r[::-1], lane_l[::-1]
+        left.append(lane_l)
+        right.append(lane_r)
+        centre.append((lane_l + lane_r) / 2)
+        direction.append(LaneDrivingDirection.Positive)
+    left_nb = np.arange(-1, n_lanes - 1)
+    right_nb = np.arange(1, n_lanes + 1)
+    right_nb[-1] = -1
+    left_opp = np.zeros(n_lanes, dtype=bool)
+    right_opp = np.zeros(n_lanes, dtype=bool)
+    if opposite_left:
+        left_opp[1] = True
+        right_opp[0] = False
+        left_nb[0], right_nb[0] = 1, -1  # lane 0 reversed: its left is lane 1
+        left_opp[0] = True
+    empty: tuple[tuple[int, ...], ...] = tuple(() for _ in range(n_lanes))
+    return LaneGraph(
+        ids=tuple(str(i) for i in range(n_lanes)),
+        left_m=tuple(left),
+        right_m=tuple(right),
+        centre_m=tuple(centre),
+        direction=np.array(direction, dtype=np.int64),
+        speed_limit_mps=np.full(n_lanes, 30.0),
+        successors=empty,
+        predecessors=empty,
+        left_neighbour=left_nb.astype(np.int64),
+        right_neighbour=right_nb.astype(np.int64),
+        left_opposite=left_opp,
+        right_opposite=right_opp,
+        is_intersection=np.zeros(n_lanes, dtype=bool),
+        priority=np.zeros(n_lanes, dtype=np.int64),
+        traffic_light=np.full(n_lanes, -1, dtype=np.int64),
+    )
+
+
+def ego(x: float, y: float, yaw: float = 0.0, speed: float = 10.0) -> SceneEgo:
+    return SceneEgo(
+        object_id=1000,
+        x_m=x,
+        y_m=y,
+        yaw_rad=yaw,
+        speed_mps=speed,
+        length_m=4.0,
+        width_m=2.0,
+        dynamics=DEFAULT_EGO_DYNAMICS,
+    )
+
+
+def objects(*rows: tuple[float, float, float, float]) -> SceneObjects:
+    """Objects from ``(x, y, yaw, speed)`` rows (4 m x 2 m cars, ids 1, 2, ...)."""
+    arr = np.array(rows, dtype=float).reshape(-1, 4)
+    n = len(arr)
+    return SceneObjects(
+        ids=np.arange(1, n + 1, dtype=np.int64),
+        object_type=np.full(n, 2, dtype=np.int64),
+        x_m=arr[:, 0],
+        y_m=arr[:, 1],
+        yaw_rad=arr[:, 2],
+        vx_mps=arr[:, 3] * np.cos(arr[:, 2]),
+        vy_mps=arr[:, 3] * np.sin(arr[:, 2]),
+        length_m=np.full(n, 4.0),
+        width_m=np.full(n, 2.0),
+        dynamics=(DEFAULT_VEHICLE_DYNAMICS,) * n,
+    )
