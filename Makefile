@@ -5,7 +5,12 @@ BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 OUT    ?= out
 
-.PHONY: all setup demo test lint typecheck layers pytest bench samples screenshot clean
+# Side venv for the commonroad-io oracle: commonroad-io pins protobuf==3.20.2, which our
+# MCAP protobuf support cannot use, so it gets its own venv that also sees the project venv.
+ORACLE_VENV ?= .venv-oracle-commonroad
+ORACLE_STAMP := $(ORACLE_VENV)/.installed
+
+.PHONY: all setup demo test lint typecheck layers pytest oracle-commonroad bench samples screenshot clean
 
 all: test
 
@@ -34,7 +39,19 @@ layers: $(STAMP)
 pytest: $(STAMP)
 	$(BIN)/python -m pytest -n 2 --dist loadfile $(PYTEST_ARGS)
 
-test: lint typecheck layers pytest
+$(ORACLE_STAMP): $(STAMP)
+	$(PYTHON) -m venv $(ORACLE_VENV)
+	$(ORACLE_VENV)/bin/python -m pip install --quiet --upgrade pip
+	$(ORACLE_VENV)/bin/python -m pip install --quiet commonroad-io==2026.1
+	$(ORACLE_VENV)/bin/python -m pip install --quiet --no-deps --upgrade protobuf==$$($(BIN)/python -c 'import google.protobuf as p; print(p.__version__)')
+	$(ORACLE_VENV)/bin/python -c 'import pathlib, sys, sysconfig; pathlib.Path(sysconfig.get_paths()["purelib"], "zz_project_venv.pth").write_text(f"import site; site.addsitedir({sys.argv[1]!r})\n")' "$$($(BIN)/python -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')"
+	@touch $(ORACLE_STAMP)
+
+oracle-commonroad: $(ORACLE_STAMP)
+	WORKBENCH_ORACLE_ENV=commonroad PROTOCOL_BUFFERS_PYTHON_IMPLEMENTATION=python \
+		$(ORACLE_VENV)/bin/python -m pytest -q -p no:cacheprovider tests/loaders/test_oracle_commonroad.py
+
+test: lint typecheck layers pytest oracle-commonroad
 
 bench: $(STAMP)
 	$(BIN)/python -m bench.run --out docs/benchmarks.md
@@ -46,4 +63,4 @@ screenshot: $(STAMP)
 	bash tools/screenshot.sh $(OUT)/demo/highway_cut_in.rrd docs/demo_screenshot.png
 
 clean:
-	rm -rf $(VENV) $(OUT) .mypy_cache .ruff_cache .pytest_cache
+	rm -rf $(VENV) $(ORACLE_VENV) $(OUT) .mypy_cache .ruff_cache .pytest_cache
