@@ -44,6 +44,8 @@ if TYPE_CHECKING:
 __all__ = ["Scene", "SceneEgo", "SceneObjects", "conservative_stop_m", "create_scene"]
 
 _MIN_RELEVANT_M = 100.0
+#: Following through an intersection needs headings within 45 degrees.
+_FOLLOWING_COS = float(np.cos(np.pi / 4))
 _SPEED_FACTOR = {
     RestrictSpeedLimitMode.NONE: None,
     RestrictSpeedLimitMode.EXACT_SPEED_LIMIT: 1.0,
@@ -154,6 +156,18 @@ class _Frame:
         yaw = self.ego.yaw_rad if box == 0 else float(self.objects.yaw_rad[box - 1])
         return bool(np.cos(yaw - self.matches.anchor_heading_rad[box]) >= 0.0)
 
+    def travelled(self, box: int) -> float:
+        """Length of the anchor lane already behind the box centre."""
+        lane = int(self.matches.anchor[box])
+        p = float(self.matches.anchor_s[box])
+        return float(self.prep.centre_length_m[lane]) * (p if self.forward(box) else 1.0 - p)
+
+    def behind_ego(self, i: int) -> bool:
+        """Whether object ``i`` is entirely behind the ego (along the ego heading)."""
+        o, e = self.objects, self.ego
+        d = (o.x_m[i] - e.x_m) * np.cos(e.yaw_rad) + (o.y_m[i] - e.y_m) * np.sin(e.yaw_rad)
+        return bool(d < -(o.length_m[i] + e.length_m) / 2.0)
+
     def constellation(
         self,
         kind: ConstellationType,
@@ -211,7 +225,10 @@ def _ego_routes(f: _Frame, horizon_m: float) -> list[tuple[Step, ...]]:
     root = (int(f.matches.anchor[0]), f.forward(0))
     planned = tuple(s for s in f.ego.route if s[0] != root[0])
     base = (root, *planned)
-    tails = predict_routes(f.prep, base[-1][0], forward=base[-1][1], horizon_m=horizon_m)
+    travelled = f.travelled(0) if not planned else 0.0
+    tails = predict_routes(
+        f.prep, base[-1][0], forward=base[-1][1], horizon_m=horizon_m, travelled_m=travelled
+    )
     return [base + tail[1:] for tail in tails]
 
 
@@ -222,7 +239,10 @@ def _intersections(
     anchor = int(f.matches.anchor[box])
     out: list[Constellation] = []
     seen: set[tuple[int, int]] = set()
-    for obj_route in predict_routes(f.prep, anchor, forward=f.forward(box), horizon_m=horizon_m):
+    routes = predict_routes(
+        f.prep, anchor, forward=f.forward(box), horizon_m=horizon_m, travelled_m=f.travelled(box)
+    )
+    for obj_route in routes:
         for ego_route in ego_routes:
             hit = conflict(f.prep, ego_route, obj_route)
             if hit is None:
@@ -259,20 +279,25 @@ def _object(
 ) -> list[Constellation]:
     box = i + 1
     target = _target(f, box)
-    if target is None:
-        return []
+    if target != int(f.matches.anchor[box]):
+        found = _intersections(f, i, ego_routes, horizon_m, green)
+        if found or target is None:
+            return found
+    assert target is not None
     path = f.tree.path(target)
     road_heading = f.headings[box][target] + (0.0 if f.tree.forward[target] else np.pi)
-    along = bool(np.cos(float(f.objects.yaw_rad[i]) - road_heading) >= 0.0)
+    cos = float(np.cos(float(f.objects.yaw_rad[i]) - road_heading))
     through = bool(f.prep.graph.is_intersection[path].any())
     ks = np.diff([f.tree.k[lane] for lane in path])
-    following = along and (bool((ks >= 0).all()) or bool((ks <= 0).all()))
+    following = cos >= _FOLLOWING_COS and (bool((ks >= 0).all()) or bool((ks <= 0).all()))
     following &= all(follows_traffic(f.prep, lane, forward=f.tree.forward[lane]) for lane in path)
     if through and not following:
         found = _intersections(f, i, ego_routes, horizon_m, green)
         if found:
             return found
-    kind = ConstellationType.SameDirection if along else ConstellationType.OppositeDirection
+    kind = ConstellationType.SameDirection if cos >= 0.0 else ConstellationType.OppositeDirection
+    if kind == ConstellationType.OppositeDirection and f.behind_ego(i):
+        return []  # driving apart
     plans = corridor_plans(f.prep, f.tree, target, f.matches, (0, box))
     c = f.constellation(kind, i, plans, None)
     return [] if c is None else [c]

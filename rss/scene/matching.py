@@ -34,6 +34,8 @@ __all__ = ["BoxArrays", "Matches", "box_polygons", "lane_heading", "match_boxes"
 
 _MIN_AREA_M2 = 1e-3
 _TANGENT_STEP_M = 0.5
+#: Anchor choice: a lane across the box heading counts like a centre this far outside.
+_MISALIGNED_M = 2.0
 
 
 @dataclass(frozen=True)
@@ -66,8 +68,8 @@ class Matches:
         lon_max: ``(P,)`` parametric end.
         lat_min: ``(P,)`` parametric left edge (0 = left border).
         lat_max: ``(P,)`` parametric right edge.
-        anchor: ``(N,)`` lane holding the box centre (nearest centre line among the touched
-            lanes), -1 when the box touches no lane.
+        anchor: ``(N,)`` the lane the box is on: among the touched lanes, the one nearest
+            to its centre and best aligned with its heading; -1 when it touches no lane.
         anchor_s: ``(N,)`` parametric position of the centre on the anchor lane.
         anchor_heading_rad: ``(N,)`` heading of the anchor lane's point order there.
         heading_rad: ``(P,)`` heading of each pair's lane point order at the box centre.
@@ -156,17 +158,19 @@ def match_boxes(graph: PreparedGraph, boxes: BoxArrays) -> Matches:
     safe_len = np.where(length > 0, length, 1.0)
 
     centres = np.stack([boxes.x_m[box_idx], boxes.y_m[box_idx]], axis=1)
-    centre_s, centre_lat = _lateral(graph, lane_idx, centres) if p else (np.zeros(0),) * 2
-    miss = np.abs(np.clip(centre_lat, 0.0, 1.0) - centre_lat)
+    centre_s, _ = _lateral(graph, lane_idx, centres) if p else (np.zeros(0),) * 2
+    pair_heading = lane_heading(graph, lane_idx, centre_s) if p else np.zeros(0)
+    outside = shapely.distance(shapely.points(centres), graph.polygons[lane_idx])
+    misaligned = 1.0 - np.abs(np.cos(boxes.yaw_rad[box_idx] - pair_heading))
+    score = outside + _MISALIGNED_M * misaligned
     anchor = np.full(n, -1, dtype=np.int64)
     anchor_s = np.zeros(n)
-    order = np.lexsort((miss, box_idx))
+    order = np.lexsort((score, box_idx))
     first = np.ones(len(order), dtype=np.bool_)
     first[1:] = box_idx[order][1:] != box_idx[order][:-1]
     best = order[first]
     anchor[box_idx[best]] = lane_idx[best]
     anchor_s[box_idx[best]] = np.clip(centre_s[best] / safe_len[best], 0.0, 1.0)
-    pair_heading = lane_heading(graph, lane_idx, centre_s) if p else np.zeros(0)
     heading = np.zeros(n)
     heading[box_idx[best]] = pair_heading[best]
     return Matches(

@@ -118,15 +118,16 @@ def follows_traffic(prep: PreparedGraph, lane: int, *, forward: bool) -> bool:
 
 
 def predict_routes(
-    prep: PreparedGraph, start: int, *, forward: bool, horizon_m: float
+    prep: PreparedGraph, start: int, *, forward: bool, horizon_m: float, travelled_m: float = 0.0
 ) -> list[tuple[Step, ...]]:
     """Routes a vehicle on ``start`` may take in its driving direction, up to ``horizon_m``.
 
     Branches at every lane with several successors (at most 16 routes); a route ends at
-    the horizon or where the map ends.
+    the horizon or where the map ends. ``travelled_m`` is the part of ``start`` already
+    behind the vehicle.
     """
     routes: list[tuple[Step, ...]] = []
-    stack: list[tuple[tuple[Step, ...], float]] = [(((start, forward),), 0.0)]
+    stack: list[tuple[tuple[Step, ...], float]] = [(((start, forward),), -travelled_m)]
     lengths = prep.centre_length_m
     while stack and len(routes) < _MAX_ROUTES:
         route, dist = stack.pop()
