@@ -8,10 +8,10 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 from rich.console import Console
-from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
 from workbench.cli.engines import ReachMethodOption, build_engines, parse_engines
+from workbench.cli.progress import frame_progress
 from workbench.cli.replay import open_log, window_ns
 from workbench.errors import WorkbenchError
 
@@ -19,8 +19,6 @@ if TYPE_CHECKING:
     from workbench.evaluate.violations import Violation
 
 __all__ = ["register"]
-
-_console = Console(stderr=True)
 
 
 def _summary_table(violations: list[Violation], t0_ns: int) -> Table:
@@ -81,14 +79,7 @@ def evaluate(
             per_frame.parent.mkdir(parents=True, exist_ok=True)
             sink = per_frame.with_name(f".{per_frame.name}.tmp").open("w")
         try:
-            with Progress(
-                TextColumn("[bold]{task.description}"),
-                BarColumn(),
-                MofNCompleteColumn(),
-                TimeElapsedColumn(),
-                console=_console,
-                transient=True,
-            ) as bar:
+            with frame_progress() as bar:
                 task = bar.add_task(f"evaluate {log.name}", total=drive.info.frame_count or None)
                 frames = drive.frames(start_ns, end_ns)
                 for _frame, result in evaluate_frames(frames, runners):

@@ -7,18 +7,15 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Annotated
 
 import typer
-from rich.console import Console
-from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
 from workbench.cli.engines import ReachMethodOption, build_engines, parse_engines
+from workbench.cli.progress import frame_progress
 
 if TYPE_CHECKING:
     from loaders.drive import Drive
     from workbench.replay.run import ReplaySummary
 
 __all__ = ["default_output", "open_log", "register", "replay", "window_ns"]
-
-_console = Console(stderr=True)
 
 
 def default_output(log: Path, out_dir: Path) -> Path:
@@ -66,14 +63,7 @@ def run_with_progress(
 
     start_ns, end_ns = window_ns(drive, start_s, end_s)
     total = drive.info.frame_count or None
-    with Progress(
-        TextColumn("[bold]{task.description}"),
-        BarColumn(),
-        MofNCompleteColumn(),
-        TimeElapsedColumn(),
-        console=_console,
-        transient=True,
-    ) as bar:
+    with frame_progress() as bar:
         task = bar.add_task(label, total=total)
         return replay_drive(
             drive,
