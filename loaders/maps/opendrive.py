@@ -1,0 +1,296 @@
+"""OpenDRIVE (``.xodr``) reader: reference lines, lane sections and links -> ``LaneMap``.
+
+Plan-view geometry (``line``, ``arc``, ``spiral``, ``poly3``, ``paramPoly3``) is sampled
+densely, lane borders are offsets of the reference line by ``laneOffset`` plus the
+cumulative lane-width polynomials of each lane section::
+
+        t ▲   lane  2   (left lanes, id > 0: driven against s in right-hand traffic)
+          │   lane  1
+      ────┼──────────────▶ s   reference line (lane 0)
+          │   lane -1   (right lanes, id < 0: driven along s)
+          │   lane -2
+
+Every lane is stored in its driving direction (left lanes reversed), so ``successors``
+are in driving direction and ``direction`` is always positive; the lane beyond the centre
+line is the opposite neighbour. Lane-level links come from the lanes' own ``link``
+elements and from the road links (roads or connecting roads of junctions); lanes of
+junction roads are ``INTERSECTION`` lanes and grouped per junction. Lane types kept:
+driving, biking, sidewalk, parking. Lane ids are ``"<road>_<section>_<lane>"``.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from loaders.errors import MapError
+from loaders.maps.model import Lane, LaneKind, LaneMap
+from loaders.maps.xmlsource import read_xml_root
+
+if TYPE_CHECKING:
+    import xml.etree.ElementTree as ET
+    from pathlib import Path
+
+    from numpy.typing import NDArray
+
+__all__ = ["read_opendrive"]
+
+_STEP_M = 0.5
+_EPS_M = 1e-9
+_KINDS = {
+    "driving": LaneKind.ROAD,
+    "biking": LaneKind.BICYCLE,
+    "sidewalk": LaneKind.SIDEWALK,
+    "parking": LaneKind.PARKING,
+}
+_SPEED = {"mph": 0.44704, "km/h": 1 / 3.6, "kmh": 1 / 3.6, "m/s": 1.0, "ms": 1.0}
+_Key = tuple[str, int, int]  # road, section index, lane id
+_End = tuple[_Key, str]  # lane and "start" / "end" along s
+
+
+def _f(elem: ET.Element, key: str, default: float = 0.0) -> float:
+    value = elem.get(key)
+    return default if value is None else float(value)
+
+
+def _local_points(geo: ET.Element, length: float) -> tuple[NDArray[np.float64], ...]:
+    """``(s, u, v)`` samples of one geometry record in its local frame."""
+    n = max(2, math.ceil(length / _STEP_M) + 1)
+    s = np.linspace(0.0, length, n)
+    kind = geo[0] if len(geo) else None
+    tag = kind.tag if kind is not None else "line"
+    if tag == "line" or kind is None:
+        return s, s, np.zeros(n)
+    if tag in {"arc", "spiral"}:
+        k0 = _f(kind, "curvature") if tag == "arc" else _f(kind, "curvStart")
+        k1 = k0 if tag == "arc" else _f(kind, "curvEnd")
+        fine = np.linspace(0.0, length, max(2, 8 * n))
+        heading = k0 * fine + (k1 - k0) * fine**2 / (2 * length if length > 0 else 1.0)
+        du, dv = np.cos(heading), np.sin(heading)
+        steps = np.diff(fine)
+        u = np.concatenate([[0.0], np.cumsum((du[1:] + du[:-1]) / 2 * steps)])
+        v = np.concatenate([[0.0], np.cumsum((dv[1:] + dv[:-1]) / 2 * steps)])
+        return s, np.interp(s, fine, u), np.interp(s, fine, v)
+    p = np.linspace(0.0, 1.0, 8 * n)
+    if tag == "poly3":
+        a, b, c, d = (_f(kind, k) for k in "abcd")
+        u = p * length * 1.5
+        v = a + b * u + c * u**2 + d * u**3
+    elif tag == "paramPoly3":
+        scale = length if kind.get("pRange") == "arcLength" else 1.0
+        q = p * scale
+        u = np.polyval([_f(kind, f"{k}U") for k in "dcba"], q)
+        v = np.polyval([_f(kind, f"{k}V") for k in "dcba"], q)
+    else:
+        raise MapError("<xodr>", f"unsupported geometry {tag!r}")
+    arc = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(u), np.diff(v)))])
+    return s, np.interp(s, arc, u), np.interp(s, arc, v)
+
+
+def _reference_line(road: ET.Element) -> NDArray[np.float64]:
+    """``(K, 4)`` samples ``s, x, y, heading`` of a road's reference line."""
+    rows = []
+    for geo in road.findall("planView/geometry"):
+        s0, x0, y0, h0 = (_f(geo, k) for k in ("s", "x", "y", "hdg"))
+        s, u, v = _local_points(geo, _f(geo, "length"))
+        c, sn = math.cos(h0), math.sin(h0)
+        x, y = x0 + c * u - sn * v, y0 + sn * u + c * v
+        heading = np.unwrap(np.arctan2(np.gradient(y), np.gradient(x))) if len(s) > 1 else [h0]
+        rows.append(np.stack([s0 + s, x, y, heading], axis=1))
+    if not rows:
+        raise MapError("<xodr>", f"road {road.get('id')} has no plan view")
+    ref = np.concatenate(rows)
+    ref[:, 3] = np.unwrap(ref[:, 3])
+    keep = np.concatenate([[True], np.diff(ref[:, 0]) > _EPS_M])
+    out: NDArray[np.float64] = ref[keep]
+    return out
+
+
+def _poly(entries: list[ET.Element], ds: NDArray[np.float64], key: str) -> NDArray[np.float64]:
+    """Evaluate piecewise cubic records (``a b c d`` from offset ``key``) at ``ds``."""
+    out = np.zeros_like(ds)
+    starts = [_f(e, key) for e in entries]
+    for i, e in enumerate(entries):
+        hi = starts[i + 1] if i + 1 < len(entries) else np.inf
+        sel = (ds >= starts[i] - 1e-9) & (ds < hi)
+        d = ds[sel] - starts[i]
+        out[sel] = _f(e, "a") + _f(e, "b") * d + _f(e, "c") * d**2 + _f(e, "d") * d**3
+    return out
+
+
+def _speed(road: ET.Element) -> float:
+    speed = road.find("type/speed")
+    if speed is None or speed.get("max") in {None, "no limit", "undefined"}:
+        return float("nan")
+    return float(speed.get("max", "nan")) * _SPEED.get(speed.get("unit", "m/s"), 1.0)
+
+
+class _Builder:
+    def __init__(self, root: ET.Element, label: str) -> None:
+        self.label = label
+        self.lanes: dict[_Key, Lane] = {}
+        self.links: list[tuple[_End, _End]] = []
+        self.sections: dict[str, int] = {}
+        self.junction_lanes: dict[str, list[str]] = {}
+        self.roads = root.findall("road")
+
+    def _section(self, rid: str, road: ET.Element, ref: NDArray[np.float64], idx: int) -> None:
+        sections = road.findall("lanes/laneSection")
+        s0 = _f(sections[idx], "s")
+        s1 = _f(sections[idx + 1], "s") if idx + 1 < len(sections) else float(ref[-1, 0])
+        s = np.unique(np.concatenate([np.arange(s0, s1, _STEP_M), [s1]]))
+        s = s[s >= s0 - 1e-9]
+        x, y = np.interp(s, ref[:, 0], ref[:, 1]), np.interp(s, ref[:, 0], ref[:, 2])
+        h = np.interp(s, ref[:, 0], ref[:, 3])
+        normal = np.stack([-np.sin(h), np.cos(h)], axis=1)
+        base = np.stack([x, y], axis=1)
+        offset = _poly(road.findall("lanes/laneOffset"), s, "s")
+        junction = road.get("junction", "-1")
+        speed = _speed(road)
+        for side, sign in (("left", 1.0), ("right", -1.0)):
+            lanes = sections[idx].findall(f"{side}/lane")
+            lanes.sort(key=lambda e: abs(int(e.get("id", "0"))))
+            inner = offset.copy()
+            for lane in lanes:
+                lid = int(lane.get("id", "0"))
+                width = _poly(lane.findall("width"), s - s0, "sOffset")
+                outer = inner + sign * width
+                self._add(rid, idx, lid, lane, base, normal, (inner, outer), junction, speed)
+                inner = outer
+
+    def _add(  # noqa: PLR0917 - one lane's pieces
+        self,
+        rid: str,
+        idx: int,
+        lid: int,
+        elem: ET.Element,
+        base: NDArray[np.float64],
+        normal: NDArray[np.float64],
+        borders: tuple[NDArray[np.float64], NDArray[np.float64]],
+        junction: str,
+        speed: float,
+    ) -> None:
+        kind = _KINDS.get(elem.get("type", ""))
+        for tag, end, other_idx in (
+            ("predecessor", "start", idx - 1),
+            ("successor", "end", idx + 1),
+        ):
+            link = elem.find(f"link/{tag}")
+            if link is not None and 0 <= other_idx < self.sections[rid]:
+                other_end = "end" if tag == "predecessor" else "start"
+                key = (rid, other_idx, int(link.get("id", "0")))
+                self.links.append((((rid, idx, lid), end), (key, other_end)))
+        if kind is None:
+            return
+        inner = base + normal * borders[0][:, None]
+        outer = base + normal * borders[1][:, None]
+        left, right = (outer, inner) if lid > 0 else (inner, outer)
+        if lid > 0:  # driven against s: store in driving direction
+            left, right = right[::-1], left[::-1]
+        if len(left) < 2:  # noqa: PLR2004
+            return
+        lane_id = f"{rid}_{idx}_{lid}"
+        if junction != "-1" and kind == LaneKind.ROAD:
+            kind = LaneKind.INTERSECTION
+            self.junction_lanes.setdefault(junction, []).append(lane_id)
+        self.lanes[rid, idx, lid] = Lane(
+            id=lane_id,
+            left_m=left,
+            right_m=right,
+            centre_m=(left + right) / 2,
+            kind=kind,
+            speed_limit_mps=speed,
+        )
+
+    def _road_links(self, rid: str, road: ET.Element) -> None:
+        last = self.sections[rid] - 1
+        for tag, own_idx, own_end in (("predecessor", 0, "start"), ("successor", last, "end")):
+            link = road.find(f"link/{tag}")
+            if link is None or link.get("elementType") != "road":
+                continue
+            other = link.get("elementId", "")
+            if other not in self.sections:
+                continue
+            contact = link.get("contactPoint", "start")
+            other_idx = 0 if contact == "start" else self.sections[other] - 1
+            section = road.findall("lanes/laneSection")[own_idx]
+            for lane in section.findall("*/lane"):
+                target = lane.find(f"link/{tag}")
+                if target is not None:
+                    key = (other, other_idx, int(target.get("id", "0")))
+                    self.links.append(
+                        (((rid, own_idx, int(lane.get("id", "0"))), own_end), (key, contact))
+                    )
+
+    def build(self) -> LaneMap:
+        for road in self.roads:
+            self.sections[road.get("id", "")] = len(road.findall("lanes/laneSection"))
+        for road in self.roads:
+            rid = road.get("id", "")
+            ref = _reference_line(road)
+            for idx in range(self.sections[rid]):
+                self._section(rid, road, ref, idx)
+            self._road_links(rid, road)
+        return self._finish()
+
+    def _finish(self) -> LaneMap:
+        succ: dict[_Key, set[_Key]] = {k: set() for k in self.lanes}
+        for (ka, ea), (kb, eb) in self.links:
+            if ka not in self.lanes or kb not in self.lanes:
+                continue
+            a_exit = ea == ("end" if ka[2] < 0 else "start")
+            b_entry = eb == ("start" if kb[2] < 0 else "end")
+            if a_exit and b_entry:
+                succ[ka].add(kb)
+            elif not a_exit and not b_entry:
+                succ[kb].add(ka)
+        pred: dict[_Key, set[_Key]] = {k: set() for k in self.lanes}
+        for a, targets in succ.items():
+            for b in targets:
+                pred[b].add(a)
+        out: dict[str, Lane] = {}
+        for key, lane in self.lanes.items():
+            rid, idx, lid = key
+            step = -1 if lid < 0 else 1  # towards the centre line
+            inward = (rid, idx, lid - step) if abs(lid) > 1 else (rid, idx, -lid)
+            outward = (rid, idx, lid + (-1 if lid < 0 else 1))
+            left, right = inward, outward
+            out[lane.id] = _replace(
+                lane,
+                successors=tuple(sorted(self.lanes[k].id for k in succ[key])),
+                predecessors=tuple(sorted(self.lanes[k].id for k in pred[key])),
+                left_neighbour=self.lanes[left].id if left in self.lanes else None,
+                right_neighbour=self.lanes[right].id if right in self.lanes else None,
+                left_neighbour_opposite=abs(lid) == 1 and left in self.lanes,
+            )
+        groups = tuple(tuple(ids) for _, ids in sorted(self.junction_lanes.items()))
+        return LaneMap(lanes=out, source=self.label, format="opendrive", intersections=groups)
+
+
+def _replace(lane: Lane, **changes: object) -> Lane:
+    import dataclasses  # noqa: PLC0415 - slots dataclass: replace builds a new instance
+
+    return dataclasses.replace(lane, **changes)  # type: ignore[arg-type]
+
+
+def read_opendrive(source: Path | bytes, *, name: str | None = None) -> LaneMap:
+    """Read an OpenDRIVE file into a :class:`LaneMap`.
+
+    Args:
+        source: Path of the ``.xodr`` file, or its bytes.
+        name: Label for the map and its errors.
+
+    Raises:
+        MapError: Unreadable XML, not an OpenDRIVE document, or unsupported geometry.
+    """
+    root, label = read_xml_root(source, name)
+    if root.tag != "OpenDRIVE":
+        raise MapError(label, f"root element is <{root.tag}>, expected <OpenDRIVE>")
+    try:
+        return _Builder(root, label).build()
+    except MapError as err:
+        raise MapError(label, err.detail) from err
+    except (ValueError, IndexError) as err:
+        raise MapError(label, f"malformed OpenDRIVE: {err}") from err
