@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 from pathlib import Path  # noqa: TC003 - typer reads the annotations at run time
 from typing import TYPE_CHECKING, Annotated
 
@@ -60,11 +59,8 @@ def evaluate(
     end: Annotated[float | None, typer.Option("--end", help="Seconds from start.")] = None,
 ) -> None:
     """Re-evaluate every frame; print the violations, optionally write per-frame JSON lines."""
-    from workbench.evaluate.pipeline import evaluate_frames  # noqa: PLC0415
-    from workbench.evaluate.violations import (  # noqa: PLC0415
-        detect_violations,
-        write_violations,
-    )
+    from workbench.evaluate.run import evaluate_drive  # noqa: PLC0415 - keeps start-up light
+    from workbench.evaluate.violations import write_violations  # noqa: PLC0415
 
     names = parse_engines(engines)
     if not names:
@@ -73,33 +69,24 @@ def evaluate(
     try:
         runners = build_engines(drive, names, reach_method.value)
         start_ns, end_ns = window_ns(drive, start, end)
-        results = []
-        sink = None
-        if per_frame is not None:
-            per_frame.parent.mkdir(parents=True, exist_ok=True)
-            sink = per_frame.with_name(f".{per_frame.name}.tmp").open("w")
-        try:
-            with frame_progress() as bar:
-                task = bar.add_task(f"evaluate {log.name}", total=drive.info.frame_count or None)
-                frames = drive.frames(start_ns, end_ns)
-                for _frame, result in evaluate_frames(frames, runners):
-                    results.append(result)
-                    if sink is not None:
-                        sink.write(json.dumps(result.record()) + "\n")
-                    bar.advance(task)
-        finally:
-            if sink is not None:
-                sink.close()
-        if per_frame is not None:
-            per_frame.with_name(f".{per_frame.name}.tmp").replace(per_frame)
+        with frame_progress() as bar:
+            task = bar.add_task(f"evaluate {log.name}", total=drive.info.frame_count or None)
+            done = evaluate_drive(
+                drive,
+                runners,
+                start_ns=start_ns,
+                end_ns=end_ns,
+                per_frame=per_frame,
+                progress=lambda: bar.advance(task),
+            )
     finally:
         drive.close()
-    t0_ns = drive.info.start_ns
-    found = detect_violations(results, log.name)
-    unsafe = sum(1 for r in results if not all(o.is_safe for o in r.outputs.values()))
-    typer.echo(f"{len(results)} frames evaluated with {', '.join(names)}; {unsafe} unsafe")
+    found = list(done.violations)
+    typer.echo(
+        f"{len(done.results)} frames evaluated with {', '.join(names)}; {done.unsafe_frames} unsafe"
+    )
     if found:
-        Console().print(_summary_table(found, t0_ns))
+        Console().print(_summary_table(found, drive.info.start_ns))
     typer.echo(f"{len(found)} violation interval(s)")
     if violations is not None:
         violations.parent.mkdir(parents=True, exist_ok=True)
@@ -107,6 +94,11 @@ def evaluate(
         typer.echo(f"wrote {violations}")
     if per_frame is not None:
         typer.echo(f"wrote {per_frame}")
+    if done.stopped_by is not None:
+        typer.echo(
+            f"stopped early: the outputs above cover the {len(done.results)} readable frames"
+        )
+        raise done.stopped_by
 
 
 def register(app: typer.Typer) -> None:

@@ -57,6 +57,23 @@ class FrameResult:
     t_ns: int
     outputs: Mapping[str, EngineOutput]
 
+    def without_detail(self) -> FrameResult:
+        """The same verdicts without the engines' geometry (what violation detection needs).
+
+        Keeping only this per frame keeps memory flat however long the drive is.
+        """
+        outputs = {
+            name: EngineOutput(
+                record=out.record,
+                is_safe=out.is_safe,
+                culprits=out.culprits,
+                label=out.label,
+                margin=out.margin,
+            )
+            for name, out in self.outputs.items()
+        }
+        return FrameResult(frame=self.frame, t_ns=self.t_ns, outputs=outputs)
+
     def record(self) -> dict[str, Any]:
         """The per-frame JSON line of ``workbench evaluate --per-frame``."""
         line: dict[str, Any] = {"t_ns": self.t_ns, "frame": self.frame}

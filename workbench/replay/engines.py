@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from workbench.evaluate.pipeline import EngineOutput, FrameResult, evaluate_frames
+from workbench.evaluate.pipeline import FrameResult, evaluate_frames
 from workbench.replay.reach_layout import layout_reach
 from workbench.replay.reach_sink import ReachSink
 
@@ -22,20 +22,6 @@ if TYPE_CHECKING:
     from workbench.replay.layout import ChunkLayout
 
 __all__ = ["EngineResultSink"]
-
-
-def _light(result: FrameResult) -> FrameResult:
-    outputs = {
-        name: EngineOutput(
-            record=out.record,
-            is_safe=out.is_safe,
-            culprits=out.culprits,
-            label=out.label,
-            margin=out.margin,
-        )
-        for name, out in result.outputs.items()
-    }
-    return FrameResult(frame=result.frame, t_ns=result.t_ns, outputs=outputs)
 
 
 class EngineResultSink:
@@ -55,7 +41,7 @@ class EngineResultSink:
             return
         results = [res for _, res in evaluate_frames(frames, self._engines)]
         for res in results:
-            self.results.append(_light(res))
+            self.results.append(res.without_detail())
             for name, out in res.outputs.items():
                 self.unsafe_frames[name] += not out.is_safe
         if self._reach is not None:

@@ -66,3 +66,21 @@ def test_bad_engine_choice_is_one_line_error(engines, message, capsys):
     err = capsys.readouterr().err
     assert message in err
     assert "Traceback" not in err
+
+
+def test_truncated_log_keeps_every_evaluated_frame(tmp_path, capsys):
+    log = tmp_path / "cut.mcap"
+    data = (SAMPLES / "hard_braking_lead.mcap").read_bytes()
+    log.write_bytes(data[: len(data) // 2])
+    per_frame = tmp_path / "frames.jsonl"
+    viol = tmp_path / "viol.json"
+    code = _run(["evaluate", str(log), "--per-frame", str(per_frame), "--violations", str(viol)])
+    assert code == 2
+    captured = capsys.readouterr()
+    assert "truncated or corrupted" in captured.err
+    assert str(log) in captured.err
+    lines = per_frame.read_text().splitlines()
+    assert len(lines) > 10
+    assert f"cover the {len(lines)} readable frames" in captured.out
+    assert json.loads(viol.read_text()) is not None
+    assert not list(tmp_path.glob(".*.tmp"))
