@@ -117,6 +117,10 @@ def _replay_one(log: Path, target: Path, engine_names: list[str]) -> DemoRow:
             drive.close()
     except USER_ERRORS as err:
         return DemoRow(log=log.name, error=str(err))
+    if s.stopped_by is not None:
+        return DemoRow(
+            log=log.name, error=f"{s.frames} frames kept in {target}, then: {s.stopped_by}"
+        )
     return DemoRow(
         log=log.name,
         source_format=s.source_format,

@@ -164,6 +164,9 @@ def replay(
     if target is not None:
         typer.echo(f"wrote {target}")
         typer.echo(f"open it with: rerun {target}")
+    if summary.stopped_by is not None:
+        typer.echo(f"stopped early: the recording holds the {summary.frames} readable frames")
+        raise summary.stopped_by
 
 
 def register(app: typer.Typer) -> None:

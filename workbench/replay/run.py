@@ -20,6 +20,7 @@ from typing import TYPE_CHECKING
 
 import rerun as rr
 
+from loaders.errors import LoaderError
 from workbench.errors import WorkbenchError
 from workbench.evaluate.violations import detect_violations
 from workbench.replay.blueprint import replay_blueprint
@@ -29,7 +30,7 @@ from workbench.replay.properties import drive_properties, recording_name
 from workbench.replay.sink import RerunSink
 
 if TYPE_CHECKING:
-    from collections.abc import Callable, Iterator, Mapping, Sequence
+    from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 
     from loaders.drive import Drive
     from loaders.records import Frame
@@ -69,6 +70,8 @@ class ReplaySummary:
         elapsed_s: Wall-clock time for loading and logging.
         violations: Violation intervals found by the engines, if any ran.
         unsafe_frames: Unsafe frames per engine.
+        stopped_by: The loader error that ended a truncated or corrupted log early; the
+            output holds every frame read before it.
     """
 
     log: Path
@@ -80,6 +83,7 @@ class ReplaySummary:
     elapsed_s: float
     violations: tuple[Violation, ...] = ()
     unsafe_frames: Mapping[str, int] = field(default_factory=dict)
+    stopped_by: LoaderError | None = None
 
     @property
     def frames_per_s(self) -> float:
@@ -87,8 +91,27 @@ class ReplaySummary:
         return self.frames / self.elapsed_s if self.elapsed_s > 0 else float("inf")
 
 
-def _chunks(frames: Iterator[Frame], size: int) -> Iterator[list[Frame]]:
-    while chunk := list(itertools.islice(frames, size)):
+class _UntilLoaderError:
+    """Iterates frames until the loader raises; keeps the error for the end of the replay.
+
+    A truncated or corrupted log yields every readable frame and then a ``LoaderError``;
+    stopping cleanly there lets the sink finish the file for the frames that were read.
+    """
+
+    def __init__(self, frames: Iterator[Frame]) -> None:
+        self._frames = frames
+        self.error: LoaderError | None = None
+
+    def __iter__(self) -> Iterator[Frame]:
+        try:
+            yield from self._frames
+        except LoaderError as err:
+            self.error = err
+
+
+def _chunks(frames: Iterable[Frame], size: int) -> Iterator[list[Frame]]:
+    it = iter(frames)
+    while chunk := list(itertools.islice(it, size)):
         yield chunk
 
 
@@ -272,7 +295,8 @@ def replay_drive(
         Counts and timings of the replay.
     """
     t0 = time.perf_counter()
-    chunks = _chunks(iter(drive.frames(start_ns, end_ns)), chunk_frames)
+    guarded = _UntilLoaderError(iter(drive.frames(start_ns, end_ns)))
+    chunks = _chunks(guarded, chunk_frames)
     first = next(chunks, None)
     ego_start = (first[0].ego.x_m, first[0].ego.y_m) if first else None
     rec = rr.RecordingStream(APPLICATION_ID, recording_id=_recording_id(drive, start_ns, end_ns))
@@ -296,6 +320,7 @@ def replay_drive(
             t0=t0,
             progress=progress,
             on_served=on_served if serve else None,
+            stopped_by=lambda: guarded.error,
         )
 
 
@@ -310,6 +335,7 @@ def _stream(
     t0: float,
     progress: Callable[[int], None] | None,
     on_served: Callable[[str], None] | None,
+    stopped_by: Callable[[], LoaderError | None],
 ) -> ReplaySummary:
     """Send the static data and every chunk; then hand a served URL to ``on_served``."""
     info = drive.info
@@ -350,4 +376,5 @@ def _stream(
         elapsed_s=time.perf_counter() - t0,
         violations=tuple(detect_violations(engine_sink.results, info.path.name)),
         unsafe_frames=engine_sink.unsafe_frames,
+        stopped_by=stopped_by(),
     )

@@ -9,6 +9,8 @@ import numpy as np
 import pytest
 from rerun.chunk import RrdReader
 
+from loaders import open_drive
+from loaders.errors import CorruptLogError
 from tests.workbench.fakes import T0_NS, FakeDrive
 from workbench.replay.run import ReplayError, replay_drive
 
@@ -130,3 +132,20 @@ def test_serve_binds_grpc_and_web_viewer_to_localhost_only():
     loopback = "0100007F"  # 127.0.0.1 in /proc/net/tcp byte order
     assert bound == {grpc_port: {loopback}, web_port: {loopback}}
     assert _listeners(grpc_port) == set(), "the server must stop with the replay"
+
+
+def test_truncated_log_keeps_the_readable_frames_in_the_rrd(tmp_path):
+    sample = Path(__file__).resolve().parents[3] / "sample_logs" / "hard_braking_lead.mcap"
+    cut = tmp_path / "cut.mcap"
+    data = sample.read_bytes()
+    cut.write_bytes(data[: len(data) // 2])
+    out = tmp_path / "cut.rrd"
+    drive = open_drive(cut)
+    try:
+        summary = replay_drive(drive, out=out, chunk_frames=100)
+    finally:
+        drive.close()
+    assert isinstance(summary.stopped_by, CorruptLogError)
+    assert summary.frames > 100
+    rows = _rows(_store(out), "/world/ego")
+    assert rows.num_rows == summary.frames
