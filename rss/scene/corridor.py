@@ -15,8 +15,6 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-import numpy as np
-
 from rss.scene.roadarea import SegmentPlan, cut_window
 from rss.scene.routes import lateral
 
@@ -53,9 +51,7 @@ def corridor_plans(
 ) -> list[SegmentPlan]:
     """Segment plans from the ego's lane to ``target`` for the two ``boxes`` (ego first)."""
     path = tree.path(target)
-    occupied = {
-        int(lane) for lane in matches.lane[np.isin(matches.box, boxes)] if int(lane) in tree.k
-    }
+    occupied = {lane for box in boxes for lane in matches.lanes_of(box).tolist() if lane in tree.k}
     ks = [tree.k[lane] for lane in path]
     k_lo, k_hi = min(ks) - 1, max(ks) + 1
     extra = [lane for lane in occupied if k_lo <= tree.k[lane] <= k_hi]

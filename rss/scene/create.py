@@ -14,6 +14,7 @@ The result feeds ``rss.batch.stack_constellations`` and ``rss.engine.check_frame
 from __future__ import annotations
 
 import dataclasses
+import functools
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -134,6 +135,7 @@ def conservative_stop_m(speed_mps: float, dyn: RssDynamics) -> float:
     )
 
 
+@functools.lru_cache(maxsize=256)
 def _limited(dyn: RssDynamics, limit: float, mode: RestrictSpeedLimitMode) -> RssDynamics:
     factor = _SPEED_FACTOR[mode]
     if factor is None or not np.isfinite(limit):

@@ -17,9 +17,6 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-import numpy as np
-import shapely
-
 from rss.model import ConstellationType, RoadSegmentType
 from rss.scene.roadarea import SegmentPlan
 
@@ -45,25 +42,13 @@ def conflict(
     return None
 
 
-def _overlap_range(prep: PreparedGraph, lane: int, other: int) -> tuple[float, float]:
-    """Lengths of ``lane`` before and after the part overlapping ``other``'s area."""
-    length = float(prep.centre_length_m[lane])
-    shared = shapely.intersection(prep.centre_lines[lane], prep.polygons[other])
-    if shapely.is_empty(shared):
-        return max(0.0, length - 1e-3), 0.0
-    points = shapely.points(shapely.get_coordinates(shared))
-    s = shapely.line_locate_point(prep.centre_lines[lane], points)
-    scale = float(prep.length_min_m[lane]) / length if length > 0 else 1.0
-    return float(np.min(s)) * scale, max(0.0, length - float(np.max(s))) * scale
-
-
 def intersection_plans(
     prep: PreparedGraph, route: tuple[Step, ...], upto: int, other_lane: int
 ) -> list[SegmentPlan]:
     """Single-lane segments along ``route[:upto + 1]``, the last one the intersection."""
     plans = [SegmentPlan(lanes=[step]) for step in route[:upto]]
     lane, fwd = route[upto]
-    before, after = _overlap_range(prep, lane, other_lane)
+    before, after = prep.conflict_span_m[lane, other_lane]
     if not fwd:
         before, after = after, before
     plans.append(

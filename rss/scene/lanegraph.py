@@ -32,6 +32,7 @@ __all__ = ["WIDTH_STATIONS", "LaneGraph", "PreparedGraph", "prepare"]
 #: Number of parametric stations at which lane widths are sampled.
 WIDTH_STATIONS = 21
 _MIN_CONFLICT_AREA_M2 = 0.5
+_STATIONS = np.linspace(0.0, 1.0, WIDTH_STATIONS)
 
 
 @dataclass(frozen=True)
@@ -101,6 +102,8 @@ class PreparedGraph:
         width_m: ``(L, WIDTH_STATIONS)`` widths at evenly spaced parametric stations.
         conflicts: ``(L, L)`` intersection lanes whose areas overlap or that merge into
             one successor (a lane never conflicts with itself).
+        conflict_span_m: For every conflicting ``(a, b)``: lengths of ``a`` before and after
+            the part of its centre line inside ``b`` (scaled to ``a``'s min length).
     """
 
     graph: LaneGraph
@@ -112,11 +115,14 @@ class PreparedGraph:
     length_max_m: FloatArray
     width_m: FloatArray
     conflicts: BoolArray
+    conflict_span_m: dict[tuple[int, int], tuple[float, float]]
 
     def width_range(self, lane: int, p0: float, p1: float) -> tuple[float, float]:
         """Min and max width of ``lane`` between parametric positions ``p0 <= p1``."""
-        stations = np.linspace(0.0, 1.0, WIDTH_STATIONS)
         row = self.width_m[lane]
+        if p0 <= 0.0 and p1 >= 1.0:
+            return float(row.min()), float(row.max())
+        stations = _STATIONS
         ends = np.interp([p0, p1], stations, row)
         inside = row[(stations > p0) & (stations < p1)]
         values = np.concatenate([ends, inside])
@@ -170,6 +176,17 @@ def _conflicts(graph: LaneGraph, polygons: np.ndarray) -> BoolArray:
     return out
 
 
+def _span(
+    centre: shapely.Geometry, polygon: shapely.Geometry, length: float, length_min: float
+) -> tuple[float, float]:
+    shared = shapely.intersection(centre, polygon)
+    if shapely.is_empty(shared):
+        return max(0.0, length - 1e-3), 0.0
+    s = shapely.line_locate_point(centre, shapely.points(shapely.get_coordinates(shared)))
+    scale = length_min / length if length > 0 else 1.0
+    return float(np.min(s)) * scale, max(0.0, length - float(np.max(s))) * scale
+
+
 def prepare(graph: LaneGraph) -> PreparedGraph:
     """Build the derived geometry of ``graph`` (once per map).
 
@@ -193,14 +210,22 @@ def prepare(graph: LaneGraph) -> PreparedGraph:
     widths = np.array([_widths(lefts[i], rights[i]) for i in range(len(graph))]).reshape(
         len(graph), WIDTH_STATIONS
     )
+    conflicts = _conflicts(graph, polygons)
+    length = np.asarray(shapely.length(centre), dtype=np.float64).reshape(-1)
+    length_min = np.minimum(left_len, right_len)
+    spans = {
+        (int(a), int(b)): _span(centre[a], polygons[b], float(length[a]), float(length_min[a]))
+        for a, b in zip(*np.nonzero(conflicts), strict=True)
+    }
     return PreparedGraph(
         graph=graph,
         polygons=polygons,
         centre_lines=np.asarray(centre, dtype=object),
         tree=shapely.STRtree(polygons),
-        centre_length_m=np.asarray(shapely.length(centre), dtype=np.float64).reshape(-1),
-        length_min_m=np.minimum(left_len, right_len),
+        centre_length_m=length,
+        length_min_m=length_min,
         length_max_m=np.maximum(left_len, right_len),
         width_m=widths,
-        conflicts=_conflicts(graph, polygons),
+        conflicts=conflicts,
+        conflict_span_m=spans,
     )

@@ -86,9 +86,15 @@ class Matches:
     anchor_heading_rad: FloatArray
     heading_rad: FloatArray
 
+    def rows(self, box: int) -> range:
+        """Pair indices of ``box`` (pairs are sorted by box)."""
+        lo, hi = np.searchsorted(self.box, [box, box + 1])
+        return range(int(lo), int(hi))
+
     def lanes_of(self, box: int) -> IntArray:
         """Lanes touched by ``box``."""
-        out: IntArray = self.lane[self.box == box]
+        r = self.rows(box)
+        out: IntArray = self.lane[r.start : r.stop]
         return out
 
 
@@ -140,6 +146,8 @@ def match_boxes(graph: PreparedGraph, boxes: BoxArrays) -> Matches:
     n = len(boxes.x_m)
     polys = box_polygons(boxes)
     box_idx, lane_idx = graph.tree.query(polys, predicate="intersects")
+    by_box = np.argsort(box_idx, kind="stable")
+    box_idx, lane_idx = box_idx[by_box], lane_idx[by_box]
     clipped = shapely.intersection(polys[box_idx], graph.polygons[lane_idx])
     keep = shapely.area(clipped) > _MIN_AREA_M2
     box_idx, lane_idx, clipped = box_idx[keep], lane_idx[keep], clipped[keep]

@@ -106,7 +106,7 @@ def cut_window(
     first, last = plans[0], plans[-1]
     lo: list[float] = []
     hi: list[float] = []
-    for i in np.flatnonzero(np.isin(matches.box, boxes)):
+    for i in (i for box in boxes for i in matches.rows(box)):
         lane = int(matches.lane[i])
         for plan, out, pick in ((first, lo, 0), (last, hi, 1)):
             for lane_k, fwd in plan.lanes:
@@ -186,7 +186,7 @@ def place_object(  # noqa: PLR0917 - one object: identity, matches, velocity
     """
     regions = []
     heading = None
-    for i in np.flatnonzero(matches.box == box):
+    for i in matches.rows(box):
         lane = int(matches.lane[i])
         where = placed.get(lane)
         if where is None:
