@@ -34,11 +34,9 @@ def parse_engines(text: str) -> list[str]:
 
 
 #: Engines that evaluate recorded drives in this build.
-AVAILABLE_ENGINES = ("reachsets", "rss")
+AVAILABLE_ENGINES = ("reachsets", "rss", "unstructured")
 #: Engines that exist but cannot run on recorded drives yet, with the reason.
-PENDING_ENGINES = {
-    "unstructured": "unstructured RSS is not built yet",
-}
+PENDING_ENGINES: dict[str, str] = {}
 
 
 def build_engines(
@@ -55,6 +53,7 @@ def build_engines(
     from reachsets.params import ReachMethod  # noqa: PLC0415 - keeps CLI start-up light
     from workbench.evaluate.reach_runner import ReachRunner  # noqa: PLC0415
     from workbench.evaluate.rss_runner import RssRunner  # noqa: PLC0415
+    from workbench.evaluate.unstructured_runner import UnstructuredRunner  # noqa: PLC0415
 
     engines: list[EngineRunner] = []
     for name in names:
@@ -65,6 +64,9 @@ def build_engines(
             raise WorkbenchError(f"--engines: unknown engine {name!r} (known: {known})")
         if name == "rss":
             engines.append(RssRunner(drive.lane_map))
+            continue
+        if name == "unstructured":
+            engines.append(UnstructuredRunner(drive.lane_map))
             continue
         engines.append(
             ReachRunner(
