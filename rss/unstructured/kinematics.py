@@ -31,7 +31,10 @@ from rss.physics import (
     eq,
     ge,
     gt,
+    le,
     lt,
+    tmax,
+    tmin,
 )
 
 if TYPE_CHECKING:
@@ -167,6 +170,30 @@ def vehicle_arc(
     return moved.take(skip, p)
 
 
+def _step_speeds(
+    v0: FloatArray, accel: FloatArray, dt: FloatArray, moving: np.ndarray, max_speed_mps: Real
+) -> tuple[FloatArray, FloatArray]:
+    """Speeds at the step ends ``(K + 1, M)`` and step distances ``(K, M)``.
+
+    Each step is :func:`rss.physics.accelerated_limited_movement` from the previous speed.
+    With a constant acceleration the sequence is the running sum ``v0 + Σ a·dt`` (added
+    in the same order) cut at standstill or at the cap; that guess is checked by applying
+    the step to all steps at once, and the few inputs it does not reproduce exactly (tiny
+    accelerations against the tolerances) are iterated step by step.
+    """
+    run = np.cumsum(np.concatenate((v0[None], accel * dt)), axis=0)
+    cap = tmax(max_speed_mps, v0, SPEED_PRECISION)
+    guess = tmin(cap, np.where(le(run, 0.0, SPEED_PRECISION), 0.0, run), SPEED_PRECISION)
+    guess[0] = v0
+    v1, dist = accelerated_limited_movement(guess[:-1], max_speed_mps, accel, dt)
+    if not np.array_equal(np.where(moving, v1, guess[:-1]), guess[1:]):
+        for k in range(dt.shape[0]):
+            v1k, dk = accelerated_limited_movement(guess[k], max_speed_mps, accel, dt[k])
+            guess[k + 1] = np.where(moving[k], v1k, guess[k])
+            dist[k] = dk
+    return guess, np.where(moving, dist, 0.0)
+
+
 def vehicle_integrate(  # noqa: PLR0917  (kernel over arrays)
     p: Points,
     accel_mps2: Real,
@@ -181,30 +208,51 @@ def vehicle_integrate(  # noqa: PLR0917  (kernel over arrays)
 
     ad-rss ``calculateTrajectoryPoint`` of the vehicle model: at the end of each step the
     yaw rate is ``yaw_rate_0 + ratio · change · t``, then one arc of the step length.
+    Vectorised over ``(steps K, points M)``: only the speeds are iterated (each step's
+    speed depends on the previous one through the caps); headings are a cumulative sum
+    and positions the sum of the chords ``2 r sin(Δψ/2) · (cos, sin)(ψ + Δψ/2)``. Stack
+    every variant (ratios, accelerations, durations, start points) into one call.
 
     Returns:
-        The end points ``(M,)``.
+        The end points, shape of the broadcast inputs.
     """
-    shape = np.broadcast(p.x_m, duration_s, ratio).shape
-    duration = np.broadcast_to(duration_s, shape)
-    t = np.zeros(shape)
-    zero = np.zeros(shape)
-    cur = Points(
-        p.x_m + zero, p.y_m + zero, p.yaw_rad + zero, p.speed_mps + zero, p.yaw_rate_radps + zero
+    fields = (p.x_m, p.y_m, p.yaw_rad, p.speed_mps, p.yaw_rate_radps)
+    b = np.broadcast_arrays(*fields, accel_mps2, duration_s, ratio)
+    shape = b[0].shape
+    x0, y0, yaw0, v0, rate0, accel, duration, ratio_m = (np.ravel(a) for a in b)
+    grid = [0.0]  # step ends: t + step added one by one, as the sequential loop does
+    longest = float(duration.max()) if duration.size else 0.0
+    while lt(grid[-1], longest, DURATION_PRECISION):
+        grid.append(grid[-1] + step_s)
+    if len(grid) == 1:
+        return Points(*(np.array(a, dtype=np.float64) for a in b[:5]))
+    t = np.array(grid)[:, None]
+    active = lt(t[:-1], duration, DURATION_PRECISION)  # (K, M)
+    full = ge(duration, t[1:], DURATION_PRECISION)
+    dt = np.where(full, step_s, duration - t[:-1])
+    rate = rate0 + yaw_rate_change_radps2 * np.where(full, t[1:], duration) * ratio_m
+    moving = active & ~eq(dt, 0.0, DURATION_PRECISION)
+    speeds, dist = _step_speeds(v0, accel, np.where(moving, dt, 0.0), moving, max_speed_mps)
+    turning = ~eq(rate, 0.0, ANGULAR_VELOCITY_PRECISION)
+    radius = np.where(turning, speeds[:-1] / np.where(turning, rate, 1.0), DISTANCE_MAX_M)
+    small = lt(np.abs(radius), min_radius_m, DISTANCE_PRECISION)
+    radius = np.where(small, np.where(radius >= 0.0, min_radius_m, -min_radius_m), radius)
+    arc = turning | small
+    dpsi = np.where(arc, dist / radius, 0.0)
+    yaw = np.cumsum(np.concatenate((yaw0[None], dpsi)), axis=0)
+    half = dpsi / 2.0
+    chord = np.where(arc, 2.0 * radius * np.sin(half), dist)
+    x = x0 + np.sum(chord * np.cos(yaw[:-1] + half), axis=0)
+    y = y0 + np.sum(chord * np.sin(yaw[:-1] + half), axis=0)
+    last = active.sum(axis=0) - 1
+    rate_end = np.where(last >= 0, rate[np.maximum(last, 0), np.arange(x0.shape[0])], rate0)
+    return Points(
+        x.reshape(shape),
+        y.reshape(shape),
+        yaw[-1].reshape(shape),
+        speeds[-1].reshape(shape),
+        rate_end.reshape(shape),
     )
-    rate0 = cur.yaw_rate_radps
-    while True:
-        active = lt(t, duration, DURATION_PRECISION)
-        if not active.any():
-            return cur
-        full = ge(duration, t + step_s, DURATION_PRECISION)
-        dt = np.where(full, step_s, duration - t)
-        t = np.where(active, np.where(full, t + step_s, duration), t)
-        rate = rate0 + yaw_rate_change_radps2 * t * ratio
-        stepped = vehicle_arc(
-            replace(cur, yaw_rate_radps=rate), accel_mps2, dt, max_speed_mps, min_radius_m
-        )
-        cur = cur.take(active, stepped)
 
 
 def straight_move(p: Points, distance_m: Real) -> Points:

@@ -13,6 +13,7 @@
 
 from __future__ import annotations
 
+import itertools
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -29,12 +30,17 @@ from rss.unstructured.kinematics import (
 from rss.unstructured.sets import Location, PieceCollector, TrajectorySets, front_and_sides
 
 if TYPE_CHECKING:
+    from collections.abc import Sequence
+
     from rss.batch import FloatArray
     from rss.dynamics import RssDynamics
     from rss.unstructured.agents import UnstructuredAgents
     from rss.unstructured.kinematics import Real
 
 __all__ = ["ratio_pairs", "step_accelerations", "vehicle_sets"]
+
+#: One integration job: start points, acceleration, duration, yaw-rate change ratios.
+Job = tuple[Points, "Real", "Real", "FloatArray"]
 
 
 def ratio_pairs(steps: int) -> tuple[FloatArray, FloatArray]:
@@ -71,10 +77,32 @@ class _Vehicle:
     def fp(self, p: Points) -> FloatArray:
         return footprints(p, self.a.length_m, self.a.width_m, self.extra)
 
-    def integrate(self, p: Points, accel: Real, duration: Real, ratio: Real) -> Points:
+    def integrate_many(self, jobs: Sequence[Job]) -> list[Points]:
+        """Integrate every job in one :func:`vehicle_integrate` call.
+
+        A job is ``(start (N,), accel, duration (N,) or scalar, ratios (R,))``; its result
+        is ``(R, N)`` points.
+        """
+        n = len(self.a)
+        sizes = [len(ratios) for *_, ratios in jobs]
+
+        def column(values: Sequence[Real]) -> FloatArray:
+            return np.concatenate(
+                [np.broadcast_to(v, (r, n)) for v, r in zip(values, sizes, strict=True)]
+            )
+
+        start = Points(
+            *(
+                column([getattr(p, f) for p, *_ in jobs])
+                for f in ("x_m", "y_m", "yaw_rad", "speed_mps", "yaw_rate_radps")
+            )
+        )
+        accel = column([a for _, a, _, _ in jobs])
+        duration = column([d for _, _, d, _ in jobs])
+        ratio = np.concatenate([np.asarray(r, dtype=np.float64) for *_, r in jobs])[:, None]
         u = self.settings
-        return vehicle_integrate(
-            p,
+        out = vehicle_integrate(
+            start,
             accel,
             duration,
             ratio,
@@ -83,17 +111,17 @@ class _Vehicle:
             self.vcap,
             self.rmin,
         )
+        bounds = np.cumsum([0, *sizes])
+        return [_rows(out, slice(lo, hi)) for lo, hi in itertools.pairwise(bounds)]
 
     def arc(self, p: Points, accel: float, duration: Real) -> Points:
         return vehicle_arc(p, accel, duration, self.vcap, self.rmin)
 
-    def response_time_points(self, speed: Real, accel: float, steps: int) -> tuple[Points, int]:
-        """Points at rho for ratios right..left then centre: ``(2 (steps + 1) + 1, N)``."""
+    def response_time_job(self, speed: Real, accel: float, steps: int) -> Job:
+        """Job of the points at rho for ratios right..left then centre (``2 (steps + 1) + 1``)."""
         right, left = ratio_pairs(steps)
-        ratios = np.concatenate((right, left, [0.0]))[:, None]
-        duration = time_in_movement(speed, accel, self.rho)
-        start = self.start(speed)
-        return self.integrate(start, accel, duration, ratios), steps + 1
+        ratios = np.concatenate((right, left, [0.0]))
+        return self.start(speed), accel, time_in_movement(speed, accel, self.rho), ratios
 
 
 def _rows(p: Points, index: slice | int | np.ndarray) -> Points:
@@ -125,15 +153,13 @@ def vehicle_sets(
         time_to_stop(agents.speed_max_mps, v.rho, v.vcap, d.accel_max_mps2, d.brake_min_mps2)
         - v.rho,
     )
-    front, nf = v.response_time_points(
-        agents.speed_max_mps,
-        d.accel_max_mps2,
-        u.vehicle_front_intermediate_yaw_rate_change_ratio_steps,
-    )
-    back, nb = v.response_time_points(
-        agents.speed_min_mps,
-        d.brake_max_mps2,
-        u.vehicle_back_intermediate_yaw_rate_change_ratio_steps,
+    nf = u.vehicle_front_intermediate_yaw_rate_change_ratio_steps + 1
+    nb = u.vehicle_back_intermediate_yaw_rate_change_ratio_steps + 1
+    front, back = v.integrate_many(
+        [
+            v.response_time_job(agents.speed_max_mps, d.accel_max_mps2, nf - 1),
+            v.response_time_job(agents.speed_min_mps, d.brake_max_mps2, nb - 1),
+        ]
     )
     f_left, f_centre, f_right = _rows(front, -2), _rows(front, -1), _rows(front, 0)
     # brake: back side, brake_max to standstill
@@ -169,24 +195,33 @@ def vehicle_sets(
     right_r, left_r = ratio_pairs(
         u.vehicle_continue_forward_intermediate_yaw_rate_change_ratio_steps
     )
-    extra_left = v.fp(v.integrate(f_left, d.accel_max_mps2, t_after, left_r[:, None]))
-    extra_right = v.fp(v.integrate(f_right, d.accel_max_mps2, t_after, right_r[:, None]))
-    cf_front = (
-        np.concatenate((cf_fp[nf : 2 * nf], extra_left)),
-        cf_fp[-1],
-        np.concatenate((extra_right, cf_fp[:nf])),
-    )
-    cf_sides = []
-    for accel in step_accelerations(
+    cf_accels = step_accelerations(
         d.brake_min_mps2,
         d.accel_max_mps2,
         u.vehicle_continue_forward_intermediate_acceleration_steps,
-    ):
-        t = time_in_movement(f_centre.speed_mps, accel, t_after)
-        left = v.fp(v.integrate(f_left, accel, t, 1.0))
-        centre = v.fp(v.arc(f_centre, accel, t))
-        right = v.fp(v.integrate(f_right, accel, t, -1.0))
-        cf_sides.append((left, centre, right))
+    )
+    cf_times = [time_in_movement(f_centre.speed_mps, a, t_after) for a in cf_accels]
+    one, minus_one = np.ones(1), -np.ones(1)
+    extra_left, extra_right, *cf_lr = v.integrate_many(
+        [
+            (f_left, d.accel_max_mps2, t_after, left_r),
+            (f_right, d.accel_max_mps2, t_after, right_r),
+            *(
+                job
+                for a, t in zip(cf_accels, cf_times, strict=True)
+                for job in ((f_left, a, t, one), (f_right, a, t, minus_one))
+            ),
+        ]
+    )
+    cf_front = (
+        np.concatenate((cf_fp[nf : 2 * nf], v.fp(extra_left))),
+        cf_fp[-1],
+        np.concatenate((v.fp(extra_right), cf_fp[:nf])),
+    )
+    cf_sides = [
+        (v.fp(cf_lr[2 * k]), v.fp(v.arc(f_centre, a, t)), v.fp(cf_lr[2 * k + 1]))
+        for k, (a, t) in enumerate(zip(cf_accels, cf_times, strict=True))
+    ]
     front_and_sides(pieces, brake_min_loc, cf_sides, cf_front, brake=False)
     pieces.add(*brake_min_loc, current, brake=False)
     return pieces.build()
