@@ -7,12 +7,12 @@
     |  world: 3-D scene, camera follows   +------------------------+
     |  the ego from above and behind      | actors: count, nearest |
     |                                     +------------------------+
-    |                                     | rss | reach (tabs)     |
+    |                                     | reach | rss | unstr. |
     +-------------------------------------+------------------------+
     | time panel on the ``frame`` timeline                         |
     +--------------------------------------------------------------+
 
-``/rss`` and ``/reach`` stay empty until the engines log their results there.
+``/rss``, ``/rss/unstructured`` and ``/reach`` stay empty until the engines log their results there.
 """
 
 from __future__ import annotations
@@ -88,11 +88,13 @@ def replay_blueprint(
         views.append(
             rrb.TimeSeriesView(name="first collision [s into plan]", origin="/plots/reach")
         )
+    tabs = {"reachsets": "reach sets", "rss": "rss", "unstructured": "unstructured"}
     views.append(
         rrb.Tabs(
             rrb.StateTimelineView(name="reach sets", origin="/reach"),
             rrb.StateTimelineView(name="rss", origin="/rss"),
-            active_tab="rss" if engines and engines[0] == "rss" else "reach sets",
+            rrb.StateTimelineView(name="unstructured", origin="/rss/unstructured"),
+            active_tab=tabs.get(engines[0], "reach sets") if engines else "reach sets",
         )
     )
     side = rrb.Vertical(*views, row_shares=[2] * (len(views) - 1) + [1])

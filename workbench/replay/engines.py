@@ -11,6 +11,8 @@ from typing import TYPE_CHECKING
 from workbench.evaluate.pipeline import FrameResult, evaluate_frames
 from workbench.replay.reach_layout import layout_reach
 from workbench.replay.reach_sink import ReachSink
+from workbench.replay.unstructured_layout import layout_unstructured
+from workbench.replay.unstructured_sink import UnstructuredSink
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -32,6 +34,7 @@ class EngineResultSink:
         self._engines = list(engines)
         names = {e.name for e in self._engines}
         self._reach = ReachSink(recording) if "reachsets" in names else None
+        self._unstructured = UnstructuredSink(recording) if "unstructured" in names else None
         self.results: list[FrameResult] = []
         self.unsafe_frames: dict[str, int] = dict.fromkeys(sorted(names), 0)
 
@@ -47,3 +50,6 @@ class EngineResultSink:
         if self._reach is not None:
             details = [res.outputs["reachsets"].detail for res in results]
             self._reach.send_chunk(layout.frame, layout.t_ns, layout_reach(frames, details))
+        if self._unstructured is not None:
+            found = [res.outputs["unstructured"].detail for res in results]
+            self._unstructured.send_chunk(layout.frame, layout.t_ns, layout_unstructured(found))
