@@ -108,7 +108,8 @@ class ReachResult:
         patches: Rule patches subtracted.
         object_ids: Objects evaluated, ``(M,)``.
         skipped_ids: Objects not evaluated (behind the ego or invalid).
-        reach_sets: Reduced reachable sets, ``(M, T)`` geometries.
+        reach_sets: Reduced reachable sets, ``(M, T)`` geometries; ``None`` where nothing is
+            left (e.g. the reference's ``turn`` deletion removes a standing object's set).
         occupancy: Ego footprints.
     """
 
@@ -248,6 +249,8 @@ def evaluate(
     )
     if cells is not None:
         hits &= cells
+    if sets.size:
+        sets = np.where(shapely.is_empty(sets), None, sets)
     collisions = []
     for i in np.flatnonzero(hits.any(axis=1)):
         k = int(np.argmax(hits[i]))

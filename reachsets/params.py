@@ -108,6 +108,10 @@ class ReachParams:
         closed_track_gap_m: A track whose centre line ends this close to its start is closed.
         keep_largest_part_only: Reference behaviour: keep only the largest polygon after
             trimming and subtraction. Off by default: dropping parts under-approximates.
+        keep_object_body: ``turn``/``bound``: keep the object's own body (and what its sides
+            sweep while turning) out of the deletion polygon. Off by default, as in the
+            reference, which deletes everything behind the object's front corners; on is
+            the sound variant (it flags more steps on the TUM logs).
         full_geometry: Reduce every reachable set (for display). When False, only the
             cells whose unreduced ``simple`` set touches the ego footprint are reduced; the
             verdict is identical (reductions only shrink sets) and much cheaper.
@@ -134,6 +138,7 @@ class ReachParams:
     ego_width_m: float = 2.8
     closed_track_gap_m: float = 35.0
     keep_largest_part_only: bool = False
+    keep_object_body: bool = False
     full_geometry: bool = True
     rules_enabled: bool = True
     f1: F1Params = field(default_factory=F1Params)

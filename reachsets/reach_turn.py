@@ -7,21 +7,26 @@ Each arc starts at a front corner and turns as hard as allowed, braking at the s
     dpsi_k = 2 asin(c / (2 r_k))                     heading change (lateral offset c^2/(2r))
     v_{k+1}^2 = max(v_k^2 - 2 ax_max c, 0)            full braking along the arc
 
-The deletion polygon is everything outside the funnel between the arcs (body frame)::
+The deletion polygon is everything outside the funnel between the arcs (body frame). As in
+the reference (``keep_body=False``, the default) it runs from the end of the left arc back to
+the front-left corner, across the front to the front-right corner, along the right arc, then
+``e`` = 50 m to the right, to 50 m behind and right of the centre, 50 m behind and left, and
+``e`` to the left of the left arc's end::
 
-    (-L/2-50, eta_L+50) +---------------------------+ (xi_L, eta_L+50)
-                        |         left arc  ..--'  + end of left arc
-                        |  RL +----+ FL ..--'
-                        |     |body|    funnel (kept)  --> ahead, open
-                        |  RR +----+ FR ''--.
-                        |         right arc ''--.  + end of right arc
-    (-L/2-50, eta_R-50) +---------------------------+ (xi_R, eta_R-50)
+    (-e, +e) +.......................+ (xi_L, eta_L + e)
+             |           left arc ..-+ end of left arc
+             |   +----+ FL ..--'
+             |   |body|    funnel (kept)  --> ahead, open
+             |   +----+ FR ''--.
+             |          right arc ''-+ end of right arc
+    (-e, -e) +.......................+ (xi_R, eta_R - e)
 
-Unlike the reference (which deletes everything behind the front corners), the funnel holds
-the body: its sides run from the rear corners straight to each arc's second point, so the
-deletion never removes the object's own footprint nor the few centimetres its sides swing
-out while it turns. Arcs stop turning after ``arc_max_turn_rad`` so the polygon stays simple
-at low speed.
+So the reference also deletes the object's own body and everything beside it behind its
+front edge. ``keep_body=True`` is the sound variant: the funnel holds the body, its sides
+running from the rear corners straight to each arc's second point, so the deletion never
+removes the object's footprint nor the few centimetres its sides swing out while it turns
+(it flags more steps on the TUM logs; see ``docs/reachsets.md``). Arcs stop turning after
+``arc_max_turn_rad`` so the polygon stays simple at low speed.
 """
 
 from __future__ import annotations
@@ -42,7 +47,7 @@ if TYPE_CHECKING:
 
 __all__ = ["EXTENSION_M", "funnel_polygons", "steering_arc_scalar", "steering_arcs"]
 
-#: How far the deletion polygon reaches sideways and behind (reference: 50 m).
+#: How far the deletion polygon reaches sideways and behind (reference ``turn``: 50 m).
 EXTENSION_M = 50.0
 
 
@@ -109,6 +114,8 @@ def funnel_polygons(
     left: tuple[NDArray[np.float64], NDArray[np.float64]],
     right: tuple[NDArray[np.float64], NDArray[np.float64]],
     extension_m: float = EXTENSION_M,
+    *,
+    keep_body: bool = False,
 ) -> NDArray[np.object_]:
     """Deletion polygons outside the funnel between two body-frame edge curves.
 
@@ -117,25 +124,36 @@ def funnel_polygons(
         left: Left edge ``(xi, eta)``, each ``(N, P)``, starting at the front-left corner.
         right: Right edge, each ``(N, Q)``, starting at the front-right corner.
         extension_m: Sideways and backwards reach of the polygon.
+        keep_body: Keep the object's body out of the deletion (sound variant); ``False``
+            deletes everything behind the front corners, as the reference does.
 
     Returns:
         ``(N,)`` shapely polygons in the map frame.
     """
     lxi, leta = left
     rxi, reta = right
-    half_l = np.asarray(objects.length_m)[:, None] / 2
-    half_w = np.asarray(objects.width_m)[:, None] / 2
-    eta_l = leta.max(axis=1, keepdims=True) + extension_m
-    eta_r = reta.min(axis=1, keepdims=True) - extension_m
-    back = -half_l - extension_m
-    # The front corners themselves are skipped: the body sides run straight from the rear
-    # corners to the arcs' second points, leaving room for the sides to swing out in a turn.
-    xi = np.concatenate(
-        [lxi[:, :0:-1], -half_l, -half_l, rxi[:, 1:], rxi[:, -1:], back, back, lxi[:, -1:]], axis=1
-    )
-    eta = np.concatenate(
-        [leta[:, :0:-1], half_w, -half_w, reta[:, 1:], eta_r, eta_r, eta_l, eta_l], axis=1
-    )
+    e = extension_m
+    if keep_body:
+        half_l = np.asarray(objects.length_m)[:, None] / 2
+        half_w = np.asarray(objects.width_m)[:, None] / 2
+        eta_l = leta.max(axis=1, keepdims=True) + e
+        eta_r = reta.min(axis=1, keepdims=True) - e
+        back = -half_l - e
+        # The front corners themselves are skipped: the body sides run straight from the rear
+        # corners to the arcs' second points, leaving room for the sides to swing out.
+        xi = np.concatenate(
+            [lxi[:, :0:-1], -half_l, -half_l, rxi[:, 1:], rxi[:, -1:], back, back, lxi[:, -1:]],
+            axis=1,
+        )
+        eta = np.concatenate(
+            [leta[:, :0:-1], half_w, -half_w, reta[:, 1:], eta_r, eta_r, eta_l, eta_l], axis=1
+        )
+    else:
+        back = np.full((len(lxi), 1), -e)
+        xi = np.concatenate([lxi[:, ::-1], rxi, rxi[:, -1:], back, back, lxi[:, -1:]], axis=1)
+        eta = np.concatenate(
+            [leta[:, ::-1], reta, reta[:, -1:] - e, back, -back, leta[:, -1:] + e], axis=1
+        )
     coords = body_to_map(
         xi,
         eta,

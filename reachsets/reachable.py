@@ -37,7 +37,7 @@ def deletion_polygons(
     else:
         left = steering_arcs(objects, params, 1.0)
         right = steering_arcs(objects, params, -1.0)
-    return funnel_polygons(objects, left, right)
+    return funnel_polygons(objects, left, right, keep_body=params.keep_object_body)
 
 
 def reachable_sets(

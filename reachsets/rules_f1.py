@@ -3,8 +3,9 @@
 Atoms per object (s along the centre line, ``L`` ego length)::
 
     overlap   0 <= s_obj - s_ego < (1 - d_overlap) L      at least 20 % side by side
-    approach  the next corner starts within d_corner ahead of the object
-    first     that corner is the first of a combination (no corner within d_corner before it)
+    approach  the next corner point (|kappa| > kappa_thr) lies within d_corner ahead
+    first     the corner point before that one is not within d_corner before it, i.e. the
+              object is ahead of the first corner of a combination (false inside a corner)
     defense   0 <= s_obj - s_ego <= d_defend              the ego attacks from behind
     off_line  the object is on the inside half of the track for that corner
 
@@ -39,7 +40,7 @@ if TYPE_CHECKING:
 
     from reachsets.track import TrackGeometry
 
-__all__ = ["ALONGSIDE", "DEFENDING", "corner_runs", "evaluate_f1"]
+__all__ = ["ALONGSIDE", "DEFENDING", "corner_points", "evaluate_f1"]
 
 ALONGSIDE = Since(Atom("overlap"), And((Atom("overlap"), Not(Atom("approach")))))
 DEFENDING = And(
@@ -50,42 +51,40 @@ DEFENDING = And(
 )
 
 
-def corner_runs(
+def corner_points(
     track: TrackGeometry, kappa_thr: float
-) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
-    """Corners as runs of centre points with ``|kappa| > kappa_thr``.
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Corners as the centre points with ``|kappa| > kappa_thr`` (reference semantics).
 
     Returns:
-        ``(start_s, end_s, direction)``, each ``(R,)``; direction +1 left, -1 right.
+        ``(s, direction)``, each ``(R,)``; direction +1 left, -1 right.
     """
     mask = np.abs(track.kappa_inv_m) > kappa_thr
-    edges = np.diff(np.concatenate([[0], mask.astype(np.int8), [0]]))
-    starts = np.flatnonzero(edges == 1)
-    ends = np.flatnonzero(edges == -1) - 1
-    direction = np.array(
-        [np.sign(track.kappa_inv_m[a : b + 1].mean()) for a, b in zip(starts, ends, strict=True)]
-    )
-    return track.s_m[starts], track.s_m[ends], direction.reshape(len(starts))
+    return track.s_m[mask], np.where(track.kappa_inv_m[mask] > 0, 1.0, -1.0)
 
 
 def _next_corner(
     track: TrackGeometry, s_obj: NDArray[np.float64], d_corner: float, kappa_thr: float
 ) -> tuple[NDArray[np.bool_], NDArray[np.bool_], NDArray[np.float64]]:
-    """``approach``, ``first`` and corner direction per object."""
-    start, end, direction = corner_runs(track, kappa_thr)
+    """``approach``, ``first`` and corner direction per object.
+
+    The next corner is the first corner *point* at or ahead of the object (the first one of
+    the track when none is ahead); ``approach``: it lies at most ``d_corner`` ahead;
+    ``first``: the corner point before it (cyclically) is not within ``d_corner`` before it.
+    Inside a corner the next point is a metre ahead and its predecessor a metre behind it,
+    so the object approaches but not the first corner of a combination.
+    """
+    s_c, direction = corner_points(track, kappa_thr)
     n = len(s_obj)
-    if len(start) == 0:
+    if len(s_c) == 0:
         return np.zeros(n, bool), np.zeros(n, bool), np.zeros(n)
-    to_start = track.ahead_m(s_obj[:, None], start[None, :])
-    to_end = track.ahead_m(s_obj[:, None], end[None, :])
-    inside = (to_start <= 0) & (to_end >= 0)
-    dist = np.where(inside, 0.0, np.where(to_start >= 0, to_start, np.inf))
-    k = np.argmin(dist, axis=1)
-    best = dist[np.arange(n), k]
-    gap_before = track.ahead_m(np.roll(end, 1), start)
-    first_run = np.where(np.arange(len(start)) == 0, not track.closed, False)  # noqa: FBT003
-    is_first = first_run | (gap_before > d_corner)
-    return best <= d_corner, is_first[k], direction[k]
+    ahead = s_c[None, :] >= s_obj[:, None]
+    k = np.where(ahead.any(axis=1), np.argmax(ahead, axis=1), 0)
+    to_next = track.ahead_m(s_obj, s_c[k])
+    prev_gap = track.ahead_m(s_c[k - 1], s_c[k])
+    approach = (to_next >= 0) & (to_next <= d_corner)
+    first = ~((prev_gap >= 0) & (prev_gap <= d_corner))
+    return approach, first, direction[k]
 
 
 def evaluate_f1(

@@ -81,16 +81,19 @@ def test_arc_chord_offset_is_c2_over_2r():
     assert eta[0, 1] - eta[0, 0] == pytest.approx(3.0**2 / (2 * 11.0), rel=1e-9)
 
 
-def test_funnel_keeps_own_footprint_and_is_valid():
+@pytest.mark.parametrize("keep_body", [True, False])
+def test_funnel_body_handling_and_validity(keep_body):
+    """The sound variant keeps the footprint; the reference deletes all behind the front."""
     params = ReachParams()
     objs = objects((5.0, 1.0, 0.3, 0.0), (0.0, 0.0, -1.0, 45.0))
     left = steering_arcs(objs, params, 1.0)
     right = steering_arcs(objs, params, -1.0)
-    funnel = funnel_polygons(objs, left, right)
+    funnel = funnel_polygons(objs, left, right, keep_body=keep_body)
     assert np.all(shapely.is_valid(funnel))
     body = simple_reach_polygons(objs, np.array([0.0]), 13.0)[:, 0]
     overlap = shapely.area(shapely.intersection(funnel, body))
-    np.testing.assert_allclose(overlap, 0.0, atol=1e-6)
+    expected = 0.0 if keep_body else shapely.area(body)
+    np.testing.assert_allclose(overlap, expected, atol=1e-6)
 
 
 def test_occupancy_matches_scalar_and_holds_last_pose():

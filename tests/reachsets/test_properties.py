@@ -57,10 +57,13 @@ def test_simple_sets_cover_growing_time_horizons(v0, yaw, a):
 def test_sets_contain_true_future_position(v0, accel_frac, curvature, method):
     """A car whose motion stays within the limits is inside its set at every step.
 
-    ``turn``/``bound`` funnels run straight along the body sides, so the few centimetres a
-    body side swings out while the car turns are tolerated (``SWING_M``).
+    Holds for the sound ``keep_object_body`` variant (the reference's deletion polygon
+    removes the body). ``turn``/``bound`` funnels run straight along the body sides, so the
+    few centimetres a body side swings out while the car turns are tolerated (``SWING_M``).
     """
-    params = ReachParams(method=method, trim_to_drivable=False, rules_enabled=False)
+    params = ReachParams(
+        method=method, trim_to_drivable=False, rules_enabled=False, keep_object_body=True
+    )
     a_lon = accel_frac * 6.0
     a_lat_ok = abs(curvature) * (v0 + 6.0 * 4.0) ** 2
     if a_lat_ok > 12.0 or 1 / max(abs(curvature), 1e-9) < params.turn_radius_m:
