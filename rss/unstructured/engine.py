@@ -36,9 +36,10 @@ class UnstructuredResult:
     """Result of one frame.
 
     Attributes:
-        ok: All inputs valid (ad-rss fails the whole frame otherwise; then only
-            ``valid`` is meaningful).
-        valid: ``(N,)`` agent accepted.
+        ok: All inputs valid. ad-rss fails the whole frame on one invalid agent; here
+            only the invalid agents are skipped (see ``valid``) and the others are
+            answered as usual.
+        valid: ``(N,)`` agent accepted (all false when the ego is invalid).
         object_id: ``(N,)`` agent ids.
         decisions: Per-agent decisions (invalid agents: safe, response None).
         ego_sets: The ego's pieces (one agent).
@@ -124,8 +125,11 @@ def check_unstructured(  # noqa: PLR0917  (one engine step)
         memory: Memory of the previous frame (``None`` = fresh).
 
     Returns:
-        ``(result, memory_after)``; an invalid input (``result.ok`` false) returns the
-        incoming memory unchanged, as ad-rss keeps its state when a check fails.
+        ``(result, memory_after)``. Invalid agents (NaN, negative or unordered speeds,
+        angles beyond ±2π, no motion model) are skipped: decision safe / ``None``,
+        not dangerous, their memory entries carried over unchanged (ad-rss would fail
+        the whole frame and keep its whole memory). An invalid ego makes every agent
+        invalid.
 
     Raises:
         UnstructuredInputError: ``ego`` is not one row or ``agent_dynamics`` mismatches.
@@ -137,13 +141,14 @@ def check_unstructured(  # noqa: PLR0917  (one engine step)
         raise UnstructuredInputError(
             "agent_dynamics", f"needs {len(agents)} entries, got {len(agent_dynamics)}"
         )
-    valid = agents.valid()
-    ok = bool(valid.all() and ego.valid()[0])
+    ego_valid = bool(ego.valid()[0])
+    valid = agents.valid() & ego_valid
+    ok = bool(valid.all() and ego_valid)
     idx = np.flatnonzero(valid)
     sub = agents.take(idx)
     ego_sets = (
         trajectory_sets(ego, [ego_dynamics], ego=True)
-        if ego.valid()[0]
+        if ego_valid
         else TrajectorySets.concat([], 1)
     )
     sub_sets = trajectory_sets(sub, [agent_dynamics[int(i)] for i in idx])
@@ -157,7 +162,8 @@ def check_unstructured(  # noqa: PLR0917  (one engine step)
     result = UnstructuredResult(
         ok, valid, agents.object_id, decisions, ego_sets, agent_sets, proper
     )
-    return result, (memory_out if ok else memory)
+    invalid_ids = agents.object_id[~valid]
+    return result, memory_out.merged(memory, invalid_ids) if invalid_ids.size else memory_out
 
 
 def _expand(dec: Decisions, idx: IntArray, n: int) -> Decisions:

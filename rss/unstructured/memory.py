@@ -66,6 +66,17 @@ class UnstructuredMemory:
         none = np.zeros(0)
         return UnstructuredMemory(none, none, none, none, none, none, none)
 
+    def merged(self, other: UnstructuredMemory, object_ids: np.ndarray) -> UnstructuredMemory:
+        """This memory plus ``other``'s entries of ``object_ids`` (carried over unchanged)."""
+        brake = np.isin(other.must_brake_ids, object_ids)
+        drive = np.isin(other.drive_away_ids, object_ids)
+        return UnstructuredMemory(
+            *(
+                np.concatenate((getattr(self, f), getattr(other, f)[brake if i < 2 else drive]))  # noqa: PLR2004  (the two 22.1b fields come first)
+                for i, f in enumerate(self.__dataclass_fields__)
+            )
+        )
+
     def lookup_must_brake(self, object_id: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """``(found, value)`` of the remembered 22.1b flag for ``(N,)`` object ids."""
         return _lookup(self.must_brake_ids, object_id, self.other_must_brake)

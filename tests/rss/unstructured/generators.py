@@ -13,7 +13,7 @@ from rss.unstructured import UnstructuredAgents
 if TYPE_CHECKING:
     from rss.dynamics import RssDynamics
 
-__all__ = ["random_ego", "random_frame"]
+__all__ = ["random_ego", "random_frame", "random_sequence"]
 
 
 def random_ego(rng: np.random.Generator) -> UnstructuredAgents:
@@ -65,3 +65,68 @@ def random_frame(rng: np.random.Generator, n: int) -> tuple[UnstructuredAgents, 
         )
         dynamics.append(DEFAULT_PEDESTRIAN_DYNAMICS if pedestrian else DEFAULT_VEHICLE_DYNAMICS)
     return UnstructuredAgents.from_rows(rows), dynamics
+
+
+def _row(
+    oid: int, kind: ObjectType, pose: tuple[float, float, float], speed: float
+) -> dict[str, float]:
+    pedestrian = kind == ObjectType.Pedestrian
+    return {
+        "object_id": oid,
+        "object_type": int(kind),
+        "x_m": pose[0],
+        "y_m": pose[1],
+        "yaw_rad": pose[2],
+        "speed_min_mps": speed,
+        "speed_max_mps": speed,
+        "length_m": 0.6 if pedestrian else 4.5,
+        "width_m": 0.6 if pedestrian else 2.0,
+    }
+
+
+def _wrap(angle: float) -> float:
+    return float((angle + np.pi) % (2.0 * np.pi) - np.pi)
+
+
+def random_sequence(
+    rng: np.random.Generator, steps: int, n: int
+) -> list[tuple[UnstructuredAgents, UnstructuredAgents, list[RssDynamics]]]:
+    """A drive-away sequence: ego and ``n`` close agents, slow or stopped, moving a little.
+
+    Per step each participant keeps its exact position with probability 1/2 (so stored
+    drive-away states can persist), otherwise it moves along its heading; speeds switch
+    between standing, creeping and slow, and the ego's steering angle is random.
+    """
+    kinds = [
+        ObjectType.Pedestrian if rng.random() < 0.4 else ObjectType.OtherVehicle for _ in range(n)
+    ]
+    poses = []
+    for _ in range(n):
+        radius, angle = float(rng.uniform(4.0, 20.0)), float(rng.uniform(-np.pi, np.pi))
+        poses.append(
+            [radius * np.cos(angle), radius * np.sin(angle), float(rng.uniform(-np.pi, np.pi))]
+        )
+    ego_pose = [0.0, 0.0, float(rng.uniform(-np.pi, np.pi))]
+    out = []
+    for _ in range(steps):
+        ego_speed = float(rng.choice([0.0, 0.0, 0.05, 1.0, 4.0]))
+        ego = _row(0, ObjectType.EgoVehicle, (ego_pose[0], ego_pose[1], ego_pose[2]), ego_speed)
+        ego["steering_angle_rad"] = float(rng.choice([0.0, rng.uniform(-0.6, 0.6), np.pi / 2]))
+        rows, dynamics = [], []
+        for i, kind in enumerate(kinds):
+            speed = float(rng.choice([0.0, 0.0, 0.05, 1.0, 3.0]))
+            if rng.random() < 0.5:
+                step = speed * 0.5 + 0.2
+                poses[i][0] += step * np.cos(poses[i][2])
+                poses[i][1] += step * np.sin(poses[i][2])
+            rows.append(_row(i + 1, kind, (poses[i][0], poses[i][1], poses[i][2]), speed))
+            pedestrian = kind == ObjectType.Pedestrian
+            dynamics.append(DEFAULT_PEDESTRIAN_DYNAMICS if pedestrian else DEFAULT_VEHICLE_DYNAMICS)
+        out.append(
+            (UnstructuredAgents.from_rows([ego]), UnstructuredAgents.from_rows(rows), dynamics)
+        )
+        if rng.random() < 0.5:
+            ego_pose[0] += (ego_speed * 0.5 + 0.2) * np.cos(ego_pose[2])
+            ego_pose[1] += (ego_speed * 0.5 + 0.2) * np.sin(ego_pose[2])
+            ego_pose[2] = _wrap(ego_pose[2] + float(rng.uniform(-0.3, 0.3)))
+    return out
