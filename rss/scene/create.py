@@ -30,8 +30,8 @@ from rss.scene.intersection import (
     route_priority,
 )
 from rss.scene.matching import BoxArrays, match_boxes
-from rss.scene.roadarea import build_road, cut_window, place_object
-from rss.scene.routes import RouteTree, connect, follows_traffic, predict_routes
+from rss.scene.roadarea import SegmentPlan, build_road, cut_window, place_object
+from rss.scene.routes import RouteTree, connect, predict_routes
 
 if TYPE_CHECKING:
     from rss.batch import FloatArray, IntArray
@@ -39,7 +39,6 @@ if TYPE_CHECKING:
     from rss.model import RoadSegment
     from rss.scene.lanegraph import PreparedGraph
     from rss.scene.matching import Matches
-    from rss.scene.roadarea import SegmentPlan
     from rss.scene.routes import Step
 
 __all__ = ["Scene", "SceneEgo", "SceneObjects", "conservative_stop_m", "create_scene"]
@@ -235,19 +234,22 @@ def _ego_routes(f: _Frame, horizon_m: float) -> list[tuple[Step, ...]]:
 
 
 def _intersections(
-    f: _Frame, i: int, ego_routes: list[tuple[Step, ...]], horizon_m: float, green: frozenset[int]
-) -> list[Constellation]:
+    f: _Frame,
+    i: int,
+    ego_routes: list[tuple[Step, ...]],
+    obj_routes: list[tuple[Step, ...]],
+    green: frozenset[int],
+) -> tuple[list[Constellation], bool]:
+    """Intersection constellations per conflicting lane pair; also whether a pair passes."""
     box = i + 1
-    anchor = int(f.matches.anchor[box])
     out: list[Constellation] = []
     seen: set[tuple[int, int]] = set()
-    routes = predict_routes(
-        f.prep, anchor, forward=f.forward(box), horizon_m=horizon_m, travelled_m=f.travelled(box)
-    )
-    for obj_route in routes:
+    passing = False
+    for obj_route in obj_routes:
         for ego_route in ego_routes:
             hit = conflict(f.prep, ego_route, obj_route)
             if hit is None:
+                passing = True
                 continue
             ie, io = hit
             key = (ego_route[ie][0], obj_route[io][0])
@@ -265,7 +267,7 @@ def _intersections(
             c = f.constellation(kind, i, ego_plans, obj_plans)
             if c is not None:
                 out.append(c)
-    return out
+    return out, passing
 
 
 def _target(f: _Frame, box: int) -> int | None:
@@ -276,33 +278,74 @@ def _target(f: _Frame, box: int) -> int | None:
     return anchor if anchor in lanes else min(lanes, key=lambda lane: f.tree.cost_m[lane])
 
 
+def _route_to(routes: list[tuple[Step, ...]], lane: int) -> tuple[Step, ...] | None:
+    """The shortest prefix of one of ``routes`` that reaches ``lane``."""
+    best: tuple[Step, ...] | None = None
+    for route in routes:
+        for idx, (step_lane, _) in enumerate(route):
+            if step_lane == lane:
+                if best is None or idx + 1 < len(best):
+                    best = route[: idx + 1]
+                break
+    return best
+
+
+def _following(
+    f: _Frame, i: int, ego_routes: list[tuple[Step, ...]], obj_routes: list[tuple[Step, ...]]
+) -> Constellation | None:
+    """SameDirection along a route if one vehicle is on the other's predicted route."""
+    box = i + 1
+    route = _route_to(ego_routes, int(f.matches.anchor[box]))
+    if route is None:
+        route = _route_to(obj_routes, int(f.matches.anchor[0]))
+    if route is None:
+        return None
+    lane, fwd = route[-1] if route[0][0] == f.matches.anchor[0] else route[0]
+    heading = f.headings[box][lane] + (0.0 if fwd else np.pi)
+    if np.cos(float(f.objects.yaw_rad[i]) - heading) < _FOLLOWING_COS:
+        return None
+    plans = [SegmentPlan(lanes=[step]) for step in route]
+    cut_window(plans, f.matches, (0, box))
+    return f.constellation(ConstellationType.SameDirection, i, plans, None)
+
+
+def _corridor(f: _Frame, i: int, target: int) -> Constellation | None:
+    """Same/opposite direction along the connecting route to ``target``."""
+    box = i + 1
+    road_heading = f.headings[box][target] + (0.0 if f.tree.forward[target] else np.pi)
+    cos = float(np.cos(float(f.objects.yaw_rad[i]) - road_heading))
+    kind = ConstellationType.SameDirection if cos >= 0.0 else ConstellationType.OppositeDirection
+    if kind == ConstellationType.OppositeDirection and f.behind_ego(i):
+        return None  # driving apart
+    plans = corridor_plans(f.prep, f.tree, target, f.matches, (0, box))
+    return f.constellation(kind, i, plans, None)
+
+
 def _object(
     f: _Frame, i: int, ego_routes: list[tuple[Step, ...]], horizon_m: float, green: frozenset[int]
 ) -> list[Constellation]:
     box = i + 1
     target = _target(f, box)
-    if target != int(f.matches.anchor[box]):
-        found = _intersections(f, i, ego_routes, horizon_m, green)
-        if found or target is None:
-            return found
-    assert target is not None
-    path = f.tree.path(target)
-    road_heading = f.headings[box][target] + (0.0 if f.tree.forward[target] else np.pi)
-    cos = float(np.cos(float(f.objects.yaw_rad[i]) - road_heading))
-    through = bool(f.prep.graph.is_intersection[path].any())
-    ks = np.diff([f.tree.k[lane] for lane in path])
-    following = cos >= _FOLLOWING_COS and (bool((ks >= 0).all()) or bool((ks <= 0).all()))
-    following &= all(follows_traffic(f.prep, lane, forward=f.tree.forward[lane]) for lane in path)
-    if through and not following:
-        found = _intersections(f, i, ego_routes, horizon_m, green)
-        if found:
-            return found
-    kind = ConstellationType.SameDirection if cos >= 0.0 else ConstellationType.OppositeDirection
-    if kind == ConstellationType.OppositeDirection and f.behind_ego(i):
-        return []  # driving apart
-    plans = corridor_plans(f.prep, f.tree, target, f.matches, (0, box))
-    c = f.constellation(kind, i, plans, None)
-    return [] if c is None else [c]
+    through = target is None or bool(f.prep.graph.is_intersection[f.tree.path(target)].any())
+    if not through and target is not None:
+        c = _corridor(f, i, target)
+        return [] if c is None else [c]
+    obj_routes = predict_routes(
+        f.prep,
+        int(f.matches.anchor[box]),
+        forward=f.forward(box),
+        horizon_m=horizon_m,
+        travelled_m=f.travelled(box),
+    )
+    follow = _following(f, i, ego_routes, obj_routes)
+    if follow is not None:
+        return [follow]
+    found, passing = _intersections(f, i, ego_routes, obj_routes, green)
+    if target is not None and (passing or not found):
+        c = _corridor(f, i, target)
+        if c is not None and (not found or c.constellation_type != ConstellationType.SameDirection):
+            found.append(c)
+    return found
 
 
 def create_scene(

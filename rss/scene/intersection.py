@@ -10,7 +10,8 @@ the lengths before and after the part of that lane that overlaps the other's lan
                       └────────┴─────────────────┴──────┘
 
 Priority comes from right of way and traffic lights (a light not listed green means the
-route must yield, as ad-map does with an empty set of green lights).
+route must yield, as ad-map does with an empty set of green lights); without any
+regulation the ego yields (ad-map's behaviour for intersections of unknown type).
 """
 
 from __future__ import annotations
@@ -76,7 +77,13 @@ def route_priority(prep: PreparedGraph, route: tuple[Step, ...], green: frozense
 
 
 def intersection_type(ego_level: int, obj_level: int) -> ConstellationType:
-    """Constellation type from the two routes' right of way."""
+    """Constellation type from the two routes' right of way.
+
+    Two unregulated routes (level 0) make the ego yield, as ad-map does for intersections
+    of unknown type; two regulated routes of the same level have the same priority.
+    """
+    if ego_level == obj_level == 0:
+        return ConstellationType.IntersectionObjectHasPriority
     if ego_level > obj_level:
         return ConstellationType.IntersectionEgoHasPriority
     if ego_level < obj_level:

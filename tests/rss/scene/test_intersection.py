@@ -75,7 +75,8 @@ def _scene(graph: LaneGraph, green: frozenset[int] = frozenset()) -> Scene:
     [
         (-1, 1, ConstellationType.IntersectionObjectHasPriority),
         (1, -1, ConstellationType.IntersectionEgoHasPriority),
-        (0, 0, ConstellationType.IntersectionSamePriority),
+        (-1, -1, ConstellationType.IntersectionSamePriority),
+        (0, 0, ConstellationType.IntersectionObjectHasPriority),
     ],
 )
 def test_priority_from_right_of_way(ego_prio, other_prio, kind):
@@ -98,9 +99,9 @@ def test_distances_to_the_intersecting_area():
 
 
 def test_red_or_unknown_light_means_yield_green_means_priority():
-    (c,) = _scene(crossing(0, 0, light_on_ego=True)).constellations
-    assert c.constellation_type == ConstellationType.IntersectionObjectHasPriority
-    (c,) = _scene(crossing(0, 0, light_on_ego=True), frozenset({0})).constellations
+    (c,) = _scene(crossing(0, -1, light_on_ego=True)).constellations
+    assert c.constellation_type == ConstellationType.IntersectionSamePriority
+    (c,) = _scene(crossing(0, -1, light_on_ego=True), frozenset({0})).constellations
     assert c.constellation_type == ConstellationType.IntersectionEgoHasPriority
 
 
