@@ -144,6 +144,12 @@ def _prepared_track(
     return build_track(bounds, params.closed_track_gap_m)
 
 
+def _clip_footprints(footprints: NDArray[np.object_], area: Any) -> NDArray[np.object_]:
+    """``footprints & area``, clipping ``area`` to the footprints' bounding box first."""
+    box = shapely.box(*shapely.total_bounds(footprints))
+    return np.asarray(shapely.intersection(footprints, shapely.intersection(area, box)))
+
+
 def _select(
     inputs: ReachInputs, track: TrackGeometry | None
 ) -> tuple[NDArray[np.bool_], NDArray[np.float64], float]:
@@ -208,14 +214,28 @@ def evaluate(
     objs: ObjectStates = inputs.objects.take(rows)
     skipped = tuple(str(i) for i in inputs.objects.ids[~keep])
     cells = None
-    if not params.full_geometry:
+    zone = occ.polygons
+    if params.full_geometry:
+        sets = reachable_sets(objs, times, params, track)
+    else:
+        # Verdict only: clip the ego footprints to the track once instead of trimming every
+        # set ((S - D - P) & T touches E  <=>  S - D - P touches E & T), and reduce only the
+        # cells whose unreduced simple set touches the clipped footprint.
+        # (Keeping only the largest part needs the trimmed sets: then they are trimmed.)
+        clip = params.trim_to_drivable and track is not None and not params.keep_largest_part_only
+        if clip and track is not None:
+            zone = _clip_footprints(occ.polygons, track.polygon)
         raw = simple_sets(objs, times, params)
         cells = (
-            np.asarray(shapely.intersects(raw, occ.polygons[None, :]), dtype=bool)
+            np.asarray(shapely.intersects(raw, zone[None, :]), dtype=bool)
             if raw.size
             else np.zeros(raw.shape, dtype=bool)
         )
-    sets = reachable_sets(objs, times, params, track, cells=cells)
+        sets = (
+            reachable_sets(objs, times, params, track, cells=cells, simple=raw, trim=not clip)
+            if cells.any()
+            else raw
+        )
     footprints = rectangles(objs.x_m, objs.y_m, objs.yaw_rad, objs.length_m, objs.width_m)
     ego = inputs.ego
     ctx = RuleContext(
@@ -243,14 +263,15 @@ def evaluate(
     if params.keep_largest_part_only and sets.size:
         sets = keep_largest_part(sets)
     hits = (
-        np.asarray(shapely.intersects(sets, occ.polygons[None, :]), dtype=bool)
+        np.asarray(shapely.intersects(sets, zone[None, :]), dtype=bool)
         if sets.size
         else np.zeros((len(objs), len(times)), dtype=bool)
     )
     if cells is not None:
         hits &= cells
     if sets.size:
-        sets = np.where(shapely.is_empty(sets), None, sets)
+        sets = sets.copy()
+        sets[np.asarray(shapely.is_empty(sets), dtype=bool)] = None
     collisions = []
     for i in np.flatnonzero(hits.any(axis=1)):
         k = int(np.argmax(hits[i]))

@@ -37,21 +37,43 @@ __all__ = ["wall_aware_arcs"]
 _TANGENT_HALF_STEP_M = 0.5
 
 
+def _wall_arrays(wall: Any) -> tuple[NDArray[np.float64], ...]:
+    """Wall vertices ``(M, 2)``, segment vectors, their lengths and cumulative arc length."""
+    pts = shapely.get_coordinates(wall)
+    seg = np.diff(pts, axis=0)
+    seg_len = np.hypot(seg[:, 0], seg[:, 1])
+    return pts, seg, seg_len, np.concatenate([[0.0], np.cumsum(seg_len)])
+
+
 def _wall_frame(
-    wall: Any, x: NDArray[np.float64], y: NDArray[np.float64]
+    wall: tuple[NDArray[np.float64], ...], x: NDArray[np.float64], y: NDArray[np.float64]
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
-    """Nearest wall point and unit tangent for ``(N,)`` positions: ``(wx, wy)``, ``t``."""
-    pts = shapely.points(x, y)
-    s = shapely.line_locate_point(wall, pts)
-    length = shapely.length(wall)
-    ahead = shapely.line_interpolate_point(wall, np.minimum(s + _TANGENT_HALF_STEP_M, length))
-    behind = shapely.line_interpolate_point(wall, np.maximum(s - _TANGENT_HALF_STEP_M, 0.0))
-    a = shapely.get_coordinates(ahead)
-    b = shapely.get_coordinates(behind)
-    w = shapely.get_coordinates(shapely.line_interpolate_point(wall, s))
-    t = a - b
+    """Nearest wall point and unit tangent for ``(N,)`` positions: ``(wx, wy)``, ``t``.
+
+    Plain numpy over all ``(N, M)`` point-segment pairs of ``_wall_arrays`` (no shapely
+    calls in the arc loop): the nearest point's arc length ``s`` on the wall, the tangent
+    through the wall points at ``s -+ 0.5 m`` (clamped to the ends).
+    """
+    pts, seg, seg_len, cum = wall
+    dx = x[:, None] - pts[None, :-1, 0]
+    dy = y[:, None] - pts[None, :-1, 1]
+    u = np.clip((dx * seg[:, 0] + dy * seg[:, 1]) / np.maximum(seg_len**2, 1e-24), 0.0, 1.0)
+    ox = dx - u * seg[:, 0]
+    oy = dy - u * seg[:, 1]
+    best = np.argmin(ox * ox + oy * oy, axis=1)
+    s = cum[best] + u[np.arange(len(best)), best] * seg_len[best]
+    probe = np.concatenate(
+        [
+            s,
+            np.minimum(s + _TANGENT_HALF_STEP_M, cum[-1]),
+            np.maximum(s - _TANGENT_HALF_STEP_M, 0.0),
+        ]
+    )
+    px = np.interp(probe, cum, pts[:, 0]).reshape(3, -1)
+    py = np.interp(probe, cum, pts[:, 1]).reshape(3, -1)
+    t = np.stack([px[1] - px[2], py[1] - py[2]], axis=1)
     t /= np.maximum(np.hypot(t[:, 0], t[:, 1]), 1e-12)[:, None]
-    return w[:, 0], w[:, 1], t
+    return px[0], py[0], t
 
 
 def wall_aware_arcs(
@@ -71,7 +93,7 @@ def wall_aware_arcs(
     n = len(objects)
     if n == 0:
         return steering_arcs(objects, params, side)
-    wall = track.left if side > 0 else track.right
+    wall = _wall_arrays(track.left if side > 0 else track.right)
     yaw0 = np.asarray(objects.yaw_rad, dtype=np.float64)
     cos0, sin0 = np.cos(yaw0), np.sin(yaw0)
     xi = np.empty((n, params.arc_points))

@@ -48,6 +48,8 @@ def reachable_sets(
     *,
     drivable: Any = None,
     cells: NDArray[np.bool_] | None = None,
+    simple: NDArray[np.object_] | None = None,
+    trim: bool = True,
 ) -> NDArray[np.object_]:
     """Reachable sets of every object at every stamp, ``(N, T)`` shapely geometries.
 
@@ -63,11 +65,13 @@ def reachable_sets(
             polygon); ``None`` and no track means no trimming.
         cells: ``(N, T)`` mask of the cells to reduce (deletion and trimming); the others
             keep the plain ``simple`` polygon. ``None`` reduces every cell.
+        simple: The ``simple_sets`` of these objects when already computed.
+        trim: ``False`` skips the trimming (the caller clips the ego footprints instead).
 
     Returns:
         ``(N, T)`` geometries (possibly multi-part or empty).
     """
-    sets = simple_sets(objects, times_s, params)
+    sets = simple_sets(objects, times_s, params) if simple is None else simple.copy()
     if sets.size == 0:
         return sets
     mask = np.ones(sets.shape, dtype=bool) if cells is None else np.asarray(cells, dtype=bool)
@@ -78,7 +82,7 @@ def reachable_sets(
     if deletion is not None:
         sets[mask] = shapely.difference(sets[mask], deletion[rows])
     area = drivable if drivable is not None else (track.polygon if track is not None else None)
-    if params.trim_to_drivable and area is not None:
+    if trim and params.trim_to_drivable and area is not None:
         trimmed = _trim(sets, area, mask)
         sets[mask] = trimmed[mask]
     return sets

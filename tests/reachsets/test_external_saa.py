@@ -111,3 +111,17 @@ def test_f1_patch_fires_at_reference_step_count(external_dir, name):
     rows = _verdicts(external_dir / "trajectory_supervisor" / name, ReachMethod.TURN)
     fired = [t for t, _, r in rows if any(p.rule.startswith("f1.") for p in r.patches)]
     assert len(fired) == REF_F1_PATCH_STEPS[name]
+
+
+@pytest.mark.parametrize("method", list(ReachMethod))
+@pytest.mark.parametrize("name", [T1, T34])
+def test_verdict_only_mode_matches_full_geometry(external_dir, name, method):
+    drive = open_scenario_architect(external_dir / "trajectory_supervisor" / name)
+    fast = ReachParams(method=method, full_geometry=False)
+    state = None
+    got = []
+    for frame in drive.frames():
+        result, state = evaluate(frame_to_reach_inputs(frame, drive.lane_map), fast, state)
+        got.append(result.collisions)
+    full = _verdicts(external_dir / "trajectory_supervisor" / name, method)
+    assert got == [r.collisions for _, _, r in full]
