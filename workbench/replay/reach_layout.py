@@ -25,7 +25,15 @@ if TYPE_CHECKING:
     from loaders.records import Frame
     from reachsets.engine import ReachResult
 
-__all__ = ["SIMPLIFY_M", "ReachColumns", "StripColumns", "layout_reach", "time_colors"]
+__all__ = [
+    "SIMPLIFY_M",
+    "ReachColumns",
+    "StripColumns",
+    "layout_reach",
+    "polygon_rings",
+    "stack_strips",
+    "time_colors",
+]
 
 #: Outline simplification tolerance for display (the verdict uses the exact sets).
 SIMPLIFY_M = 0.2
@@ -79,8 +87,13 @@ def time_colors(t_s: NDArray[np.float64], t_max_s: float, alpha: int = 0xB0) -> 
     return packed.astype(np.uint32)
 
 
-def _rings(geoms: NDArray[np.object_]) -> tuple[list[NDArray[np.float64]], NDArray[np.int64]]:
-    """Exterior rings of every polygon part; returns rings and the input index of each."""
+def polygon_rings(
+    geoms: NDArray[np.object_],
+) -> tuple[list[NDArray[np.float64]], NDArray[np.int64]]:
+    """Exterior rings of every polygon part (simplified); returns rings and each one's source index.
+
+    ``None`` entries, empty parts and non-polygons are skipped.
+    """
     flat = np.asarray(geoms, dtype=object).ravel()
     present = np.array([g is not None for g in flat], dtype=bool)
     if not present.any():
@@ -97,9 +110,10 @@ def _rings(geoms: NDArray[np.object_]) -> tuple[list[NDArray[np.float64]], NDArr
     return list(np.split(coords, splits)) if len(coords) else [], idx[part_of]
 
 
-def _strips(
+def stack_strips(
     per_frame: Sequence[tuple[list[NDArray[np.float64]], NDArray[np.uint32]]],
 ) -> StripColumns:
+    """One ``StripColumns`` from per-frame ``(rings, colours)``, padded to one vertex count."""
     rings = [r for frame_rings, _ in per_frame for r in frame_rings]
     colors = [c for _, c in per_frame if len(c)]
     return StripColumns(
@@ -113,13 +127,13 @@ def _frame_sets(result: ReachResult, t_max_s: float) -> tuple[list[Any], NDArray
     sets = np.asarray(result.reach_sets, dtype=object)
     if sets.size == 0:
         return [], np.zeros(0, dtype=np.uint32)
-    rings, src = _rings(sets)
+    rings, src = polygon_rings(sets)
     step = src % sets.shape[1]
     return rings, time_colors(result.occupancy.t_s[step], t_max_s)
 
 
 def _frame_occupancy(result: ReachResult, t_max_s: float) -> tuple[list[Any], NDArray[np.uint32]]:
-    rings, src = _rings(result.occupancy.polygons)
+    rings, src = polygon_rings(result.occupancy.polygons)
     return rings, time_colors(result.occupancy.t_s[src], t_max_s, alpha=0x60)
 
 
@@ -145,7 +159,7 @@ def _frame_patches(result: ReachResult) -> tuple[list[Any], NDArray[np.uint32]]:
     if not patch_geoms:
         return [], np.zeros(0, dtype=np.uint32)
     band = shapely.buffer(np.array(near, dtype=object), PATCH_MARGIN_M, quad_segs=2)
-    rings, _ = _rings(shapely.intersection(np.array(patch_geoms, dtype=object), band))
+    rings, _ = polygon_rings(shapely.intersection(np.array(patch_geoms, dtype=object), band))
     return rings, np.full(len(rings), 0x26C6DAC0, dtype=np.uint32)
 
 
@@ -173,9 +187,9 @@ def layout_reach(frames: Sequence[Frame], results: Sequence[ReachResult]) -> Rea
         points[:, 2] = 2.5
     return ReachColumns(
         is_safe=np.array([r.is_safe for r in results], dtype=bool),
-        sets=_strips([_frame_sets(r, t_max) for r in results]),
-        occupancy=_strips([_frame_occupancy(r, t_max) for r in results]),
-        patches=_strips([_frame_patches(r) for r in results]),
+        sets=stack_strips([_frame_sets(r, t_max) for r in results]),
+        occupancy=stack_strips([_frame_occupancy(r, t_max) for r in results]),
+        patches=stack_strips([_frame_patches(r) for r in results]),
         hit_points_m=points,
         hit_labels=labels,
         hit_counts=hit_counts,

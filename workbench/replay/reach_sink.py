@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 import rerun as rr
 
-from workbench.replay.sink import FRAME_TIMELINE, TIME_TIMELINE
+from workbench.replay.sink import time_index
 
 if TYPE_CHECKING:
     from numpy.typing import NDArray
@@ -32,13 +32,6 @@ __all__ = ["STATE_COLORS", "ReachSink"]
 
 #: State-lane colours of the verdict.
 STATE_COLORS = {"safe": 0x4CAF50FF, "unsafe": 0xEF5350FF}
-
-
-def _index(frame: NDArray[np.int64], t_ns: NDArray[np.int64]) -> list[rr.TimeColumn]:
-    return [
-        rr.TimeColumn(FRAME_TIMELINE, sequence=frame),
-        rr.TimeColumn(TIME_TIMELINE, timestamp=t_ns.astype("datetime64[ns]")),
-    ]
 
 
 class ReachSink:
@@ -75,7 +68,7 @@ class ReachSink:
     ) -> None:
         """Send one chunk of reach-set results."""
         rec = self.recording
-        index = _index(frame, t_ns)
+        index = time_index(frame, t_ns)
         self._strips("world/reach/sets", index, cols.sets)
         self._strips("world/reach/occupancy", index, cols.occupancy)
         self._strips("world/reach/patches", index, cols.patches)
@@ -95,6 +88,6 @@ class ReachSink:
         if unsafe.any():
             rec.send_columns(
                 "plots/reach/first_collision_s",
-                indexes=_index(frame[unsafe], t_ns[unsafe]),
+                indexes=time_index(frame[unsafe], t_ns[unsafe]),
                 columns=rr.Scalars.columns(scalars=cols.first_collision_s[unsafe]),
             )

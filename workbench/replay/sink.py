@@ -38,7 +38,7 @@ if TYPE_CHECKING:
 
     from workbench.replay.layout import ChunkLayout, MapLayout
 
-__all__ = ["FRAME_TIMELINE", "TIME_TIMELINE", "RerunSink"]
+__all__ = ["FRAME_TIMELINE", "TIME_TIMELINE", "RerunSink", "time_index"]
 
 FRAME_TIMELINE = "frame"
 TIME_TIMELINE = "log_time"
@@ -49,6 +49,14 @@ _SERIES: dict[str, tuple[str, int]] = {
     "plots/actors/count": ("actors", 0xFFA726FF),
     "plots/actors/min_distance_m": ("nearest actor [m]", 0xEF5350FF),
 }
+
+
+def time_index(frame: NDArray[np.int64], t_ns: NDArray[np.int64]) -> list[rr.TimeColumn]:
+    """The two index columns of every temporal entity: ``frame`` and ``log_time`` (drive time)."""
+    return [
+        rr.TimeColumn(FRAME_TIMELINE, sequence=frame),
+        rr.TimeColumn(TIME_TIMELINE, timestamp=t_ns.astype("datetime64[ns]")),
+    ]
 
 
 def _u32(colors: list[int] | int, n: int = 1) -> NDArray[np.uint32]:
@@ -143,10 +151,7 @@ class RerunSink:
         """
         rec = self.recording
         n = len(layout)
-        index = [
-            rr.TimeColumn(FRAME_TIMELINE, sequence=layout.frame),
-            rr.TimeColumn(TIME_TIMELINE, timestamp=layout.t_ns.astype("datetime64[ns]")),
-        ]
+        index = time_index(layout.frame, layout.t_ns)
         ego = layout.ego
         rec.send_columns(
             "world/ego",
@@ -226,12 +231,7 @@ class RerunSink:
         if keep.any():
             rec.send_columns(
                 "plots/actors/min_distance_m",
-                indexes=[
-                    rr.TimeColumn(FRAME_TIMELINE, sequence=layout.frame[keep]),
-                    rr.TimeColumn(
-                        TIME_TIMELINE, timestamp=layout.t_ns[keep].astype("datetime64[ns]")
-                    ),
-                ],
+                indexes=time_index(layout.frame[keep], layout.t_ns[keep]),
                 columns=rr.Scalars.columns(scalars=dist[keep]),
             )
 

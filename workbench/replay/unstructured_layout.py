@@ -29,8 +29,8 @@ from rss.unstructured import UnstructuredResponse
 from workbench.replay.reach_layout import (  # the reach sets' ring helpers, shared
     SIMPLIFY_M,
     StripColumns,
-    _rings,
-    _strips,
+    polygon_rings,
+    stack_strips,
 )
 
 if TYPE_CHECKING:
@@ -181,7 +181,7 @@ def _meshes(frames: Sequence[tuple[NDArray[np.float32], NDArray[np.uint32]]]) ->
 def _outlines(
     per_frame: Sequence[tuple[list[NDArray[np.float64]], NDArray[np.uint32]]], z_m: float
 ) -> StripColumns:
-    cols = _strips(per_frame)
+    cols = stack_strips(per_frame)
     if cols.strips.size:
         cols.strips[..., 2] = z_m
     return cols
@@ -191,8 +191,8 @@ def _frame_outlines(
     brake: NDArray[np.object_], forward: NDArray[np.object_], rgb: NDArray[np.uint32]
 ) -> tuple[list[NDArray[np.float64]], NDArray[np.uint32]]:
     """Outlines of the brake sets (opaque) and the continue-forward sets (fainter)."""
-    rings_b, src_b = _rings(brake)
-    rings_f, src_f = _rings(forward)
+    rings_b, src_b = polygon_rings(brake)
+    rings_f, src_f = polygon_rings(forward)
     colors = np.concatenate(
         [rgb[src_b] | np.uint32(ALPHA_BRAKE), rgb[src_f] | np.uint32(ALPHA_FORWARD)]
     )

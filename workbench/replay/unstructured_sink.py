@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 import rerun as rr
 
-from workbench.replay.reach_sink import _index  # the one index builder of the sinks
+from workbench.replay.sink import time_index
 from workbench.replay.unstructured_layout import COLORS, Category
 
 if TYPE_CHECKING:
@@ -89,7 +89,7 @@ class UnstructuredSink:
         self, frame: NDArray[np.int64], t_ns: NDArray[np.int64], cols: UnstructuredColumns
     ) -> None:
         """Send one chunk of unstructured results."""
-        index = _index(frame, t_ns)
+        index = time_index(frame, t_ns)
         self._mesh(f"{ROOT}/ego_sets", index, cols.ego_sets)
         self._mesh(f"{ROOT}/agent_sets", index, cols.agent_sets)
         outline = _RADII_M["outline"]
