@@ -8,14 +8,17 @@ from typing import TYPE_CHECKING
 from workbench.errors import WorkbenchError
 
 if TYPE_CHECKING:
+    from pathlib import Path
+
     from loaders.drive import Drive
+    from rss.params import RssParams
     from workbench.evaluate.pipeline import EngineRunner
 
 __all__ = [
     "AVAILABLE_ENGINES",
-    "PENDING_ENGINES",
     "ReachMethodOption",
     "build_engines",
+    "load_rss_params",
     "parse_engines",
 ]
 
@@ -35,12 +38,33 @@ def parse_engines(text: str) -> list[str]:
 
 #: Engines that evaluate recorded drives in this build.
 AVAILABLE_ENGINES = ("reachsets", "rss", "unstructured")
-#: Engines that exist but cannot run on recorded drives yet, with the reason.
-PENDING_ENGINES: dict[str, str] = {}
+
+
+def load_rss_params(path: Path | None) -> RssParams | None:
+    """Read ``--rss-params FILE.toml`` (DESIGN.md); ``None`` keeps the defaults.
+
+    Raises:
+        WorkbenchError: The file cannot be read.
+        RssParameterError: The TOML is malformed or has an unknown table, key or bad value.
+    """
+    from rss.params import parse_rss_params  # noqa: PLC0415 - keeps CLI start-up light
+
+    if path is None:
+        return None
+    try:
+        text = path.read_text()
+    except OSError as err:
+        raise WorkbenchError(f"--rss-params {path}: {err.strerror}") from err
+    return parse_rss_params(text)
 
 
 def build_engines(
-    drive: Drive, names: list[str], reach_method: str, *, full_geometry: bool = False
+    drive: Drive,
+    names: list[str],
+    reach_method: str,
+    *,
+    full_geometry: bool = False,
+    rss_params: RssParams | None = None,
 ) -> list[EngineRunner]:
     """Engine runners for ``names`` (validated), bound to the drive's lane map.
 
@@ -49,6 +73,7 @@ def build_engines(
         names: Engine names from ``--engines``.
         reach_method: ``simple``, ``turn`` or ``bound``.
         full_geometry: Compute every reachable set in full (needed to draw them).
+        rss_params: RSS dynamics and scene settings for ``rss`` and ``unstructured``.
     """
     from reachsets.params import ReachMethod  # noqa: PLC0415 - keeps CLI start-up light
     from workbench.evaluate.reach_runner import ReachRunner  # noqa: PLC0415
@@ -57,16 +82,14 @@ def build_engines(
 
     engines: list[EngineRunner] = []
     for name in names:
-        if name in PENDING_ENGINES:
-            raise WorkbenchError(f"--engines {name}: {PENDING_ENGINES[name]}")
         if name not in AVAILABLE_ENGINES:
-            known = ", ".join([*AVAILABLE_ENGINES, *PENDING_ENGINES])
+            known = ", ".join(AVAILABLE_ENGINES)
             raise WorkbenchError(f"--engines: unknown engine {name!r} (known: {known})")
         if name == "rss":
-            engines.append(RssRunner(drive.lane_map))
+            engines.append(RssRunner(drive.lane_map, rss_params))
             continue
         if name == "unstructured":
-            engines.append(UnstructuredRunner(drive.lane_map))
+            engines.append(UnstructuredRunner(drive.lane_map, rss_params))
             continue
         engines.append(
             ReachRunner(

@@ -9,7 +9,12 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
-from workbench.cli.engines import ReachMethodOption, build_engines, parse_engines
+from workbench.cli.engines import (
+    ReachMethodOption,
+    build_engines,
+    load_rss_params,
+    parse_engines,
+)
 from workbench.cli.progress import frame_progress
 from workbench.cli.replay import open_log, window_ns
 from workbench.errors import WorkbenchError
@@ -57,6 +62,10 @@ def evaluate(
     ] = None,
     start: Annotated[float | None, typer.Option("--start", help="Seconds from start.")] = None,
     end: Annotated[float | None, typer.Option("--end", help="Seconds from start.")] = None,
+    rss_params: Annotated[
+        Path | None,
+        typer.Option("--rss-params", help="TOML with RSS dynamics and [scene] settings."),
+    ] = None,
 ) -> None:
     """Re-evaluate every frame; print the violations, optionally write per-frame JSON lines."""
     from workbench.evaluate.run import evaluate_drive  # noqa: PLC0415 - keeps start-up light
@@ -67,7 +76,9 @@ def evaluate(
         raise WorkbenchError("--engines: name at least one engine")
     drive = open_log(log, map_path=map_path, profile=profile, ego_id=ego_id)
     try:
-        runners = build_engines(drive, names, reach_method.value)
+        runners = build_engines(
+            drive, names, reach_method.value, rss_params=load_rss_params(rss_params)
+        )
         start_ns, end_ns = window_ns(drive, start, end)
         with frame_progress() as bar:
             task = bar.add_task(f"evaluate {log.name}", total=drive.info.frame_count or None)

@@ -8,7 +8,12 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 
-from workbench.cli.engines import ReachMethodOption, build_engines, parse_engines
+from workbench.cli.engines import (
+    ReachMethodOption,
+    build_engines,
+    load_rss_params,
+    parse_engines,
+)
 from workbench.cli.progress import frame_progress
 
 if TYPE_CHECKING:
@@ -128,6 +133,10 @@ def replay(
     reach_method: Annotated[
         ReachMethodOption, typer.Option("--reach-method", help="Reachable-set method.")
     ] = ReachMethodOption.turn,
+    rss_params: Annotated[
+        Path | None,
+        typer.Option("--rss-params", help="TOML with RSS dynamics and [scene] settings."),
+    ] = None,
 ) -> None:
     """Replay a drive into Rerun: map, ego, actors, plan and plots on timelines frame/log_time."""
     from workbench.replay.run import ReplayError  # noqa: PLC0415
@@ -138,7 +147,11 @@ def replay(
     drive = open_log(log, map_path=map_path, profile=profile, ego_id=ego_id)
     try:
         runners = build_engines(
-            drive, parse_engines(engines), reach_method.value, full_geometry=True
+            drive,
+            parse_engines(engines),
+            reach_method.value,
+            full_geometry=True,
+            rss_params=load_rss_params(rss_params),
         )
         summary = run_with_progress(
             drive,

@@ -84,3 +84,41 @@ def test_truncated_log_keeps_every_evaluated_frame(tmp_path, capsys):
     assert f"cover the {len(lines)} readable frames" in captured.out
     assert json.loads(viol.read_text()) is not None
     assert not list(tmp_path.glob(".*.tmp"))
+
+
+def _unsafe_frames(tmp_path, name: str, extra: list[str]) -> int:
+    per_frame = tmp_path / f"{name}.jsonl"
+    log = SAMPLES / "hard_braking_lead.mcap"
+    args = ["evaluate", str(log), "--engines", "rss", "--per-frame", str(per_frame), *extra]
+    assert _run(args) == 0
+    lines = [json.loads(line) for line in per_frame.read_text().splitlines()]
+    return sum(1 for line in lines if not line["rss"]["is_safe"])
+
+
+def test_rss_params_file_changes_the_dynamics(tmp_path):
+    cautious = tmp_path / "cautious.toml"
+    cautious.write_text("[ego]\nresponse_time = 2.0\n\n[vehicle]\nresponse_time = 2.0\n")
+    default = _unsafe_frames(tmp_path, "default", [])
+    slow = _unsafe_frames(tmp_path, "slow", ["--rss-params", str(cautious)])
+    assert slow > default
+
+
+@pytest.mark.parametrize(
+    ("text", "message"),
+    [("[car]\nbrake_min = 4\n", "brakes are negative"), ("[ego\n", "TOML")],
+)
+def test_bad_rss_params_are_one_line_errors(tmp_path, capsys, text, message):
+    path = tmp_path / "bad.toml"
+    path.write_text(text)
+    log = str(SAMPLES / "hard_braking_lead.mcap")
+    assert _run(["evaluate", log, "--engines", "rss", "--rss-params", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert message in err
+    assert "Traceback" not in err
+
+
+def test_missing_rss_params_file_is_named(tmp_path, capsys):
+    missing = tmp_path / "nope.toml"
+    log = str(SAMPLES / "hard_braking_lead.mcap")
+    assert _run(["evaluate", log, "--engines", "rss", "--rss-params", str(missing)]) == 2
+    assert str(missing) in capsys.readouterr().err
