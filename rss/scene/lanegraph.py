@@ -27,10 +27,13 @@ if TYPE_CHECKING:
     from rss.batch import BoolArray, FloatArray, IntArray
     from rss.model import LaneDrivingDirection
 
-__all__ = ["WIDTH_STATIONS", "LaneGraph", "PreparedGraph", "prepare"]
+__all__ = ["SIMPLIFY_M", "WIDTH_STATIONS", "LaneGraph", "PreparedGraph", "prepare"]
 
 #: Number of parametric stations at which lane widths are sampled.
 WIDTH_STATIONS = 21
+#: Tolerance of the simplified lane polygons and centre lines (densely sampled maps, e.g.
+#: OpenDRIVE, carry many collinear points; linear referencing is linear in the count).
+SIMPLIFY_M = 0.01
 _MIN_CONFLICT_AREA_M2 = 0.5
 _STATIONS = np.linspace(0.0, 1.0, WIDTH_STATIONS)
 
@@ -199,10 +202,15 @@ def prepare(graph: LaneGraph) -> PreparedGraph:
                 raise RssConstellationError(f"lane {lane_id} {name} border", len(line), ">= 2")
         if len(graph.centre_m[i]) < 2:  # noqa: PLR2004
             raise RssConstellationError(f"lane {lane_id} centre", len(graph.centre_m[i]), ">= 2")
-    polygons = np.array(
-        [_polygon(graph.left_m[i], graph.right_m[i]) for i in range(len(graph))], dtype=object
+    polygons = shapely.simplify(
+        np.array(
+            [_polygon(graph.left_m[i], graph.right_m[i]) for i in range(len(graph))], dtype=object
+        ),
+        SIMPLIFY_M,
     )
-    centre = np.array([shapely.LineString(line) for line in graph.centre_m], dtype=object)
+    centre = shapely.simplify(
+        np.array([shapely.LineString(line) for line in graph.centre_m], dtype=object), SIMPLIFY_M
+    )
     lefts = [shapely.LineString(line) for line in graph.left_m]
     rights = [shapely.LineString(line) for line in graph.right_m]
     left_len = np.array([_polyline_length(p) for p in graph.left_m])
