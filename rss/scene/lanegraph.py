@@ -15,6 +15,7 @@ lines, border lengths, widths at stations, intersection conflicts).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -107,6 +108,7 @@ class PreparedGraph:
             one successor (a lane never conflicts with itself).
         conflict_span_m: For every conflicting ``(a, b)``: lengths of ``a`` before and after
             the part of its centre line inside ``b`` (scaled to ``a``'s min length).
+        width_rows: ``width_m`` as Python lists (fast scalar access).
     """
 
     graph: LaneGraph
@@ -119,17 +121,17 @@ class PreparedGraph:
     width_m: FloatArray
     conflicts: BoolArray
     conflict_span_m: dict[tuple[int, int], tuple[float, float]]
+    width_rows: list[list[float]]
 
     def width_range(self, lane: int, p0: float, p1: float) -> tuple[float, float]:
         """Min and max width of ``lane`` between parametric positions ``p0 <= p1``."""
-        row = self.width_m[lane]
+        row: list[float] = self.width_rows[lane]
         if p0 <= 0.0 and p1 >= 1.0:
-            return float(row.min()), float(row.max())
-        stations = _STATIONS
-        ends = np.interp([p0, p1], stations, row)
-        inside = row[(stations > p0) & (stations < p1)]
-        values = np.concatenate([ends, inside])
-        return float(values.min()), float(values.max())
+            return min(row), max(row)
+        step = WIDTH_STATIONS - 1
+        values = [float(v) for v in np.interp([p0, p1], _STATIONS, row)]
+        values += row[math.floor(p0 * step) + 1 : math.ceil(p1 * step)]
+        return min(values), max(values)
 
 
 def _polyline_length(points: FloatArray) -> float:
@@ -236,4 +238,5 @@ def prepare(graph: LaneGraph) -> PreparedGraph:
         width_m=widths,
         conflicts=conflicts,
         conflict_span_m=spans,
+        width_rows=widths.tolist(),
     )

@@ -73,6 +73,7 @@ class Matches:
         anchor_s: ``(N,)`` parametric position of the centre on the anchor lane.
         anchor_heading_rad: ``(N,)`` heading of the anchor lane's point order there.
         heading_rad: ``(P,)`` heading of each pair's lane point order at the box centre.
+        starts: ``N + 1`` offsets: the pairs of box ``b`` are ``starts[b]:starts[b + 1]``.
     """
 
     box: IntArray
@@ -85,11 +86,11 @@ class Matches:
     anchor_s: FloatArray
     anchor_heading_rad: FloatArray
     heading_rad: FloatArray
+    starts: list[int]
 
     def rows(self, box: int) -> range:
         """Pair indices of ``box`` (pairs are sorted by box)."""
-        lo, hi = np.searchsorted(self.box, [box, box + 1])
-        return range(int(lo), int(hi))
+        return range(self.starts[box], self.starts[box + 1])
 
     def lanes_of(self, box: int) -> IntArray:
         """Lanes touched by ``box``."""
@@ -192,6 +193,7 @@ def match_boxes(graph: PreparedGraph, boxes: BoxArrays) -> Matches:
         anchor_s=anchor_s,
         anchor_heading_rad=heading,
         heading_rad=pair_heading,
+        starts=np.searchsorted(box_idx, np.arange(n + 1)).tolist(),
     )
 
 

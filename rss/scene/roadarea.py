@@ -18,6 +18,7 @@ the min / max over the window.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -201,14 +202,14 @@ def place_object(  # noqa: PLR0917 - one object: identity, matches, velocity
         lo, hi = (lo - where.p0) / span, (hi - where.p0) / span
         if hi < -_EPS or lo > 1.0 + _EPS:
             continue
-        regions.append(OccupiedRegion(where.lane_id, *np.clip([lo, hi, la, lb], 0.0, 1.0).tolist()))
+        lo, hi, la, lb = (min(1.0, max(0.0, v)) for v in (lo, hi, la, lb))
+        regions.append(OccupiedRegion(where.lane_id, lo, hi, la, lb))
         if heading is None or lane == matches.anchor[box]:
             heading = headings[lane] + (0.0 if where.forward else np.pi)
     if not regions or heading is None:
         return None
     vx, vy = velocity_mps
-    along = vx * np.cos(heading) + vy * np.sin(heading)
-    right = vx * np.sin(heading) - vy * np.cos(heading)
-    lon = float(abs(along))
-    lat = float(right)
+    c, s = math.cos(heading), math.sin(heading)
+    lon = float(abs(vx * c + vy * s))
+    lat = float(vx * s - vy * c)
     return LaneObject(object_id, object_type, tuple(regions), SpeedInterval(lon, lon, lat, lat))
