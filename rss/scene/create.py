@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import dataclasses
 import functools
+import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -157,11 +158,42 @@ class _Frame:
         yaw = self.ego.yaw_rad if box == 0 else float(self.objects.yaw_rad[box - 1])
         return bool(np.cos(yaw - self.matches.anchor_heading_rad[box]) >= 0.0)
 
-    def travelled(self, box: int) -> float:
-        """Length of the anchor lane already behind the box centre."""
-        lane = int(self.matches.anchor[box])
-        p = float(self.matches.anchor_s[box])
-        return float(self.prep.centre_length_m[lane]) * (p if self.forward(box) else 1.0 - p)
+    def starts(self, box: int) -> list[tuple[int, bool, float]]:
+        """Lanes the box may drive on: ``(lane, forward, length behind its centre)``.
+
+        The anchor first, then every other touched lane aligned with the box heading
+        (ad-rss considers every map-matched lane of a vehicle).
+        """
+        m = self.matches
+        yaw = self.ego.yaw_rad if box == 0 else float(self.objects.yaw_rad[box - 1])
+        anchor = int(m.anchor[box])
+        out = []
+        for i in m.rows(box):
+            lane = int(m.lane[i])
+            cos = math.cos(yaw - float(m.heading_rad[i]))
+            if lane != anchor and abs(cos) < _FOLLOWING_COS:
+                continue
+            fwd = cos >= 0.0
+            p = (
+                float(m.anchor_s[box])
+                if lane == anchor
+                else 0.5 * float(m.lon_min[i] + m.lon_max[i])
+            )
+            behind = float(self.prep.centre_length_m[lane]) * (p if fwd else 1.0 - p)
+            out.append((lane, fwd, behind))
+        out.sort(key=lambda item: item[0] != anchor)
+        return out
+
+    def routes(self, box: int, horizon_m: float) -> list[tuple[Step, ...]]:
+        """Predicted routes from every lane in :meth:`starts`."""
+        out: list[tuple[Step, ...]] = []
+        for lane, fwd, behind in self.starts(box):
+            out.extend(
+                predict_routes(
+                    self.prep, lane, forward=fwd, horizon_m=horizon_m, travelled_m=behind
+                )
+            )
+        return out
 
     def behind_ego(self, i: int) -> bool:
         """Whether object ``i`` is entirely behind the ego (along the ego heading)."""
@@ -223,12 +255,16 @@ def _headings(matches: Matches, n: int) -> dict[int, dict[int, float]]:
 
 
 def _ego_routes(f: _Frame, horizon_m: float) -> list[tuple[Step, ...]]:
-    root = (int(f.matches.anchor[0]), f.forward(0))
-    planned = tuple(s for s in f.ego.route if s[0] != root[0])
-    base = (root, *planned)
-    travelled = f.travelled(0) if not planned else 0.0
+    if not f.ego.route:
+        return f.routes(0, horizon_m)
+    lane, fwd, behind = f.starts(0)[0]
+    base = ((lane, fwd), *(s for s in f.ego.route if s[0] != lane))
     tails = predict_routes(
-        f.prep, base[-1][0], forward=base[-1][1], horizon_m=horizon_m, travelled_m=travelled
+        f.prep,
+        base[-1][0],
+        forward=base[-1][1],
+        horizon_m=horizon_m,
+        travelled_m=behind if len(base) == 1 else 0.0,
     )
     return [base + tail[1:] for tail in tails]
 
@@ -295,18 +331,25 @@ def _following(
 ) -> Constellation | None:
     """SameDirection along a route if one vehicle is on the other's predicted route."""
     box = i + 1
-    route = _route_to(ego_routes, int(f.matches.anchor[box]))
-    if route is None:
-        route = _route_to(obj_routes, int(f.matches.anchor[0]))
-    if route is None:
-        return None
-    lane, fwd = route[-1] if route[0][0] == f.matches.anchor[0] else route[0]
-    heading = f.headings[box][lane] + (0.0 if fwd else np.pi)
-    if np.cos(float(f.objects.yaw_rad[i]) - heading) < _FOLLOWING_COS:
-        return None
-    plans = [SegmentPlan(lanes=[step]) for step in route]
-    cut_window(plans, f.matches, (0, box))
-    return f.constellation(ConstellationType.SameDirection, i, plans, None)
+    candidates = []
+    for lane, _, _ in f.starts(box):
+        route = _route_to(ego_routes, lane)
+        if route is not None:
+            candidates.append((route, route[-1]))
+    for lane, _, _ in f.starts(0):
+        route = _route_to(obj_routes, lane)
+        if route is not None:
+            candidates.append((route, route[0]))
+    for route, (lane, fwd) in sorted(candidates, key=lambda c: len(c[0])):
+        heading = f.headings[box][lane] + (0.0 if fwd else np.pi)
+        if math.cos(float(f.objects.yaw_rad[i]) - heading) < _FOLLOWING_COS:
+            continue
+        plans = [SegmentPlan(lanes=[step]) for step in route]
+        cut_window(plans, f.matches, (0, box))
+        c = f.constellation(ConstellationType.SameDirection, i, plans, None)
+        if c is not None:
+            return c
+    return None
 
 
 def _corridor(f: _Frame, i: int, target: int) -> Constellation | None:
@@ -330,13 +373,7 @@ def _object(
     if not through and target is not None:
         c = _corridor(f, i, target)
         return [] if c is None else [c]
-    obj_routes = predict_routes(
-        f.prep,
-        int(f.matches.anchor[box]),
-        forward=f.forward(box),
-        horizon_m=horizon_m,
-        travelled_m=f.travelled(box),
-    )
+    obj_routes = f.routes(box, horizon_m)
     follow = _following(f, i, ego_routes, obj_routes)
     if follow is not None:
         return [follow]
