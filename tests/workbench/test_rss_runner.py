@@ -116,3 +116,46 @@ def test_cli_evaluate_with_rss(log, tmp_path, capsys):
     lines = [json.loads(line) for line in per_frame.read_text().splitlines()]
     assert lines
     assert all(set(line["rss"]) == PINNED for line in lines)
+
+
+def test_adapter_marks_junction_lanes_and_right_of_way():
+    from loaders.maps.lanelet2 import read_lanelet2  # noqa: PLC0415
+    from workbench.rss_adapter import lane_graph_from_map  # noqa: PLC0415
+
+    graph = lane_graph_from_map(read_lanelet2(SAMPLES / "urban_intersection.osm"))
+    ids = list(graph.ids)
+    junction = {ids[i] for i in range(len(ids)) if graph.is_intersection[i]}
+    assert junction == {"212", "214", "216", "218", "243"}
+    assert graph.priority[ids.index("212")] == 1
+    assert graph.priority[ids.index("243")] == -1
+    assert graph.priority[ids.index("157")] == 0
+    assert ids[graph.successors[ids.index("157")][0]] in {"216", "243"}
+
+
+def test_adapter_traffic_light_and_drivable_lanes_only():
+    from loaders.maps.lanelet2 import read_lanelet2  # noqa: PLC0415
+    from workbench.rss_adapter import lane_graph_from_map  # noqa: PLC0415
+
+    graph = lane_graph_from_map(read_lanelet2(SAMPLES / "pedestrian_crossing.osm"))
+    assert "140" not in graph.ids  # crosswalk
+    assert "61" not in graph.ids  # sidewalk
+    assert graph.traffic_light[list(graph.ids).index("63")] == 0
+    assert not graph.is_intersection.any()
+
+
+def test_runner_without_map_is_safe_and_ids_are_strings():
+    from workbench.rss_adapter import IdMap  # noqa: PLC0415
+
+    drive = open_drive(SAMPLES / "hard_braking_lead.mcap")
+    try:
+        runner = RssRunner(None)
+        frame = next(iter(drive.frames()))
+        out = runner.step(frame)
+    finally:
+        drive.close()
+    assert out.is_safe
+    assert set(out.record) == PINNED
+    ids = IdMap()
+    assert ids.to_int("17") == 17
+    hexed = "000102030405060708090a0b0c0d0e0f"
+    assert ids.to_str(ids.to_int(hexed)) == hexed
