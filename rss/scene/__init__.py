@@ -7,7 +7,8 @@ See ``docs/rss_scene.md``.
 
 from __future__ import annotations
 
-from rss.scene.create import Scene, SceneEgo, SceneObjects, conservative_stop_m, create_scene
+from rss.scene.create import create_scene
+from rss.scene.inputs import Scene, SceneEgo, SceneObjects, conservative_stop_m
 from rss.scene.lanegraph import LaneGraph, PreparedGraph, prepare
 from rss.scene.matching import BoxArrays, Matches, match_boxes
 
