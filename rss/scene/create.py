@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from rss.scene.boundaries import boundary_constellations
 from rss.scene.inputs import Scene, conservative_stop_m
 from rss.scene.matching import BoxArrays, match_boxes
 from rss.scene.pairs import FrameContext, ego_routes, lane_headings, object_constellations
@@ -38,6 +39,8 @@ def create_scene(
     objects: SceneObjects,
     settings: SceneSettings,
     green_lights: frozenset[int] = frozenset(),
+    *,
+    road_boundaries: bool = False,
 ) -> Scene:
     """Constellations between the ego and every object (see module docstring).
 
@@ -47,6 +50,8 @@ def create_scene(
         objects: The other objects.
         settings: Scene settings (speed-limit mode).
         green_lights: Indices of traffic lights known to be green (empty: none).
+        road_boundaries: Add the two road-boundary constellations along the ego's
+            route (``rss.scene.boundaries``).
     """
     n = len(objects.ids)
     boxes = BoxArrays(
@@ -77,8 +82,9 @@ def create_scene(
         prep, ego, objects, settings, matches, RouteTree(), lane_headings(matches, n + 1), velocity
     )
     frame.tree = connect(prep, int(matches.anchor[0]), forward=frame.forward(0), horizon_m=horizon)
-    routes = ego_routes(frame, horizon) if relevant.any() else []
-    out: list[Constellation] = []
+    need_routes = relevant.any() or road_boundaries
+    routes = ego_routes(frame, max(horizon, _MIN_RELEVANT_M)) if need_routes else []
+    out: list[Constellation] = boundary_constellations(frame, routes[0]) if road_boundaries else []
     skipped: list[int] = []
     for i in np.flatnonzero(relevant):
         found = object_constellations(frame, int(i), routes, float(reach[i]), green_lights)

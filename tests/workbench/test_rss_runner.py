@@ -159,3 +159,17 @@ def test_runner_without_map_is_safe_and_ids_are_strings():
     assert ids.to_int("17") == 17
     hexed = "000102030405060708090a0b0c0d0e0f"
     assert ids.to_str(ids.to_int(hexed)) == hexed
+
+
+def test_runner_with_road_boundaries_names_them():
+    drive = open_drive(SAMPLES / "highway_cut_in.mcap")
+    try:
+        runner = RssRunner(drive.lane_map, road_boundaries=True)
+        records = [
+            runner.step(frame).record for _, frame in zip(range(20), drive.frames(), strict=False)
+        ]
+    finally:
+        drive.close()
+    assert all(r["constellations"] >= 2 for r in records[1:])
+    names = {d for r in records for d in r["dangerous_objects"]}
+    assert not {"road_boundary_left", "road_boundary_right"} & names  # ego keeps its lane

@@ -11,6 +11,7 @@ from rss.conformance import response_record
 from rss.engine import check_frame
 from rss.params import ObjectClass, RssParams
 from rss.scene import create_scene, prepare
+from rss.scene.boundaries import LEFT_BOUNDARY_ID, RIGHT_BOUNDARY_ID
 from workbench.evaluate.pipeline import EngineOutput
 from workbench.rss_adapter import IdMap, frame_to_scene, lane_graph_from_map
 
@@ -35,13 +36,22 @@ class RssRunner:
 
     name = "rss"
 
-    def __init__(self, lane_map: LaneMap | None, params: RssParams | None = None) -> None:
+    def __init__(
+        self,
+        lane_map: LaneMap | None,
+        params: RssParams | None = None,
+        *,
+        road_boundaries: bool = False,
+    ) -> None:
         """Prepare the lane graph once.
 
         Args:
             lane_map: The drive's lane map, if any.
             params: RSS dynamics and scene settings (defaults of ``rss.params``).
+            road_boundaries: Also check the ego against the road boundaries along its
+                route (off by default, as in CARLA).
         """
+        self._road_boundaries = road_boundaries
         self._params = params or RssParams()
         self._prep: PreparedGraph | None = None
         if lane_map is not None and lane_map.format != "track":
@@ -56,7 +66,9 @@ class RssRunner:
         if self._prep is None:
             return _safe({"constellations": 0, "invalid_objects": []})
         ego, objects, invalid = frame_to_scene(frame, self._prep, self._params, self._ids)
-        scene = create_scene(self._prep, ego, objects, self._params.scene)
+        scene = create_scene(
+            self._prep, ego, objects, self._params.scene, road_boundaries=self._road_boundaries
+        )
         if not scene.constellations:
             self._memory = None
             return _safe({"constellations": 0, "invalid_objects": sorted(invalid)})
@@ -65,7 +77,7 @@ class RssRunner:
         record: dict[str, Any] = response_record(result, batch.other.object_id, 0)
         for key in _DROPPED_KEYS:
             record.pop(key, None)
-        dangerous = sorted({self._ids.to_str(int(x)) for x in record["dangerous_objects"]})
+        dangerous = sorted({_label(self._ids, int(x)) for x in record["dangerous_objects"]})
         record["dangerous_objects"] = dangerous
         record["constellations"] = batch.size
         bad = batch.other.object_id[np.asarray(result.invalid) != 0]
@@ -79,6 +91,11 @@ class RssRunner:
             margin=0.0 if not is_safe else float("inf"),
             detail=(scene, result),
         )
+
+
+def _label(ids: IdMap, object_id: int) -> str:
+    names = {LEFT_BOUNDARY_ID: "road_boundary_left", RIGHT_BOUNDARY_ID: "road_boundary_right"}
+    return names.get(object_id) or ids.to_str(object_id)
 
 
 def _safe(extra: dict[str, Any]) -> EngineOutput:
