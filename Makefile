@@ -10,7 +10,11 @@ OUT    ?= out
 ORACLE_VENV ?= .venv-oracle-commonroad
 ORACLE_STAMP := $(ORACLE_VENV)/.installed
 
-.PHONY: all setup demo test lint typecheck layers pytest oracle-commonroad bench samples screenshot clean
+# Side venv for the ad-rss-map-integration 5.0 cross-check (its wheel needs the §8.4 fix).
+MAP_ORACLE_VENV ?= .venv-oracle-adrss-map
+MAP_ORACLE_STAMP := $(MAP_ORACLE_VENV)/.installed
+
+.PHONY: all setup demo test lint typecheck layers pytest oracle-commonroad oracle-adrss-map bench samples screenshot clean
 
 all: test
 
@@ -51,7 +55,18 @@ oracle-commonroad: $(ORACLE_STAMP)
 	WORKBENCH_ORACLE_ENV=commonroad PROTOCOL_BUFFERS_PYTHON_IMPLEMENTATION=python \
 		$(ORACLE_VENV)/bin/python -m pytest -q -p no:cacheprovider tests/loaders/test_oracle_commonroad.py
 
-test: lint typecheck layers pytest oracle-commonroad
+$(MAP_ORACLE_STAMP):
+	$(PYTHON) -m venv $(MAP_ORACLE_VENV)
+	$(MAP_ORACLE_VENV)/bin/python -m pip install --quiet --upgrade pip
+	$(MAP_ORACLE_VENV)/bin/python -m pip install --quiet ad-rss-map-integration==5.0.0
+	$(MAP_ORACLE_VENV)/bin/python tools/link_adrss_map_libs.py
+	@touch $(MAP_ORACLE_STAMP)
+
+oracle-adrss-map: $(STAMP) $(MAP_ORACLE_STAMP)
+	RSS_MAP_ORACLE_PYTHON=$(abspath $(MAP_ORACLE_VENV))/bin/python \
+		$(BIN)/python -m pytest -q -p no:cacheprovider tests/rss/scene/test_crosscheck_adrss_map.py
+
+test: lint typecheck layers pytest oracle-commonroad oracle-adrss-map
 
 bench: $(STAMP)
 	$(BIN)/python -m bench.run --out docs/benchmarks.md
@@ -63,4 +78,4 @@ screenshot: $(STAMP)
 	bash tools/screenshot.sh $(OUT)/demo/highway_cut_in.rrd docs/demo_screenshot.png
 
 clean:
-	rm -rf $(VENV) $(ORACLE_VENV) $(OUT) .mypy_cache .ruff_cache .pytest_cache
+	rm -rf $(VENV) $(ORACLE_VENV) $(MAP_ORACLE_VENV) $(OUT) .mypy_cache .ruff_cache .pytest_cache
