@@ -42,6 +42,7 @@ __all__ = [
     "OTHER_ID",
     "CaseDefaults",
     "ParsedCase",
+    "case_number",
     "other_dynamics_for",
     "parse_case",
     "parse_defaults",
@@ -108,7 +109,14 @@ def parse_defaults(document: Mapping[str, Any]) -> CaseDefaults:
     )
 
 
-def _number(case_id: str, obj: Mapping[str, Any], key: str, default: float | None = None) -> float:
+def case_number(
+    case_id: str, obj: Mapping[str, Any], key: str, default: float | None = None
+) -> float:
+    """``obj[key]`` as a float (``default`` when absent).
+
+    Raises:
+        RssCaseError: The key is missing without a default, or the value is not a number.
+    """
     value = obj.get(key, default)
     if value is None:
         raise RssCaseError(case_id, f"missing number {key!r}")
@@ -119,9 +127,11 @@ def _number(case_id: str, obj: Mapping[str, Any], key: str, default: float | Non
 
 def _interval(case_id: str, obj: Mapping[str, Any], name: str) -> tuple[float, float]:
     if name in obj:
-        value = _number(case_id, obj, name)
+        value = case_number(case_id, obj, name)
         return value, value
-    return _number(case_id, obj, f"{name}_min", 0.0), _number(case_id, obj, f"{name}_max", 0.0)
+    return case_number(case_id, obj, f"{name}_min", 0.0), case_number(
+        case_id, obj, f"{name}_max", 0.0
+    )
 
 
 def _object_type(case_id: str, obj: Mapping[str, Any], default: str) -> ObjectType:
@@ -148,7 +158,7 @@ def _unit(value: float) -> float:
 
 
 def _straight_road(case_id: str, road: Mapping[str, Any]) -> tuple[tuple[RoadSegment, ...], float]:
-    length = _number(case_id, road, "length")
+    length = case_number(case_id, road, "length")
     widths = road.get("lane_widths")
     if not isinstance(widths, list) or not widths:
         raise RssCaseError(case_id, "road.lane_widths must be a non-empty list")
@@ -163,7 +173,7 @@ def _straight_road(case_id: str, road: Mapping[str, Any]) -> tuple[tuple[RoadSeg
             lane_direction = LaneDrivingDirection[direction]
         except KeyError as err:
             raise RssCaseError(case_id, f"unknown lane direction {direction!r}") from err
-        w = _number(case_id, {"w": width}, "w")
+        w = case_number(case_id, {"w": width}, "w")
         lanes.append(LaneSegment(index + 1, lane_direction, length, length, w, w))
     return (RoadSegment(tuple(lanes)),), length
 
@@ -178,8 +188,11 @@ def _straight_object(
     lanes = road[0].lanes
     road_length = lanes[0].length_max_m
     total = sum(lane.width_max_m for lane in lanes)
-    s, y = _number(case_id, obj, "s"), _number(case_id, obj, "y")
-    half_l, half_w = _number(case_id, obj, "length") / 2.0, _number(case_id, obj, "width") / 2.0
+    s, y = case_number(case_id, obj, "s"), case_number(case_id, obj, "y")
+    half_l, half_w = (
+        case_number(case_id, obj, "length") / 2.0,
+        case_number(case_id, obj, "width") / 2.0,
+    )
     lon = _overlap(s - half_l, s + half_l, 0.0, road_length)
     regions = []
     start = 0.0
@@ -208,10 +221,10 @@ def _speeds(case_id: str, obj: Mapping[str, Any]) -> SpeedInterval:
 def _intersection_road(
     case_id: str, spec: Mapping[str, Any], who: str, first_id: int
 ) -> tuple[RoadSegment, ...]:
-    approach = _number(case_id, spec, f"{who}_approach")
-    crossing = _number(case_id, spec, f"{who}_crossing")
-    exit_length = _number(case_id, spec, "exit", _INTERSECTION_DEFAULTS["exit"])
-    width = _number(case_id, spec, "lane_width", _INTERSECTION_DEFAULTS["lane_width"])
+    approach = case_number(case_id, spec, f"{who}_approach")
+    crossing = case_number(case_id, spec, f"{who}_crossing")
+    exit_length = case_number(case_id, spec, "exit", _INTERSECTION_DEFAULTS["exit"])
+    width = case_number(case_id, spec, "lane_width", _INTERSECTION_DEFAULTS["lane_width"])
     kinds = (RoadSegmentType.Normal, RoadSegmentType.Intersection, RoadSegmentType.Normal)
     return tuple(
         RoadSegment(
@@ -235,10 +248,10 @@ def _intersection_object(
     object_id: int,
     object_type: ObjectType,
 ) -> LaneObject:
-    front = road[0].lanes[0].length_max_m - _number(case_id, obj, "dist_to_enter")
-    rear = front - _number(case_id, obj, "length")
+    front = road[0].lanes[0].length_max_m - case_number(case_id, obj, "dist_to_enter")
+    rear = front - case_number(case_id, obj, "length")
     width = road[0].lanes[0].width_max_m
-    half_w = min(_number(case_id, obj, "width"), width) / 2.0
+    half_w = min(case_number(case_id, obj, "width"), width) / 2.0
     regions = []
     start = 0.0
     for segment in road:

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
-from rss.cases import EGO_ID, OTHER_ID, other_dynamics_for
+from rss.cases import EGO_ID, OTHER_ID, case_number, other_dynamics_for
 from rss.errors import RssCaseError, RssError
 from rss.model import ObjectType
 from rss.physics import ACCELERATION_LOWEST_MPS2
@@ -31,15 +31,6 @@ if TYPE_CHECKING:
 __all__ = ["parse_unstructured_case", "unstructured_record"]
 
 
-def _float(case_id: str, obj: Mapping[str, Any], key: str, default: float | None = None) -> float:
-    value = obj.get(key, default)
-    if value is None:
-        raise RssCaseError(case_id, f"missing number {key!r}")
-    if not isinstance(value, int | float) or isinstance(value, bool):
-        raise RssCaseError(case_id, f"{key!r} must be a number, got {value!r}")
-    return float(value)
-
-
 def _row(case_id: str, obj: object, object_id: int, default_type: str) -> dict[str, float]:
     if not isinstance(obj, dict):
         raise RssCaseError(case_id, "'ego' and 'other' must be objects")
@@ -49,20 +40,20 @@ def _row(case_id: str, obj: object, object_id: int, default_type: str) -> dict[s
     except KeyError as err:
         raise RssCaseError(case_id, f"unknown object_type {name!r}") from err
     speed = obj.get("speed")
-    low = _float(case_id, obj, "speed_min", speed)
-    high = _float(case_id, obj, "speed_max", speed)
+    low = case_number(case_id, obj, "speed_min", speed)
+    high = case_number(case_id, obj, "speed_max", speed)
     return {
         "object_id": object_id,
         "object_type": int(object_type),
-        "x_m": _float(case_id, obj, "x"),
-        "y_m": _float(case_id, obj, "y"),
-        "yaw_rad": _float(case_id, obj, "yaw", 0.0),
+        "x_m": case_number(case_id, obj, "x"),
+        "y_m": case_number(case_id, obj, "y"),
+        "yaw_rad": case_number(case_id, obj, "yaw", 0.0),
         "speed_min_mps": low,
         "speed_max_mps": high,
-        "yaw_rate_radps": _float(case_id, obj, "yaw_rate", 0.0),
-        "steering_angle_rad": _float(case_id, obj, "steering_angle", 0.0),
-        "length_m": _float(case_id, obj, "length"),
-        "width_m": _float(case_id, obj, "width"),
+        "yaw_rate_radps": case_number(case_id, obj, "yaw_rate", 0.0),
+        "steering_angle_rad": case_number(case_id, obj, "steering_angle", 0.0),
+        "length_m": case_number(case_id, obj, "length"),
+        "width_m": case_number(case_id, obj, "width"),
     }
 
 
