@@ -74,8 +74,9 @@ bench: $(STAMP)
 samples: $(STAMP)
 	$(BIN)/workbench samples sample_logs
 
-screenshot: $(STAMP)
-	bash tools/screenshot.sh $(OUT)/demo/highway_cut_in.rrd docs/demo_screenshot.png
+# Re-render the README screenshot from the demo recording (needs mesa-vulkan-drivers).
+screenshot: demo
+	bash tools/screenshot.sh $(OUT)/demo/highway_cut_in.rrd docs/replay_reach_highway_cut_in.png 120
 
 clean:
 	rm -rf $(VENV) $(ORACLE_VENV) $(MAP_ORACLE_VENV) $(OUT) .mypy_cache .ruff_cache .pytest_cache
