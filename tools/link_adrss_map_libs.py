@@ -21,7 +21,7 @@ def main() -> int:
         for lib in vendored.glob(f"{stem}*.so"):
             lib.unlink()
             lib.symlink_to(Path("..") / base / target.name)
-            print(f"{lib.name} -> ../{base}/{target.name}")  # noqa: T201
+            print(f"{lib.name} -> ../{base}/{target.name}")
     return 0
 
 
