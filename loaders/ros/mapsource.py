@@ -1,8 +1,9 @@
 """Find and read the lane map of a ROS/MCAP log.
 
-Order: ``--map FILE``; an MCAP attachment whose name ends in ``.osm``; a ``.osm`` file
-beside the log with the same stem (``drive.mcap`` → ``drive.osm``); ``map.osm`` inside a
-rosbag2 directory. No map is not an error (``lane_map`` is None).
+Order: ``--map FILE`` (Lanelet2 ``.osm``, OpenDRIVE ``.xodr`` or CommonRoad ``.xml``); an
+MCAP attachment whose name ends in ``.osm``; a ``.osm`` file beside the log with the same
+stem (``drive.mcap`` → ``drive.osm``); ``map.osm`` inside a rosbag2 directory. No map is
+not an error (``lane_map`` is None).
 """
 
 from __future__ import annotations
@@ -21,12 +22,24 @@ __all__ = ["find_map", "read_map"]
 
 
 def read_map(source: Path | bytes, name: str) -> LaneMap:
-    """Read a Lanelet2 map from a path or bytes (``name`` labels it in errors)."""
-    from loaders.maps.lanelet2 import read_lanelet2  # noqa: PLC0415 - optional reader, loaded on demand
+    """Read a map from a path or bytes (``name`` labels it in errors).
 
-    if not isinstance(source, bytes) and source.suffix.lower() != ".osm":
-        raise MapError(source, "only Lanelet2 .osm maps can accompany a ROS/MCAP log")
-    return read_lanelet2(source, name=name)
+    Bytes (MCAP attachments) are Lanelet2. A ``--map`` path may be Lanelet2 ``.osm``,
+    OpenDRIVE ``.xodr`` or the lanelet network of a CommonRoad ``.xml``.
+    """
+    # Readers load on demand: most logs need one of them at most.
+    from loaders.maps.commonroad import read_commonroad_map  # noqa: PLC0415
+    from loaders.maps.lanelet2 import read_lanelet2  # noqa: PLC0415
+    from loaders.maps.opendrive import read_opendrive  # noqa: PLC0415
+
+    if isinstance(source, bytes):
+        return read_lanelet2(source, name=name)
+    readers = {".osm": read_lanelet2, ".xodr": read_opendrive, ".xml": read_commonroad_map}
+    reader = readers.get(source.suffix.lower())
+    if reader is None:
+        known = ", ".join(readers)
+        raise MapError(source, f"unknown map format (known: {known})", value=source.suffix)
+    return reader(source, name=name)
 
 
 def _sidecars(path: Path) -> list[Path]:

@@ -74,3 +74,25 @@ def test_bad_explicit_map(tmp_path):
     broken.write_text("<osm")
     with pytest.raises(MapError):
         open_drive(path, map=broken)
+
+
+def test_explicit_opendrive_and_commonroad_maps(tmp_path, external_dir):
+    path = write_mcap_json(tmp_path / "drive.mcap")
+    town = external_dir / "maps" / "Town01.xodr"
+    with closing(open_drive(path, map=town)) as drive:
+        assert drive.lane_map is not None
+        assert drive.lane_map.format == "opendrive"
+        assert len(drive.lane_map) > 100
+    scenario = next(iter(sorted((external_dir / "commonroad_ngsim").glob("*.xml"))))
+    with closing(open_drive(path, map=scenario)) as drive:
+        assert drive.lane_map is not None
+        assert drive.lane_map.format == "commonroad"
+        assert len(drive.lane_map) > 0
+
+
+def test_unknown_map_suffix_is_named(tmp_path):
+    path = write_mcap_json(tmp_path / "drive.mcap")
+    odd = tmp_path / "map.shp"
+    odd.write_bytes(b"x")
+    with pytest.raises(MapError, match=r"unknown map format .*\.osm, \.xodr, \.xml"):
+        open_drive(path, map=odd)
