@@ -21,15 +21,17 @@ from typing import TYPE_CHECKING
 import numpy as np
 import rerun as rr
 
-from workbench.replay.sink import time_index
+from workbench.replay.sink import send_strips, time_index
 
 if TYPE_CHECKING:
     from numpy.typing import NDArray
 
-    from workbench.replay.reach_layout import ReachColumns, StripColumns
+    from workbench.replay.reach_layout import ReachColumns
 
 __all__ = ["STATE_COLORS", "ReachSink"]
 
+#: Line radius of the reach-set, occupancy and patch outlines.
+STRIP_RADIUS_M = 0.08
 #: State-lane colours of the verdict.
 STATE_COLORS = {"safe": 0x4CAF50FF, "unsafe": 0xEF5350FF}
 
@@ -49,29 +51,15 @@ class ReachSink:
             static=True,
         )
 
-    def _strips(self, path: str, index: list[rr.TimeColumn], cols: StripColumns) -> None:
-        if cols.strips.shape[0] == 0 and not cols.counts.any():
-            empty = np.zeros((0, 2, 3), dtype=np.float32)
-            strips, colors = empty, np.zeros(0, dtype=np.uint32)
-        else:
-            strips, colors = cols.strips, cols.colors
-        self.recording.send_columns(
-            path,
-            indexes=index,
-            columns=rr.LineStrips3D.columns(
-                strips=strips, colors=colors, radii=np.full(len(strips), 0.08, dtype=np.float32)
-            ).partition(cols.counts),
-        )
-
     def send_chunk(
         self, frame: NDArray[np.int64], t_ns: NDArray[np.int64], cols: ReachColumns
     ) -> None:
         """Send one chunk of reach-set results."""
         rec = self.recording
         index = time_index(frame, t_ns)
-        self._strips("world/reach/sets", index, cols.sets)
-        self._strips("world/reach/occupancy", index, cols.occupancy)
-        self._strips("world/reach/patches", index, cols.patches)
+        send_strips(rec, "world/reach/sets", index, cols.sets, STRIP_RADIUS_M)
+        send_strips(rec, "world/reach/occupancy", index, cols.occupancy, STRIP_RADIUS_M)
+        send_strips(rec, "world/reach/patches", index, cols.patches, STRIP_RADIUS_M)
         rec.send_columns(
             "world/reach/collisions",
             indexes=index,

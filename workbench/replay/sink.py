@@ -37,8 +37,9 @@ if TYPE_CHECKING:
     from numpy.typing import NDArray
 
     from workbench.replay.layout import ChunkLayout, MapLayout
+    from workbench.replay.reach_layout import StripColumns
 
-__all__ = ["FRAME_TIMELINE", "TIME_TIMELINE", "RerunSink", "time_index"]
+__all__ = ["FRAME_TIMELINE", "TIME_TIMELINE", "RerunSink", "send_strips", "time_index"]
 
 FRAME_TIMELINE = "frame"
 TIME_TIMELINE = "log_time"
@@ -57,6 +58,26 @@ def time_index(frame: NDArray[np.int64], t_ns: NDArray[np.int64]) -> list[rr.Tim
         rr.TimeColumn(FRAME_TIMELINE, sequence=frame),
         rr.TimeColumn(TIME_TIMELINE, timestamp=t_ns.astype("datetime64[ns]")),
     ]
+
+
+def send_strips(
+    recording: rr.RecordingStream,
+    path: str,
+    index: list[rr.TimeColumn],
+    cols: StripColumns,
+    radius_m: float,
+) -> None:
+    """Send per-frame outlines (``StripColumns``) as one columnar ``LineStrips3D`` call."""
+    strips = cols.strips if cols.strips.shape[0] else np.zeros((0, 2, 3), dtype=np.float32)
+    recording.send_columns(
+        path,
+        indexes=index,
+        columns=rr.LineStrips3D.columns(
+            strips=strips,
+            colors=cols.colors,
+            radii=np.full(len(strips), radius_m, dtype=np.float32),
+        ).partition(cols.counts),
+    )
 
 
 def _u32(colors: list[int] | int, n: int = 1) -> NDArray[np.uint32]:

@@ -21,13 +21,12 @@ from typing import TYPE_CHECKING
 import numpy as np
 import rerun as rr
 
-from workbench.replay.sink import time_index
+from workbench.replay.sink import send_strips, time_index
 from workbench.replay.unstructured_layout import COLORS, Category
 
 if TYPE_CHECKING:
     from numpy.typing import NDArray
 
-    from workbench.replay.reach_layout import StripColumns
     from workbench.replay.unstructured_layout import MeshColumns, UnstructuredColumns
 
 __all__ = ["ROOT", "STATE_PATH", "UnstructuredSink"]
@@ -71,20 +70,6 @@ class UnstructuredSink:
             ],
         )
 
-    def _strips(
-        self, path: str, index: list[rr.TimeColumn], cols: StripColumns, radius_m: float
-    ) -> None:
-        strips = cols.strips if cols.strips.shape[0] else np.zeros((0, 2, 3), dtype=np.float32)
-        self.recording.send_columns(
-            path,
-            indexes=index,
-            columns=rr.LineStrips3D.columns(
-                strips=strips,
-                colors=cols.colors,
-                radii=np.full(len(strips), radius_m, dtype=np.float32),
-            ).partition(cols.counts),
-        )
-
     def send_chunk(
         self, frame: NDArray[np.int64], t_ns: NDArray[np.int64], cols: UnstructuredColumns
     ) -> None:
@@ -93,10 +78,12 @@ class UnstructuredSink:
         self._mesh(f"{ROOT}/ego_sets", index, cols.ego_sets)
         self._mesh(f"{ROOT}/agent_sets", index, cols.agent_sets)
         outline = _RADII_M["outline"]
-        self._strips(f"{ROOT}/ego_sets/outline", index, cols.ego_outlines, outline)
-        self._strips(f"{ROOT}/agent_sets/outline", index, cols.agent_outlines, outline)
+        send_strips(self.recording, f"{ROOT}/ego_sets/outline", index, cols.ego_outlines, outline)
+        send_strips(
+            self.recording, f"{ROOT}/agent_sets/outline", index, cols.agent_outlines, outline
+        )
         fan = _RADII_M["heading_ranges"]
-        self._strips(f"{ROOT}/heading_ranges", index, cols.fan, fan)
+        send_strips(self.recording, f"{ROOT}/heading_ranges", index, cols.fan, fan)
         self.recording.send_columns(
             STATE_PATH, indexes=index, columns=rr.StateChange.columns(state=cols.states)
         )
