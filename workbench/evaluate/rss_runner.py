@@ -13,6 +13,7 @@ from rss.params import ObjectClass, RssParams
 from rss.scene import create_scene, prepare
 from rss.scene.boundaries import LEFT_BOUNDARY_ID, RIGHT_BOUNDARY_ID
 from workbench.evaluate.pipeline import EngineOutput
+from workbench.evaluate.rss_detail import RssFrameDetail
 from workbench.rss_adapter import IdMap, frame_to_scene, lane_graph_from_map
 
 if TYPE_CHECKING:
@@ -89,7 +90,11 @@ class RssRunner:
             culprits=tuple(dangerous),
             label="" if is_safe else f"RSS {record['longitudinal_response']}",
             margin=0.0 if not is_safe else float("inf"),
-            detail=(scene, result),
+            detail=RssFrameDetail(
+                labels=tuple(_label(self._ids, int(x)) for x in batch.other.object_id),
+                constellation_type=batch.constellation_type,
+                result=result,
+            ),
         )
 
 

@@ -12,7 +12,8 @@
     | time panel on the ``frame`` timeline                         |
     +--------------------------------------------------------------+
 
-``/rss``, ``/rss/unstructured`` and ``/reach`` stay empty until the engines log their results there.
+``/rss/structured``, ``/rss/unstructured`` and ``/reach`` stay empty until the engines log
+their results there.
 """
 
 from __future__ import annotations
@@ -88,11 +89,20 @@ def replay_blueprint(
         views.append(
             rrb.TimeSeriesView(name="first collision [s into plan]", origin="/plots/reach")
         )
+    if "rss" in engines:
+        views.append(
+            rrb.TimeSeriesView(
+                name="rss acceleration limits [m/s²]", origin="/plots/rss/acceleration"
+            )
+        )
+        views.append(
+            rrb.TimeSeriesView(name="rss distance vs safe [m]", origin="/plots/rss/distances")
+        )
     tabs = {"reachsets": "reach sets", "rss": "rss", "unstructured": "unstructured"}
     views.append(
         rrb.Tabs(
             rrb.StateTimelineView(name="reach sets", origin="/reach"),
-            rrb.StateTimelineView(name="rss", origin="/rss"),
+            rrb.StateTimelineView(name="rss", origin="/rss/structured"),
             rrb.StateTimelineView(name="unstructured", origin="/rss/unstructured"),
             active_tab=tabs.get(engines[0], "reach sets") if engines else "reach sets",
         )

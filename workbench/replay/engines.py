@@ -11,6 +11,8 @@ from typing import TYPE_CHECKING
 from workbench.evaluate.pipeline import FrameResult, evaluate_frames
 from workbench.replay.reach_layout import layout_reach
 from workbench.replay.reach_sink import ReachSink
+from workbench.replay.rss_layout import layout_rss
+from workbench.replay.rss_sink import RssSink
 from workbench.replay.unstructured_layout import layout_unstructured
 from workbench.replay.unstructured_sink import UnstructuredSink
 
@@ -35,6 +37,7 @@ class EngineResultSink:
         names = {e.name for e in self._engines}
         self._reach = ReachSink(recording) if "reachsets" in names else None
         self._unstructured = UnstructuredSink(recording) if "unstructured" in names else None
+        self._rss = RssSink(recording) if "rss" in names else None
         self.results: list[FrameResult] = []
         self.unsafe_frames: dict[str, int] = dict.fromkeys(sorted(names), 0)
 
@@ -50,6 +53,9 @@ class EngineResultSink:
         if self._reach is not None:
             details = [res.outputs["reachsets"].detail for res in results]
             self._reach.send_chunk(layout.frame, layout.t_ns, layout_reach(frames, details))
+        if self._rss is not None:
+            outputs = [res.outputs["rss"] for res in results]
+            self._rss.send_chunk(layout.frame, layout.t_ns, layout_rss(frames, outputs))
         if self._unstructured is not None:
             found = [res.outputs["unstructured"].detail for res in results]
             self._unstructured.send_chunk(layout.frame, layout.t_ns, layout_unstructured(found))

@@ -1,0 +1,182 @@
+"""Structured RSS results in the replay: pure layout and the .rrd round trip."""
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+from rerun.chunk import RrdReader
+
+from loaders import open_drive
+from loaders.drive import Drive
+from loaders.records import Frame
+from rss.model import ConstellationType
+from workbench.evaluate.pipeline import EngineOutput
+from workbench.evaluate.rss_detail import RssFrameDetail
+from workbench.evaluate.rss_runner import RssRunner
+from workbench.replay.rss_layout import layout_rss
+from workbench.replay.rss_sink import object_path
+from workbench.replay.run import replay_drive
+
+SAMPLES = Path(__file__).resolve().parents[3] / "sample_logs"
+CUT_IN = SAMPLES / "highway_cut_in.mcap"
+#: The cut-in (5.5 .. 8.5 s) with some free flow before it.
+WINDOW_S = (4.0, 9.0)
+
+
+def _open_window() -> Drive:
+    drive = open_drive(CUT_IN)
+    t0 = drive.info.start_ns
+    drive.close()
+    return open_drive(CUT_IN, window=(t0 + int(WINDOW_S[0] * 1e9), t0 + int(WINDOW_S[1] * 1e9)))
+
+
+@pytest.fixture(scope="module")
+def cut_in() -> tuple[list[Frame], list[EngineOutput]]:
+    drive = _open_window()
+    runner = RssRunner(drive.lane_map)
+    frames = list(drive.frames())
+    outputs = [runner.step(f) for f in frames]
+    drive.close()
+    return frames, outputs
+
+
+def test_layout_follows_the_engine_frame_by_frame(cut_in):
+    frames, outputs = cut_in
+    cols = layout_rss(frames, outputs)
+    n = len(frames)
+    assert cols.frame_state == [
+        "no constellation" if o.detail is None else ("safe" if o.is_safe else "dangerous")
+        for o in outputs
+    ]
+    assert {"safe", "dangerous"} <= set(cols.frame_state)
+    for i, (frame, out) in enumerate(zip(frames, outputs, strict=True)):
+        detail = out.detail
+        assert isinstance(detail, RssFrameDetail)
+        present = {str(a) for a in frame.actors.ids}
+        assert cols.link_counts[i] == sum(label in present for label in detail.labels)
+        dangerous = set(out.record["dangerous_objects"])
+        assert cols.danger_counts[i] == len(dangerous & present)
+        for object_id, states in cols.object_states.items():
+            if object_id in dangerous:
+                assert states[i] == "dangerous"
+            elif object_id not in detail.labels:
+                assert states[i] == "not relevant"
+        assert cols.responses["longitudinal"][i] == out.record["longitudinal_response"]
+    assert len(cols.link_labels) == cols.link_strips_m.shape[0] == int(cols.link_counts.sum())
+    assert cols.danger_centre_m.shape == (int(cols.danger_counts.sum()), 3)
+    assert all(len(states) == n for states in cols.object_states.values())
+    # every line starts at the ego and ends on the object its label names
+    first = 0
+    for i, frame in enumerate(frames):
+        ids = [str(a) for a in frame.actors.ids]
+        for k in range(first, first + int(cols.link_counts[i])):
+            start, end = cols.link_strips_m[k]
+            assert np.allclose(start[:2], [frame.ego.x_m, frame.ego.y_m], atol=1e-3)
+            row = ids.index(cols.link_labels[k].split(":", 1)[0])
+            assert np.allclose(end[:2], [frame.actors.x_m[row], frame.actors.y_m[row]], atol=1e-3)
+        first += int(cols.link_counts[i])
+
+
+def test_longitudinal_states_agree_with_the_plotted_distances(cut_in):
+    frames, outputs = cut_in
+    cols = layout_rss(frames, outputs)
+    checked = 0
+    for object_id, states in cols.object_states.items():
+        rows, lon = cols.distances[f"{object_id}/lon_m"]
+        _, safe = cols.distances[f"{object_id}/lon_safe_m"]
+        for i, current, needed in zip(rows.tolist(), lon, safe, strict=True):
+            if states[i] in {"lon unsafe", "dangerous"}:
+                assert current <= needed, (object_id, i)
+            else:
+                assert current > needed, (object_id, i)
+            checked += 1
+    assert checked > len(frames)
+
+
+def test_acceleration_restrictions_follow_the_response(cut_in):
+    frames, outputs = cut_in
+    cols = layout_rss(frames, outputs)
+    lon_max = cols.accel["lon_max_mps2"]
+    braking = 0
+    for i, out in enumerate(outputs):
+        assert lon_max[i] == pytest.approx(
+            out.record["acceleration_restrictions"]["longitudinal"][1]
+        )
+        if out.record["longitudinal_response"] != "None":
+            assert lon_max[i] < 0
+            braking += 1
+    assert braking > 0
+    # lateral bounds of +-1000 m/s² mean "unbounded" and are not plotted
+    for name, values in cols.accel.items():
+        assert np.all(np.abs(values[np.isfinite(values)]) < 999), name
+
+
+def test_frames_without_constellations_are_marked():
+    drive = open_drive(CUT_IN)
+    frames = [f for _, f in zip(range(5), drive.frames(), strict=False)]
+    drive.close()
+    runner = RssRunner(None)
+    cols = layout_rss(frames, [runner.step(f) for f in frames])
+    assert cols.frame_state == ["no constellation"] * 5
+    assert cols.object_states == {}
+    assert np.all(np.isnan(cols.accel["lon_min_mps2"]))
+    assert cols.link_counts.tolist() == [0] * 5
+
+
+def test_constellation_types_are_named_in_the_labels(cut_in):
+    frames, outputs = cut_in
+    cols = layout_rss(frames, outputs)
+    types = {
+        ConstellationType(int(t))
+        for out in outputs
+        if out.detail is not None
+        for t in out.detail.constellation_type
+    }
+    assert types == {ConstellationType.SameDirection}
+    assert cols.link_labels
+    assert all(": same dir  lon " in label for label in cols.link_labels)
+
+
+def _states(path: Path, entity: str) -> dict[int, str]:
+    store = RrdReader(path).store().stream().collect()
+    table = store.reader(index="frame", contents=entity).to_arrow_table().to_pydict()
+    column = f"{entity}:StateChange:state"
+    return {f: s[0] for f, s in zip(table["frame"], table[column], strict=True) if s}
+
+
+def _forward_fill(changes: dict[int, str], frames: list[int]) -> list[str | None]:
+    out: list[str | None] = []
+    current = None
+    for f in frames:
+        current = changes.get(f, current)
+        out.append(current)
+    return out
+
+
+def test_replay_logs_state_lanes_constellations_and_plots(tmp_path, cut_in):
+    frames, outputs = cut_in
+    path = tmp_path / "rss.rrd"
+    drive = _open_window()
+    runner = RssRunner(drive.lane_map)
+    summary = replay_drive(drive, out=path, chunk_frames=7, engines=[runner])
+    drive.close()
+    assert summary.unsafe_frames == {"rss": sum(not o.is_safe for o in outputs)}
+    cols = layout_rss(frames, outputs)
+    index = [f.index for f in frames]
+    frame_states = _states(path, "/rss/structured/state")
+    assert [frame_states[i] for i in index] == cols.frame_state
+    # object lanes carry only changes, also across chunk boundaries (7 frames); filled
+    # forward they give the layout's per-frame state
+    for object_id, states in cols.object_states.items():
+        changes = _states(path, "/" + object_path(object_id))
+        first = next(k for k, s in enumerate(states) if s != "not relevant")
+        assert min(changes) == index[first]
+        assert _forward_fill(changes, index)[first:] == states[first:]
+        flips = sum(a != b for a, b in zip(states[first:], states[first + 1 :], strict=False))
+        assert len(changes) == 1 + flips
+    store = RrdReader(path).store().stream().collect()
+    for entity in ("/world/rss/constellations", "/world/rss/dangerous"):
+        table = store.reader(index="frame", contents=entity).to_arrow_table()
+        assert table.num_rows == len(frames), entity
+    for series in ("/plots/rss/acceleration/lon_max_mps2", "/plots/rss/distances/1/lon_m"):
+        assert store.reader(index="frame", contents=series).to_arrow_table().num_rows > 0

@@ -1,0 +1,145 @@
+"""Sends structured RSS results (``rss_layout``) to Rerun; thin, like ``sink``.
+
+Entity paths::
+
+    world/rss/constellations          LineStrips3D ego -> object, coloured by type, red when
+                                      dangerous, labelled with distances vs safe distances
+    world/rss/road_areas              LineStrips3D, road-area outline per constellation
+    world/rss/dangerous               Boxes3D, red boxes around dangerous objects
+    rss/structured/state              StateChange safe / dangerous / no constellation
+    rss/structured/objects/<id>       StateChange per object (dangerous, lon unsafe, ...)
+    rss/structured/response/<lane>    StateChange proper response (longitudinal,
+                                      lateral_left, lateral_right)
+    plots/rss/acceleration/<bound>    Scalars, acceleration restrictions [m/s²]
+    plots/rss/distances/<id>/<kind>   Scalars, lon/lat distance and safe distance [m]
+
+Per-object lanes carry only changes; an object that leaves every constellation gets one
+"not relevant" entry, also across chunk boundaries.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+import rerun as rr
+
+from workbench.replay.reach_layout import StripColumns
+from workbench.replay.rss_layout import FRAME_STATES, OBJECT_STATES, RESPONSE_LANES
+from workbench.replay.sink import send_strips, time_index
+
+if TYPE_CHECKING:
+    from collections.abc import Mapping
+
+    from numpy.typing import NDArray
+
+    from workbench.replay.rss_layout import RssColumns
+
+__all__ = ["RssSink", "object_path"]
+
+STATE_PATH = "rss/structured/state"
+_AREA_RADIUS_M = 0.1
+_NOT_RELEVANT = "not relevant"
+_RESPONSE_COLORS = {"None": 0x4CAF50FF, "BrakeMinCorrect": 0xFFA726FF, "BrakeMin": 0xEF5350FF}
+
+
+def object_path(object_id: str) -> str:
+    """Entity path of an object's state lane (the id escaped as one path part)."""
+    return f"rss/structured/objects/{rr.escape_entity_path_part(object_id)}"
+
+
+def _config(values: Mapping[str, int] | tuple[str, ...]) -> rr.StateConfiguration:
+    names = list(values)
+    colors = [
+        values[v] if not isinstance(values, tuple) else _RESPONSE_COLORS.get(v, 0x9E9E9EFF)
+        for v in names
+    ]
+    return rr.StateConfiguration(values=names, colors=np.array(colors, dtype=np.uint32))
+
+
+class RssSink:
+    """Sends structured RSS columns on the ``frame`` and ``log_time`` timelines."""
+
+    def __init__(self, recording: rr.RecordingStream) -> None:
+        """Remember the stream and send the static state configurations."""
+        self.recording = recording
+        recording.log(STATE_PATH, _config(FRAME_STATES), static=True)
+        for lane, values in RESPONSE_LANES.values():
+            recording.log(f"rss/structured/response/{lane}", _config(values), static=True)
+        self._last: dict[str, str] = {}
+
+    def _states(
+        self, path: str, frame: NDArray[np.int64], t_ns: NDArray[np.int64], states: list[str]
+    ) -> None:
+        self.recording.send_columns(
+            path,
+            indexes=time_index(frame, t_ns),
+            columns=rr.StateChange.columns(state=np.array(states, dtype=str)),
+        )
+
+    def _object_lanes(
+        self, frame: NDArray[np.int64], t_ns: NDArray[np.int64], lanes: dict[str, list[str]]
+    ) -> None:
+        for object_id in sorted(set(self._last) - set(lanes)):
+            if self._last[object_id] != _NOT_RELEVANT:
+                self._states(object_path(object_id), frame[:1], t_ns[:1], [_NOT_RELEVANT])
+                self._last[object_id] = _NOT_RELEVANT
+        for object_id, states in sorted(lanes.items()):
+            if object_id not in self._last:
+                self.recording.log(object_path(object_id), _config(OBJECT_STATES), static=True)
+            prev = [self._last.get(object_id, _NOT_RELEVANT), *states[:-1]]
+            change = np.flatnonzero([s != p for s, p in zip(states, prev, strict=True)])
+            if len(change):
+                picked = [states[k] for k in change]
+                self._states(object_path(object_id), frame[change], t_ns[change], picked)
+            self._last[object_id] = states[-1]
+
+    def send_chunk(
+        self, frame: NDArray[np.int64], t_ns: NDArray[np.int64], cols: RssColumns
+    ) -> None:
+        """Send one chunk of structured RSS results."""
+        rec = self.recording
+        index = time_index(frame, t_ns)
+        rec.send_columns(
+            "world/rss/constellations",
+            indexes=index,
+            columns=rr.LineStrips3D.columns(
+                strips=cols.link_strips_m,
+                colors=cols.link_colors,
+                radii=cols.link_radii_m,
+                labels=cols.link_labels,
+            ).partition(cols.link_counts),
+        )
+        areas = StripColumns(cols.area_strips_m, cols.area_counts, cols.area_colors)
+        send_strips(rec, "world/rss/road_areas", index, areas, _AREA_RADIUS_M)
+        n_boxes = len(cols.danger_centre_m)
+        rec.send_columns(
+            "world/rss/dangerous",
+            indexes=index,
+            columns=rr.Boxes3D.columns(
+                centers=cols.danger_centre_m,
+                half_sizes=cols.danger_half_m,
+                quaternions=cols.danger_quat_xyzw,
+                colors=np.full(n_boxes, FRAME_STATES["dangerous"], dtype=np.uint32),
+            ).partition(cols.danger_counts),
+        )
+        self._states(STATE_PATH, frame, t_ns, cols.frame_state)
+        for lane, names in cols.responses.items():
+            self._states(f"rss/structured/response/{lane}", frame, t_ns, names)
+        self._object_lanes(frame, t_ns, cols.object_states)
+        for name, values in cols.accel.items():
+            keep = np.isfinite(values)
+            if keep.any():
+                rec.send_columns(
+                    f"plots/rss/acceleration/{name}",
+                    indexes=time_index(frame[keep], t_ns[keep]),
+                    columns=rr.Scalars.columns(scalars=values[keep]),
+                )
+        for key, (rows, values) in cols.distances.items():
+            object_id, kind = key.rsplit("/", 1)
+            path = f"plots/rss/distances/{rr.escape_entity_path_part(object_id)}/{kind}"
+            rec.send_columns(
+                path,
+                indexes=time_index(frame[rows], t_ns[rows]),
+                columns=rr.Scalars.columns(scalars=values),
+            )
