@@ -8,6 +8,8 @@ regions per object. Absent lanes / regions have id ``-1``.
 from __future__ import annotations
 
 import dataclasses
+import functools
+import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, TypeVar
 
@@ -21,7 +23,7 @@ from rss.model import ConstellationType, LaneDrivingDirection, ObjectType, RoadS
 if TYPE_CHECKING:
     from collections.abc import Sequence
 
-    from rss.model import Constellation, LaneObject, RoadSegment
+    from rss.model import Constellation, LaneObject, LaneSegment, RoadSegment
 
 __all__ = [
     "BoolArray",
@@ -37,6 +39,12 @@ __all__ = [
 ]
 
 _T = TypeVar("_T")
+
+_DYNAMICS_FIELDS = tuple(DYNAMICS_KEYS.values())
+_CONSTELLATION_CODES = frozenset(int(v) for v in ConstellationType)
+_OBJECT_CODES = frozenset(int(v) for v in ObjectType)
+_SEGMENT_CODES = frozenset(int(v) for v in RoadSegmentType)
+_DIRECTION_CODES = frozenset(int(v) for v in LaneDrivingDirection)
 
 BoolArray = npt.NDArray[np.bool_]
 FloatArray = npt.NDArray[np.float64]
@@ -75,9 +83,17 @@ class DynamicsArrays:
 
 
 def stack_dynamics(dynamics: Sequence[RssDynamics]) -> DynamicsArrays:
-    """Stack validated dynamics into ``(C,)`` arrays."""
+    """Stack validated dynamics into ``(C,)`` arrays (a shared object is read once)."""
+    rows: dict[int, tuple[float, ...]] = {}
+    table = []
+    for d in dynamics:
+        row = rows.get(id(d))
+        if row is None:
+            row = rows[id(d)] = tuple(getattr(d, name) for name in _DYNAMICS_FIELDS)
+        table.append(row)
+    values = np.array(table, dtype=np.float64).reshape(len(table), len(_DYNAMICS_FIELDS))
     return DynamicsArrays(
-        **{name: _floats([getattr(d, name) for d in dynamics]) for name in DYNAMICS_KEYS.values()}
+        **{name: _floats(values[:, k]) for k, name in enumerate(_DYNAMICS_FIELDS)}
     )
 
 
@@ -170,142 +186,210 @@ class ConstellationBatch:
 def stack_constellations(constellations: Sequence[Constellation]) -> ConstellationBatch:
     """Pad and stack scalar constellations into a :class:`ConstellationBatch`.
 
-    Structural errors raise; value errors of single objects (NaN, negative speed, a region
-    outside the road area) do not: the engine flags those constellations invalid.
+    One pass over the constellations validates them and collects flat rows; the padded
+    arrays are filled by one indexed assignment per field. Structural errors raise; value
+    errors of single objects (NaN, negative speed, a region outside the road area) do not:
+    the engine flags those constellations invalid.
 
     Raises:
         RssConstellationError: Unknown constellation type / direction / segment type,
             negative or inverted lane lengths or widths, duplicate lane ids.
     """
+    types: list[int] = []
+    ego, other = _ObjectRows(), _ObjectRows()
+    ego_road, intersecting_road = _RoadRows(), _RoadRows()
     for c in constellations:
-        _check_structure(c)
+        kind = c.constellation_type
+        if not _known(kind, _CONSTELLATION_CODES):
+            raise RssConstellationError("constellation_type", kind, "unknown")
+        if kind == ConstellationType.Unstructured:
+            raise RssConstellationError(
+                "constellation_type", "Unstructured", "not a structured constellation (issue 6)"
+            )
+        for obj in (c.ego, c.other):
+            if not _known(obj.object_type, _OBJECT_CODES):
+                raise RssConstellationError("object_type", obj.object_type, "unknown")
+        ego_road.add(c.ego_road)
+        intersecting_road.add(c.intersecting_road)
+        types.append(int(kind))
+        ego.add(c.ego)
+        other.add(c.other)
     return ConstellationBatch(
-        constellation_type=_ints([int(c.constellation_type) for c in constellations]),
-        ego=_stack_objects([c.ego for c in constellations]),
-        other=_stack_objects([c.other for c in constellations]),
+        constellation_type=_ints(types),
+        ego=ego.arrays(),
+        other=other.arrays(),
         ego_dynamics=stack_dynamics([c.ego_dynamics for c in constellations]),
         other_dynamics=stack_dynamics([c.other_dynamics for c in constellations]),
-        ego_road=_stack_roads([c.ego_road for c in constellations]),
-        intersecting_road=_stack_roads([c.intersecting_road for c in constellations]),
+        ego_road=ego_road.arrays(),
+        intersecting_road=intersecting_road.arrays(),
     )
 
 
-def _check_structure(c: Constellation) -> None:
+def _known(code: object, codes: frozenset[int]) -> bool:
     try:
-        ConstellationType(c.constellation_type)
-    except ValueError as err:
-        raise RssConstellationError("constellation_type", c.constellation_type, "unknown") from err
-    if c.constellation_type == ConstellationType.Unstructured:
-        raise RssConstellationError(
-            "constellation_type", "Unstructured", "not a structured constellation (issue 6)"
+        return code in codes
+    except TypeError:  # unhashable
+        return False
+
+
+class _ObjectRows:
+    """Objects of ``C`` constellations as flat rows (one region per row)."""
+
+    def __init__(self) -> None:
+        self.ids: list[int] = []
+        self.types: list[int] = []
+        self.speeds: list[tuple[float, float, float, float]] = []
+        self.at: tuple[list[int], list[int]] = ([], [])
+        self.lanes: list[int] = []
+        self.params: list[tuple[float, float, float, float]] = []
+        self.width = 1
+
+    def add(self, obj: LaneObject) -> None:
+        row = len(self.ids)
+        self.ids.append(obj.object_id)
+        self.types.append(int(obj.object_type))
+        s = obj.speed
+        self.speeds.append((s.lon_min_mps, s.lon_max_mps, s.lat_min_mps, s.lat_max_mps))
+        regions = obj.regions
+        self.width = max(self.width, len(regions))
+        for k, r in enumerate(regions):
+            self.at[0].append(row)
+            self.at[1].append(k)
+            self.lanes.append(r.lane_id)
+            self.params.append((r.lon_min, r.lon_max, r.lat_min, r.lat_max))
+
+    def arrays(self) -> ObjectArrays:
+        count = len(self.ids)
+        lane = np.full((count, self.width), -1, dtype=np.int64)
+        params = np.zeros((count, self.width, 4))
+        if self.lanes:
+            at = (np.array(self.at[0], dtype=np.int64), np.array(self.at[1], dtype=np.int64))
+            lane[at] = self.lanes
+            params[at] = self.params
+        speeds = np.array(self.speeds, dtype=np.float64).reshape(count, 4)
+        return ObjectArrays(
+            object_id=_ints(self.ids),
+            object_type=_ints(self.types),
+            region_lane_id=_ints(lane),
+            region_lon_min=_floats(params[:, :, 0]),
+            region_lon_max=_floats(params[:, :, 1]),
+            region_lat_min=_floats(params[:, :, 2]),
+            region_lat_max=_floats(params[:, :, 3]),
+            speed_lon_min_mps=_floats(speeds[:, 0]),
+            speed_lon_max_mps=_floats(speeds[:, 1]),
+            speed_lat_min_mps=_floats(speeds[:, 2]),
+            speed_lat_max_mps=_floats(speeds[:, 3]),
         )
-    for obj in (c.ego, c.other):
-        try:
-            ObjectType(obj.object_type)
-        except ValueError as err:
-            raise RssConstellationError("object_type", obj.object_type, "unknown") from err
-    for road in (c.ego_road, c.intersecting_road):
-        _check_road(road)
 
 
-def _check_road(road: tuple[RoadSegment, ...]) -> None:
-    seen: set[int] = set()
-    for segment in road:
-        try:
-            RoadSegmentType(segment.segment_type)
-        except ValueError as err:
-            raise RssConstellationError("segment_type", segment.segment_type, "unknown") from err
-        if not segment.lanes:
-            raise RssConstellationError("road segment", segment, "has no lanes")
-        for lane in segment.lanes:
-            _check_lane(lane.lane_id, "length", lane.length_min_m, lane.length_max_m)
-            _check_lane(lane.lane_id, "width", lane.width_min_m, lane.width_max_m)
-            try:
-                LaneDrivingDirection(lane.driving_direction)
-            except ValueError as err:
-                raise RssConstellationError(
-                    f"lane {lane.lane_id} driving_direction", lane.driving_direction, "unknown"
-                ) from err
-            if lane.lane_id in seen or lane.lane_id < 0:
-                raise RssConstellationError("lane id", lane.lane_id, "duplicate or negative")
-            seen.add(lane.lane_id)
+class _RoadRows:
+    """Road areas of ``C`` constellations as flat, validated segment and lane rows."""
 
+    def __init__(self) -> None:
+        self.count = 0
+        self.segments: list[tuple[int, int, int]] = []  # (row, segment, type)
+        self.lengths: list[tuple[float, float]] = []
+        self.lanes: list[tuple[int, int, int, int, int]] = []  # (row, seg, lane, id, dir)
+        self.metric: list[tuple[float, float, float, float]] = []
+        self.shape = [1, 1]
 
-def _check_lane(lane_id: int, what: str, low: float, high: float) -> None:
-    if not (low >= 0.0 and high >= low and np.isfinite(high)):
-        raise RssConstellationError(
-            f"lane {lane_id} {what}", (low, high), "needs finite 0 <= min <= max [m]"
-        )
-
-
-def _stack_objects(objects: Sequence[LaneObject]) -> ObjectArrays:
-    count = len(objects)
-    k = max((len(o.regions) for o in objects), default=0)
-    lane = np.full((count, max(k, 1)), -1, dtype=np.int64)
-    params = np.zeros((4, count, max(k, 1)))
-    for i, obj in enumerate(objects):
-        for j, region in enumerate(obj.regions):
-            lane[i, j] = region.lane_id
-            params[:, i, j] = (region.lon_min, region.lon_max, region.lat_min, region.lat_max)
-    speeds = np.array([dataclasses.astuple(o.speed) for o in objects], dtype=np.float64)
-    speeds = speeds.reshape(count, 4)
-    return ObjectArrays(
-        object_id=_ints([o.object_id for o in objects]),
-        object_type=_ints([int(o.object_type) for o in objects]),
-        region_lane_id=_ints(lane),
-        region_lon_min=_floats(params[0]),
-        region_lon_max=_floats(params[1]),
-        region_lat_min=_floats(params[2]),
-        region_lat_max=_floats(params[3]),
-        speed_lon_min_mps=_floats(speeds[:, 0]),
-        speed_lon_max_mps=_floats(speeds[:, 1]),
-        speed_lat_min_mps=_floats(speeds[:, 2]),
-        speed_lat_max_mps=_floats(speeds[:, 3]),
-    )
-
-
-def _stack_roads(roads: Sequence[tuple[RoadSegment, ...]]) -> RoadAreaArrays:
-    count = len(roads)
-    r = max(1, max((len(road) for road in roads), default=0))
-    n_lanes = max(1, max((len(s.lanes) for road in roads for s in road), default=0))
-    lane_id = np.full((count, r, n_lanes), -1, dtype=np.int64)
-    direction = np.zeros((count, r, n_lanes), dtype=np.int64)
-    metric = np.zeros((4, count, r, n_lanes))
-    segment_type = np.full((count, r), -1, dtype=np.int64)
-    lengths = np.zeros((2, count, r))
-    for i, road in enumerate(roads):
+    def add(self, road: tuple[RoadSegment, ...]) -> None:
+        row = self.count
+        self.count += 1
+        self.shape[0] = max(self.shape[0], len(road))
+        seen: set[int] = set()
         for j, segment in enumerate(road):
-            segment_type[i, j] = int(segment.segment_type)
-            lengths[:, i, j] = (
-                segment.min_length_before_intersecting_area_m,
-                segment.min_length_after_intersecting_area_m,
-            )
-            for m, lane in enumerate(segment.lanes):
-                lane_id[i, j, m] = lane.lane_id
-                direction[i, j, m] = int(lane.driving_direction)
-                metric[:, i, j, m] = (
-                    lane.length_min_m,
-                    lane.length_max_m,
-                    lane.width_min_m,
-                    lane.width_max_m,
+            kind = segment.segment_type
+            if not _known(kind, _SEGMENT_CODES):
+                raise RssConstellationError("segment_type", kind, "unknown")
+            if not segment.lanes:
+                raise RssConstellationError("road segment", segment, "has no lanes")
+            self.segments.append((row, j, int(kind)))
+            self.lengths.append(
+                (
+                    segment.min_length_before_intersecting_area_m,
+                    segment.min_length_after_intersecting_area_m,
                 )
-    return RoadAreaArrays(
-        lane_id=_ints(lane_id),
-        driving_direction=_ints(direction),
-        length_min_m=_floats(metric[0]),
-        length_max_m=_floats(metric[1]),
-        width_min_m=_floats(metric[2]),
-        width_max_m=_floats(metric[3]),
-        segment_type=_ints(segment_type),
-        before_intersection_m=_floats(lengths[0]),
-        after_intersection_m=_floats(lengths[1]),
-    )
+            )
+            self.shape[1] = max(self.shape[1], len(segment.lanes))
+            for m, lane in enumerate(segment.lanes):
+                metric = (lane.length_min_m, lane.length_max_m, lane.width_min_m, lane.width_max_m)
+                lane_id, direction = lane.lane_id, lane.driving_direction
+                try:
+                    ok = (
+                        0.0 <= metric[0] <= metric[1] < math.inf
+                        and 0.0 <= metric[2] <= metric[3] < math.inf
+                        and direction in _DIRECTION_CODES
+                        and lane_id >= 0
+                        and lane_id not in seen
+                    )
+                except TypeError:
+                    ok = False
+                if not ok:
+                    _raise_lane(lane)
+                seen.add(lane_id)
+                self.lanes.append((row, j, m, lane_id, int(direction)))
+                self.metric.append(metric)
+
+    def arrays(self) -> RoadAreaArrays:
+        shape = (self.count, *self.shape)
+        lane_id = np.full(shape, -1, dtype=np.int64)
+        direction = np.zeros(shape, dtype=np.int64)
+        metric = np.zeros((*shape, 4))
+        segment_type = np.full(shape[:2], -1, dtype=np.int64)
+        lengths = np.zeros((*shape[:2], 2))
+        if self.segments:
+            seg = np.array(self.segments, dtype=np.int64)
+            segment_type[seg[:, 0], seg[:, 1]] = seg[:, 2]
+            lengths[seg[:, 0], seg[:, 1]] = self.lengths
+        if self.lanes:
+            lanes = np.array(self.lanes, dtype=np.int64)
+            at = (lanes[:, 0], lanes[:, 1], lanes[:, 2])
+            lane_id[at] = lanes[:, 3]
+            direction[at] = lanes[:, 4]
+            metric[at] = self.metric
+        return RoadAreaArrays(
+            lane_id=_ints(lane_id),
+            driving_direction=_ints(direction),
+            length_min_m=_floats(metric[..., 0]),
+            length_max_m=_floats(metric[..., 1]),
+            width_min_m=_floats(metric[..., 2]),
+            width_max_m=_floats(metric[..., 3]),
+            segment_type=_ints(segment_type),
+            before_intersection_m=_floats(lengths[..., 0]),
+            after_intersection_m=_floats(lengths[..., 1]),
+        )
+
+
+def _raise_lane(lane: LaneSegment) -> None:
+    """Raise the error of an invalid lane (checks in the documented order)."""
+    lane_id = lane.lane_id
+    for what, low, high in (
+        ("length", lane.length_min_m, lane.length_max_m),
+        ("width", lane.width_min_m, lane.width_max_m),
+    ):
+        if not (low >= 0.0 and high >= low and math.isfinite(high)):
+            raise RssConstellationError(
+                f"lane {lane_id} {what}", (low, high), "needs finite 0 <= min <= max [m]"
+            )
+    if not _known(lane.driving_direction, _DIRECTION_CODES):
+        raise RssConstellationError(
+            f"lane {lane_id} driving_direction", lane.driving_direction, "unknown"
+        )
+    raise RssConstellationError("lane id", lane_id, "duplicate or negative")
+
+
+@functools.cache
+def _field_names(cls: type) -> tuple[str, ...]:
+    return tuple(f.name for f in dataclasses.fields(cls))
 
 
 def take_rows(records: _T, rows: IntArray) -> _T:
     """Select constellations ``rows`` from a dataclass of ``(C, ...)`` arrays (recursively)."""
+    cls: type = type(records)
     values = {}
-    for f in dataclasses.fields(records):  # type: ignore[arg-type]
-        value = getattr(records, f.name)
-        values[f.name] = value[rows] if isinstance(value, np.ndarray) else take_rows(value, rows)
-    return dataclasses.replace(records, **values)  # type: ignore[type-var]
+    for name in _field_names(cls):
+        value = getattr(records, name)
+        values[name] = value[rows] if isinstance(value, np.ndarray) else take_rows(value, rows)
+    out: _T = cls(**values)
+    return out
