@@ -107,7 +107,7 @@ def replay_blueprint(
             active_tab=tabs.get(engines[0], "reach sets") if engines else "reach sets",
         )
     )
-    side = rrb.Vertical(*views, row_shares=[2] * (len(views) - 1) + [1])
+    side = rrb.Vertical(*views, row_shares=[2] * (len(views) - 1) + [2 if engines else 1])
     return rrb.Blueprint(
         rrb.Horizontal(scene, side, column_shares=[3, 1]),
         rrb.TimePanel(timeline=FRAME_TIMELINE, play_state="paused", state="collapsed"),

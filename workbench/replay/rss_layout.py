@@ -2,7 +2,8 @@
 
 Per frame the viewer shows one line from the ego to every object it forms a constellation
 with, coloured by constellation type (red and thicker when dangerous) and labelled with the
-longitudinal / lateral distance against the safe distance; the road area of each
+longitudinal / lateral distance against the safe distance of the object's most critical
+constellation (and how many more it has); the road area of each
 constellation as an outline; a red box around every dangerous object; the frame's proper
 response and acceleration restrictions; and one state lane per object::
 
@@ -10,11 +11,14 @@ response and acceleration restrictions; and one state lane per object::
         dangerous  >  lon unsafe  >  lat unsafe  >  safe        ("not relevant" without one)
 
 Distances are those of the object's most critical constellation (dangerous first, then the
-smallest longitudinal margin ``current - safe``).
+smallest longitudinal margin ``current - safe``). Intersection constellations are judged on
+the distances of both vehicles to enter the intersection (ad-rss' intersection check), so
+those are shown for them instead of lon/lat distances.
 """
 
 from __future__ import annotations
 
+from collections import Counter
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -88,6 +92,11 @@ Z_LINK_M = 1.0
 Z_AREA_M = 0.08
 #: Danger boxes are this much larger than the object, per side.
 DANGER_MARGIN_M = 0.35
+_INTERSECTION = {
+    ConstellationType.IntersectionEgoHasPriority,
+    ConstellationType.IntersectionObjectHasPriority,
+    ConstellationType.IntersectionSamePriority,
+}
 _SEVERITY = {name: k for k, name in enumerate(OBJECT_STATES)}
 _TYPE_SHORT = {
     ConstellationType.NotRelevant: "not relevant",
@@ -117,7 +126,8 @@ class RssColumns:
             ``(D, 3)``, ``danger_quat_xyzw`` ``(D, 4)``, ``danger_counts`` ``(N,)``.
         object_states: Per object id, ``(N,)`` values of :data:`OBJECT_STATES`.
         distances: Per ``"<id>/<series>"`` (``lon_m``, ``lon_safe_m``, ``lat_m``,
-            ``lat_safe_m``), ``(rows, values)``: chunk rows where the object has a finite
+            ``lat_safe_m``; for intersection constellations ``ego_to_enter_m`` and
+            ``other_to_enter_m``), ``(rows, values)``: chunk rows where the object has a finite
             value, and the values.
         responses: Per :data:`RESPONSE_LANES` lane name, ``(N,)`` response names.
         accel: Per :data:`ACCEL_SERIES` name, ``(N,)`` bounds [m/s²], NaN = none.
@@ -153,6 +163,27 @@ class _Row:
     lon_safe_m: float
     lat_m: float
     lat_safe_m: float
+    ego_to_enter_m: float = float("nan")
+    other_to_enter_m: float = float("nan")
+
+    @property
+    def is_intersection(self) -> bool:
+        """Intersection constellations are judged by the distances to enter, not lon/lat."""
+        return self.ctype in _INTERSECTION
+
+    def series(self) -> dict[str, float]:
+        """The plotted distances of this row [m]."""
+        if self.is_intersection:
+            return {
+                "ego_to_enter_m": self.ego_to_enter_m,
+                "other_to_enter_m": self.other_to_enter_m,
+            }
+        return {
+            "lon_m": self.lon_m,
+            "lon_safe_m": self.lon_safe_m,
+            "lat_m": self.lat_m,
+            "lat_safe_m": self.lat_safe_m,
+        }
 
     @property
     def margin_m(self) -> float:
@@ -163,6 +194,11 @@ class _Row:
 
     def text(self) -> str:
         """The line label."""
+        if self.is_intersection:
+            return (
+                f"{self.label}: {_TYPE_SHORT[self.ctype]}  to enter: "
+                f"ego {_fmt(self.ego_to_enter_m)} m, object {_fmt(self.other_to_enter_m)} m"
+            )
         return (
             f"{self.label}: {_TYPE_SHORT[self.ctype]}  "
             f"lon {_fmt(self.lon_m)}/{_fmt(self.lon_safe_m)} m  "
@@ -205,9 +241,22 @@ def _rows(detail: RssFrameDetail) -> list[_Row]:
                 lon_safe_m=_finite(float(st.lon_safe_distance_m[c])),
                 lat_m=_finite(float(side.current_distance_m[c])),
                 lat_safe_m=_finite(float(side.safe_distance_m[c])),
+                ego_to_enter_m=_finite(float(res.relative.ego_dist_to_enter_m[c])),
+                other_to_enter_m=_finite(float(res.relative.other_dist_to_enter_m[c])),
             )
         )
     return rows
+
+
+def _most_critical(rows: list[_Row]) -> dict[str, _Row]:
+    """Per object, its most severe row (then the smallest longitudinal margin)."""
+    best: dict[str, _Row] = {}
+    for row in rows:
+        seen = best.get(row.label)
+        key = (_SEVERITY[row.state], row.margin_m)
+        if seen is None or key < (_SEVERITY[seen.state], seen.margin_m):
+            best[row.label] = row
+    return best
 
 
 @dataclass
@@ -233,34 +282,28 @@ class _Builder:
         ego = np.array([frame.ego.x_m, frame.ego.y_m, Z_LINK_M])
         n_links = n_areas = n_boxes = 0
         for c, row in enumerate(rows):
-            danger = row.state == "dangerous"
             if c < len(detail.road_areas) and len(detail.road_areas[c]) > 1:
                 self.areas.append(np.asarray(detail.road_areas[c], dtype=np.float64))
+                danger = row.state == "dangerous"
                 self.area_colors.append(DANGEROUS_COLOR if danger else ROAD_AREA_COLOR)
                 n_areas += 1
-            k = where.get(row.label)
+        best = _most_critical(rows)
+        per_object = Counter(row.label for row in rows)
+        for label, row in best.items():
+            k = where.get(label)
             if k is None:
                 continue
+            danger = row.state == "dangerous"
             other = np.array([actors.x_m[k], actors.y_m[k], Z_LINK_M])
             self.links.append(np.stack([ego, other]))
             self.link_colors.append(DANGEROUS_COLOR if danger else TYPE_COLORS[row.ctype])
             self.link_radii.append(0.12 if danger else 0.06)
-            self.link_labels.append(row.text())
+            more = per_object[label] - 1
+            self.link_labels.append(row.text() + (f"  (+{more} more)" if more else ""))
             n_links += 1
-        best: dict[str, _Row] = {}
-        for row in rows:
-            seen = best.get(row.label)
-            if seen is None or (_SEVERITY[row.state], row.margin_m) < (
-                _SEVERITY[seen.state],
-                seen.margin_m,
-            ):
-                best[row.label] = row
         for label, row in best.items():
             self.states.setdefault(label, ["not relevant"] * self.n)[i] = row.state
-            values = (row.lon_m, row.lon_safe_m, row.lat_m, row.lat_safe_m)
-            for name, value in zip(
-                ("lon_m", "lon_safe_m", "lat_m", "lat_safe_m"), values, strict=True
-            ):
+            for name, value in row.series().items():
                 if np.isfinite(value):
                     rows_vals = self.dist.setdefault(f"{label}/{name}", ([], []))
                     rows_vals[0].append(i)

@@ -53,7 +53,7 @@ def test_layout_follows_the_engine_frame_by_frame(cut_in):
         detail = out.detail
         assert isinstance(detail, RssFrameDetail)
         present = {str(a) for a in frame.actors.ids}
-        assert cols.link_counts[i] == sum(label in present for label in detail.labels)
+        assert cols.link_counts[i] == len(set(detail.labels) & present)
         dangerous = set(out.record["dangerous_objects"])
         assert cols.danger_counts[i] == len(dangerous & present)
         for object_id, states in cols.object_states.items():
@@ -180,3 +180,20 @@ def test_replay_logs_state_lanes_constellations_and_plots(tmp_path, cut_in):
         assert table.num_rows == len(frames), entity
     for series in ("/plots/rss/acceleration/lon_max_mps2", "/plots/rss/distances/1/lon_m"):
         assert store.reader(index="frame", contents=series).to_arrow_table().num_rows > 0
+
+
+def test_intersection_constellations_show_the_distances_to_enter():
+    drive = open_drive(SAMPLES / "urban_intersection.mcap")
+    runner = RssRunner(drive.lane_map)
+    frames = list(drive.frames())
+    outputs = [runner.step(f) for f in frames]
+    drive.close()
+    cols = layout_rss(frames, outputs)
+    crossing = [label for label in cols.link_labels if ": intersection" in label]
+    assert crossing
+    assert all("to enter: ego " in label for label in crossing)
+    enter = {k: v for k, v in cols.distances.items() if k.endswith("/ego_to_enter_m")}
+    assert enter
+    for rows, values in enter.values():
+        assert len(rows) == len(values)
+        assert np.all(values >= 0)
