@@ -16,13 +16,14 @@ Per frame:
 from __future__ import annotations
 
 import logging
+import math
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import shapely
 
-from reachsets.footprints import rectangles
 from reachsets.occupancy import EgoOccupancy, ego_occupancy
 from reachsets.patches import (
     RuleContext,
@@ -31,11 +32,12 @@ from reachsets.patches import (
     patch_grid,
     subtract_patches,
 )
-from reachsets.reachable import reachable_sets, simple_sets
+from reachsets.reachable import deletion_polygons, reachable_sets, simple_vertices
 from reachsets.rules_f1 import evaluate_f1
 from reachsets.rules_road import evaluate_road
 from reachsets.rules_roborace import evaluate_roborace
 from reachsets.track import TrackGeometry, build_track
+from reachsets.verdict import first_hits
 
 if TYPE_CHECKING:
     from collections.abc import Mapping
@@ -98,7 +100,7 @@ class RuleState:
     track: TrackGeometry | None = None
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(frozen=True)
 class ReachResult:
     """Verdict of one frame.
 
@@ -108,9 +110,9 @@ class ReachResult:
         patches: Rule patches subtracted.
         object_ids: Objects evaluated, ``(M,)``.
         skipped_ids: Objects not evaluated (behind the ego or invalid).
-        reach_sets: Reduced reachable sets, ``(M, T)`` geometries; ``None`` where nothing is
-            left (e.g. the reference's ``turn`` deletion removes a standing object's set).
         occupancy: Ego footprints.
+        sets: The reduced sets as ``(M, T)`` geometries (full geometry), or the unreduced
+            ``simple`` sets as ``(M, T, 6, 2)`` vertices (verdict only); see ``reach_sets``.
     """
 
     is_safe: bool
@@ -118,8 +120,22 @@ class ReachResult:
     patches: tuple[AppliedPatch, ...]
     object_ids: NDArray[np.str_]
     skipped_ids: tuple[str, ...]
-    reach_sets: NDArray[np.object_]
     occupancy: EgoOccupancy
+    sets: NDArray[Any]
+
+    @cached_property
+    def reach_sets(self) -> NDArray[np.object_]:
+        """Reachable sets, ``(M, T)`` geometries, built on first use.
+
+        Full geometry: the reduced sets, ``None`` where nothing is left (e.g. the reference's
+        ``turn`` deletion removes a standing object's set). Verdict only: the unreduced
+        ``simple`` sets (the reductions were only applied near the ego footprint).
+        """
+        if self.sets.dtype == object:
+            return self.sets
+        if not self.sets.size:
+            return np.empty(self.sets.shape[:2], dtype=object)
+        return np.asarray(shapely.polygons(self.sets))
 
 
 def _prepared_track(
@@ -144,30 +160,30 @@ def _prepared_track(
     return build_track(bounds, params.closed_track_gap_m)
 
 
-def _clip_footprints(footprints: NDArray[np.object_], area: Any) -> NDArray[np.object_]:
-    """``footprints & area``, clipping ``area`` to the footprints' bounding box first."""
-    box = shapely.box(*shapely.total_bounds(footprints))
-    return np.asarray(shapely.intersection(footprints, shapely.intersection(area, box)))
-
-
 def _select(
     inputs: ReachInputs, track: TrackGeometry | None
-) -> tuple[NDArray[np.bool_], NDArray[np.float64], float]:
-    """Mask of objects to evaluate, their arc lengths and the ego's."""
+) -> tuple[NDArray[np.bool_], NDArray[np.float64], float, NDArray[np.float64]]:
+    """Mask of objects to evaluate, their arc lengths, the ego's, and their lateral offsets."""
     objs, ego = inputs.objects, inputs.ego
-    pose = np.stack([objs.x_m, objs.y_m, objs.yaw_rad, objs.length_m, objs.width_m])
-    valid = np.all(np.isfinite(pose), axis=0) & (objs.length_m > 0) & (objs.width_m > 0)
+    n = len(objs)
+    valid = (
+        np.isfinite(objs.x_m + objs.y_m + objs.yaw_rad + objs.length_m + objs.width_m)
+        & (objs.length_m > 0)
+        & (objs.width_m > 0)
+    )
     if track is None:
-        c, s = np.cos(ego.yaw_rad[0]), np.sin(ego.yaw_rad[0])
+        c, s = math.cos(ego.yaw_rad[0]), math.sin(ego.yaw_rad[0])
         xi = (objs.x_m - ego.x_m[0]) * c + (objs.y_m - ego.y_m[0]) * s
         ahead = xi >= -(ego.length_m + objs.length_m) / 2
-        return valid & ahead, np.zeros(len(objs)), 0.0
-    s_obj = track.project(np.nan_to_num(objs.x_m), np.nan_to_num(objs.y_m))
-    s_ends = track.project(ego.x_m[[0, -1]], ego.y_m[[0, -1]])
-    span = float(track.ahead_m(s_ends[0], s_ends[1]))
-    d = track.ahead_m(s_ends[0], s_obj)
+        return valid & ahead, np.zeros(n), 0.0, np.zeros(n)
+    x = np.nan_to_num(np.concatenate([objs.x_m, ego.x_m[[0, -1]]]))
+    y = np.nan_to_num(np.concatenate([objs.y_m, ego.y_m[[0, -1]]]))
+    s_all = track.project(x, y)
+    s_obj = s_all[:n]
+    span = float(track.ahead_m(s_all[n], s_all[n + 1]))
+    d = track.ahead_m(s_all[n], s_obj)
     keep = (d >= 0) & (d <= max(span, 0.0) + ego.length_m)
-    return valid & keep, s_obj, float(s_ends[0])
+    return valid & keep, s_obj, float(s_all[n]), track.lateral_m(x[:n], y[:n], s_obj)
 
 
 def _rule_patches(
@@ -206,41 +222,16 @@ def evaluate(
         The frame's result and the state for the next frame.
     """
     state = state or RuleState()
-    times = np.asarray(params.times_s)
+    times = params.times_array_s
     occ = ego_occupancy(inputs.ego, times)
     track = _prepared_track(inputs, params, state)
-    keep, s_obj, s_ego = _select(inputs, track)
+    keep, s_obj, s_ego, lat_obj = _select(inputs, track)
     rows = np.flatnonzero(keep)
-    objs: ObjectStates = inputs.objects.take(rows)
+    objs: ObjectStates = inputs.objects if keep.all() else inputs.objects.take(rows)
     skipped = tuple(str(i) for i in inputs.objects.ids[~keep])
-    cells = None
-    zone = occ.polygons
-    if params.full_geometry:
-        sets = reachable_sets(objs, times, params, track)
-    else:
-        # Verdict only: clip the ego footprints to the track once instead of trimming every
-        # set ((S - D - P) & T touches E  <=>  S - D - P touches E & T), and reduce only the
-        # cells whose unreduced simple set touches the clipped footprint.
-        # (Keeping only the largest part needs the trimmed sets: then they are trimmed.)
-        clip = params.trim_to_drivable and track is not None and not params.keep_largest_part_only
-        if clip and track is not None:
-            zone = _clip_footprints(occ.polygons, track.polygon)
-        raw = simple_sets(objs, times, params)
-        cells = (
-            np.asarray(shapely.intersects(raw, zone[None, :]), dtype=bool)
-            if raw.size
-            else np.zeros(raw.shape, dtype=bool)
-        )
-        sets = (
-            reachable_sets(objs, times, params, track, cells=cells, simple=raw, trim=not clip)
-            if cells.any()
-            else raw
-        )
-    footprints = rectangles(objs.x_m, objs.y_m, objs.yaw_rad, objs.length_m, objs.width_m)
     ego = inputs.ego
     ctx = RuleContext(
         objects=objs,
-        footprints=footprints.reshape(len(objs)),
         ego_x_m=float(ego.x_m[0]),
         ego_y_m=float(ego.y_m[0]),
         ego_yaw_rad=float(ego.yaw_rad[0]),
@@ -253,25 +244,16 @@ def evaluate(
         track=track,
         s_obj_m=s_obj[rows],
         s_ego_m=s_ego,
+        lat_obj_m=lat_obj[rows],
         road=inputs.road,
         zones=inputs.zones,
     )
     patches, memory = _rule_patches(ctx, params, state.ltl)
-    if patches:
-        grid = patch_grid(patches, ctx.footprints, len(times), cells)
-        sets = subtract_patches(sets, grid)
-    if params.keep_largest_part_only and sets.size:
-        sets = keep_largest_part(sets)
-    hits = (
-        np.asarray(shapely.intersects(sets, zone[None, :]), dtype=bool)
-        if sets.size
-        else np.zeros((len(objs), len(times)), dtype=bool)
-    )
-    if cells is not None:
-        hits &= cells
-    if sets.size:
-        sets = sets.copy()
-        sets[np.asarray(shapely.is_empty(sets), dtype=bool)] = None
+    sets: NDArray[Any]
+    if params.full_geometry or params.keep_largest_part_only:
+        sets, hits = _full_sets(ctx, patches)
+    else:
+        sets, hits = _verdict(ctx, patches)
     collisions = []
     for i in np.flatnonzero(hits.any(axis=1)):
         k = int(np.argmax(hits[i]))
@@ -285,8 +267,47 @@ def evaluate(
         ),
         object_ids=objs.ids,
         skipped_ids=skipped,
-        reach_sets=sets,
         occupancy=occ,
+        sets=sets,
     )
     new_state = RuleState(ltl=memory, track_bounds=inputs.track, track=track)
     return result, new_state
+
+
+def _full_sets(
+    ctx: RuleContext, patches: list[RulePatch]
+) -> tuple[NDArray[np.object_], NDArray[np.bool_]]:
+    """Every reduced set and every cell where it touches the ego footprint, ``(N, T)`` each."""
+    params, objs = ctx.params, ctx.objects
+    sets = reachable_sets(objs, ctx.times_s, params, ctx.track)
+    if patches:
+        sets = subtract_patches(sets, patch_grid(patches, ctx.footprints, len(ctx.times_s)))
+    if params.keep_largest_part_only and sets.size:
+        sets = keep_largest_part(sets)
+    if not sets.size:
+        return sets, np.zeros(sets.shape, dtype=bool)
+    hits = np.asarray(shapely.intersects(sets, ctx.occupancy.polygons[None, :]), dtype=bool)
+    sets = sets.copy()
+    sets[np.asarray(shapely.is_empty(sets), dtype=bool)] = None
+    return sets, hits
+
+
+def _verdict(
+    ctx: RuleContext, patches: list[RulePatch]
+) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+    """Unreduced simple sets ``(N, T, 6, 2)`` and the first hits (see ``verdict``)."""
+    params, objs, track = ctx.params, ctx.objects, ctx.track
+    verts = simple_vertices(objs, ctx.times_s, params)
+    area = track.polygon if track is not None and params.trim_to_drivable else None
+    hits = first_hits(
+        verts,
+        ctx.occupancy.corners_m,
+        area=area,
+        deletion=lambda: deletion_polygons(objs, params, track),
+        patches=(
+            (lambda cells: patch_grid(patches, ctx.footprints, len(ctx.times_s), cells))
+            if patches
+            else None
+        ),
+    )
+    return verts, hits

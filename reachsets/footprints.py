@@ -45,7 +45,12 @@ def body_to_map(
     """
     c = np.cos(yaw_rad)
     s = np.sin(yaw_rad)
-    return np.stack([x_m + c * xi - s * eta, y_m + s * xi + c * eta], axis=-1)
+    px = x_m + c * xi - s * eta
+    py = y_m + s * xi + c * eta
+    out = np.empty((*np.broadcast_shapes(np.shape(px), np.shape(py)), 2))
+    out[..., 0] = px
+    out[..., 1] = py
+    return out
 
 
 def rectangle_corners(
@@ -63,12 +68,15 @@ def rectangle_corners(
     Returns:
         ``S + (4, 2)`` corners (FL, RL, RR, FR).
     """
-    x, y, yaw, length, width = np.broadcast_arrays(
-        *(np.asarray(v, dtype=np.float64) for v in (x_m, y_m, yaw_rad, length_m, width_m))
+    half_l = np.asarray(length_m, dtype=np.float64)[..., None] / 2
+    half_w = np.asarray(width_m, dtype=np.float64)[..., None] / 2
+    return body_to_map(
+        _CORNER_SIGNS[:, 0] * half_l,
+        _CORNER_SIGNS[:, 1] * half_w,
+        np.asarray(x_m, dtype=np.float64)[..., None],
+        np.asarray(y_m, dtype=np.float64)[..., None],
+        np.asarray(yaw_rad, dtype=np.float64)[..., None],
     )
-    xi = _CORNER_SIGNS[:, 0] * (length[..., None] / 2)
-    eta = _CORNER_SIGNS[:, 1] * (width[..., None] / 2)
-    return body_to_map(xi, eta, x[..., None], y[..., None], yaw[..., None])
 
 
 def rectangles(

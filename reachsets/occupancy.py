@@ -4,11 +4,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 from typing import TYPE_CHECKING
 
 import numpy as np
+import shapely
 
-from reachsets.footprints import rectangles
+from reachsets.footprints import rectangle_corners
 
 if TYPE_CHECKING:
     from numpy.typing import NDArray
@@ -27,7 +29,7 @@ __all__ = [
 MIN_TIMING_SPEED_MPS = 0.01
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(frozen=True)
 class EgoOccupancy:
     """Ego footprints at the grid stamps.
 
@@ -36,14 +38,19 @@ class EgoOccupancy:
         x_m: Interpolated centre x, ``(T,)``.
         y_m: Interpolated centre y, ``(T,)``.
         yaw_rad: Interpolated heading, ``(T,)``.
-        polygons: Footprint rectangles, ``(T,)`` shapely polygons.
+        corners_m: Footprint corners (FL, RL, RR, FR), ``(T, 4, 2)``.
     """
 
     t_s: NDArray[np.float64]
     x_m: NDArray[np.float64]
     y_m: NDArray[np.float64]
     yaw_rad: NDArray[np.float64]
-    polygons: NDArray[np.object_]
+    corners_m: NDArray[np.float64]
+
+    @cached_property
+    def polygons(self) -> NDArray[np.object_]:
+        """Footprint rectangles, ``(T,)`` shapely polygons (built on first use)."""
+        return np.asarray(shapely.polygons(self.corners_m))
 
 
 def trajectory_times(traj: EgoTrajectory) -> NDArray[np.float64]:
@@ -79,8 +86,8 @@ def ego_occupancy(traj: EgoTrajectory, times_s: NDArray[np.float64]) -> EgoOccup
     x = np.interp(times_s, t_wp, traj.x_m)
     y = np.interp(times_s, t_wp, traj.y_m)
     yaw = np.interp(times_s, t_wp, yaw_unwrapped)
-    polys = rectangles(x, y, yaw, traj.length_m, traj.width_m)
-    return EgoOccupancy(np.asarray(times_s, dtype=np.float64), x, y, yaw, polys)
+    corners = rectangle_corners(x, y, yaw, traj.length_m, traj.width_m)
+    return EgoOccupancy(np.asarray(times_s, dtype=np.float64), x, y, yaw, corners)
 
 
 def _interp_scalar(t: float, ts: list[float], vs: list[float]) -> float:

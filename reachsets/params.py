@@ -7,10 +7,17 @@ vehicle parameters (see ``docs/reachsets.md``).
 from __future__ import annotations
 
 import enum
+import functools
 import math
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+import numpy as np
 
 from reachsets.errors import ParamsError
+
+if TYPE_CHECKING:
+    from numpy.typing import NDArray
 
 __all__ = [
     "F1Params",
@@ -177,4 +184,17 @@ class ReachParams:
     @property
     def times_s(self) -> tuple[float, ...]:
         """The grid stamps, rounded to 1e-9 s."""
-        return tuple(round(k * self.dt_s, 9) for k in range(self.n_steps))
+        return tuple(_grid(self.t_max_s, self.dt_s).tolist())
+
+    @property
+    def times_array_s(self) -> NDArray[np.float64]:
+        """``times_s`` as a read-only ``(T,)`` array (computed once per grid)."""
+        return _grid(self.t_max_s, self.dt_s)
+
+
+@functools.lru_cache(maxsize=16)
+def _grid(t_max_s: float, dt_s: float) -> NDArray[np.float64]:
+    n = round(t_max_s / dt_s) + 1
+    out = np.array([round(k * dt_s, 9) for k in range(n)])
+    out.flags.writeable = False
+    return out

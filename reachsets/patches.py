@@ -3,10 +3,13 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import shapely
+
+from reachsets.footprints import rectangles
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -38,13 +41,12 @@ class RulePatch:
     step: int | None = None
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(frozen=True)
 class RuleContext:
     """What every rule sees at the current frame.
 
     Attributes:
         objects: The objects under evaluation (N).
-        footprints: Their current footprints, ``(N,)`` polygons.
         ego_x_m: Ego centre x now.
         ego_y_m: Ego centre y now.
         ego_yaw_rad: Ego heading now.
@@ -57,12 +59,13 @@ class RuleContext:
         track: Track geometry, if any.
         s_obj_m: Object arc lengths on the track, ``(N,)`` (zeros without a track).
         s_ego_m: Ego arc length on the track (0 without a track).
+        lat_obj_m: Object lateral offsets from the centre line (right positive), ``(N,)``
+            (zeros without a track).
         road: Public-road layout, if any.
         zones: Roborace zones, if any.
     """
 
     objects: ObjectStates
-    footprints: NDArray[np.object_]
     ego_x_m: float
     ego_y_m: float
     ego_yaw_rad: float
@@ -75,8 +78,15 @@ class RuleContext:
     track: TrackGeometry | None
     s_obj_m: NDArray[np.float64]
     s_ego_m: float
+    lat_obj_m: NDArray[np.float64]
     road: RoadLayout | None
     zones: ZoneMap | None
+
+    @cached_property
+    def footprints(self) -> NDArray[np.object_]:
+        """The objects' current footprints, ``(N,)`` polygons (built on first use)."""
+        o = self.objects
+        return rectangles(o.x_m, o.y_m, o.yaw_rad, o.length_m, o.width_m).reshape(len(o))
 
 
 def patch_grid(

@@ -45,7 +45,7 @@ if TYPE_CHECKING:
     from reachsets.inputs import ObjectStates
     from reachsets.params import ReachParams
 
-__all__ = ["EXTENSION_M", "funnel_polygons", "steering_arc_scalar", "steering_arcs"]
+__all__ = ["EXTENSION_M", "arc_profile", "funnel_polygons", "steering_arc_scalar", "steering_arcs"]
 
 #: How far the deletion polygon reaches sideways and behind (reference ``turn``: 50 m).
 EXTENSION_M = 50.0
@@ -65,24 +65,39 @@ def steering_arcs(
     Returns:
         ``(xi, eta)``, each ``(N, P)`` with ``P = arc_points``, starting at the front corner.
     """
-    n = len(objects)
+    xi, eta, _ = arc_profile(objects, params)
+    return xi, side * eta
+
+
+def arc_profile(
+    objects: ObjectStates, params: ReachParams
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """The left steering arc in closed form, vectorised over objects and points.
+
+    The heading after chord ``k`` is ``min(sum of the chords' turns, arc_max_turn_rad)`` (each
+    turn is ``>= 0``, so clamping every step equals clamping the running sum); chord ``k``
+    points half-way between the headings before and after it.
+
+    Returns:
+        ``(xi, eta, psi)``, each ``(N, P)``: the left arc (the right one is ``(xi, -eta)``)
+        and the heading at each point.
+    """
     c = params.arc_step_m
-    xi = np.empty((n, params.arc_points))
-    eta = np.empty((n, params.arc_points))
+    k = np.arange(params.arc_points - 1)
+    v0 = np.asarray(objects.speed_mps, dtype=np.float64)[:, None]
+    v2 = np.maximum(v0**2 - 2 * params.ax_max_mps2 * c * k, 0.0)
+    radius = np.maximum(v2 / params.ay_max_mps2, params.turn_radius_m)
+    dmax = 2 * np.arcsin(np.minimum(c / (2 * radius), 1.0))
+    psi = np.zeros((len(v0), params.arc_points))
+    psi[:, 1:] = np.minimum(np.cumsum(dmax, axis=1), params.arc_max_turn_rad)
+    chord = (psi[:, :-1] + psi[:, 1:]) / 2
+    xi = np.empty_like(psi)
+    eta = np.empty_like(psi)
     xi[:, 0] = np.asarray(objects.length_m) / 2
-    eta[:, 0] = side * np.asarray(objects.width_m) / 2
-    v2 = np.asarray(objects.speed_mps, dtype=np.float64) ** 2
-    psi = np.zeros(n)
-    for k in range(1, params.arc_points):
-        radius = np.maximum(v2 / params.ay_max_mps2, params.turn_radius_m)
-        dpsi = 2 * np.arcsin(np.minimum(c / (2 * radius), 1.0))
-        dpsi = np.minimum(dpsi, params.arc_max_turn_rad - psi)
-        chord = psi + dpsi / 2
-        xi[:, k] = xi[:, k - 1] + c * np.cos(chord)
-        eta[:, k] = eta[:, k - 1] + side * c * np.sin(chord)
-        psi = psi + dpsi
-        v2 = np.maximum(v2 - 2 * params.ax_max_mps2 * c, 0.0)
-    return xi, eta
+    eta[:, 0] = np.asarray(objects.width_m) / 2
+    xi[:, 1:] = c * np.cos(chord)
+    eta[:, 1:] = c * np.sin(chord)
+    return np.cumsum(xi, axis=1), np.cumsum(eta, axis=1), psi
 
 
 def steering_arc_scalar(

@@ -9,7 +9,7 @@ import shapely
 
 from reachsets.params import ReachMethod
 from reachsets.reach_bound import wall_aware_arcs
-from reachsets.reach_simple import simple_reach_polygons
+from reachsets.reach_simple import simple_reach_polygons, simple_reach_vertices
 from reachsets.reach_turn import funnel_polygons, steering_arcs
 
 if TYPE_CHECKING:
@@ -19,7 +19,7 @@ if TYPE_CHECKING:
     from reachsets.params import ReachParams
     from reachsets.track import TrackGeometry
 
-__all__ = ["deletion_polygons", "reachable_sets", "simple_sets"]
+__all__ = ["deletion_polygons", "reachable_sets", "simple_sets", "simple_vertices"]
 
 
 def deletion_polygons(
@@ -96,8 +96,18 @@ def simple_sets(
     ``simple`` uses ``a_max_mps2``; ``turn`` and ``bound`` use ``ax_max_mps2`` (reference).
     Every reduced set lies inside this one, so it is a sound collision pre-filter.
     """
-    a = params.a_max_mps2 if params.method == ReachMethod.SIMPLE else params.ax_max_mps2
-    return simple_reach_polygons(objects, times_s, a)
+    return simple_reach_polygons(objects, times_s, _simple_bound(params))
+
+
+def simple_vertices(
+    objects: ObjectStates, times_s: NDArray[np.float64], params: ReachParams
+) -> NDArray[np.float64]:
+    """The vertices of ``simple_sets``, ``(N, T, 6, 2)``."""
+    return simple_reach_vertices(objects, times_s, _simple_bound(params))
+
+
+def _simple_bound(params: ReachParams) -> float:
+    return params.a_max_mps2 if params.method == ReachMethod.SIMPLE else params.ax_max_mps2
 
 
 def _trim(sets: NDArray[np.object_], area: Any, mask: NDArray[np.bool_]) -> NDArray[np.object_]:

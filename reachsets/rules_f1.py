@@ -107,7 +107,7 @@ def evaluate_f1(
     ids = [str(i) for i in objs.ids]
     gap = track.ahead_m(ctx.s_ego_m, ctx.s_obj_m)
     approach, first, direction = _next_corner(track, ctx.s_obj_m, p.d_corner_m, p.kappa_thr_inv_m)
-    lat_obj = track.lateral_m(objs.x_m, objs.y_m)
+    lat_obj = ctx.lat_obj_m
     atoms = {
         "overlap": (gap >= 0) & (gap < (1 - p.d_overlap) * ctx.ego_length_m),
         "approach": approach,
@@ -119,6 +119,8 @@ def evaluate_f1(
     defending, mem_d = step(DEFENDING, atoms, ids, memory, prefix="f1.defending")
     mem.update(mem_d)
     patches: list[RulePatch] = []
+    if not (alongside.any() or defending.any()):
+        return patches, mem
     idx = track.span_indices(ctx.s_ego_m, p.len_patch_m)
     tw_l = track.tw_left_m[idx]
     tw_r = track.tw_right_m[idx]
@@ -142,10 +144,9 @@ def _alongside_strip(ctx: RuleContext, i: int, idx: NDArray[np.intp], lat_ego: f
     track = ctx.track
     assert track is not None
     p = ctx.params.f1
-    objs = ctx.objects
     j = int(track.index_at(ctx.s_obj_m[i]))
-    lat_obj = float(track.lateral_m(objs.x_m[i : i + 1], objs.y_m[i : i + 1])[0])
-    w_obj = float(objs.width_m[i])
+    lat_obj = float(ctx.lat_obj_m[i])
+    w_obj = float(ctx.objects.width_m[i])
     right = lat_ego > lat_obj
     if right:
         d_ego = track.tw_right_m[j] - lat_ego

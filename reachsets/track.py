@@ -27,6 +27,10 @@ __all__ = ["TrackGeometry", "build_track", "resample_polyline"]
 
 #: Spacing of the resampled centre line (the reference builds its line at 1 m).
 CENTRE_STEP_M = 1.0
+#: Segments either side of the nearest centre point searched by ``TrackGeometry.project``.
+LOCATE_WINDOW = 3
+_WINDOW = np.arange(-LOCATE_WINDOW, LOCATE_WINDOW)
+
 #: Half window over which the centre-line heading is differentiated for the curvature.
 CURVATURE_HALF_WINDOW_M = 5.0
 
@@ -53,9 +57,11 @@ class TrackGeometry:
         left: Left bound as a LineString.
         right: Right bound as a LineString.
         centre: Centre line as a LineString.
-        polygon: Drivable area.
+        polygon: Drivable area (prepared for repeated predicates).
         closed: Whether the track is a loop.
         length_m: Centre-line length.
+        seg_m: Centre-line segment vectors, ``(C - 1, 2)`` (for ``locate``).
+        seg_len_sq_m2: Their squared lengths, ``(C - 1,)``.
     """
 
     centre_m: NDArray[np.float64]
@@ -70,11 +76,35 @@ class TrackGeometry:
     polygon: Any
     closed: bool
     length_m: float
+    seg_m: NDArray[np.float64]
+    seg_len_sq_m2: NDArray[np.float64]
 
     def project(self, x_m: Any, y_m: Any) -> NDArray[np.float64]:
-        """Arc length of the nearest centre-line point, ``(N,)`` for ``(N,)`` positions."""
-        pts = shapely.points(np.asarray(x_m, dtype=float), np.asarray(y_m, dtype=float))
-        return np.asarray(shapely.line_locate_point(self.centre, pts), dtype=np.float64)
+        """Arc length of the nearest centre-line point, ``(N,)`` for ``(N,)`` positions.
+
+        Plain numpy on the cached segments: the nearest centre point first, then the exact
+        foot on the ``LOCATE_WINDOW`` segments either side of it (the centre line is
+        resampled at ``CENTRE_STEP_M``, so the nearest segment is among them unless the
+        track passes within a few metres of itself).
+        """
+        x = np.asarray(x_m, dtype=np.float64).reshape(-1)
+        y = np.asarray(y_m, dtype=np.float64).reshape(-1)
+        c = self.centre_m
+        near = np.argmin((x[:, None] - c[:, 0]) ** 2 + (y[:, None] - c[:, 1]) ** 2, axis=1)
+        seg = np.clip(near[:, None] + _WINDOW, 0, len(self.seg_m) - 1)
+        dx = x[:, None] - c[seg, 0]
+        dy = y[:, None] - c[seg, 1]
+        sx, sy = self.seg_m[seg, 0], self.seg_m[seg, 1]
+        u = np.clip((dx * sx + dy * sy) / self.seg_len_sq_m2[seg], 0.0, 1.0)
+        ox, oy = dx - u * sx, dy - u * sy
+        best = np.argmin(ox * ox + oy * oy, axis=1)
+        rows = np.arange(len(x))
+        k = seg[rows, best]
+        return np.asarray(self.s_m[k] + u[rows, best] * (self.s_m[k + 1] - self.s_m[k]))
+
+    def project_scalar(self, x_m: float, y_m: float) -> float:
+        """Slow, obvious reference of ``project`` for one position (shapely, whole line)."""
+        return float(shapely.line_locate_point(self.centre, shapely.Point(x_m, y_m)))
 
     def index_at(self, s_m: Any) -> NDArray[np.intp]:
         """Index of the centre point at or just before arc length ``s_m``."""
@@ -88,9 +118,12 @@ class TrackGeometry:
             d = (d + self.length_m / 2) % self.length_m - self.length_m / 2
         return np.asarray(d, dtype=np.float64)
 
-    def lateral_m(self, x_m: Any, y_m: Any) -> NDArray[np.float64]:
-        """Signed lateral offset from the centre line (right positive), ``(N,)``."""
-        s = self.project(x_m, y_m)
+    def lateral_m(self, x_m: Any, y_m: Any, s_m: Any = None) -> NDArray[np.float64]:
+        """Signed lateral offset from the centre line (right positive), ``(N,)``.
+
+        ``s_m``: the positions' ``project`` when already known.
+        """
+        s = self.project(x_m, y_m) if s_m is None else s_m
         i = self.index_at(s)
         dx = np.asarray(x_m, dtype=float) - self.centre_m[i, 0]
         dy = np.asarray(y_m, dtype=float) - self.centre_m[i, 1]
@@ -162,6 +195,8 @@ def build_track(bounds: TrackBounds, closed_gap_m: float = 35.0) -> TrackGeometr
     else:
         ring = np.concatenate([bounds.left_m, bounds.right_m[::-1]])
         polygon = shapely.make_valid(shapely.polygons(ring))
+    shapely.prepare(polygon)
+    seg = np.diff(centre, axis=0)
     return TrackGeometry(
         centre_m=centre,
         s_m=s,
@@ -175,4 +210,6 @@ def build_track(bounds: TrackBounds, closed_gap_m: float = 35.0) -> TrackGeometr
         polygon=polygon,
         closed=closed,
         length_m=float(s[-1]),
+        seg_m=seg,
+        seg_len_sq_m2=np.maximum(seg[:, 0] ** 2 + seg[:, 1] ** 2, 1e-24),
     )

@@ -7,11 +7,17 @@ import math
 import numpy as np
 import pytest
 import shapely
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
+from reachsets.convex import convex_touch
+from reachsets.footprints import rectangle_corners
+from reachsets.inputs import TrackBounds
 from reachsets.occupancy import ego_occupancy, ego_occupancy_scalar, trajectory_times
 from reachsets.params import ReachParams
 from reachsets.reach_simple import simple_reach_polygons, simple_reach_scalar, simple_reach_vertices
 from reachsets.reach_turn import funnel_polygons, steering_arc_scalar, steering_arcs
+from reachsets.track import build_track
 from tests.reachsets.helpers import objects, straight_ego
 
 TIMES = np.asarray(ReachParams().times_s)
@@ -127,3 +133,48 @@ def test_heading_interpolation_takes_the_short_way():
     )
     occ = ego_occupancy(wrapped, np.array([0.5]))
     assert abs(math.cos(occ.yaw_rad[0]) + 1) < 1e-9
+
+
+@settings(max_examples=80, deadline=None)
+@given(
+    st.floats(-25.0, 25.0),
+    st.floats(-8.0, 8.0),
+    st.floats(-np.pi, np.pi),
+    st.floats(0.0, 60.0),
+    st.floats(-np.pi, np.pi),
+)
+def test_convex_touch_matches_shapely(x, y, yaw, v0, ego_yaw):
+    """The numpy separating-axis test agrees with ``shapely.intersects`` on simple sets."""
+    verts = simple_reach_vertices(objects((x, y, yaw, v0)), TIMES, 13.0)
+    ego = rectangle_corners(np.linspace(-20.0, 60.0, len(TIMES)), 0.0, ego_yaw, 4.7, 2.8)
+    got = convex_touch(verts, ego[None])
+    want = shapely.intersects(shapely.polygons(verts), shapely.polygons(ego)[None])
+    np.testing.assert_array_equal(got, want)
+
+
+def test_convex_touch_counts_touching_edges():
+    square = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
+    assert convex_touch(square, square + np.array([1.0, 0.0]))
+    assert not convex_touch(square, square + np.array([1.0 + 1e-9, 0.0]))
+    assert convex_touch(square, square + np.array([1.0, 1.0]))  # one shared corner
+
+
+def test_track_projection_matches_shapely():
+    # a straight, a 90 degree left-hander of 60 m radius, a straight; 12 m wide
+    phi = np.linspace(0.0, np.pi / 2, 40)
+    centre = np.concatenate(
+        [
+            np.stack([np.linspace(-100.0, 0.0, 21), np.full(21, -60.0)], 1)[:-1],
+            np.stack([60.0 * np.sin(phi), -60.0 * np.cos(phi)], 1),
+            np.stack([np.full(20, 60.0), np.linspace(0.0, 100.0, 21)[1:]], 1),
+        ]
+    )
+    tangent = np.gradient(centre, axis=0)
+    normal = np.stack([-tangent[:, 1], tangent[:, 0]], 1) / np.hypot(*tangent.T)[:, None]
+    track = build_track(TrackBounds(centre + 6.0 * normal, centre - 6.0 * normal))
+    rng = np.random.default_rng(3)
+    pick = rng.integers(0, len(track.centre_m), 200)
+    x = track.centre_m[pick, 0] + rng.uniform(-8.0, 8.0, 200)
+    y = track.centre_m[pick, 1] + rng.uniform(-8.0, 8.0, 200)
+    want = [track.project_scalar(a, b) for a, b in zip(x, y, strict=True)]
+    np.testing.assert_allclose(track.project(x, y), want, atol=1e-6)

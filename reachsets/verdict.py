@@ -1,0 +1,103 @@
+"""Verdict only: the first step at which each object's reduced set touches the ego footprint.
+
+The reductions (deletion polygon ``D``, trimming to the drivable area ``A``, rule patches
+``P``) only ever shrink the unreduced ``simple`` set ``S``, and they commute with the test::
+
+    ((S - D) & A - P)  touches  E    <=>    ((S - D - P) & E)  touches  A
+
+so no set is ever trimmed: ``S`` is tested against the footprint ``E`` in plain numpy (both
+convex, ``convex.convex_touch``); only the touching cells are reduced, intersected with
+their (small) footprint and tested against the prepared area. Cells are visited in two
+rounds: each object's first touching cell, then the remaining touching cells of the objects
+not yet hit; nothing after an object's first hit is computed.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+import shapely
+
+from reachsets.convex import convex_touch
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+
+    from numpy.typing import NDArray
+
+__all__ = ["first_hits"]
+
+
+def first_hits(
+    sets_m: NDArray[np.float64],
+    ego_m: NDArray[np.float64],
+    *,
+    area: Any = None,
+    deletion: Callable[[], NDArray[np.object_] | None] | None = None,
+    patches: Callable[[NDArray[np.bool_]], NDArray[np.object_]] | None = None,
+) -> NDArray[np.bool_]:
+    """Cells whose reduced set touches the ego footprint, up to each object's first hit.
+
+    Args:
+        sets_m: Unreduced convex ``simple`` sets, ``(N, T, V, 2)`` vertices.
+        ego_m: Ego footprint corners per step, ``(T, 4, 2)``.
+        area: Drivable area to trim to (prepared shapely geometry), or ``None``.
+        deletion: Returns the method's deletion polygon per object, ``(N,)`` (called at most
+            once, only when some cell touches), or ``None`` for none.
+        patches: Returns the union of the rule patches per cell for the cells of a
+            ``(N, T)`` mask, ``(N, T)`` geometries (``None`` where no patch applies).
+
+    Returns:
+        ``(N, T)`` mask; each row's first ``True`` is the object's first collision step and
+        nothing after it is set.
+    """
+    touch = convex_touch(sets_m, ego_m[None]) if sets_m.size else np.zeros(sets_m.shape[:2], bool)
+    hits = np.zeros(touch.shape, dtype=bool)
+    if not touch.any():
+        return hits
+    cut = deletion() if deletion is not None else None
+    first = np.zeros_like(touch)
+    rows = np.flatnonzero(touch.any(axis=1))
+    first[rows, np.argmax(touch[rows], axis=1)] = True
+    for todo in (first, touch & ~first):
+        cells = todo & ~hits.any(axis=1, keepdims=True)
+        if cells.any():
+            hits |= _reduced_touch(sets_m, ego_m, cells, area=area, cut=cut, patches=patches)
+    # keep only the first hit per row
+    return np.asarray(hits & (np.cumsum(hits, axis=1) == 1), dtype=bool)
+
+
+def _reduced_touch(
+    sets_m: NDArray[np.float64],
+    ego_m: NDArray[np.float64],
+    cells: NDArray[np.bool_],
+    *,
+    area: Any,
+    cut: NDArray[np.object_] | None,
+    patches: Callable[[NDArray[np.bool_]], NDArray[np.object_]] | None,
+) -> NDArray[np.bool_]:
+    """``((S - D - P) & E)`` touches ``area`` on the ``cells`` mask, ``(N, T)``.
+
+    The differences come first: they are regularised (a polygon minus a polygon is a
+    polygon), whereas the intersection keeps lower-dimensional contact, so a set that only
+    touches the footprint along an edge still counts, as in the full-geometry test.
+    """
+    i, k = np.nonzero(cells)
+    # one creation call for both: the rectangles padded to V vertices by repeating a corner
+    n_v = sets_m.shape[2]
+    pad = np.concatenate([ego_m[k], np.repeat(ego_m[k, -1:], n_v - ego_m.shape[1], axis=1)], 1)
+    polys = shapely.polygons(np.concatenate([sets_m[i, k], pad]))
+    part = polys[: len(i)]
+    if cut is not None:
+        part = shapely.difference(part, cut[i])
+    if patches is not None:
+        grid = patches(cells)[i, k]
+        has = np.asarray([g is not None for g in grid], dtype=bool)
+        if has.any():
+            part[has] = shapely.difference(part[has], grid[has].astype(object))
+    part = shapely.intersection(part, polys[len(i) :])
+    ok = shapely.intersects(part, area) if area is not None else ~shapely.is_empty(part)
+    out = np.zeros(cells.shape, dtype=bool)
+    out[i, k] = np.asarray(ok, dtype=bool)
+    return out
