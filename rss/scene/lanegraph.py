@@ -9,8 +9,9 @@ flows relative to that order::
       centre line   o----o----o----o          lat param 0 = left border,
       right border  o----o----o----o          lat param 1 = right border
 
-:func:`prepare` builds the derived geometry once per map (polygons, an STRtree, centre
-lines, border lengths, widths at stations, intersection conflicts).
+:func:`prepare` builds the derived geometry once per map (prepared polygons, an STRtree,
+centre lines also as flat arrays, border lengths, widths at stations, intersection
+conflicts).
 """
 
 from __future__ import annotations
@@ -23,6 +24,7 @@ import numpy as np
 import shapely
 
 from rss.errors import RssConstellationError
+from rss.scene.polylines import Polylines, polylines
 
 if TYPE_CHECKING:
     from rss.batch import BoolArray, FloatArray, IntArray
@@ -109,6 +111,7 @@ class PreparedGraph:
         conflict_span_m: For every conflicting ``(a, b)``: lengths of ``a`` before and after
             the part of its centre line inside ``b`` (scaled to ``a``'s min length).
         width_rows: ``width_m`` as Python lists (fast scalar access).
+        centre: ``centre_lines`` as flat arrays (vectorised linear referencing).
     """
 
     graph: LaneGraph
@@ -122,6 +125,7 @@ class PreparedGraph:
     conflicts: BoolArray
     conflict_span_m: dict[tuple[int, int], tuple[float, float]]
     width_rows: list[list[float]]
+    centre: Polylines
 
     def width_range(self, lane: int, p0: float, p1: float) -> tuple[float, float]:
         """Min and max width of ``lane`` between parametric positions ``p0 <= p1``."""
@@ -220,6 +224,7 @@ def prepare(graph: LaneGraph) -> PreparedGraph:
     widths = np.array([_widths(lefts[i], rights[i]) for i in range(len(graph))]).reshape(
         len(graph), WIDTH_STATIONS
     )
+    shapely.prepare(polygons)
     conflicts = _conflicts(graph, polygons)
     length = np.asarray(shapely.length(centre), dtype=np.float64).reshape(-1)
     length_min = np.minimum(left_len, right_len)
@@ -239,4 +244,5 @@ def prepare(graph: LaneGraph) -> PreparedGraph:
         conflicts=conflicts,
         conflict_span_m=spans,
         width_rows=widths.tolist(),
+        centre=polylines(centre),
     )

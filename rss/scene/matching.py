@@ -25,6 +25,7 @@ import numpy as np
 import shapely
 
 from rss.scene.lanegraph import WIDTH_STATIONS
+from rss.scene.polylines import heading_at, interpolate
 
 if TYPE_CHECKING:
     from rss.batch import FloatArray, IntArray
@@ -113,33 +114,32 @@ def box_polygons(boxes: BoxArrays) -> np.ndarray:
 
 def lane_heading(graph: PreparedGraph, lanes: IntArray, s_m: FloatArray) -> FloatArray:
     """Heading of the centre lines of ``lanes`` at arc lengths ``s_m`` (both ``(P,)``)."""
-    lines = graph.centre_lines[lanes]
-    length = graph.centre_length_m[lanes]
-    a = shapely.line_interpolate_point(lines, np.clip(s_m - _TANGENT_STEP_M, 0.0, length))
-    b = shapely.line_interpolate_point(lines, np.clip(s_m + _TANGENT_STEP_M, 0.0, length))
-    d = shapely.get_coordinates(b) - shapely.get_coordinates(a)
-    out: FloatArray = np.arctan2(d[:, 1], d[:, 0])
-    return out
+    return heading_at(graph.centre, lanes, s_m, _TANGENT_STEP_M)
 
 
 def _lateral(
     graph: PreparedGraph, lanes: IntArray, points: FloatArray
-) -> tuple[FloatArray, FloatArray]:
-    """Arc length and parametric lateral position of ``points`` ``(P, 2)`` on ``lanes``."""
-    lines = graph.centre_lines[lanes]
-    s = shapely.line_locate_point(lines, shapely.points(points))
-    heading = lane_heading(graph, lanes, s)
-    base = shapely.get_coordinates(shapely.line_interpolate_point(lines, s))
-    d = points - base
-    offset_left = np.cos(heading) * d[:, 1] - np.sin(heading) * d[:, 0]
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Arc length, parametric lateral position and lane heading of ``points`` ``(P, 2)``."""
+    n = len(lanes)
+    s = shapely.line_locate_point(graph.centre_lines[lanes], shapely.points(points))
     length = graph.centre_length_m[lanes]
+    # One interpolation for the foot point and both ends of the heading chord.
+    ends = np.clip(
+        np.concatenate([s - _TANGENT_STEP_M, s + _TANGENT_STEP_M]), 0.0, np.tile(length, 2)
+    )
+    at = interpolate(graph.centre, np.tile(lanes, 3), np.concatenate([s, ends]))
+    chord = at[2 * n :] - at[n : 2 * n]
+    heading = np.arctan2(chord[:, 1], chord[:, 0])
+    d = points - at[:n]
+    offset_left = np.cos(heading) * d[:, 1] - np.sin(heading) * d[:, 0]
     p = np.clip(s / np.where(length > 0, length, 1.0), 0.0, 1.0)
     station = p * (WIDTH_STATIONS - 1)
     i0 = np.minimum(np.floor(station).astype(np.int64), WIDTH_STATIONS - 2)
     frac = station - i0
     w = graph.width_m[lanes, i0] * (1 - frac) + graph.width_m[lanes, i0 + 1] * frac
     lat = 0.5 - offset_left / np.where(w > 0, w, 1.0)
-    return s, lat
+    return s, lat, heading
 
 
 def match_boxes(graph: PreparedGraph, boxes: BoxArrays) -> Matches:
@@ -149,11 +149,20 @@ def match_boxes(graph: PreparedGraph, boxes: BoxArrays) -> Matches:
     box_idx, lane_idx = graph.tree.query(polys, predicate="intersects")
     by_box = np.argsort(box_idx, kind="stable")
     box_idx, lane_idx = box_idx[by_box], lane_idx[by_box]
-    clipped = shapely.intersection(polys[box_idx], graph.polygons[lane_idx])
+    clipped = polys[box_idx]
+    lane_polys = graph.polygons[lane_idx]
+    # A box strictly inside its lane is its own footprint; overlay only the others.
+    cut = ~shapely.contains_properly(lane_polys, clipped)
+    clipped[cut] = shapely.intersection(clipped[cut], lane_polys[cut])
     keep = shapely.area(clipped) > _MIN_AREA_M2
     box_idx, lane_idx, clipped = box_idx[keep], lane_idx[keep], clipped[keep]
     coords, which = shapely.get_coordinates(clipped, return_index=True)
-    s, lat = _lateral(graph, lane_idx[which], coords)
+    centres = np.stack([boxes.x_m[box_idx], boxes.y_m[box_idx]], axis=1)
+    m = len(coords)
+    s_all, lat_all, heading_all = _lateral(
+        graph, np.concatenate([lane_idx[which], lane_idx]), np.concatenate([coords, centres])
+    )
+    s, lat, centre_s, pair_heading = s_all[:m], lat_all[:m], s_all[m:], heading_all[m:]
     p = len(box_idx)
     length = graph.centre_length_m[lane_idx]
     s_min = np.full(p, np.inf)
@@ -166,9 +175,6 @@ def match_boxes(graph: PreparedGraph, boxes: BoxArrays) -> Matches:
     np.maximum.at(lat_max, which, lat)
     safe_len = np.where(length > 0, length, 1.0)
 
-    centres = np.stack([boxes.x_m[box_idx], boxes.y_m[box_idx]], axis=1)
-    centre_s, _ = _lateral(graph, lane_idx, centres) if p else (np.zeros(0),) * 2
-    pair_heading = lane_heading(graph, lane_idx, centre_s) if p else np.zeros(0)
     outside = shapely.distance(shapely.points(centres), graph.polygons[lane_idx])
     misaligned = 1.0 - np.abs(np.cos(boxes.yaw_rad[box_idx] - pair_heading))
     score = outside + _MISALIGNED_M * misaligned
