@@ -16,6 +16,7 @@ conflicts).
 
 from __future__ import annotations
 
+import bisect
 import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
@@ -39,6 +40,7 @@ WIDTH_STATIONS = 21
 SIMPLIFY_M = 0.01
 _MIN_CONFLICT_AREA_M2 = 0.5
 _STATIONS = np.linspace(0.0, 1.0, WIDTH_STATIONS)
+_STATION_LIST: list[float] = _STATIONS.tolist()
 
 
 @dataclass(frozen=True)
@@ -133,9 +135,23 @@ class PreparedGraph:
         if p0 <= 0.0 and p1 >= 1.0:
             return min(row), max(row)
         step = WIDTH_STATIONS - 1
-        values = [float(v) for v in np.interp([p0, p1], _STATIONS, row)]
+        values = [_interp(p0, row), _interp(p1, row)]
         values += row[math.floor(p0 * step) + 1 : math.ceil(p1 * step)]
         return min(values), max(values)
+
+
+def _interp(x: float, row: list[float]) -> float:
+    """``numpy.interp(x, stations, row)`` for one scalar, in plain Python (same arithmetic)."""
+    if x <= _STATION_LIST[0]:
+        return row[0]
+    if x >= _STATION_LIST[-1]:
+        return row[-1]
+    j = bisect.bisect_right(_STATION_LIST, x) - 1
+    x0 = _STATION_LIST[j]
+    if x == x0:
+        return row[j]
+    slope = (row[j + 1] - row[j]) / (_STATION_LIST[j + 1] - x0)
+    return slope * (x - x0) + row[j]
 
 
 def _polyline_length(points: FloatArray) -> float:
