@@ -111,6 +111,14 @@ class UnstructuredAgents:
         names = UnstructuredAgents.__dataclass_fields__
         return UnstructuredAgents(**{n: [r.get(n, defaults.get(n)) for r in rows] for n in names})  # type: ignore[arg-type]
 
+    @staticmethod
+    def concat(parts: Sequence[UnstructuredAgents]) -> UnstructuredAgents:
+        """The agents of ``parts``, one after the other."""
+        names = UnstructuredAgents.__dataclass_fields__
+        return UnstructuredAgents(
+            **{n: np.concatenate([getattr(p, n) for p in parts]) for n in names}
+        )
+
     def take(self, index: IntArray) -> UnstructuredAgents:
         """The agents at ``index``."""
         return UnstructuredAgents(**{n: getattr(self, n)[index] for n in self.__dataclass_fields__})

@@ -14,21 +14,27 @@ import numpy as np
 import shapely
 
 from rss.unstructured.agents import MotionModel, UnstructuredAgents, motion_model
+from rss.unstructured.batch import AgentDynamics
 from rss.unstructured.decision import Decisions, UnstructuredResponse, decide
 from rss.unstructured.errors import UnstructuredInputError
 from rss.unstructured.memory import UnstructuredMemory
-from rss.unstructured.pedestrian import pedestrian_sets
+from rss.unstructured.pedestrian_batch import pedestrian_sets_batch
 from rss.unstructured.response import UnstructuredProperResponse, resolve_unstructured
 from rss.unstructured.sets import TrajectorySets
-from rss.unstructured.vehicle import vehicle_sets
+from rss.unstructured.vehicle_batch import vehicle_sets_batch
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
 
     from rss.batch import BoolArray, IntArray
-    from rss.dynamics import RssDynamics
+    from rss.dynamics import RssDynamics, UnstructuredSettings
 
-__all__ = ["UnstructuredResult", "check_unstructured", "intersections", "trajectory_sets"]
+__all__ = [
+    "UnstructuredResult",
+    "check_unstructured",
+    "intersections",
+    "trajectory_sets",
+]
 
 
 @dataclass(frozen=True)
@@ -57,33 +63,44 @@ class UnstructuredResult:
 
 
 def trajectory_sets(
-    agents: UnstructuredAgents, dynamics: Sequence[RssDynamics], *, ego: bool = False
+    agents: UnstructuredAgents,
+    dynamics: Sequence[RssDynamics],
+    *,
+    ego: bool | BoolArray = False,
 ) -> TrajectorySets:
-    """Brake / continue-forward pieces of every agent (grouped by dynamics and model).
+    """Brake / continue-forward pieces of every agent, batched by settings and motion model.
+
+    Agents with different dynamics values share one batch when their unstructured settings
+    (step counts, radii) are equal: the ego and every vehicle are typically one batch,
+    the pedestrians another.
 
     Args:
         agents: ``(N,)`` valid agents.
         dynamics: One dynamics per agent.
-        ego: Extend the footprints in front by ``min_longitudinal_safety_distance``.
+        ego: ``(N,)`` (or one for all) rows extended in front by their
+            ``min_longitudinal_safety_distance``.
 
     Raises:
         UnstructuredInputError: ``dynamics`` has the wrong length.
     """
-    if len(dynamics) != len(agents):
-        raise UnstructuredInputError(
-            "dynamics", f"needs {len(agents)} entries, got {len(dynamics)}"
-        )
-    models = motion_model(agents.object_type)
-    groups: dict[tuple[RssDynamics, int], list[int]] = {}
-    for i, (dyn, model) in enumerate(zip(dynamics, models, strict=True)):
-        groups.setdefault((dyn, int(model)), []).append(i)
+    n = len(agents)
+    if len(dynamics) != n:
+        raise UnstructuredInputError("dynamics", f"needs {n} entries, got {len(dynamics)}")
+    extra = np.where(ego, [d.min_longitudinal_safety_distance_m for d in dynamics], 0.0)
+    groups: dict[tuple[UnstructuredSettings, int], list[int]] = {}
+    settings: dict[int, UnstructuredSettings] = {}  # hash each settings object once
+    for i, (dyn, model) in enumerate(
+        zip(dynamics, motion_model(agents.object_type).tolist(), strict=True)
+    ):
+        key = settings.setdefault(id(dyn.unstructured), dyn.unstructured)
+        groups.setdefault((key, model), []).append(i)
     parts = []
-    for (dyn, model), rows in groups.items():
+    for (_, model), rows in groups.items():
         idx = np.array(rows, dtype=np.int64)
-        extra = np.full(idx.shape, dyn.min_longitudinal_safety_distance_m if ego else 0.0)
-        build = pedestrian_sets if model == MotionModel.PEDESTRIAN else vehicle_sets
-        parts.append((build(agents.take(idx), dyn, extra), idx))
-    return TrajectorySets.concat(parts, len(agents))
+        sub = agents if len(rows) == n else agents.take(idx)
+        build = pedestrian_sets_batch if model == MotionModel.PEDESTRIAN else vehicle_sets_batch
+        parts.append((build(sub, AgentDynamics.of([dynamics[i] for i in rows], extra[idx])), idx))
+    return TrajectorySets.concat(parts, n)
 
 
 def intersections(
@@ -91,14 +108,30 @@ def intersections(
 ) -> tuple[BoolArray, BoolArray, BoolArray]:
     """``(T_ego,b ∩ T_oth,f, T_oth,b ∩ T_ego,f, T_ego,b ∩ T_oth,b)`` per agent ``(N,)``.
 
-    Touching counts as intersecting (ad-rss: not ``disjoint``).
+    Touching counts as intersecting (ad-rss: not ``disjoint``). Candidate piece pairs are
+    those whose axis-aligned boxes overlap (numpy, all pairs at once; the boxes hold the
+    hulls' own vertices, so the test is exact) and of which at least one piece is a brake
+    piece (continue-forward pairs decide nothing); only their hulls are built and tested,
+    in one shapely call (ego hulls prepared).
     """
     n = agent_sets.count
     out = [np.zeros(n, dtype=bool) for _ in range(3)]
-    if n == 0 or ego_sets.hulls.size == 0:
+    if n == 0 or ego_sets.owner.size == 0 or agent_sets.owner.size == 0:
         return out[0], out[1], out[2]
-    tree = shapely.STRtree(agent_sets.hulls)
-    e, a = tree.query(ego_sets.hulls, predicate="intersects")
+    e_lo, e_hi = ego_sets.bounds()
+    a_lo, a_hi = agent_sets.bounds()
+    candidates = (
+        (e_lo[:, None, 0] <= a_hi[None, :, 0])
+        & (a_lo[None, :, 0] <= e_hi[:, None, 0])
+        & (e_lo[:, None, 1] <= a_hi[None, :, 1])
+        & (a_lo[None, :, 1] <= e_hi[:, None, 1])
+        & (ego_sets.brake[:, None] | agent_sets.brake[None, :])
+    )
+    e, a = np.nonzero(candidates)
+    ego_hulls = ego_sets.hulls_at(e)
+    shapely.prepare(ego_hulls)
+    hit = shapely.intersects(ego_hulls, agent_sets.hulls_at(a))
+    e, a = e[hit], a[hit]
     e_brake, a_brake, owner = ego_sets.brake[e], agent_sets.brake[a], agent_sets.owner[a]
     for flags, mask in zip(out, (e_brake, a_brake, e_brake & a_brake), strict=True):
         flags[owner[mask]] = True
@@ -145,25 +178,38 @@ def check_unstructured(  # noqa: PLR0917  (one engine step)
     valid = agents.valid() & ego_valid
     ok = bool(valid.all() and ego_valid)
     idx = np.flatnonzero(valid)
-    sub = agents.take(idx)
-    ego_sets = (
-        trajectory_sets(ego, [ego_dynamics], ego=True)
-        if ego_valid
-        else TrajectorySets.concat([], 1)
+    sub = agents if ok else agents.take(idx)
+    ego_sets, sub_sets = _ego_and_agent_sets(
+        ego if ego_valid else None, sub, ego_dynamics, [agent_dynamics[int(i)] for i in idx]
     )
-    sub_sets = trajectory_sets(sub, [agent_dynamics[int(i)] for i in idx])
     hits = intersections(ego_sets, sub_sets)
     sub_dec, memory_out = decide(
         *hits, ego, sub, ego_dynamics.unstructured.drive_away_max_angle, memory
     )
     decisions = _expand(sub_dec, idx, len(agents))
-    agent_sets = TrajectorySets(sub_sets.hulls, idx[sub_sets.owner], sub_sets.brake, len(agents))
+    agent_sets = TrajectorySets.concat([(sub_sets, idx)], len(agents))
     proper = resolve_unstructured(decisions, agents, ego, ego_dynamics, default_ego)
     result = UnstructuredResult(
         ok, valid, agents.object_id, decisions, ego_sets, agent_sets, proper
     )
     invalid_ids = agents.object_id[~valid]
     return result, memory_out.merged(memory, invalid_ids) if invalid_ids.size else memory_out
+
+
+def _ego_and_agent_sets(
+    ego: UnstructuredAgents | None,
+    agents: UnstructuredAgents,
+    ego_dynamics: RssDynamics,
+    agent_dynamics: Sequence[RssDynamics],
+) -> tuple[TrajectorySets, TrajectorySets]:
+    """The ego's and the agents' sets, built in one batch per settings and model."""
+    if ego is None:
+        return TrajectorySets.empty(1), trajectory_sets(agents, agent_dynamics)
+    both = UnstructuredAgents.concat((ego, agents))
+    mask = np.zeros(len(both), dtype=bool)
+    mask[0] = True
+    sets = trajectory_sets(both, [ego_dynamics, *agent_dynamics], ego=mask)
+    return sets.select(sets.owner == 0, 1), sets.select(sets.owner > 0, len(agents), shift=1)
 
 
 def _expand(dec: Decisions, idx: IntArray, n: int) -> Decisions:

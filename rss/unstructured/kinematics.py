@@ -201,7 +201,7 @@ def vehicle_integrate(  # noqa: PLR0917  (kernel over arrays)
     ratio: Real,
     yaw_rate_change_radps2: float,
     step_s: float,
-    max_speed_mps: float,
+    max_speed_mps: Real,
     min_radius_m: float,
 ) -> Points:
     """Drive ``duration`` in steps while the yaw rate changes linearly (``ratio`` ∈ [-1, 1]).
@@ -217,12 +217,12 @@ def vehicle_integrate(  # noqa: PLR0917  (kernel over arrays)
         The end points, shape of the broadcast inputs.
     """
     fields = (p.x_m, p.y_m, p.yaw_rad, p.speed_mps, p.yaw_rate_radps)
-    b = np.broadcast_arrays(*fields, accel_mps2, duration_s, ratio)
+    b = np.broadcast_arrays(*fields, accel_mps2, duration_s, ratio, max_speed_mps)
     shape = b[0].shape
-    x0, y0, yaw0, v0, rate0, accel, duration, ratio_m = (np.ravel(a) for a in b)
+    x0, y0, yaw0, v0, rate0, accel, duration, ratio_m, vcap = (np.ravel(a) for a in b)
     grid = [0.0]  # step ends: t + step added one by one, as the sequential loop does
     longest = float(duration.max()) if duration.size else 0.0
-    while lt(grid[-1], longest, DURATION_PRECISION):
+    while grid[-1] < longest and longest - grid[-1] >= DURATION_PRECISION:  # tolerant <
         grid.append(grid[-1] + step_s)
     if len(grid) == 1:
         return Points(*(np.array(a, dtype=np.float64) for a in b[:5]))
@@ -232,7 +232,7 @@ def vehicle_integrate(  # noqa: PLR0917  (kernel over arrays)
     dt = np.where(full, step_s, duration - t[:-1])
     rate = rate0 + yaw_rate_change_radps2 * np.where(full, t[1:], duration) * ratio_m
     moving = active & ~eq(dt, 0.0, DURATION_PRECISION)
-    speeds, dist = _step_speeds(v0, accel, np.where(moving, dt, 0.0), moving, max_speed_mps)
+    speeds, dist = _step_speeds(v0, accel, np.where(moving, dt, 0.0), moving, vcap)
     turning = ~eq(rate, 0.0, ANGULAR_VELOCITY_PRECISION)
     radius = np.where(turning, speeds[:-1] / np.where(turning, rate, 1.0), DISTANCE_MAX_M)
     small = lt(np.abs(radius), min_radius_m, DISTANCE_PRECISION)

@@ -11,8 +11,8 @@ Footprint arrays are ``(N, 4, 2)`` (one per agent) or ``(R, N, 4, 2)`` (R per ag
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 import shapely
@@ -22,10 +22,26 @@ if TYPE_CHECKING:
 
     from rss.batch import BoolArray, FloatArray, IntArray
 
-__all__ = ["Location", "PieceCollector", "TrajectorySets", "front_and_sides"]
+__all__ = [
+    "Location",
+    "PieceCollector",
+    "Pieces",
+    "TrajectorySets",
+    "front_and_sides",
+    "pieces_from_points",
+]
 
-#: (left, centre, right) footprints of one step, each ``(N, 4, 2)``.
-Location = tuple["FloatArray", "FloatArray", "FloatArray"]
+#: (left, centre, right) footprints of one step: arrays ``(N, 4, 2)`` for
+#: :class:`PieceCollector`, footprint rows (an int or a list) for
+#: :class:`rss.unstructured.batch.RowPieces`.
+Location = tuple[Any, Any, Any]
+
+
+class Pieces(Protocol):
+    """Where :func:`front_and_sides` adds pieces (footprint arrays or footprint rows)."""
+
+    def add(self, *footprints: Any, brake: bool) -> None:
+        """Add the hull of the given footprints."""
 
 
 @dataclass(frozen=True)
@@ -34,31 +50,85 @@ class TrajectorySets:
 
     Every piece belongs to the continue-forward set; pieces with ``brake`` set also belong
     to the brake set (ad-rss starts the continue-forward polygon from the brake polygon).
+    A piece is the convex hull of its points; the shapely hulls are built on first use and
+    only for the pieces asked for (:meth:`hulls_at`), so a check that rules pairs out by
+    their bounding boxes never builds them.
 
     Attributes:
-        hulls: ``(P,)`` shapely geometries (convex polygons; degenerate hulls may be lines).
+        coords: ``(K, P, 2)`` the points of each piece (point-major: reductions over the
+            points run over contiguous slabs), padded to ``K`` by repeating the piece's
+            last point (a repeated point leaves the hull as is).
+        size: ``(P,)`` number of points of each piece before padding.
         owner: ``(P,)`` agent index of each piece.
         brake: ``(P,)`` piece belongs to the brake set.
         count: Number of agents ``A``.
     """
 
-    hulls: np.ndarray
+    coords: FloatArray
+    size: IntArray
     owner: IntArray
     brake: BoolArray
     count: int
+    _hulls: np.ndarray = field(init=False, repr=False, compare=False)
+    _built: BoolArray = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        """Start with no hull built."""
+        object.__setattr__(self, "_hulls", np.empty(self.owner.shape, dtype=object))
+        object.__setattr__(self, "_built", np.zeros(self.owner.shape, dtype=bool))
+
+    @staticmethod
+    def empty(count: int) -> TrajectorySets:
+        """No pieces for ``count`` agents."""
+        none = np.zeros(0, dtype=np.int64)
+        return TrajectorySets(np.zeros((1, 0, 2)), none, none, none.astype(bool), count)
 
     @staticmethod
     def concat(parts: Sequence[tuple[TrajectorySets, IntArray]], count: int) -> TrajectorySets:
         """Merge sets of agent groups; ``parts`` pairs a group's sets with its agent indices."""
         if not parts:
-            empty = np.zeros(0, dtype=np.int64)
-            return TrajectorySets(np.empty(0, dtype=object), empty, empty.astype(bool), count)
+            return TrajectorySets.empty(count)
+        width = max(s.coords.shape[0] for s, _ in parts)
         return TrajectorySets(
-            np.concatenate([s.hulls for s, _ in parts]),
+            np.concatenate([_pad(s.coords, width) for s, _ in parts], axis=1),
+            np.concatenate([s.size for s, _ in parts]),
             np.concatenate([idx[s.owner] for s, idx in parts]),
             np.concatenate([s.brake for s, _ in parts]),
             count,
         )
+
+    def select(self, keep: BoolArray, count: int, *, shift: int = 0) -> TrajectorySets:
+        """The pieces where ``keep``, their owners lowered by ``shift``, for ``count`` agents."""
+        return TrajectorySets(
+            np.compress(keep, self.coords, axis=1),
+            self.size[keep],
+            self.owner[keep] - shift,
+            self.brake[keep],
+            count,
+        )
+
+    def bounds(self) -> tuple[FloatArray, FloatArray]:
+        """``(low, high)`` corners of every piece's axis-aligned box, ``(P, 2)`` each."""
+        return self.coords.min(axis=0), self.coords.max(axis=0)
+
+    def hulls_at(self, index: IntArray) -> np.ndarray:
+        """Shapely hulls of the pieces at ``index`` (each built once, all in one call)."""
+        missing = np.unique(index[~self._built[index]])
+        if missing.size:
+            points = np.swapaxes(self.coords[:, missing], 0, 1)  # (M, K, 2)
+            sizes = self.size[missing]
+            real = np.arange(points.shape[1]) < sizes[:, None]
+            lines = shapely.linestrings(
+                points[real], indices=np.repeat(np.arange(missing.size), sizes)
+            )
+            self._hulls[missing] = shapely.convex_hull(lines)
+            self._built[missing] = True
+        return np.asarray(self._hulls[index])
+
+    @property
+    def hulls(self) -> np.ndarray:
+        """``(P,)`` shapely hulls of every piece (convex polygons; degenerate ones may be lines)."""
+        return self.hulls_at(np.arange(self.owner.shape[0]))
 
     def polygons(self, *, brake: bool) -> np.ndarray:
         """Merged set per agent: ``(A,)`` shapely geometries, holes filled (as ad-rss' outer ring).
@@ -77,6 +147,29 @@ class TrajectorySets:
                 merged = shapely.Polygon(merged.exterior)
             out[a] = merged
         return out
+
+
+def _pad(coords: FloatArray, width: int) -> FloatArray:
+    """``(K, P, 2)`` points padded to ``width`` by repeating the last point."""
+    extra = width - coords.shape[0]
+    if extra == 0:
+        return coords
+    return np.concatenate((coords, np.repeat(coords[-1:], extra, axis=0)))
+
+
+def pieces_from_points(groups: Sequence[FloatArray], brake: Sequence[bool]) -> TrajectorySets:
+    """Pieces of ``N`` agents from point groups ``(N, K_g, 2)`` (piece-major, owner = agent).
+
+    Args:
+        groups: One point group per piece of every agent.
+        brake: Per group, its pieces belong to the brake set.
+    """
+    n = groups[0].shape[0]
+    width = max(g.shape[1] for g in groups)
+    coords = np.concatenate([_pad(np.swapaxes(g, 0, 1), width) for g in groups], axis=1)
+    size = np.repeat([g.shape[1] for g in groups], n)
+    owner = np.tile(np.arange(n), len(groups))
+    return TrajectorySets(coords, size, owner, np.repeat(np.asarray(brake, dtype=bool), n), n)
 
 
 class PieceCollector:
@@ -105,24 +198,15 @@ class PieceCollector:
         self._brake.append(brake)
 
     def build(self) -> TrajectorySets:
-        """Convex hulls of every collected group: one shapely call per group size."""
-        n = self.count
-        hulls = np.empty((len(self._points), n), dtype=object)
-        sizes = np.array([p.shape[1] for p in self._points], dtype=np.int64)
-        for size in np.unique(sizes):
-            rows = np.flatnonzero(sizes == size)
-            coords = np.stack([self._points[r] for r in rows]).reshape(-1, int(size), 2)
-            hulls[rows] = shapely.convex_hull(shapely.linestrings(coords)).reshape(len(rows), n)
-        owner = np.tile(np.arange(n), len(self._points))
-        brake = np.repeat(np.array(self._brake, dtype=bool), n)
-        return TrajectorySets(hulls.reshape(-1), owner, brake, n)
+        """The collected groups as pieces."""
+        return pieces_from_points(self._points, self._brake)
 
 
 def front_and_sides(
-    pieces: PieceCollector,
+    pieces: Pieces,
     initial: Location,
     sides: Sequence[Location],
-    front: tuple[FloatArray, FloatArray, FloatArray],
+    front: Location,
     *,
     brake: bool,
 ) -> Location:

@@ -1,0 +1,237 @@
+"""Pedestrian trajectory sets, fast: every point of a batch in two kernel calls.
+
+Same model and pieces as the step-by-step :func:`rss.unstructured.pedestrian.pedestrian_sets`
+(its reference; ``tests/rss/unstructured/test_batch.py`` holds them equal), with per-agent
+dynamics values. Moving pedestrians: one :func:`pedestrian_move_timed` for the response
+time (front and back, every heading ratio) and one :func:`pedestrian_move` for everything
+after it; the rows of the footprint table (``R`` rows of ``N`` agents)::
+
+    b_front (rf) | sides (3 Sb) | back (rb) | cf front (rf) | extra left (Ncf)
+    | extra right (Ncf) | cf sides (3 Kc) | current (1)
+
+Straight moves are moves with ratio 0 (the same formula). Standing pedestrians get the two
+circles of the reference.
+"""
+
+from __future__ import annotations
+
+import functools
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from rss.physics import (
+    DISTANCE_PRECISION,
+    SPEED_PRECISION,
+    accelerated_limited_movement,
+    eq,
+    gt,
+    le,
+)
+from rss.unstructured.batch import CORNERS, PiecePlan, RowPieces, plan_sets
+from rss.unstructured.kinematics import (
+    Points,
+    footprints,
+    pedestrian_move,
+    pedestrian_move_timed,
+    time_to_stop,
+)
+from rss.unstructured.pedestrian import CIRCLE_VERTICES, heading_ratios
+from rss.unstructured.sets import TrajectorySets, front_and_sides
+
+if TYPE_CHECKING:
+    from rss.batch import FloatArray
+    from rss.dynamics import UnstructuredSettings
+    from rss.unstructured.agents import UnstructuredAgents
+    from rss.unstructured.batch import AgentDynamics
+
+__all__ = ["pedestrian_plan", "pedestrian_sets_batch"]
+
+#: A standing pedestrian: the brake circle, then the continue-forward circle.
+_CIRCLES = PiecePlan(
+    np.arange(2 * CIRCLE_VERTICES).reshape(2, CIRCLE_VERTICES),
+    np.full(2, CIRCLE_VERTICES),
+    np.array([True, False]),
+)
+
+
+def _counts(u: UnstructuredSettings) -> tuple[int, int, int, int, int]:
+    """``(nf, nb, Sb, Kc, Ncf)``: ratios per side front / back, side steps, cf extremes."""
+    return (
+        u.pedestrian_front_intermediate_heading_change_ratio_steps + 1,
+        u.pedestrian_back_intermediate_heading_change_ratio_steps + 1,
+        u.pedestrian_brake_intermediate_acceleration_steps,
+        u.pedestrian_continue_forward_intermediate_acceleration_steps + 2,
+        u.pedestrian_continue_forward_intermediate_heading_change_ratio_steps + 1,
+    )
+
+
+@functools.lru_cache(maxsize=16)
+def pedestrian_plan(u: UnstructuredSettings) -> PiecePlan:
+    """The pieces of one moving pedestrian over the rows of the footprint table."""
+    nf, nb, sb, kc, ncf = _counts(u)
+    rf, rb = 2 * nf + 1, 2 * nb + 1
+    o_sides = rf
+    o_back = o_sides + 3 * sb
+    o_cf = o_back + rb
+    o_el = o_cf + rf
+    o_er = o_el + ncf
+    o_cfs = o_er + ncf
+    current = o_cfs + 3 * kc
+
+    def rows(start: int, stop: int) -> list[int]:
+        return list(range(start, stop))
+
+    def triple(start: int) -> tuple[int, int, int]:
+        return (start, start + 1, start + 2)
+
+    pieces = RowPieces()
+    left_b, right_b = o_back + 2 * nb - 1, o_back
+    brake_max_loc = (left_b, o_back + rb - 1, right_b)
+    pieces.add_corners(
+        [CORNERS * right_b + 3, CORNERS * right_b, CORNERS * left_b + 2, CORNERS * left_b + 1],
+        brake=True,
+    )
+    sides = [triple(o_sides + 3 * k) for k in range(sb)]
+    front = (rows(nf, 2 * nf), rf - 1, rows(0, nf))
+    front_and_sides(pieces, brake_max_loc, sides, front, brake=True)
+    pieces.add(*brake_max_loc, current, brake=True)
+    cf_front = (
+        rows(o_cf + nf, o_cf + 2 * nf) + rows(o_el, o_el + ncf),
+        o_cf + rf - 1,
+        rows(o_cf, o_cf + nf) + rows(o_er, o_er + ncf),
+    )
+    cf_sides = [triple(o_cfs + 3 * k) for k in range(kc)]
+    front_and_sides(pieces, brake_max_loc, cf_sides, cf_front, brake=False)
+    return pieces.plan()
+
+
+def pedestrian_sets_batch(agents: UnstructuredAgents, dyn: AgentDynamics) -> TrajectorySets:
+    """Brake and continue-forward sets of ``N`` pedestrians (per-agent dynamics values).
+
+    Args:
+        agents: The pedestrians ``(N,)``.
+        dyn: Their dynamics ``(N,)`` (one settings).
+
+    Returns:
+        The pieces (owner = index into ``agents``).
+    """
+    n = len(agents)
+    standing = eq(agents.speed_max_mps, 0.0, SPEED_PRECISION)
+    if not standing.any():
+        return _moving(agents, dyn)
+    if standing.all():
+        return _standing(agents, dyn)
+    parts = []
+    for mask, build in ((standing, _standing), (~standing, _moving)):
+        idx = np.flatnonzero(mask)
+        parts.append((build(agents.take(idx), dyn.take(idx)), idx))
+    return TrajectorySets.concat(parts, n)
+
+
+def _t_stop(agents: UnstructuredAgents, dyn: AgentDynamics) -> FloatArray:
+    return time_to_stop(
+        agents.speed_max_mps,
+        dyn.response_time_s,
+        dyn.max_speed_mps,
+        dyn.accel_max_mps2,
+        dyn.brake_min_mps2,
+    )
+
+
+def _standing(agents: UnstructuredAgents, dyn: AgentDynamics) -> TrajectorySets:
+    """Circles around the centre (:func:`rss.unstructured.pedestrian._standing`)."""
+    rho, vcap = dyn.response_time_s, dyn.max_speed_mps
+    t_stop = _t_stop(agents, dyn)
+    t_rho = np.minimum(t_stop, rho)
+    v_rho, d_rho = accelerated_limited_movement(
+        agents.speed_max_mps, vcap, dyn.accel_max_mps2, t_rho
+    )
+    after = gt(t_stop, rho, 1e-3)
+    _, d_after = accelerated_limited_movement(
+        v_rho,
+        vcap,
+        np.stack((dyn.brake_min_mps2, dyn.accel_max_mps2)),
+        np.maximum(t_stop - rho, 0.0),
+    )
+    radius = d_rho + np.where(after, d_after, 0.0)  # (2, N): brake, continue forward
+    angles = np.arange(CIRCLE_VERTICES) * (2.0 * np.pi / CIRCLE_VERTICES)
+    x = agents.x_m + np.cos(angles)[None, :, None] * radius[:, None]
+    y = agents.y_m + np.sin(angles)[None, :, None] * radius[:, None]
+    table = np.stack((x, y), axis=-1).reshape(2 * CIRCLE_VERTICES, len(agents), 2)
+    return plan_sets(table, _CIRCLES)
+
+
+def _moving(agents: UnstructuredAgents, dyn: AgentDynamics) -> TrajectorySets:
+    """Moving pedestrians (:func:`rss.unstructured.pedestrian._moving`)."""
+    u, a = dyn.settings, agents
+    nf, nb, sb, kc, ncf = _counts(u)
+    rf, rb, n = 2 * nf + 1, 2 * nb + 1, len(a)
+    rho, vcap, radius = dyn.response_time_s, dyn.max_speed_mps, u.pedestrian_turning_radius
+    amax, bmax, bmin = dyn.accel_max_mps2, dyn.brake_max_mps2, dyn.brake_min_mps2
+    zeros = np.zeros(n)
+    # response time: front rows [right nf | left nf | centre], then back rows likewise
+    f_right, f_left = heading_ratios(nf - 1)
+    b_right, b_left = heading_ratios(nb - 1)
+    phase = np.repeat([0, 1], [rf, rb])
+    rt = pedestrian_move_timed(
+        Points(a.x_m, a.y_m, a.yaw_rad, np.stack((a.speed_max_mps, a.speed_min_mps))[phase], zeros),
+        np.stack((amax, bmax))[phase],
+        rho,
+        np.concatenate((f_right, f_left, [0.0], b_right, b_left, [0.0]))[:, None],
+        radius,
+        vcap,
+    )
+    # distances after rho: back brake_max to standstill, front brake_min / accel_max, rho
+    v_back, v_front = rt.speed_mps[-1], rt.speed_mps[rf - 1]
+    t_back = np.where(gt(v_back, 0.0, SPEED_PRECISION), v_back / -bmax, 0.0)
+    t_after = np.maximum(0.0, _t_stop(a, dyn) - rho)
+    _, dist = accelerated_limited_movement(
+        np.stack((v_back, v_front, v_front, a.speed_max_mps)),
+        vcap,
+        np.stack((bmax, bmin, amax, amax)),
+        np.stack((t_back, t_after, t_after, rho)),
+    )
+    brake_max_d, brake_min_d, accel_max_d = dist[:3]
+    side_d = dist[3] / (1.0 + sb) * np.arange(1, sb + 1)[:, None]
+    width = (accel_max_d - brake_max_d) / (kc - 1.0)
+    cf_d = brake_max_d + width * np.arange(kc)[:, None]
+    cf_d = np.where(le(cf_d, accel_max_d, DISTANCE_PRECISION), cf_d, accel_max_d)
+    # every move after rho: start rows into [response-time rows | the current pose]
+    start = rf + rb
+    left, centre, right = 2 * nf - 1, rf - 1, 0
+    front_rows = list(range(rf))
+    rows = [
+        *front_rows,
+        *[start] * (3 * sb),
+        *range(rf, rf + rb),
+        *front_rows,
+        *[left] * ncf,
+        *[right] * ncf,
+        *[left, centre, right] * kc,
+        start,
+    ]
+    dist_rows = np.concatenate(
+        (
+            np.broadcast_to(brake_min_d, (rf, n)),
+            np.repeat(side_d, 3, axis=0),
+            np.broadcast_to(brake_max_d, (rb, n)),
+            np.broadcast_to(accel_max_d, (rf + 2 * ncf, n)),
+            np.repeat(cf_d, 3, axis=0),
+            zeros[None],
+        )
+    )
+    cf_right, cf_left = heading_ratios(ncf - 1)
+    lr = [1.0, 0.0, -1.0]
+    ratio_rows = np.array(
+        [0.0] * rf + lr * sb + [0.0] * (rb + rf) + [*cf_left, *cf_right] + lr * kc + [0.0]
+    )
+    current = Points(a.x_m, a.y_m, a.yaw_rad, a.speed_min_mps, zeros)
+    x, y, yaw, speed = (
+        np.concatenate((getattr(rt, f), getattr(current, f)[None]))[rows]
+        for f in ("x_m", "y_m", "yaw_rad", "speed_mps")
+    )
+    moved = pedestrian_move(Points(x, y, yaw, speed, zeros), dist_rows, ratio_rows[:, None], radius)
+    corners = footprints(moved, a.length_m, a.width_m, dyn.front_extra_m)
+    table = np.moveaxis(corners, 2, 1).reshape(-1, n, 2)
+    return plan_sets(table, pedestrian_plan(u))
