@@ -27,23 +27,17 @@ __all__ = ["corridor_plans"]
 
 
 def _cross_section(prep: PreparedGraph, base: Step, j: int, j_lo: int, j_hi: int) -> list[Step]:
-    left: list[Step] = []
-    step: Step | None = base
-    jj = j
-    while step is not None and jj > j_lo:
-        step = lateral(prep, step[0], forward=step[1], right=False)
-        jj -= 1
-        if step is not None:
-            left.append(step)
-    right: list[Step] = []
-    step, jj = base, j
-    while step is not None and jj < j_hi:
-        step = lateral(prep, step[0], forward=step[1], right=True)
-        jj += 1
-        if step is not None:
-            right.append(step)
-    lanes = [*left[::-1], base, *right]
-    return lanes if j_lo <= j <= j_hi else []
+    """Lanes beside ``base`` (at lateral index ``j``) within ``[j_lo, j_hi]``, left to right."""
+    out: list[tuple[int, Step]] = [(j, base)]
+    for right, dj in ((False, -1), (True, 1)):
+        step: Step | None = base
+        jj = j
+        while step is not None:
+            step = lateral(prep, step[0], forward=step[1], right=right)
+            jj += dj
+            if step is not None:
+                out.append((jj, step))
+    return [s for jj, s in sorted(out, key=lambda item: item[0]) if j_lo <= jj <= j_hi]
 
 
 def corridor_plans(
@@ -58,8 +52,8 @@ def corridor_plans(
     members = path + [lane for lane in extra if lane not in path]
     k_lo = min(tree.k[lane] for lane in members)
     k_hi = max(tree.k[lane] for lane in members)
-    j_lo = min(tree.j[lane] for lane in members)
-    j_hi = max(tree.j[lane] for lane in members)
+    lateral_range = [tree.j[lane] for lane in extra] or [tree.j[lane] for lane in members]
+    j_lo, j_hi = min(lateral_range), max(lateral_range)
     plans: list[SegmentPlan] = []
     for k in range(k_lo, k_hi + 1):
         bases = [lane for lane in members if tree.k[lane] == k]
@@ -69,8 +63,7 @@ def corridor_plans(
         lanes = _cross_section(prep, (base, tree.forward[base]), tree.j[base], j_lo, j_hi)
         seen: set[int] = set()
         unique = [s for s in lanes if not (s[0] in seen or seen.add(s[0]))]  # type: ignore[func-returns-value]
-        if unique:
-            plans.append(SegmentPlan(lanes=unique))
+        plans.append(SegmentPlan(lanes=unique or [(base, tree.forward[base])]))
     used: set[int] = set()
     for plan in plans:
         plan.lanes = [s for s in plan.lanes if s[0] not in used]

@@ -74,20 +74,26 @@ def create_scene(
         ]
     )
     gap = np.hypot(objects.x_m - ego.x_m, objects.y_m - ego.y_m)
-    gap -= (objects.length_m + ego.length_m) / 2.0
+    gap -= (objects.length_m + objects.width_m + ego.length_m + ego.width_m) / 2.0
     relevant = (gap <= reach) & (matches.anchor[1:] >= 0)
     horizon = float(reach[relevant].max()) + ego.length_m if relevant.any() else 0.0
     velocity = (ego.speed_mps * np.cos(ego.yaw_rad), ego.speed_mps * np.sin(ego.yaw_rad))
     frame = FrameContext(
         prep, ego, objects, settings, matches, RouteTree(), lane_headings(matches, n + 1), velocity
     )
-    frame.tree = connect(prep, int(matches.anchor[0]), forward=frame.forward(0), horizon_m=horizon)
-    need_routes = relevant.any() or road_boundaries
-    routes = ego_routes(frame, max(horizon, _MIN_RELEVANT_M)) if need_routes else []
-    out: list[Constellation] = boundary_constellations(frame, routes[0]) if road_boundaries else []
+    frame.tree = connect(
+        prep,
+        int(matches.anchor[0]),
+        forward=frame.forward(0),
+        horizon_m=horizon,
+        start=float(matches.anchor_s[0]),
+    )
+    out: list[Constellation] = []
+    if road_boundaries:
+        out = boundary_constellations(frame, ego_routes(frame, max(horizon, _MIN_RELEVANT_M))[0])
     skipped: list[int] = []
     for i in np.flatnonzero(relevant):
-        found = object_constellations(frame, int(i), routes, float(reach[i]), green_lights)
+        found = object_constellations(frame, int(i), float(reach[i]), green_lights)
         out.extend(found)
         if not found:
             skipped.append(ids[i])

@@ -16,22 +16,176 @@ regulation the ego yields (ad-map's behaviour for intersections of unknown type)
 
 from __future__ import annotations
 
+import enum
+import weakref
 from typing import TYPE_CHECKING
 
-from rss.model import ConstellationType, RoadSegmentType
+import numpy as np
+
+from rss.model import ConstellationType, LaneDrivingDirection, RoadSegmentType
 from rss.scene.roadarea import SegmentPlan
+from rss.scene.routes import cross_section
 
 if TYPE_CHECKING:
+    from rss.batch import IntArray
     from rss.scene.lanegraph import PreparedGraph
     from rss.scene.routes import Step
 
-__all__ = ["conflict", "intersection_plans", "intersection_type", "route_priority"]
+__all__ = [
+    "Relation",
+    "conflict",
+    "intersection_plans",
+    "intersection_type",
+    "junctions_on",
+    "relation",
+    "route_priority",
+]
+
+_JUNCTIONS: dict[int, tuple[weakref.ref[PreparedGraph], IntArray]] = {}
+
+
+class Relation(enum.Enum):
+    """How another route meets an intersection on a route (ad-map ``Intersection``)."""
+
+    NONE = "does not enter the intersection"
+    SAME_ARM = "enters from the route's incoming arm"
+    OPPOSITE = "passes: from the route's outgoing arm back to its incoming arm, or no crossing"
+    CROSSING = "crosses the route's lanes inside the intersection"
+
+
+def _components(n: int, pairs: list[tuple[int, int]]) -> IntArray:
+    """Connected-component root per node (union-find)."""
+    parent = list(range(n))
+
+    def root(a: int) -> int:
+        while parent[a] != a:
+            a = parent[a]
+        return a
+
+    for a, b in pairs:
+        parent[root(a)] = root(b)
+    return np.array([root(a) for a in range(n)], dtype=np.int64)
+
+
+def junction_ids(prep: PreparedGraph) -> IntArray:
+    """``(L,)`` junction index per lane (-1 outside): connected intersection lanes.
+
+    Intersection lanes belong to one junction when they overlap, merge, split or link.
+    Cached per prepared graph.
+    """
+    cached = _JUNCTIONS.get(id(prep))
+    if cached is not None and cached[0]() is prep:
+        return cached[1]
+    g = prep.graph
+    inter = [int(v) for v in np.flatnonzero(g.is_intersection)]
+    members = set(inter)
+    pairs: list[tuple[int, int]] = []
+    for a in inter:
+        linked = {*g.successors[a], *g.predecessors[a], *np.flatnonzero(prep.conflicts[a]).tolist()}
+        pairs.extend((a, b) for b in linked & members)
+    for c in set(range(len(g))) - members:
+        for end in (g.successors[c], g.predecessors[c]):
+            group = [b for b in end if b in members]
+            pairs.extend((group[0], b) for b in group[1:])
+    out = _components(len(g), pairs)
+    out[~g.is_intersection] = -1
+    _JUNCTIONS[id(prep)] = (weakref.ref(prep), out)
+    return out
+
+
+def junctions_on(prep: PreparedGraph, route: tuple[Step, ...]) -> list[tuple[int, int, int]]:
+    """Intersections a route enters: ``(junction, first index, last index)`` in order.
+
+    A junction the route starts in is not listed (ad-rss analyses only intersections
+    ahead).
+    """
+    jid = junction_ids(prep)
+    out: list[tuple[int, int, int]] = []
+    for idx, (lane, _) in enumerate(route):
+        j = int(jid[lane])
+        if j < 0 or idx == 0 or int(jid[route[0][0]]) == j:
+            continue
+        if out and out[-1][0] == j and out[-1][2] == idx - 1:
+            out[-1] = (j, out[-1][1], idx)
+        elif not any(o[0] == j for o in out):
+            out.append((j, idx, idx))
+    return out
+
+
+def _entries(prep: PreparedGraph, lane: int) -> set[int]:
+    """Lanes whose traffic leads into ``lane``."""
+    g = prep.graph
+    code = int(g.direction[lane])
+    if code == LaneDrivingDirection.Positive:
+        return set(g.predecessors[lane])
+    if code == LaneDrivingDirection.Negative:
+        return set(g.successors[lane])
+    return {*g.predecessors[lane], *g.successors[lane]}
+
+
+def _same_arm(
+    prep: PreparedGraph, jid: IntArray, j: int, incoming: set[int], other: list[int]
+) -> bool:
+    found = False
+    for lane in other:
+        inside = int(jid[lane]) == j
+        if lane in incoming or (inside and _entries(prep, lane) & incoming):
+            found = True
+        elif inside:
+            return False
+        elif found:
+            break
+    return found
+
+
+def _opposite(
+    prep: PreparedGraph, jid: IntArray, j: int, arms: tuple[set[int], set[int]], other: list[int]
+) -> bool:
+    in_arm, out_arm = arms
+    start = next((k for k, lane in enumerate(other) if lane in out_arm), None)
+    if start is None and other and int(jid[other[0]]) == j and _entries(prep, other[0]) & out_arm:
+        start = 0
+    return start is not None and any(lane in in_arm for lane in other[start:])
+
+
+def relation(
+    prep: PreparedGraph,
+    route: tuple[Step, ...],
+    span: tuple[int, int, int],
+    other: tuple[Step, ...],
+) -> Relation:
+    """How ``other`` meets the intersection ``span`` (from :func:`junctions_on`) of ``route``."""
+    jid = junction_ids(prep)
+    j, first, last = span
+    lanes = [lane for lane, _ in other]
+    if not any(int(jid[lane]) == j for lane in lanes):
+        return Relation.NONE
+    before = route[first - 1]
+    in_arm = {lane for lane, _ in cross_section(prep, before)}
+    incoming = {lane for lane, fwd in cross_section(prep, before) if fwd == before[1]}
+    out_arm = set()
+    if last + 1 < len(route):
+        out_arm = {lane for lane, _ in cross_section(prep, route[last + 1])}
+    if _same_arm(prep, jid, j, incoming, lanes):
+        return Relation.SAME_ARM
+    mine = [lane for lane, _ in route[first : last + 1]]
+    crossing = any(
+        int(jid[lane]) == j and lane not in mine and prep.conflicts[mine, lane].any()
+        for lane in lanes
+    )
+    if _opposite(prep, jid, j, (in_arm, out_arm), lanes) or not crossing:
+        return Relation.OPPOSITE
+    return Relation.CROSSING
 
 
 def conflict(
     prep: PreparedGraph, ego_route: tuple[Step, ...], obj_route: tuple[Step, ...]
 ) -> tuple[int, int] | None:
-    """Indices ``(ie, io)`` of the first conflicting intersection lanes, or ``None``."""
+    """Indices ``(ie, io)`` of the first conflicting intersection lanes, or ``None``.
+
+    Conflicting: overlapping or merging intersection lanes, else the first lane both
+    routes share (routes from one arm, merging routes).
+    """
     inter = prep.graph.is_intersection
     obj_lanes = [(io, lane) for io, (lane, _) in enumerate(obj_route) if inter[lane]]
     for ie, (a, _) in enumerate(ego_route):
@@ -40,6 +194,10 @@ def conflict(
         for io, b in obj_lanes:
             if prep.conflicts[a, b]:
                 return ie, io
+    where = {lane: io for io, (lane, _) in enumerate(obj_route)}
+    for ie, (a, _) in enumerate(ego_route):
+        if a in where:
+            return ie, where[a]
     return None
 
 
@@ -49,7 +207,9 @@ def intersection_plans(
     """Single-lane segments along ``route[:upto + 1]``, the last one the intersection."""
     plans = [SegmentPlan(lanes=[step]) for step in route[:upto]]
     lane, fwd = route[upto]
-    before, after = prep.conflict_span_m[lane, other_lane]
+    before, after = prep.conflict_span_m.get(
+        (lane, other_lane), (0.0, float(prep.length_min_m[lane]))
+    )
     if not fwd:
         before, after = after, before
     plans.append(

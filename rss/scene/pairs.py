@@ -1,18 +1,27 @@
-"""Per-object decisions of scene creation: following, intersections, connecting route.
+"""Per-object decisions of scene creation, following ad-rss' ``appendStructuredConstellations``.
 
 One :class:`FrameContext` holds what a frame shares (matches, the route tree from the ego,
-headings); :func:`object_constellations` builds the constellations of one object::
+headings); :func:`object_constellations` builds the constellations of one object from its
+connecting routes (``rss.scene.connecting``)::
 
-    connecting route without intersection lanes  -> Same/OppositeDirection (corridor)
-    one vehicle on the other's predicted route    -> SameDirection along that route
-    conflicting intersection lanes of route pairs -> Intersection* (one per lane pair)
-      + the connecting route where a route pair passes without conflict
+    object follows the ego, or ego follows it on an ego route -> SameDirection
+    no intersection on the route: opposing -> OppositeDirection
+                                  merging  -> IntersectionSamePriority
+    through intersections, per (ego route, object route, intersection on the ego route):
+      object route crosses the ego's intersection lanes      -> Intersection* (priority)
+      passes (from the ego's exit arm back to its entry arm)
+        or does not cross                                     -> OppositeDirection (opposing)
+      same arm as the ego                                     -> Intersection* (merging only)
+
+Predicted routes reach ``ego length + longest connecting route + object length``.
+Constellations are deduplicated by (type, lane pair) / (type, target lane).
 """
 
 from __future__ import annotations
 
 import dataclasses
 import functools
+import logging
 import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
@@ -21,15 +30,19 @@ import numpy as np
 
 from rss.model import Constellation, ConstellationType, ObjectType
 from rss.params import RestrictSpeedLimitMode
+from rss.scene.connecting import Connecting, Kind, connecting_routes
 from rss.scene.corridor import corridor_plans
 from rss.scene.intersection import (
+    Relation,
     conflict,
     intersection_plans,
     intersection_type,
+    junctions_on,
+    relation,
     route_priority,
 )
 from rss.scene.roadarea import SegmentPlan, build_road, cut_window, place_object
-from rss.scene.routes import predict_routes
+from rss.scene.routes import cross_section, follows_traffic, predict_routes
 
 if TYPE_CHECKING:
     from rss.dynamics import RssDynamics
@@ -41,6 +54,8 @@ if TYPE_CHECKING:
     from rss.scene.routes import RouteTree, Step
 
 __all__ = ["FrameContext", "ego_routes", "lane_headings", "object_constellations"]
+
+_LOG = logging.getLogger(__name__)
 
 #: Following through an intersection needs headings within 45 degrees.
 _FOLLOWING_COS = float(np.cos(np.pi / 4))
@@ -203,49 +218,49 @@ def ego_routes(f: FrameContext, horizon_m: float) -> list[tuple[Step, ...]]:
     return [base + tail[1:] for tail in tails]
 
 
-def _intersections(
+def _intersection(
     f: FrameContext,
     i: int,
-    ego_routes: list[tuple[Step, ...]],
-    obj_routes: list[tuple[Step, ...]],
+    routes: tuple[tuple[Step, ...], tuple[Step, ...]],
     green: frozenset[int],
-) -> tuple[list[Constellation], bool]:
-    """Intersection constellations per conflicting lane pair; also whether a pair passes."""
-    box = i + 1
-    out: list[Constellation] = []
-    seen: set[tuple[int, int]] = set()
-    passing = False
-    for obj_route in obj_routes:
-        for ego_route in ego_routes:
-            hit = conflict(f.prep, ego_route, obj_route)
-            if hit is None:
-                passing = True
-                continue
-            ie, io = hit
-            key = (ego_route[ie][0], obj_route[io][0])
-            if key in seen:
-                continue
-            seen.add(key)
-            ego_plans = intersection_plans(f.prep, ego_route, ie, key[1])
-            obj_plans = intersection_plans(f.prep, obj_route, io, key[0])
-            cut_window(ego_plans, f.matches, (0,), cut_end=False)
-            cut_window(obj_plans, f.matches, (box,), cut_end=False)
-            kind = intersection_type(
-                route_priority(f.prep, ego_route[: ie + 1], green),
-                route_priority(f.prep, obj_route[: io + 1], green),
-            )
-            c = f.constellation(kind, i, ego_plans, obj_plans)
-            if c is not None:
-                out.append(c)
-    return out, passing
+    kind: ConstellationType | None = None,
+) -> Constellation | None:
+    """The intersection constellation of one (ego route, object route) pair.
 
-
-def _target(f: FrameContext, box: int) -> int | None:
-    lanes = [int(lane) for lane in f.matches.lanes_of(box) if int(lane) in f.tree.k]
-    if not lanes:
+    The conflict is the first pair of overlapping / merging intersection lanes (else the
+    first shared lane); ``kind`` overrides the priority-derived type (merging routes).
+    """
+    ego_route, obj_route = routes
+    hit = conflict(f.prep, ego_route, obj_route)
+    if hit is None:
         return None
-    anchor = int(f.matches.anchor[box])
-    return anchor if anchor in lanes else min(lanes, key=lambda lane: f.tree.cost_m[lane])
+    ie, io = hit
+    ego_lane, obj_lane = ego_route[ie][0], obj_route[io][0]
+    ego_plans = intersection_plans(f.prep, ego_route, ie, obj_lane)
+    obj_plans = intersection_plans(f.prep, obj_route, io, ego_lane)
+    cut_window(ego_plans, f.matches, (0,), cut_end=False)
+    cut_window(obj_plans, f.matches, (i + 1,), cut_end=False)
+    if kind is None:
+        kind = intersection_type(
+            route_priority(f.prep, ego_route[: ie + 1], green),
+            route_priority(f.prep, obj_route[: io + 1], green),
+        )
+    return f.constellation(kind, i, ego_plans, obj_plans)
+
+
+def _on_routes(f: FrameContext, box: int, routes: list[tuple[Step, ...]]) -> bool:
+    """Whether a lane the box touches lies on one of ``routes``.
+
+    Routes include their same-direction neighbour lanes (ad-map's SameDrivingDirection).
+    """
+    lanes = {int(lane) for lane in f.matches.lanes_of(box)}
+    return any(
+        lane in lanes
+        for route in routes
+        for step in route
+        for lane, fwd in cross_section(f.prep, step)
+        if follows_traffic(f.prep, lane, forward=fwd)
+    )
 
 
 def _route_to(routes: list[tuple[Step, ...]], lane: int) -> tuple[Step, ...] | None:
@@ -286,39 +301,148 @@ def _following(
     return None
 
 
-def _corridor(f: FrameContext, i: int, target: int) -> Constellation | None:
-    """Same/opposite direction along the connecting route to ``target``."""
-    box = i + 1
-    road_heading = f.headings[box][target] + (0.0 if f.tree.forward[target] else np.pi)
-    cos = float(np.cos(float(f.objects.yaw_rad[i]) - road_heading))
-    kind = ConstellationType.SameDirection if cos >= 0.0 else ConstellationType.OppositeDirection
-    if kind == ConstellationType.OppositeDirection and f.behind_ego(i):
-        return None  # driving apart
-    plans = corridor_plans(f.prep, f.tree, target, f.matches, (0, box))
+def _corridor(
+    f: FrameContext, i: int, target: int, kind: ConstellationType
+) -> Constellation | None:
+    """A same/opposite-direction constellation along the connecting route to ``target``."""
+    plans = corridor_plans(f.prep, f.tree, target, f.matches, (0, i + 1))
     return f.constellation(kind, i, plans, None)
+
+
+@dataclass
+class _Pair:
+    """The routes of one ego/object pair and the constellations found so far."""
+
+    f: FrameContext
+    i: int
+    ego_routes: list[tuple[Step, ...]]
+    obj_routes: list[tuple[Step, ...]]
+    green: frozenset[int]
+    reach_m: float
+    out: dict[tuple[object, ...], Constellation | None] = dataclasses.field(default_factory=dict)
+
+    def add_corridor(self, cr: Connecting, kind: ConstellationType) -> None:
+        """A same/opposite-direction constellation; following along a predicted route."""
+        key = (kind, cr.target)
+        if key in self.out:
+            return
+        c = None
+        if kind == ConstellationType.SameDirection:
+            if not self.obj_routes:
+                self.obj_routes = self.f.routes(self.i + 1, self.reach_m)
+            c = _following(self.f, self.i, self.ego_routes, self.obj_routes)
+        self.out[key] = c or _corridor(self.f, self.i, cr.target, kind)
+
+    def add_intersection(
+        self, routes: tuple[tuple[Step, ...], tuple[Step, ...]], kind: ConstellationType | None
+    ) -> None:
+        hit = conflict(self.f.prep, *routes)
+        if hit is None:
+            return
+        key = (kind, routes[0][hit[0]][0], routes[1][hit[1]][0])
+        if key not in self.out:
+            self.out[key] = _intersection(self.f, self.i, routes, self.green, kind)
+
+
+def _through(p: _Pair, cr: Connecting) -> None:
+    """ad-rss' analysis of a connecting route through intersections (per route pair)."""
+    prep = p.f.prep
+    for er in p.ego_routes:
+        spans = junctions_on(prep, er)
+        if not spans and cr.kind == Kind.MERGING:
+            for orr in p.obj_routes:
+                p.add_intersection((er, orr), ConstellationType.IntersectionSamePriority)
+        elif spans or cr.kind == Kind.OPPOSING:
+            for orr in p.obj_routes:
+                _route_pair(p, cr, (er, orr), spans)
+
+
+def _route_pair(
+    p: _Pair,
+    cr: Connecting,
+    routes: tuple[tuple[Step, ...], tuple[Step, ...]],
+    spans: list[tuple[int, int, int]],
+) -> None:
+    """One (ego route, object route) pair at the intersections of the ego route.
+
+    Without intersections on the ego route (it starts inside one), the object route's
+    intersections are analysed against the ego route instead; without any, the pair is
+    an opposite-direction one.
+    """
+    base, other = routes
+    if not spans:
+        spans = junctions_on(p.f.prep, other)
+        if not spans:
+            p.add_corridor(cr, ConstellationType.OppositeDirection)
+            return
+        base, other = other, base
+    for span in spans:
+        rel = relation(p.f.prep, base, span, other)
+        if rel == Relation.NONE:
+            continue
+        if rel == Relation.CROSSING or cr.kind == Kind.MERGING:
+            p.add_intersection(routes, None)
+        elif rel == Relation.OPPOSITE and cr.kind == Kind.OPPOSING:
+            p.add_corridor(cr, ConstellationType.OppositeDirection)
+
+
+def _names(f: FrameContext, route: tuple[Step, ...] | list[int]) -> str:
+    ids = f.prep.graph.ids
+    return " > ".join(
+        ids[s] if isinstance(s, int) else ids[s[0]] + ("" if s[1] else "'") for s in route
+    )
+
+
+def _debug_object(f: FrameContext, box: int, routes: list[Connecting]) -> None:
+    for cr in routes:
+        path = (
+            " > ".join(
+                f"{f.prep.graph.ids[x]}[k{f.tree.k[x]} {'f' if f.tree.forward[x] else 'r'}"
+                f" {f.tree.first[x]}{f.tree.last[x]}]"
+                for x in f.tree.path(cr.target)
+            )
+            if cr.target >= 0
+            else "-"
+        )
+        _LOG.debug(
+            "box %d: %s %.2f m through=%s: %s",
+            box,
+            cr.kind.name,
+            cr.length_m,
+            cr.through_intersection,
+            path,
+        )
 
 
 def object_constellations(
     f: FrameContext,
     i: int,
-    ego_routes: list[tuple[Step, ...]],
     horizon_m: float,
     green: frozenset[int],
 ) -> list[Constellation]:
     """All constellations between the ego and object ``i`` (see module docstring)."""
     box = i + 1
-    target = _target(f, box)
-    through = target is None or bool(f.prep.graph.is_intersection[f.tree.path(target)].any())
-    if not through and target is not None:
-        c = _corridor(f, i, target)
-        return [] if c is None else [c]
-    obj_routes = f.routes(box, horizon_m)
-    follow = _following(f, i, ego_routes, obj_routes)
-    if follow is not None:
-        return [follow]
-    found, passing = _intersections(f, i, ego_routes, obj_routes, green)
-    if target is not None and (passing or not found):
-        c = _corridor(f, i, target)
-        if c is not None and (not found or c.constellation_type != ConstellationType.SameDirection):
-            found.append(c)
-    return found
+    routes = connecting_routes(f, box, horizon_m)
+    if _LOG.isEnabledFor(logging.DEBUG):
+        _debug_object(f, box, routes)
+    if not routes:
+        return []
+    reach = f.ego.length_m + max(cr.length_m for cr in routes) + float(f.objects.length_m[i])
+    p = _Pair(f, i, ego_routes(f, reach), [], green, reach)
+    for cr in routes:
+        if cr.kind == Kind.OBJECT_FOLLOWS or (
+            cr.kind == Kind.EGO_FOLLOWS and _on_routes(f, box, p.ego_routes)
+        ):
+            p.add_corridor(cr, ConstellationType.SameDirection)
+        elif not cr.through_intersection:
+            if cr.kind == Kind.OPPOSING:
+                p.add_corridor(cr, ConstellationType.OppositeDirection)
+            elif cr.kind == Kind.MERGING:
+                p.obj_routes = p.obj_routes or f.routes(box, reach)
+                for er in p.ego_routes:
+                    for orr in p.obj_routes:
+                        p.add_intersection((er, orr), ConstellationType.IntersectionSamePriority)
+        else:
+            p.obj_routes = p.obj_routes or f.routes(box, reach)
+            _through(p, cr)
+    return [c for c in p.out.values() if c is not None]

@@ -26,7 +26,7 @@ from rss.model import LaneDrivingDirection
 if TYPE_CHECKING:
     from rss.scene.lanegraph import PreparedGraph
 
-__all__ = ["RouteTree", "Step", "connect", "follows_traffic", "predict_routes"]
+__all__ = ["RouteTree", "Step", "connect", "cross_section", "follows_traffic", "predict_routes"]
 
 _LATERAL_COST_M = 0.1
 _MAX_ROUTES = 16
@@ -45,6 +45,10 @@ class RouteTree:
         forward: Orientation per reached lane.
         parent: Previous lane on the shortest route (-1 for the root).
         cost_m: Route length from the ego's lane.
+        first: Per reached lane, the first longitudinal move of its route (+1 ahead, -1
+            behind, 0 none: a lateral neighbour of the ego's lane).
+        last: The last longitudinal move (+1: the lane is travelled along the road-area
+            direction, -1 against it, 0 none).
     """
 
     k: dict[int, int] = field(default_factory=dict)
@@ -52,6 +56,8 @@ class RouteTree:
     forward: dict[int, bool] = field(default_factory=dict)
     parent: dict[int, int] = field(default_factory=dict)
     cost_m: dict[int, float] = field(default_factory=dict)
+    first: dict[int, int] = field(default_factory=dict)
+    last: dict[int, int] = field(default_factory=dict)
 
     def path(self, lane: int) -> list[int]:
         """Lanes from the root to ``lane`` (which must be reached)."""
@@ -72,6 +78,20 @@ def lateral(prep: PreparedGraph, lane: int, *, forward: bool, right: bool) -> St
     return nb, forward != opposite
 
 
+def cross_section(prep: PreparedGraph, step: Step) -> list[Step]:
+    """All lanes side by side with ``step`` (itself included), orientations relative to it."""
+    out = [step]
+    for right in (False, True):
+        cur: Step | None = step
+        while cur is not None:
+            cur = lateral(prep, cur[0], forward=cur[1], right=right)
+            if cur is not None and all(cur[0] != s[0] for s in out):
+                out.append(cur)
+            else:
+                break
+    return out
+
+
 def longitudinal(prep: PreparedGraph, lane: int, *, forward: bool, ahead: bool) -> list[Step]:
     """Lanes before (``ahead=False``) or after ``lane`` along the road-area direction."""
     g = prep.graph
@@ -79,33 +99,55 @@ def longitudinal(prep: PreparedGraph, lane: int, *, forward: bool, ahead: bool) 
     return [(nxt, forward) for nxt in links]
 
 
-def connect(prep: PreparedGraph, root: int, *, forward: bool, horizon_m: float) -> RouteTree:
-    """Dijkstra from ``root`` over all links, ignoring driving directions."""
+def connect(
+    prep: PreparedGraph, root: int, *, forward: bool, horizon_m: float, start: float = 0.5
+) -> RouteTree:
+    """Dijkstra from ``root`` over all links, ignoring driving directions.
+
+    Costs are metric distances from the ego's position: each search state remembers
+    where (parametric, along the road-area direction) it entered its lane, so leaving a
+    lane ahead costs the rest of it and leaving it behind costs the part before; a lateral
+    step keeps the position (plus a small cost).
+
+    Args:
+        prep: The prepared lane graph.
+        root: The ego's lane.
+        forward: The root's point order runs along the ego's driving direction.
+        horizon_m: Largest route length searched.
+        start: The ego's parametric position on ``root`` (its point order).
+    """
     tree = RouteTree()
-    heap: list[tuple[float, int, int, int, int, bool, int]] = [(0.0, 0, root, 0, 0, forward, -1)]
-    counter = 0
     lengths = prep.centre_length_m
+    pos0 = start if forward else 1.0 - start
+    # (cost, counter, lane, k, j, forward, parent, entry position, first move, last move)
+    heap: list[tuple[float, int, int, int, int, bool, int, float, int, int]] = [
+        (0.0, 0, root, 0, 0, forward, -1, pos0, 0, 0)
+    ]
+    counter = 0
     while heap:
-        cost, _, lane, k, j, fwd, parent = heapq.heappop(heap)
+        cost, _, lane, k, j, fwd, parent, pos, first, last = heapq.heappop(heap)
         if lane in tree.k:
             continue
         tree.k[lane], tree.j[lane], tree.forward[lane] = k, j, fwd
         tree.parent[lane], tree.cost_m[lane] = parent, cost
-        moves: list[tuple[Step, int, int, float]] = []
+        tree.first[lane], tree.last[lane] = first, last
+        moves: list[tuple[Step, int, int, float, float, int]] = []
         for right, dj in ((True, 1), (False, -1)):
             step = lateral(prep, lane, forward=fwd, right=right)
             if step is not None:
-                moves.append((step, k, j + dj, _LATERAL_COST_M))
-        step_len = lengths[lane] if lane != root else lengths[lane] / 2.0
+                moves.append((step, k, j + dj, _LATERAL_COST_M, pos, last))
+        length = float(lengths[lane])
         for ahead, dk in ((True, 1), (False, -1)):
+            extra = length * ((1.0 - pos) if ahead else pos)
             moves.extend(
-                (step, k + dk, j, float(step_len))
+                (step, k + dk, j, extra, 0.0 if ahead else 1.0, dk)
                 for step in longitudinal(prep, lane, forward=fwd, ahead=ahead)
             )
-        for (nxt, nfwd), nk, nj, extra in moves:
+        for (nxt, nfwd), nk, nj, extra, npos, move in moves:
             if nxt not in tree.k and cost + extra <= horizon_m:
                 counter += 1
-                heapq.heappush(heap, (cost + extra, counter, nxt, nk, nj, nfwd, lane))
+                item = (cost + extra, counter, nxt, nk, nj, nfwd, lane, npos, first or move, move)
+                heapq.heappush(heap, item)
     return tree
 
 

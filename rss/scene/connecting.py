@@ -1,0 +1,175 @@
+"""Connecting routes between the ego and one object, typed as ad-map types them.
+
+For every lane the object touches that the route tree (:func:`rss.scene.routes.connect`)
+reaches within the relevance distance, the tree path is one connecting route. Its type
+follows from where the object lies (ahead of the ego along its driving direction or
+behind) and which way the object heads on the road area::
+
+    object ahead,  heading along   -> EGO_FOLLOWS     (ad-map Following, A follows B)
+    object ahead,  heading against -> OPPOSING
+    object behind, heading along   -> OBJECT_FOLLOWS  (Following, B follows A)
+    object behind, heading against -> none: driving apart
+
+Only without any route between the two (within the distance) the predicted routes are
+searched for a lane both reach: ``MERGING`` (ad-map ``checkForMergingConnectingRoute``).
+"""
+
+from __future__ import annotations
+
+import enum
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+from rss.scene.intersection import conflict
+from rss.scene.routes import predict_routes
+
+if TYPE_CHECKING:
+    from rss.scene.pairs import FrameContext
+    from rss.scene.routes import Step
+
+__all__ = ["Connecting", "Kind", "connecting_routes"]
+
+
+class Kind(enum.Enum):
+    """Type of a connecting route."""
+
+    EGO_FOLLOWS = "the object drives ahead of the ego"
+    OBJECT_FOLLOWS = "the object drives behind the ego"
+    OPPOSING = "the object approaches the ego"
+    MERGING = "the predicted routes meet"
+
+
+@dataclass(frozen=True)
+class Connecting:
+    """One connecting route.
+
+    Attributes:
+        kind: Its type.
+        target: The object's lane at the end of the tree path (-1 for ``MERGING``).
+        length_m: Route length between the two boxes (approximate).
+        through_intersection: A lane of the route lies in an intersection.
+    """
+
+    kind: Kind
+    target: int
+    length_m: float
+    through_intersection: bool
+
+
+def _direct(f: FrameContext, box: int, max_m: float) -> tuple[list[Connecting], bool]:
+    """Typed tree routes to the object's lanes; also whether any route was found."""
+    m, tree, prep = f.matches, f.tree, f.prep
+    yaw = float(f.objects.yaw_rad[box - 1])
+    half = 0.5 * (f.ego.length_m + float(f.objects.length_m[box - 1]))
+    s0 = float(m.anchor_s[0])
+    pos0 = s0 if f.forward(0) else 1.0 - s0
+    out: list[Connecting] = []
+    found = False
+    for row in m.rows(box):
+        lane = int(m.lane[row])
+        if lane not in tree.k:
+            continue
+        fwd = tree.forward[lane]
+        mid = 0.5 * float(m.lon_min[row] + m.lon_max[row])
+        mid = mid if fwd else 1.0 - mid
+        length = float(prep.centre_length_m[lane])
+        beside = 1 if mid >= pos0 else -1
+        first = tree.first[lane] or beside
+        last = tree.last[lane] or beside
+        if tree.last[lane] == 0:
+            dist = abs(mid - pos0) * length
+        else:
+            dist = tree.cost_m[lane] + length * (mid if last > 0 else 1.0 - mid)
+        gap = max(0.0, dist - half)
+        if gap > max_m:
+            continue
+        found = True
+        road_heading = f.headings[box][lane] + (0.0 if fwd else math.pi)
+        along_route = (math.cos(yaw - road_heading) >= 0.0) == (last > 0)
+        if first > 0:
+            kind = Kind.EGO_FOLLOWS if along_route else Kind.OPPOSING
+        elif not along_route:
+            kind = Kind.OBJECT_FOLLOWS
+        else:
+            continue
+        through = bool(prep.graph.is_intersection[tree.path(lane)].any())
+        out.append(Connecting(kind, lane, gap, through))
+    return _drop_longer(f, out), found
+
+
+def _drop_longer(f: FrameContext, routes: list[Connecting]) -> list[Connecting]:
+    """Drop routes that extend a shorter one (ad-map ``filterDuplicatedConnectingRoutes``).
+
+    A route is a longer version of another when it passes through the other's target
+    lane, or when its target overlaps the other's (ad-map links overlapping intersection
+    lanes, so the longer route is the shorter one plus that overlap).
+    """
+    kept: list[Connecting] = []
+    for cr in sorted(routes, key=lambda c: c.length_m):
+        path = set(f.tree.path(cr.target))
+        if any(k.target in path or f.prep.conflicts[k.target, cr.target] for k in kept):
+            continue
+        kept.append(cr)
+    return kept
+
+
+def _reach(route: tuple[Step, ...], lengths: list[float], start_m: float) -> dict[int, float]:
+    """Distance along ``route`` to the start of each of its lanes."""
+    out: dict[int, float] = {}
+    dist = -start_m
+    for (lane, _), length in zip(route, lengths, strict=True):
+        out.setdefault(lane, max(0.0, dist))
+        dist += length
+    return out
+
+
+def _merging(f: FrameContext, box: int, max_m: float) -> Connecting | None:
+    """The shortest merge of an ego and an object route within ``max_m``, if any."""
+    prep = f.prep
+    lengths = prep.centre_length_m
+    best: tuple[float, Connecting] | None = None
+    ego, obj = (
+        [
+            (r, _reach(r, [float(lengths[s[0]]) for s in r], behind))
+            for lane, fwd, behind in f.starts(b)
+            for r in predict_routes(prep, lane, forward=fwd, horizon_m=max_m, travelled_m=behind)
+        ]
+        for b in (0, box)
+    )
+    inter = prep.graph.is_intersection
+    for er, e_at in ego:
+        for orr, o_at in obj:
+            common = [lane for lane, _ in er if lane in o_at]
+            if common:
+                lane = common[0]
+                a, b = e_at[lane], o_at[lane]
+            else:
+                # our graph has no links between overlapping intersection lanes (ad-map's
+                # OVERLAP contacts): crossing routes meet where their lanes overlap
+                hit = conflict(prep, er, orr)
+                if hit is None:
+                    continue
+                lane = er[hit[0]][0]
+                a, b = e_at[lane], o_at[orr[hit[1]][0]]
+            if max(a, b) > max_m:
+                continue
+            cut_e = [s[0] for s in er[: [s[0] for s in er].index(lane) + 1]]
+            cut_o = (
+                [s[0] for s in orr[: [s[0] for s in orr].index(lane) + 1]]
+                if any(s[0] == lane for s in orr)
+                else [s[0] for s in orr]
+            )
+            through = bool(inter[cut_e].any() or inter[cut_o].any())
+            if best is None or min(a, b) < best[0]:
+                best = (min(a, b), Connecting(Kind.MERGING, -1, max(a, b), through))
+    return None if best is None else best[1]
+
+
+def connecting_routes(f: FrameContext, box: int, max_m: float) -> list[Connecting]:
+    """Connecting routes between the ego and ``box`` within ``max_m`` (module docstring)."""
+    direct, found = _direct(f, box, max_m)
+    if found:
+        return direct
+    merge = _merging(f, box, max_m)
+    return [] if merge is None else [merge]

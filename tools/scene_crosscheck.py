@@ -1,0 +1,195 @@
+"""Per-pair disagreements between our scene creation and ad-rss map integration (Town01).
+
+Diagnostic companion of ``tests/rss/scene/test_crosscheck_adrss_map.py`` (same seeded
+pairs, same comparison). The oracle's answers are cached in ``out/`` per (seed, n), so
+iterating on our side takes seconds::
+
+    .venv/bin/python tools/scene_crosscheck.py [--n 500] [--seed 1] [--show 20]
+        [--oracle .venv-oracle-adrss-map/bin/python] [--refresh] [--pairs 3,17]
+
+Prints the summary rates, then the disagreeing pairs grouped by class
+(``ours types -> theirs types``), with the pair index, distances and verdicts.
+"""
+
+from __future__ import annotations
+
+import argparse
+import functools
+import json
+import logging
+import subprocess
+import sys
+from collections import defaultdict
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+from typing import Any
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+import numpy as np  # noqa: E402
+
+from loaders.maps.opendrive import read_opendrive  # noqa: E402
+from rss.params import DEFAULT_EGO_DYNAMICS, DEFAULT_VEHICLE_DYNAMICS  # noqa: E402
+from rss.scene import PreparedGraph, SceneEgo, SceneObjects, create_scene, prepare  # noqa: E402
+from tests.rss.scene.test_crosscheck_adrss_map import (  # noqa: E402
+    ORACLE,
+    SETTINGS,
+    compare,
+    ours,
+    placements,
+)
+from workbench.rss_adapter import lane_graph_from_map  # noqa: E402
+
+TOWN = (ROOT / ".." / "shared" / "external" / "maps" / "Town01.xodr").resolve()
+
+
+def oracle_answers(
+    pairs: list[dict[str, Any]], python: str, cache: Path, *, refresh: bool
+) -> list[dict[str, Any]]:
+    """The oracle's answers, from ``cache`` unless missing or ``refresh``."""
+    if cache.exists() and not refresh:
+        answers: list[dict[str, Any]] = json.loads(cache.read_text())
+        return answers
+    half = len(pairs) // 2
+    chunks = [pairs[:half], pairs[half:]]
+    procs = [
+        subprocess.Popen(  # noqa: S603 - interpreter chosen by the user
+            [python, str(ORACLE), str(TOWN)],
+            stdin=subprocess.PIPE,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
+        for _ in chunks
+    ]
+    with ThreadPoolExecutor(2) as pool:
+        outs = list(
+            pool.map(lambda j: j[0].communicate(json.dumps(j[1])), zip(procs, chunks, strict=True))
+        )
+    answers = []
+    for out, err in outs:
+        if not out.strip():
+            raise SystemExit(err[-2000:])
+        answers += json.loads(out.strip().splitlines()[-1])
+    cache.parent.mkdir(exist_ok=True)
+    cache.write_text(json.dumps(answers))
+    return answers
+
+
+def _admap_id(prep: PreparedGraph, lane: int) -> str:
+    road, section, idx = prep.graph.ids[lane].split("_")
+    return str(int(road) * 10000 + (int(section) + 1) * 100 + int(idx) + 50)
+
+
+def explain(prep: PreparedGraph, pair: dict[str, Any]) -> None:
+    """Print our side's internals for one pair (lane ids in ad-map's numbering)."""
+    e, o = pair["ego"], pair["other"]
+    ego = SceneEgo(1000, e["x"], e["y"], e["yaw"], e["v"], 4.5, 2.0, DEFAULT_EGO_DYNAMICS)
+    objects = SceneObjects(
+        ids=np.array([1]),
+        object_type=np.array([2]),
+        x_m=np.array([o["x"]]),
+        y_m=np.array([o["y"]]),
+        yaw_rad=np.array([o["yaw"]]),
+        vx_mps=np.array([o["v"] * np.cos(o["yaw"])]),
+        vy_mps=np.array([o["v"] * np.sin(o["yaw"])]),
+        length_m=np.array([4.5]),
+        width_m=np.array([1.9]),
+        dynamics=(DEFAULT_VEHICLE_DYNAMICS,),
+    )
+    lid = functools.partial(_admap_id, prep)
+    logging.basicConfig(format="   %(message)s")
+    logging.getLogger("rss.scene").setLevel(logging.DEBUG)
+    scene = create_scene(prep, ego, objects, SETTINGS)
+    logging.getLogger("rss.scene").setLevel(logging.WARNING)
+    for c in scene.constellations:
+        print("   ", c.constellation_type.name)
+        for name, road in (("ego road", c.ego_road), ("obj road", c.intersecting_road)):
+            if road:
+                segs = [
+                    ",".join(
+                        f"{lid(ln.lane_id % len(prep.graph))}({ln.length_min_m:.2f}/"
+                        f"{ln.length_max_m:.2f})"
+                        for ln in seg.lanes
+                    )
+                    for seg in road
+                ]
+                print(f"      {name}: {' > '.join(segs)}")
+        for name, obj in (("ego", c.ego), ("obj", c.other)):
+            regs = [
+                f"{lid(r.lane_id % len(prep.graph))} lon[{r.lon_min:.3f},{r.lon_max:.3f}] "
+                f"lat[{r.lat_min:.2f},{r.lat_max:.2f}]"
+                for r in obj.regions
+            ]
+            print(f"      {name}: {'; '.join(regs)}")
+
+
+def _fmt(side: dict[str, Any]) -> str:
+    parts = [
+        f"{s['type'][:14]}({s['lon_d']:.2f},{s['lat_d']:.2f}){'!' if d else ''}"
+        for s, d in zip(side["situations"], side["dangerous"] or [False] * 99, strict=False)
+    ]
+    return " ".join(parts) or "-"
+
+
+def main() -> int:  # noqa: C901 - a flat diagnostic script
+    """Run the comparison and print the disagreement classes."""
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--n", type=int, default=500)
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--show", type=int, default=8)
+    ap.add_argument("--oracle", default=str(ROOT / ".venv-oracle-adrss-map" / "bin" / "python"))
+    ap.add_argument("--refresh", action="store_true")
+    ap.add_argument("--pairs", default="")
+    ap.add_argument("--dist", action="store_true", help="list distance disagreements too")
+    ap.add_argument("--dump", action="store_true", help="print [[k, pair], ...] of --pairs")
+    ap.add_argument("--explain", action="store_true", help="our internals for --pairs")
+    args = ap.parse_args()
+    prep = prepare(lane_graph_from_map(read_opendrive(TOWN)))
+    pairs = placements(prep, seed=args.seed, n=args.n)
+    if args.dump:
+        print(json.dumps([[int(k), pairs[int(k)]] for k in args.pairs.split(",")]))
+        return 0
+    cache = ROOT / "out" / f"adrss_map_oracle_s{args.seed}_n{args.n}.json"
+    theirs = oracle_answers(pairs, args.oracle, cache, refresh=args.refresh)
+    picked = [int(v) for v in args.pairs.split(",") if v] or list(range(len(pairs)))
+    mine = {k: ours(prep, pairs[k]) for k in picked}
+    if not args.pairs:
+        print(compare([mine[k] for k in picked], theirs))
+    classes: dict[str, list[int]] = defaultdict(list)
+    verdict_only: list[int] = []
+    dist: list[tuple[float, int]] = []
+    for k in picked:
+        a, b = mine[k], theirs[k]
+        ta = sorted({s["type"] for s in a["situations"]})
+        tb = sorted({s["type"] for s in b["situations"]} - {"NotRelevant"})
+        if ta != tb:
+            classes[f"{'+'.join(ta) or '-'} -> {'+'.join(tb) or '-'}"].append(k)
+        elif any(a["dangerous"]) != any(b["dangerous"]):
+            verdict_only.append(k)
+        if len(a["situations"]) == len(b["situations"]) == 1 and ta == tb:
+            err = abs(a["situations"][0]["lon_d"] - b["situations"][0]["lon_d"])
+            err += abs(a["situations"][0]["lat_d"] - b["situations"][0]["lat_d"])
+            dist.append((err, k))
+    rows = sorted(classes.items(), key=lambda kv: -len(kv[1]))
+    rows.append(("same types, verdict differs", verdict_only))
+    for name, ks in rows:
+        print(f"\n== {name}: {len(ks)}  {ks}")
+        for k in ks[: args.show]:
+            print(f"  {k:4d} ours:   {_fmt(mine[k])}")
+            print(f"       theirs: {_fmt(theirs[k])}   pair={json.dumps(pairs[k])}")
+
+    if args.explain:
+        for k in picked:
+            print(f"\n===== pair {k}\n  ours:   {_fmt(mine[k])}\n  theirs: {_fmt(theirs[k])}")
+            explain(prep, pairs[k])
+    if args.dist:
+        print("\n== largest distance errors (lon+lat)")
+        for err, k in sorted(dist, reverse=True)[: args.show]:
+            print(f"  {k:4d} err={err:.3f} ours: {_fmt(mine[k])}  theirs: {_fmt(theirs[k])}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
