@@ -16,17 +16,16 @@ Per frame:
 from __future__ import annotations
 
 import logging
-import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import shapely
 
-from reachsets.occupancy import EgoOccupancy, ego_occupancy
+from reachsets.batch import FrameBatch, stack_frames
+from reachsets.footprints import rectangles
 from reachsets.patches import (
-    RuleContext,
     RulePatch,
     keep_largest_part,
     patch_grid,
@@ -40,15 +39,16 @@ from reachsets.track import TrackGeometry, build_track
 from reachsets.verdict import first_hits
 
 if TYPE_CHECKING:
-    from collections.abc import Mapping
+    from collections.abc import Mapping, Sequence
 
     from numpy.typing import NDArray
 
-    from reachsets.inputs import ObjectStates, ReachInputs, TrackBounds
+    from reachsets.inputs import ReachInputs, TrackBounds
     from reachsets.ltl import LtlMemory
+    from reachsets.occupancy import EgoOccupancy
     from reachsets.params import ReachParams
 
-__all__ = ["AppliedPatch", "Collision", "ReachResult", "RuleState", "evaluate"]
+__all__ = ["AppliedPatch", "Collision", "ReachResult", "RuleState", "evaluate", "evaluate_many"]
 
 _log = logging.getLogger(__name__)
 
@@ -138,73 +138,70 @@ class ReachResult:
         return np.asarray(shapely.polygons(self.sets))
 
 
+def _same_bounds(a: TrackBounds | None, b: TrackBounds | None) -> bool:
+    if a is None or b is None:
+        return a is b
+    return a is b or (np.array_equal(a.left_m, b.left_m) and np.array_equal(a.right_m, b.right_m))
+
+
 def _prepared_track(
-    inputs: ReachInputs, params: ReachParams, state: RuleState
+    bounds: TrackBounds | None, params: ReachParams, state: RuleState
 ) -> TrackGeometry | None:
-    bounds = inputs.track
+    """The track geometry of ``bounds``: the state's while the bounds are unchanged."""
     if bounds is None:
         return None
-    old = state.track_bounds
-    if (
-        state.track is not None
-        and old is not None
-        and (
-            old is bounds
-            or (
-                np.array_equal(old.left_m, bounds.left_m)
-                and np.array_equal(old.right_m, bounds.right_m)
-            )
-        )
-    ):
+    if state.track is not None and _same_bounds(state.track_bounds, bounds):
         return state.track
     return build_track(bounds, params.closed_track_gap_m)
 
 
-def _select(
-    inputs: ReachInputs, track: TrackGeometry | None
-) -> tuple[NDArray[np.bool_], NDArray[np.float64], float, NDArray[np.float64]]:
-    """Mask of objects to evaluate, their arc lengths, the ego's, and their lateral offsets."""
-    objs, ego = inputs.objects, inputs.ego
-    n = len(objs)
-    valid = (
-        np.isfinite(objs.x_m + objs.y_m + objs.yaw_rad + objs.length_m + objs.width_m)
-        & (objs.length_m > 0)
-        & (objs.width_m > 0)
-    )
-    if track is None:
-        c, s = math.cos(ego.yaw_rad[0]), math.sin(ego.yaw_rad[0])
-        xi = (objs.x_m - ego.x_m[0]) * c + (objs.y_m - ego.y_m[0]) * s
-        ahead = xi >= -(ego.length_m + objs.length_m) / 2
-        return valid & ahead, np.zeros(n), 0.0, np.zeros(n)
-    x = np.nan_to_num(np.concatenate([objs.x_m, ego.x_m[[0, -1]]]))
-    y = np.nan_to_num(np.concatenate([objs.y_m, ego.y_m[[0, -1]]]))
-    s_all = track.project(x, y)
-    s_obj = s_all[:n]
-    span = float(track.ahead_m(s_all[n], s_all[n + 1]))
-    d = track.ahead_m(s_all[n], s_obj)
-    keep = (d >= 0) & (d <= max(span, 0.0) + ego.length_m)
-    return valid & keep, s_obj, float(s_all[n]), track.lateral_m(x[:n], y[:n], s_obj)
+def _runs(inputs: Sequence[ReachInputs]) -> list[list[ReachInputs]]:
+    """Consecutive frames sharing one map (track bounds, road layout and zones)."""
+    runs: list[list[ReachInputs]] = []
+    for inp in inputs:
+        if runs:
+            prev = runs[-1][-1]
+            if (
+                prev.road is inp.road
+                and prev.zones is inp.zones
+                and _same_bounds(prev.track, inp.track)
+            ):
+                runs[-1].append(inp)
+                continue
+        runs.append([inp])
+    return runs
 
 
 def _rule_patches(
-    ctx: RuleContext, params: ReachParams, memory: Mapping[str, Mapping[str, bool]]
+    batch: FrameBatch, memory: Mapping[str, Mapping[str, bool]]
 ) -> tuple[list[RulePatch], LtlMemory]:
+    """Every rule over the batch: F1 in one pass, Roborace and road rules frame by frame.
+
+    Patches name batch rows; the memory is the one after the last frame.
+    """
+    params = batch.params
     patches: list[RulePatch] = []
     mem: LtlMemory = {}
     if not params.rules_enabled:
         return patches, mem
-    if ctx.zones is not None and ctx.track is not None:
-        found, m = evaluate_roborace(ctx, memory)
-    elif params.f1.enabled and ctx.track is not None:
-        found, m = evaluate_f1(ctx, memory)
-    else:
-        found, m = [], {}
-    patches += found
-    mem.update(m)
-    if params.road.enabled and ctx.road is not None:
-        found, m = evaluate_road(ctx, memory)
-        patches += found
-        mem.update(m)
+    roborace = batch.zones is not None and batch.track is not None
+    road = params.road.enabled and batch.road is not None
+    if not roborace and params.f1.enabled and batch.track is not None and len(batch.objects):
+        patches, mem = evaluate_f1(batch, memory)
+    if roborace or road:
+        frame_mem: Mapping[str, Mapping[str, bool]] = memory
+        step_mem: LtlMemory = {}
+        for f in range(batch.n_frames):
+            ctx = batch.context(f)
+            step_mem = {}
+            for rule, on in ((evaluate_roborace, roborace), (evaluate_road, road)):
+                if on:
+                    found, m = rule(ctx, frame_mem)
+                    shift = int(batch.offsets[f])
+                    patches += [replace(p, object_index=p.object_index + shift) for p in found]
+                    step_mem.update(m)
+            frame_mem = step_mem
+        mem.update(step_mem)
     return patches, mem
 
 
@@ -221,93 +218,117 @@ def evaluate(
     Returns:
         The frame's result and the state for the next frame.
     """
+    results, state = evaluate_many([inputs], params, state)
+    return results[0], state
+
+
+def evaluate_many(
+    inputs: Sequence[ReachInputs], params: ReachParams, state: RuleState | None = None
+) -> tuple[list[ReachResult], RuleState]:
+    """``evaluate`` over consecutive frames of one drive at once (same results and state).
+
+    Frames that share a map are stacked into one batch: every geometric step runs once
+    over all their objects, and the rules' past-time LTL memory is carried along each
+    object's frames exactly as frame by frame.
+
+    Args:
+        inputs: The frames, in time order.
+        params: Engine parameters.
+        state: State returned for the frame before the first one (``None`` at the start).
+
+    Returns:
+        One result per frame and the state after the last frame.
+    """
     state = state or RuleState()
-    times = params.times_array_s
-    occ = ego_occupancy(inputs.ego, times)
-    track = _prepared_track(inputs, params, state)
-    keep, s_obj, s_ego, lat_obj = _select(inputs, track)
-    rows = np.flatnonzero(keep)
-    objs: ObjectStates = inputs.objects if keep.all() else inputs.objects.take(rows)
-    skipped = tuple(str(i) for i in inputs.objects.ids[~keep])
-    ego = inputs.ego
-    ctx = RuleContext(
-        objects=objs,
-        ego_x_m=float(ego.x_m[0]),
-        ego_y_m=float(ego.y_m[0]),
-        ego_yaw_rad=float(ego.yaw_rad[0]),
-        ego_speed_mps=float(np.nan_to_num(ego.speed_mps[0])),
-        ego_length_m=ego.length_m,
-        ego_width_m=ego.width_m,
-        occupancy=occ,
-        times_s=times,
-        params=params,
-        track=track,
-        s_obj_m=s_obj[rows],
-        s_ego_m=s_ego,
-        lat_obj_m=lat_obj[rows],
-        road=inputs.road,
-        zones=inputs.zones,
-    )
-    patches, memory = _rule_patches(ctx, params, state.ltl)
-    sets: NDArray[Any]
-    if params.full_geometry or params.keep_largest_part_only:
-        sets, hits = _full_sets(ctx, patches)
-    else:
-        sets, hits = _verdict(ctx, patches)
-    collisions = []
-    for i in np.flatnonzero(hits.any(axis=1)):
-        k = int(np.argmax(hits[i]))
-        collisions.append(Collision(str(objs.ids[i]), float(times[k]), k))
-        _log.debug("collision with %s at %.2f s into the plan", objs.ids[i], times[k])
-    result = ReachResult(
-        is_safe=not collisions,
-        collisions=tuple(collisions),
-        patches=tuple(
-            AppliedPatch(str(objs.ids[p.object_index]), p.rule, p.step, p.geometry) for p in patches
-        ),
-        object_ids=objs.ids,
-        skipped_ids=skipped,
-        occupancy=occ,
-        sets=sets,
-    )
-    new_state = RuleState(ltl=memory, track_bounds=inputs.track, track=track)
-    return result, new_state
+    results: list[ReachResult] = []
+    for run in _runs(inputs):
+        track = _prepared_track(run[0].track, params, state)
+        batch = stack_frames(run, params, track)
+        patches, memory = _rule_patches(batch, state.ltl)
+        sets: NDArray[Any]
+        if params.full_geometry or params.keep_largest_part_only:
+            sets, hits = _full_sets(batch, patches)
+        else:
+            sets, hits = _verdict(batch, patches)
+        results += _split(batch, sets, hits, patches)
+        state = RuleState(ltl=memory, track_bounds=run[-1].track, track=track)
+    return results, state
+
+
+def _split(
+    batch: FrameBatch, sets: NDArray[Any], hits: NDArray[np.bool_], patches: list[RulePatch]
+) -> list[ReachResult]:
+    """Per-frame results of a batch."""
+    times = batch.occupancy.t_s
+    ids = batch.objects.ids
+    first = np.where(hits.any(axis=1), np.argmax(hits, axis=1), -1)
+    applied: list[list[AppliedPatch]] = [[] for _ in range(batch.n_frames)]
+    for p in patches:
+        applied[int(batch.frame[p.object_index])].append(
+            AppliedPatch(str(ids[p.object_index]), p.rule, p.step, p.geometry)
+        )
+    out = []
+    for f in range(batch.n_frames):
+        lo, hi = int(batch.offsets[f]), int(batch.offsets[f + 1])
+        collisions = []
+        for i in np.flatnonzero(first[lo:hi] >= 0) + lo:
+            k = int(first[i])
+            collisions.append(Collision(str(ids[i]), float(times[k]), k))
+            _log.debug("collision with %s at %.2f s into the plan", ids[i], times[k])
+        out.append(
+            ReachResult(
+                is_safe=not collisions,
+                collisions=tuple(collisions),
+                patches=tuple(applied[f]),
+                object_ids=ids[lo:hi],
+                skipped_ids=batch.skipped_ids[f],
+                occupancy=batch.occupancy.frame(f),
+                sets=sets[lo:hi],
+            )
+        )
+    return out
 
 
 def _full_sets(
-    ctx: RuleContext, patches: list[RulePatch]
+    batch: FrameBatch, patches: list[RulePatch]
 ) -> tuple[NDArray[np.object_], NDArray[np.bool_]]:
-    """Every reduced set and every cell where it touches the ego footprint, ``(N, T)`` each."""
-    params, objs = ctx.params, ctx.objects
-    sets = reachable_sets(objs, ctx.times_s, params, ctx.track)
+    """Every reduced set and every cell where it touches the ego footprint, ``(R, T)`` each."""
+    params, objs, times = batch.params, batch.objects, batch.occupancy.t_s
+    sets = reachable_sets(objs, times, params, batch.track)
     if patches:
-        sets = subtract_patches(sets, patch_grid(patches, ctx.footprints, len(ctx.times_s)))
+        sets = subtract_patches(sets, patch_grid(patches, _footprints(batch), len(times)))
     if params.keep_largest_part_only and sets.size:
         sets = keep_largest_part(sets)
     if not sets.size:
         return sets, np.zeros(sets.shape, dtype=bool)
-    hits = np.asarray(shapely.intersects(sets, ctx.occupancy.polygons[None, :]), dtype=bool)
+    ego = batch.occupancy.polygons[batch.frame]
+    hits = np.asarray(shapely.intersects(sets, ego), dtype=bool)
     sets = sets.copy()
     sets[np.asarray(shapely.is_empty(sets), dtype=bool)] = None
     return sets, hits
 
 
 def _verdict(
-    ctx: RuleContext, patches: list[RulePatch]
+    batch: FrameBatch, patches: list[RulePatch]
 ) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
-    """Unreduced simple sets ``(N, T, 6, 2)`` and the first hits (see ``verdict``)."""
-    params, objs, track = ctx.params, ctx.objects, ctx.track
-    verts = simple_vertices(objs, ctx.times_s, params)
+    """Unreduced simple sets ``(R, T, 6, 2)`` and the first hits (see ``verdict``)."""
+    params, objs, track, times = batch.params, batch.objects, batch.track, batch.occupancy.t_s
+    verts = simple_vertices(objs, times, params)
     area = track.polygon if track is not None and params.trim_to_drivable else None
     hits = first_hits(
         verts,
-        ctx.occupancy.corners_m,
+        batch.ego_corners_m,
         area=area,
         deletion=lambda: deletion_polygons(objs, params, track),
         patches=(
-            (lambda cells: patch_grid(patches, ctx.footprints, len(ctx.times_s), cells))
+            (lambda cells: patch_grid(patches, _footprints(batch), len(times), cells))
             if patches
             else None
         ),
     )
     return verts, hits
+
+
+def _footprints(batch: FrameBatch) -> NDArray[np.object_]:
+    o = batch.objects
+    return rectangles(o.x_m, o.y_m, o.yaw_rad, o.length_m, o.width_m).reshape(len(o))

@@ -10,7 +10,11 @@ Operators (``phi``, ``psi`` formulas; ``t`` the current frame, ``t-1`` the previ
 
 The monitor is incremental: its memory holds, per temporal node and per object id, the one
 bit the recurrence needs from the previous frame. Objects seen for the first time start with
-the first-frame semantics. ``evaluate_trace`` is the slow reference over a whole trace.
+the first-frame semantics. ``step`` also takes a batch of consecutive frames at once: each
+object's rows over consecutive frames form a chain, and every temporal operator is a scan
+along the chains (``since`` keeps the value of the last event, ``Y`` shifts by one row), so
+the result equals stepping frame by frame. ``evaluate_trace`` is the slow reference over a
+whole trace.
 """
 
 from __future__ import annotations
@@ -104,12 +108,66 @@ class Since:
 Formula = Atom | Not | And | Or | Previously | Once | Historically | Since
 
 
-def _prev(
-    memory: Mapping[str, Mapping[str, bool]], key: str, ids: Sequence[str], *, default: bool
+@dataclass(frozen=True, slots=True)
+class _Chains:
+    """Rows grouped into chains: one object over consecutive frames (scan order).
+
+    Attributes:
+        order: Row positions in scan order (by object, then frame), ``(R,)``.
+        start: For each scan position, the scan position where its chain starts, ``(R,)``.
+        from_memory: For each scan position, whether its chain starts at the batch's first
+            frame (so it continues the memory), ``(R,)``.
+        ids: Object id of each scan position.
+        last: Rows in the batch's last frame (the ones the memory keeps), ``(L,)``.
+    """
+
+    order: NDArray[np.intp]
+    start: NDArray[np.intp]
+    from_memory: NDArray[np.bool_]
+    ids: list[str]
+    last: NDArray[np.intp]
+
+
+def _chains(ids: Sequence[str], frame: NDArray[np.intp], n_frames: int) -> _Chains:
+    id_arr = np.asarray(ids, dtype=str)
+    order = np.lexsort((frame, id_arr)) if len(id_arr) else np.zeros(0, dtype=np.intp)
+    sid, sframe = id_arr[order], frame[order]
+    pos = np.arange(len(order))
+    new = np.ones(len(order), dtype=bool)
+    new[1:] = (sid[1:] != sid[:-1]) | (sframe[1:] != sframe[:-1] + 1)
+    start = np.maximum.accumulate(np.where(new, pos, 0)) if len(pos) else pos
+    return _Chains(
+        order=order,
+        start=start,
+        from_memory=sframe[start] == 0,
+        ids=sid.tolist(),
+        last=np.flatnonzero(frame == n_frames - 1),
+    )
+
+
+def _initial(
+    memory: Mapping[str, Mapping[str, bool]], key: str, ch: _Chains, *, default: bool
 ) -> NDArray[np.bool_]:
-    """Previous bits of ``key`` for ``ids``; ``default`` for ids not seen before."""
+    """The bit before each scan position's chain: remembered, else ``default``."""
     bits = memory.get(key, {})
-    return np.array([bits.get(i, default) for i in ids], dtype=bool).reshape(len(ids))
+    first = ch.from_memory & (ch.start == np.arange(len(ch.start)))
+    init = np.full(len(ch.start), default)
+    for p in np.flatnonzero(first):
+        init[p] = bits.get(ch.ids[p], default)
+    return init[ch.start]
+
+
+def _since(
+    lhs: NDArray[np.bool_], rhs: NDArray[np.bool_], init: NDArray[np.bool_], ch: _Chains
+) -> NDArray[np.bool_]:
+    """``v = rhs or (lhs and v_prev)`` along every chain (scan order in and out).
+
+    ``v`` is the value of the chain's last event at or before each position (``rhs`` sets
+    it, ``not lhs and not rhs`` clears it), or ``init`` when there is none yet.
+    """
+    pos = np.arange(len(lhs))
+    last = np.maximum.accumulate(np.where(rhs | ~lhs, pos, -1)) if len(pos) else pos
+    return np.where(last >= ch.start, rhs[np.maximum(last, 0)], init)
 
 
 def step(
@@ -118,25 +176,42 @@ def step(
     ids: Sequence[str],
     memory: Mapping[str, Mapping[str, bool]],
     prefix: str = "",
+    *,
+    frame: NDArray[np.intp] | None = None,
+    n_frames: int = 1,
 ) -> tuple[NDArray[np.bool_], LtlMemory]:
-    """Evaluate ``formula`` at the current frame for every object.
+    """Evaluate ``formula`` for every object at one frame or over consecutive frames.
 
     Args:
         formula: The formula.
-        atoms: Predicate name -> ``(N,)`` bools for the current frame.
-        ids: Object ids, ``N`` of them, aligned with the atom arrays.
-        memory: Memory returned by the previous call (empty at the start).
+        atoms: Predicate name -> ``(R,)`` bools, one row per object and frame.
+        ids: Object id of each row, ``R`` of them.
+        memory: Memory returned for the frame before the first one (empty at the start).
         prefix: Namespace of this formula's memory keys (one per rule).
+        frame: Frame of each row, ``0 .. n_frames - 1`` (``None``: all rows in one frame).
+        n_frames: Number of consecutive frames the rows cover.
 
     Returns:
-        ``(N,)`` truth values and the new memory (only this formula's keys, current ids).
+        ``(R,)`` truth values and the memory after the last frame (only this formula's keys,
+        the ids of the last frame). An object missing from a frame is forgotten: it starts
+        afresh when it returns, exactly as when the frames are stepped one by one.
     """
+    rows = np.zeros(len(ids), dtype=np.intp) if frame is None else np.asarray(frame)
+    ch = _chains(ids, rows, n_frames)
+    scan = {k: np.asarray(v, dtype=bool)[ch.order] for k, v in atoms.items()}
     new: LtlMemory = {}
+    last_ids = [str(ids[r]) for r in ch.last]
+    scan_of_last = np.empty(len(ids), dtype=np.intp)
+    scan_of_last[ch.order] = np.arange(len(ids))
+    at_last = scan_of_last[ch.last]
+
+    def keep(key: str, value: NDArray[np.bool_]) -> None:
+        new[key] = dict(zip(last_ids, value[at_last].tolist(), strict=True))
 
     def ev(f: Formula, path: str) -> NDArray[np.bool_]:
         key = f"{prefix}{path}"
         if isinstance(f, Atom):
-            return np.asarray(atoms[f.name], dtype=bool)
+            return scan[f.name]
         if isinstance(f, Not):
             return ~ev(f.arg, path + ".n")
         if isinstance(f, And | Or):
@@ -145,26 +220,27 @@ def step(
             return np.asarray(op.reduce(vals), dtype=bool)
         if isinstance(f, Previously):
             inner = ev(f.arg, path + ".y")
-            prev = _prev(memory, key, ids, default=False)
-            new[key] = dict(zip(ids, inner.tolist(), strict=True))
-            return prev
+            init = _initial(memory, key, ch, default=False)
+            prev = np.concatenate([[False], inner[:-1]])
+            keep(key, inner)
+            return np.where(ch.start < np.arange(len(inner)), prev, init)
         if isinstance(f, Once):
             inner = ev(f.arg, path + ".o")
-            prev = _prev(memory, key, ids, default=False)
-            value = inner | prev
+            value = _since(np.ones_like(inner), inner, _initial(memory, key, ch, default=False), ch)
         elif isinstance(f, Historically):
             inner = ev(f.arg, path + ".h")
-            prev = _prev(memory, key, ids, default=True)
-            value = inner & prev
+            init = _initial(memory, key, ch, default=True)
+            value = ~_since(np.ones_like(inner), ~inner, ~init, ch)
         else:
             lhs = ev(f.lhs, path + ".l")
             rhs = ev(f.rhs, path + ".r")
-            prev = _prev(memory, key, ids, default=False)
-            value = rhs | (lhs & prev)
-        new[key] = dict(zip(ids, value.tolist(), strict=True))
+            value = _since(lhs, rhs, _initial(memory, key, ch, default=False), ch)
+        keep(key, value)
         return value
 
-    return ev(formula, "@"), new
+    out = np.empty(len(ids), dtype=bool)
+    out[ch.order] = ev(formula, "@")
+    return out, new
 
 
 def evaluate_trace(  # noqa: PLR0911 - one return per operator reads best

@@ -13,6 +13,8 @@ import shapely
 from reachsets.footprints import rectangle_corners
 
 if TYPE_CHECKING:
+    from collections.abc import Sequence
+
     from numpy.typing import NDArray
 
     from reachsets.inputs import EgoTrajectory
@@ -21,6 +23,7 @@ __all__ = [
     "MIN_TIMING_SPEED_MPS",
     "EgoOccupancy",
     "ego_occupancy",
+    "ego_occupancy_many",
     "ego_occupancy_scalar",
     "trajectory_times",
 ]
@@ -31,14 +34,14 @@ MIN_TIMING_SPEED_MPS = 0.01
 
 @dataclass(frozen=True)
 class EgoOccupancy:
-    """Ego footprints at the grid stamps.
+    """Ego footprints at the grid stamps, of one frame (``S = (T,)``) or many (``(F, T)``).
 
     Attributes:
         t_s: Stamps, ``(T,)``.
-        x_m: Interpolated centre x, ``(T,)``.
-        y_m: Interpolated centre y, ``(T,)``.
-        yaw_rad: Interpolated heading, ``(T,)``.
-        corners_m: Footprint corners (FL, RL, RR, FR), ``(T, 4, 2)``.
+        x_m: Interpolated centre x, ``S``.
+        y_m: Interpolated centre y, ``S``.
+        yaw_rad: Interpolated heading, ``S``.
+        corners_m: Footprint corners (FL, RL, RR, FR), ``S + (4, 2)``.
     """
 
     t_s: NDArray[np.float64]
@@ -47,9 +50,13 @@ class EgoOccupancy:
     yaw_rad: NDArray[np.float64]
     corners_m: NDArray[np.float64]
 
+    def frame(self, f: int) -> EgoOccupancy:
+        """Frame ``f`` of a many-frame occupancy (``(T,)`` poses)."""
+        return EgoOccupancy(self.t_s, self.x_m[f], self.y_m[f], self.yaw_rad[f], self.corners_m[f])
+
     @cached_property
     def polygons(self) -> NDArray[np.object_]:
-        """Footprint rectangles, ``(T,)`` shapely polygons (built on first use)."""
+        """Footprint rectangles, ``S`` shapely polygons (built on first use)."""
         return np.asarray(shapely.polygons(self.corners_m))
 
 
@@ -60,34 +67,95 @@ def trajectory_times(traj: EgoTrajectory) -> NDArray[np.float64]:
     ``v_mean`` the mean speed of consecutive points floored at ``MIN_TIMING_SPEED_MPS``, so
     a trajectory that ends at standstill gets very large final stamps (reference behaviour).
     """
-    if np.all(np.isfinite(traj.t_s)):
-        return np.asarray(traj.t_s, dtype=np.float64)
-    ds = np.hypot(np.diff(traj.x_m), np.diff(traj.y_m))
-    v = np.nan_to_num(np.asarray(traj.speed_mps, dtype=np.float64))
-    v_mean = np.maximum((v[:-1] + v[1:]) / 2, MIN_TIMING_SPEED_MPS)
-    return np.concatenate([[0.0], np.cumsum(ds / v_mean)])
+    padded = _padded([traj])
+    return _waypoint_times(padded)[0, : len(traj.x_m)]
+
+
+def _padded(trajs: Sequence[EgoTrajectory]) -> dict[str, NDArray[np.float64]]:
+    """``x, y, yaw, v, t`` of every trajectory as ``(F, K)`` rows, ``K >= 2``.
+
+    Each row is padded by repeating its last point (which holds the last pose).
+    """
+    lengths = np.array([len(t.x_m) for t in trajs])
+    k = max(2, int(lengths.max()))
+    offsets = np.cumsum(lengths) - lengths
+    take = offsets[:, None] + np.minimum(np.arange(k)[None, :], lengths[:, None] - 1)
+    names = {"x": "x_m", "y": "y_m", "yaw": "yaw_rad", "v": "speed_mps", "t": "t_s"}
+    return {
+        key: np.concatenate([getattr(t, attr) for t in trajs])[take] for key, attr in names.items()
+    }
+
+
+def _waypoint_times(p: dict[str, NDArray[np.float64]]) -> NDArray[np.float64]:
+    """``trajectory_times`` of padded rows, ``(F, K)`` (padding adds zero-length steps)."""
+    ds = np.hypot(np.diff(p["x"], axis=1), np.diff(p["y"], axis=1))
+    v = np.where(np.isfinite(p["v"]), p["v"], 0.0)
+    v_mean = np.maximum((v[:, :-1] + v[:, 1:]) / 2, MIN_TIMING_SPEED_MPS)
+    derived = np.zeros(p["x"].shape)
+    derived[:, 1:] = np.cumsum(ds / v_mean, axis=1)
+    given = np.isfinite(p["t"]).all(axis=1, keepdims=True)
+    return np.where(given, p["t"], derived)
+
+
+def _unwrap_rows(yaw: NDArray[np.float64]) -> NDArray[np.float64]:
+    """``np.unwrap`` along each row of ``(F, K)`` headings."""
+    d = np.diff(yaw, axis=1)
+    dmod = (d + np.pi) % (2 * np.pi) - np.pi
+    dmod[(dmod == -np.pi) & (d > 0)] = np.pi
+    fix = np.where(np.abs(d) < np.pi, 0.0, dmod - d)
+    out = yaw.copy()
+    out[:, 1:] += np.cumsum(fix, axis=1)
+    return out
+
+
+def _interp_rows(
+    q: NDArray[np.float64], xp: NDArray[np.float64], *fps: NDArray[np.float64]
+) -> list[NDArray[np.float64]]:
+    """``np.interp(q, xp[f], fp[f])`` for every row ``f`` of ``(F, K)`` arrays, ``(F, T)``.
+
+    ``xp`` rows are non-decreasing; values are held beyond both ends.
+    """
+    k = xp.shape[1]
+    j = np.clip((xp[:, None, :] <= q[None, :, None]).sum(axis=2) - 1, 0, k - 2)
+    x0 = np.take_along_axis(xp, j, 1)
+    x1 = np.take_along_axis(xp, j + 1, 1)
+    span = x1 - x0
+    w = np.clip((q - x0) / np.where(span > 0, span, 1.0), 0.0, 1.0)
+    out = []
+    for fp in fps:
+        f0 = np.take_along_axis(fp, j, 1)
+        out.append(f0 + w * (np.take_along_axis(fp, j + 1, 1) - f0))
+    return out
 
 
 def ego_occupancy(traj: EgoTrajectory, times_s: NDArray[np.float64]) -> EgoOccupancy:
-    """Footprints of the ego at ``times_s``.
+    """Footprints of the ego at ``times_s`` (one frame of ``ego_occupancy_many``)."""
+    return ego_occupancy_many([traj], times_s).frame(0)
+
+
+def ego_occupancy_many(
+    trajs: Sequence[EgoTrajectory], times_s: NDArray[np.float64]
+) -> EgoOccupancy:
+    """Footprints of the ego at ``times_s`` for the plans of ``F`` frames.
 
     Poses are interpolated linearly in time (held at the ends); the heading is unwrapped
     before interpolation so it never turns the long way round.
 
     Args:
-        traj: The ego trajectory.
+        trajs: The ego trajectories, one per frame.
         times_s: Stamps, ``(T,)`` seconds from now.
 
     Returns:
-        The occupancy, one rectangle ``ego.length_m x ego.width_m`` per stamp.
+        The occupancy with ``(F, T)`` poses, one rectangle ``ego.length_m x ego.width_m``
+        per frame and stamp.
     """
-    t_wp = trajectory_times(traj)
-    yaw_unwrapped = np.unwrap(traj.yaw_rad)
-    x = np.interp(times_s, t_wp, traj.x_m)
-    y = np.interp(times_s, t_wp, traj.y_m)
-    yaw = np.interp(times_s, t_wp, yaw_unwrapped)
-    corners = rectangle_corners(x, y, yaw, traj.length_m, traj.width_m)
-    return EgoOccupancy(np.asarray(times_s, dtype=np.float64), x, y, yaw, corners)
+    p = _padded(trajs)
+    t = np.asarray(times_s, dtype=np.float64)
+    x, y, yaw = _interp_rows(t, _waypoint_times(p), p["x"], p["y"], _unwrap_rows(p["yaw"]))
+    length = np.array([tr.length_m for tr in trajs])[:, None]
+    width = np.array([tr.width_m for tr in trajs])[:, None]
+    corners = rectangle_corners(x, y, yaw, length, width)
+    return EgoOccupancy(t, x, y, yaw, corners)
 
 
 def _interp_scalar(t: float, ts: list[float], vs: list[float]) -> float:

@@ -31,13 +31,14 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from reachsets.ltl import And, Atom, LtlMemory, Not, Previously, Since, step
-from reachsets.patches import RuleContext, RulePatch
+from reachsets.patches import RulePatch
 
 if TYPE_CHECKING:
     from collections.abc import Mapping
 
     from numpy.typing import NDArray
 
+    from reachsets.batch import FrameBatch
     from reachsets.track import TrackGeometry
 
 __all__ = ["ALONGSIDE", "DEFENDING", "corner_points", "evaluate_f1"]
@@ -88,49 +89,50 @@ def _next_corner(
 
 
 def evaluate_f1(
-    ctx: RuleContext, memory: Mapping[str, Mapping[str, bool]]
+    batch: FrameBatch, memory: Mapping[str, Mapping[str, bool]]
 ) -> tuple[list[RulePatch], LtlMemory]:
-    """Evaluate both F1 rules for every object and build their patches.
+    """Evaluate both F1 rules for every object over consecutive frames and build their patches.
 
     Args:
-        ctx: Rule context; needs ``ctx.track``.
-        memory: LTL memory from the previous frame.
+        batch: The frames' objects and egos; needs ``batch.track``.
+        memory: LTL memory from the frame before the first one.
 
     Returns:
-        The patches and the new memory.
+        The patches (``object_index`` = batch row) and the memory after the last frame.
     """
-    track = ctx.track
-    if track is None or len(ctx.objects) == 0:
+    track = batch.track
+    if track is None:
         return [], {}
-    p = ctx.params.f1
-    objs = ctx.objects
+    p = batch.params.f1
+    objs = batch.objects
     ids = [str(i) for i in objs.ids]
-    gap = track.ahead_m(ctx.s_ego_m, ctx.s_obj_m)
-    approach, first, direction = _next_corner(track, ctx.s_obj_m, p.d_corner_m, p.kappa_thr_inv_m)
-    lat_obj = ctx.lat_obj_m
+    f = batch.frame
+    gap = track.ahead_m(batch.s_ego_m[f], batch.s_obj_m)
+    approach, first, direction = _next_corner(track, batch.s_obj_m, p.d_corner_m, p.kappa_thr_inv_m)
+    lat_obj = batch.lat_obj_m
     atoms = {
-        "overlap": (gap >= 0) & (gap < (1 - p.d_overlap) * ctx.ego_length_m),
+        "overlap": (gap >= 0) & (gap < (1 - p.d_overlap) * batch.ego_length_m[f]),
         "approach": approach,
         "defense": (gap >= 0) & (gap <= p.d_defend_m),
         "off_line": np.where(direction > 0, lat_obj < 0, lat_obj > 0),
     }
-    alongside, mem = step(ALONGSIDE, atoms, ids, memory, prefix="f1.alongside")
+    n = batch.n_frames
+    alongside, mem = step(ALONGSIDE, atoms, ids, memory, "f1.alongside", frame=f, n_frames=n)
     atoms["active"] = approach & first & ~alongside
-    defending, mem_d = step(DEFENDING, atoms, ids, memory, prefix="f1.defending")
+    defending, mem_d = step(DEFENDING, atoms, ids, memory, "f1.defending", frame=f, n_frames=n)
     mem.update(mem_d)
     patches: list[RulePatch] = []
-    if not (alongside.any() or defending.any()):
-        return patches, mem
-    idx = track.span_indices(ctx.s_ego_m, p.len_patch_m)
-    tw_l = track.tw_left_m[idx]
-    tw_r = track.tw_right_m[idx]
-    lat_ego = float(track.lateral_m([ctx.ego_x_m], [ctx.ego_y_m])[0])
-    patches.extend(
-        RulePatch(int(i), "f1.alongside", _alongside_strip(ctx, int(i), idx, lat_ego))
-        for i in np.flatnonzero(alongside)
-    )
-    for i in np.flatnonzero(defending & ~alongside):
-        width = p.veh_width_factor * ctx.ego_width_m
+    for i in np.flatnonzero(alongside | defending):
+        k = int(f[i])
+        idx = track.span_indices(float(batch.s_ego_m[k]), p.len_patch_m)
+        if alongside[i]:
+            lat_ego = float(track.lateral_m([batch.ego_x_m[k]], [batch.ego_y_m[k]])[0])
+            strip = _alongside_strip(batch, int(i), idx, lat_ego)
+            patches.append(RulePatch(int(i), "f1.alongside", strip))
+            continue
+        width = p.veh_width_factor * float(batch.ego_width_m[k])
+        tw_l = track.tw_left_m[idx]
+        tw_r = track.tw_right_m[idx]
         if direction[i] < 0:  # right corner: keep the left (outside) edge free
             geom = track.strip(idx, -(tw_l + p.width_extra_bound_m), -(tw_l - width))
         else:
@@ -139,14 +141,14 @@ def evaluate_f1(
     return patches, mem
 
 
-def _alongside_strip(ctx: RuleContext, i: int, idx: NDArray[np.intp], lat_ego: float) -> object:
-    """The alongside patch of object ``i`` over centre points ``idx``."""
-    track = ctx.track
+def _alongside_strip(batch: FrameBatch, i: int, idx: NDArray[np.intp], lat_ego: float) -> object:
+    """The alongside patch of row ``i`` over centre points ``idx``."""
+    track = batch.track
     assert track is not None
-    p = ctx.params.f1
-    j = int(track.index_at(ctx.s_obj_m[i]))
-    lat_obj = float(ctx.lat_obj_m[i])
-    w_obj = float(ctx.objects.width_m[i])
+    p = batch.params.f1
+    j = int(track.index_at(batch.s_obj_m[i]))
+    lat_obj = float(batch.lat_obj_m[i])
+    w_obj = float(batch.objects.width_m[i])
     right = lat_ego > lat_obj
     if right:
         d_ego = track.tw_right_m[j] - lat_ego
@@ -158,7 +160,9 @@ def _alongside_strip(ctx: RuleContext, i: int, idx: NDArray[np.intp], lat_ego: f
     d = min((d_ego + d_obj) / 2, d_obj - w_obj / 2)
     frac = d / width_here
     w = track.tw_left_m[idx] + track.tw_right_m[idx]
-    d_k = np.minimum(np.maximum(w * frac, min(d, ctx.ego_width_m)), w - w_obj)
+    d_k = np.minimum(
+        np.maximum(w * frac, min(d, float(batch.ego_width_m[batch.frame[i]]))), w - w_obj
+    )
     d_k = np.maximum(d_k, 0.0)
     if right:
         tw = track.tw_right_m[idx]

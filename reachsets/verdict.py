@@ -41,7 +41,7 @@ def first_hits(
 
     Args:
         sets_m: Unreduced convex ``simple`` sets, ``(N, T, V, 2)`` vertices.
-        ego_m: Ego footprint corners per step, ``(T, 4, 2)``.
+        ego_m: Ego footprint corners of each object's frame per step, ``(N, T, 4, 2)``.
         area: Drivable area to trim to (prepared shapely geometry), or ``None``.
         deletion: Returns the method's deletion polygon per object, ``(N,)`` (called at most
             once, only when some cell touches), or ``None`` for none.
@@ -52,7 +52,7 @@ def first_hits(
         ``(N, T)`` mask; each row's first ``True`` is the object's first collision step and
         nothing after it is set.
     """
-    touch = convex_touch(sets_m, ego_m[None]) if sets_m.size else np.zeros(sets_m.shape[:2], bool)
+    touch = convex_touch(sets_m, ego_m) if sets_m.size else np.zeros(sets_m.shape[:2], bool)
     hits = np.zeros(touch.shape, dtype=bool)
     if not touch.any():
         return hits
@@ -86,7 +86,8 @@ def _reduced_touch(
     i, k = np.nonzero(cells)
     # one creation call for both: the rectangles padded to V vertices by repeating a corner
     n_v = sets_m.shape[2]
-    pad = np.concatenate([ego_m[k], np.repeat(ego_m[k, -1:], n_v - ego_m.shape[1], axis=1)], 1)
+    ego = ego_m[i, k]
+    pad = np.concatenate([ego, np.repeat(ego[:, -1:], n_v - ego.shape[1], axis=1)], 1)
     polys = shapely.polygons(np.concatenate([sets_m[i, k], pad]))
     part = polys[: len(i)]
     if cut is not None:

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 import shapely
 
-from reachsets.engine import RuleState, evaluate
+from reachsets.engine import RuleState, evaluate, evaluate_many
 from reachsets.errors import InputShapeError, ParamsError, ReachSetError, ZoneFileError
 from reachsets.inputs import (
     EgoTrajectory,
@@ -259,3 +259,54 @@ def test_reference_largest_part_mode_is_available():
     reach = np.array([[shapely.MultiPolygon([shapely.box(0, 0, 1, 1), shapely.box(5, 0, 9, 3)])]])
     out = keep_largest_part(reach)
     assert shapely.area(out[0, 0]) == pytest.approx(12.0)
+
+
+def _drive(road: RoadLayout | None, track: TrackBounds | None) -> list[ReachInputs]:
+    """Twelve frames: o0 drives ahead and speeds up, o1 leaves for two frames, o2 comes
+    alongside the ego from the third frame."""
+    frames = []
+    for k in range(12):
+        t = 0.1 * k
+        rows = [(20.0 + 14.0 * t, -2.0, 0.0, 14.0 + 15.0 * t)]
+        ids = ["o0"]
+        if k not in (4, 5):
+            rows.append((45.0 + 5.0 * t, 2.5 - 0.5 * t, np.pi if road else 0.0, 5.0))
+            ids.append("o1")
+        if k >= 3:
+            rows.append((2.0 + 10.0 * t, 1.5, 0.0, 10.0))
+            ids.append("o2")
+        objs = objects(*rows)
+        objs = type(objs)(np.array(ids), *(getattr(objs, f) for f in _FIELDS))
+        ego = straight_ego(x0=10.0 * t, y0=-2.0, speed=10.0)
+        frames.append(ReachInputs(ego=ego, objects=objs, road=road, track=track))
+    return frames
+
+
+_FIELDS = ("x_m", "y_m", "yaw_rad", "speed_mps", "length_m", "width_m")
+
+
+@pytest.mark.parametrize("full", [True, False])
+@pytest.mark.parametrize("method", list(ReachMethod))
+@pytest.mark.parametrize("where", ["road", "track"])
+def test_batched_frames_equal_frame_by_frame(where, method, full):
+    road, track = (_two_lane_road(), None) if where == "road" else (None, straight_track())
+    frames = _drive(road, track)
+    params = ReachParams(method=method, full_geometry=full)
+    state = None
+    one_by_one = []
+    for inp in frames:
+        res, state = evaluate(inp, params, state)
+        one_by_one.append(res)
+    assert state is not None
+    # the batch starts from the state after the first two frames
+    _, start = evaluate(frames[0], params)
+    _, start = evaluate(frames[1], params, start)
+    batched, end = evaluate_many(frames[2:], params, start)
+    assert [r.collisions for r in batched] == [r.collisions for r in one_by_one[2:]]
+    assert [[(p.object_id, p.rule, p.step) for p in r.patches] for r in batched] == [
+        [(p.object_id, p.rule, p.step) for p in r.patches] for r in one_by_one[2:]
+    ]
+    assert [r.skipped_ids for r in batched] == [r.skipped_ids for r in one_by_one[2:]]
+    assert end.ltl == state.ltl
+    assert any(r.patches for r in batched)
+    assert any(not r.is_safe for r in batched)

@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING
 import pytest
 
 from loaders.scenario_architect import open_scenario_architect
-from reachsets.engine import ReachResult, evaluate
+from reachsets.engine import ReachResult, evaluate, evaluate_many
 from reachsets.params import F1Params, ReachMethod, ReachParams
 from workbench.reach_adapter import frame_to_reach_inputs
 
@@ -125,3 +125,17 @@ def test_verdict_only_mode_matches_full_geometry(external_dir, name, method):
         got.append(result.collisions)
     full = _verdicts(external_dir / "trajectory_supervisor" / name, method)
     assert got == [r.collisions for _, _, r in full]
+
+
+@pytest.mark.parametrize("method", list(ReachMethod))
+@pytest.mark.parametrize("name", [T1, T34])
+def test_batched_replay_matches_frame_by_frame(external_dir, name, method):
+    """``evaluate_many`` over the whole log (verdict only) gives the frame-by-frame results."""
+    drive = open_scenario_architect(external_dir / "trajectory_supervisor" / name)
+    frames = [frame_to_reach_inputs(f, drive.lane_map) for f in drive.frames()]
+    results, _ = evaluate_many(frames, ReachParams(method=method, full_geometry=False))
+    full = _verdicts(external_dir / "trajectory_supervisor" / name, method)
+    assert [r.collisions for r in results] == [r.collisions for _, _, r in full]
+    assert [[p.rule for p in r.patches] for r in results] == [
+        [p.rule for p in r.patches] for _, _, r in full
+    ]

@@ -81,3 +81,42 @@ def test_memory_drops_vanished_objects():
     _, memory = step(f, {"p": np.array([True, False])}, ["a", "b"], {})
     _, memory = step(f, {"p": np.array([False])}, ["b"], memory)
     assert all(set(bits) == {"b"} for bits in memory.values())
+
+
+@settings(max_examples=150, deadline=None)
+@given(
+    formulas(),
+    st.lists(
+        st.dictionaries(
+            st.sampled_from(["a", "b", "c"]),
+            st.fixed_dictionaries({a: st.booleans() for a in ATOMS}),
+        ),
+        min_size=1,
+        max_size=7,
+    ),
+    st.integers(0, 7),
+)
+def test_batched_frames_equal_frame_by_frame(formula, frames, split):
+    """Objects come and go; a batch of frames (after a split) equals stepping one by one."""
+    memory: LtlMemory = {}
+    expected = []
+    for frame in frames:
+        ids = sorted(frame)
+        atoms = {k: np.array([frame[i][k] for i in ids], dtype=bool) for k in ATOMS}
+        values, memory = step(formula, atoms, ids, memory)
+        expected.append(values.tolist())
+    split = min(split, len(frames))
+    start: LtlMemory = {}
+    for frame in frames[:split]:
+        ids = sorted(frame)
+        atoms = {k: np.array([frame[i][k] for i in ids], dtype=bool) for k in ATOMS}
+        _, start = step(formula, atoms, ids, start)
+    rest = frames[split:]
+    ids = [i for frame in rest for i in sorted(frame)]
+    index = np.array([f for f, frame in enumerate(rest) for _ in frame], dtype=np.intp)
+    atoms = {k: np.array([fr[i][k] for fr in rest for i in sorted(fr)], bool) for k in ATOMS}
+    values, batch_memory = step(formula, atoms, ids, start, frame=index, n_frames=len(rest))
+    got = [values[index == f].tolist() for f in range(len(rest))]
+    assert got == expected[split:]
+    if rest:
+        assert batch_memory == memory
