@@ -108,7 +108,7 @@ def _drop_longer(f: FrameContext, routes: list[Connecting]) -> list[Connecting]:
     kept: list[Connecting] = []
     for cr in sorted(routes, key=lambda c: c.length_m):
         path = set(f.tree.path(cr.target))
-        if any(k.target in path or f.prep.conflicts[k.target, cr.target] for k in kept):
+        if any(k.target in path for k in kept):
             continue
         kept.append(cr)
     return kept

@@ -138,6 +138,8 @@ def connect(
                 moves.append((step, k, j + dj, _LATERAL_COST_M, pos, last))
         length = float(lengths[lane])
         for ahead, dk in ((True, 1), (False, -1)):
+            if last == -dk:
+                continue  # no turning back: a route keeps its longitudinal direction
             extra = length * ((1.0 - pos) if ahead else pos)
             moves.extend(
                 (step, k + dk, j, extra, 0.0 if ahead else 1.0, dk)
