@@ -103,16 +103,24 @@ def patch_grid(
     where the object already is.
     """
     n = len(footprints)
-    parts: list[list[list[Any]]] = [[[] for _ in range(n_steps)] for _ in range(n)]
+    every: list[list[Any]] = [[] for _ in range(n)]
+    at: dict[tuple[int, int], list[Any]] = {}
     for patch in patches:
-        steps = range(n_steps) if patch.step is None else (patch.step,)
-        for k in steps:
-            parts[patch.object_index][k].append(patch.geometry)
+        if patch.step is None:
+            every[patch.object_index].append(patch.geometry)
+        else:
+            at.setdefault((patch.object_index, patch.step), []).append(patch.geometry)
+    want = np.ones((n, n_steps), dtype=bool) if cells is None else np.asarray(cells, dtype=bool)
     grid = np.full((n, n_steps), None, dtype=object)
-    for i in range(n):
-        for k in range(n_steps):
-            if parts[i][k] and (cells is None or cells[i, k]):
-                grid[i, k] = shapely.difference(shapely.union_all(parts[i][k]), footprints[i])
+    # the patches that hold at every step: one union per object, shared by its cells
+    for i in np.flatnonzero([bool(g) for g in every] if n else []):
+        if want[i].any():
+            grid[i, want[i]] = shapely.difference(shapely.union_all(every[i]), footprints[i])
+    for (row, k), geoms in at.items():
+        if want[row, k]:
+            grid[row, k] = shapely.difference(
+                shapely.union_all(geoms + every[row]), footprints[row]
+            )
     return grid
 
 

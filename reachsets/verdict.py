@@ -7,9 +7,9 @@ The reductions (deletion polygon ``D``, trimming to the drivable area ``A``, rul
 
 so no set is ever trimmed: ``S`` is tested against the footprint ``E`` in plain numpy (both
 convex, ``convex.convex_touch``); only the touching cells are reduced, intersected with
-their (small) footprint and tested against the prepared area. Cells are visited in two
-rounds: each object's first touching cell, then the remaining touching cells of the objects
-not yet hit; nothing after an object's first hit is computed.
+their (small) footprint and tested against the prepared area. Cells are visited in rounds
+of each object's next 1, 2, 4, ... touching cells, objects already hit dropping out, so
+little is computed after an object's first hit and the calls stay vectorised.
 """
 
 from __future__ import annotations
@@ -57,13 +57,16 @@ def first_hits(
     if not touch.any():
         return hits
     cut = deletion() if deletion is not None else None
-    first = np.zeros_like(touch)
-    rows = np.flatnonzero(touch.any(axis=1))
-    first[rows, np.argmax(touch[rows], axis=1)] = True
-    for todo in (first, touch & ~first):
-        cells = todo & ~hits.any(axis=1, keepdims=True)
-        if cells.any():
-            hits |= _reduced_touch(sets_m, ego_m, cells, area=area, cut=cut, patches=patches)
+    todo = touch.copy()
+    size = 1
+    while True:
+        todo &= ~hits.any(axis=1, keepdims=True)
+        cells = todo & (np.cumsum(todo, axis=1) <= size)
+        if not cells.any():
+            break
+        hits |= _reduced_touch(sets_m, ego_m, cells, area=area, cut=cut, patches=patches)
+        todo &= ~cells
+        size *= 2
     # keep only the first hit per row
     return np.asarray(hits & (np.cumsum(hits, axis=1) == 1), dtype=bool)
 
