@@ -17,6 +17,7 @@ conflicts).
 from __future__ import annotations
 
 import bisect
+import functools
 import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
@@ -25,6 +26,7 @@ import numpy as np
 import shapely
 
 from rss.errors import RssConstellationError
+from rss.scene.cache import LaneSegmentCache
 from rss.scene.polylines import Polylines, polylines
 
 if TYPE_CHECKING:
@@ -128,6 +130,11 @@ class PreparedGraph:
     conflict_span_m: dict[tuple[int, int], tuple[float, float]]
     width_rows: list[list[float]]
     centre: Polylines
+
+    @functools.cached_property
+    def lane_segments(self) -> LaneSegmentCache:
+        """Lane segments of road areas, built once per lane and orientation."""
+        return LaneSegmentCache(self)
 
     def width_range(self, lane: int, p0: float, p1: float) -> tuple[float, float]:
         """Min and max width of ``lane`` between parametric positions ``p0 <= p1``."""

@@ -1,0 +1,89 @@
+"""Lane segments of road areas, cached per map (for ``rss.scene.roadarea.build_road``).
+
+Every pair of every frame gets its own road area, but most of its lanes are kept whole:
+only the first and the last segment are cut at the two vehicles. A whole lane's
+:class:`~rss.model.LaneSegment` depends only on ``(lane, orientation, id offset)``, so it
+is built once per map and the same frozen object is handed out afterwards; a cut lane is
+built from per-lane constants::
+
+      cut (p0 > 0)        whole            whole          cut (p1 < 1)
+    ├──┼──────────┼──────────────────┼──────────────┼───────┼──┤   road-area direction
+       rear vehicle                                  front vehicle
+
+Keys are lane indices of one :class:`~rss.scene.lanegraph.PreparedGraph`; the cache holds at
+most ``2 L`` entries per id offset (``L`` lanes), so it needs no eviction.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from rss.model import LaneDrivingDirection, LaneSegment
+
+if TYPE_CHECKING:
+    from rss.scene.lanegraph import PreparedGraph
+
+__all__ = ["LaneSegmentCache"]
+
+_FLIPPED = {
+    LaneDrivingDirection.Positive: LaneDrivingDirection.Negative,
+    LaneDrivingDirection.Negative: LaneDrivingDirection.Positive,
+    LaneDrivingDirection.Bidirectional: LaneDrivingDirection.Bidirectional,
+}
+
+
+class LaneSegmentCache:
+    """Lane segments of one prepared graph (see module docstring)."""
+
+    def __init__(self, prep: PreparedGraph) -> None:
+        """Read the per-lane constants of ``prep`` once."""
+        self._prep = prep
+        along = [LaneDrivingDirection(int(code)) for code in prep.graph.direction]
+        self._direction = {
+            (lane, forward): code if forward else _FLIPPED[code]
+            for lane, code in enumerate(along)
+            for forward in (True, False)
+        }
+        self._length_min = prep.length_min_m.tolist()
+        self._length_max = prep.length_max_m.tolist()
+        self._whole: dict[tuple[int, bool, int], LaneSegment] = {}
+
+    def direction(self, lane: int, *, forward: bool) -> LaneDrivingDirection:
+        """Traffic direction of ``lane`` relative to a road area it runs ``forward`` in."""
+        return self._direction[lane, forward]
+
+    def lane_segment(
+        self, lane: int, *, forward: bool, id_offset: int = 0, p0: float = 0.0, p1: float = 1.0
+    ) -> LaneSegment:
+        """The lane segment of ``lane`` kept between ``p0 <= p1`` of the road-area direction.
+
+        Args:
+            lane: Lane index.
+            forward: The lane's point order runs along the road-area direction.
+            id_offset: Added to the lane index to form the segment's ``lane_id``.
+            p0: Kept window start (parametric, road-area direction).
+            p1: Kept window end.
+
+        Returns:
+            Lengths scaled by the window, widths min / max over it, the direction relative
+            to the road area; for the whole lane always the same object.
+        """
+        whole = p0 == 0.0 and p1 == 1.0
+        if whole:
+            cached = self._whole.get((lane, forward, id_offset))
+            if cached is not None:
+                return cached
+        lo, hi = (p0, p1) if forward else (1.0 - p1, 1.0 - p0)
+        w_min, w_max = self._prep.width_range(lane, lo, hi)
+        scale = p1 - p0
+        segment = LaneSegment(
+            lane_id=lane + id_offset,
+            driving_direction=self._direction[lane, forward],
+            length_min_m=self._length_min[lane] * scale,
+            length_max_m=self._length_max[lane] * scale,
+            width_min_m=w_min,
+            width_max_m=w_max,
+        )
+        if whole:
+            self._whole[lane, forward, id_offset] = segment
+        return segment
