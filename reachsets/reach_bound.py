@@ -23,7 +23,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import shapely
 
-from reachsets.reach_turn import steering_arcs
+from reachsets.reach_turn import arc_profile
 
 if TYPE_CHECKING:
     from numpy.typing import NDArray
@@ -81,6 +81,10 @@ def wall_aware_arcs(
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Body-frame wall-aware edge curve of every object on one side.
 
+    The curve is the ``turn`` arc until its first chord that may not turn towards the wall:
+    every chord's rule is first checked on the ``turn`` arc at once, and only the curves
+    that turn back are continued chord by chord from there.
+
     Args:
         objects: The objects (N).
         params: Arc parameters as for ``steering_arcs``.
@@ -90,40 +94,85 @@ def wall_aware_arcs(
     Returns:
         ``(xi, eta)``, each ``(N, P)``.
     """
-    n = len(objects)
-    if n == 0:
-        return steering_arcs(objects, params, side)
+    xi, eta, psi, dmax = arc_profile(objects, params)
+    eta = side * eta
+    if len(objects) == 0:
+        return xi, eta
     wall = _wall_arrays(track.left if side > 0 else track.right)
-    yaw0 = np.asarray(objects.yaw_rad, dtype=np.float64)
-    cos0, sin0 = np.cos(yaw0), np.sin(yaw0)
-    xi = np.empty((n, params.arc_points))
-    eta = np.empty((n, params.arc_points))
-    xi[:, 0] = np.asarray(objects.length_m) / 2
-    eta[:, 0] = side * np.asarray(objects.width_m) / 2
-    v2 = np.asarray(objects.speed_mps, dtype=np.float64) ** 2
-    psi = np.zeros(n)
+    pose = (
+        np.asarray(objects.x_m, dtype=np.float64)[:, None],
+        np.asarray(objects.y_m, dtype=np.float64)[:, None],
+        np.asarray(objects.yaw_rad, dtype=np.float64)[:, None],
+    )
+    ok = _turn(pose, wall, xi[:, :-1], eta[:, :-1], psi[:, :-1], dmax, side, params)[1]
+    back = ~ok
+    rows = np.flatnonzero(back.any(axis=1))
+    if len(rows) == 0:
+        return xi, eta
+    start = np.argmax(back[rows], axis=1) + 1  # first chord (1-based) that turns back
+    sub_pose = (pose[0][rows], pose[1][rows], pose[2][rows])
+    sub_xi, sub_eta, sub_psi = xi[rows], eta[rows], psi[rows]
     c = params.arc_step_m
-    for k in range(1, params.arc_points):
-        x = objects.x_m + cos0 * xi[:, k - 1] - sin0 * eta[:, k - 1]
-        y = objects.y_m + sin0 * xi[:, k - 1] + cos0 * eta[:, k - 1]
-        wx, wy, tw = _wall_frame(wall, x, y)
-        cross = tw[:, 0] * (y - wy) - tw[:, 1] * (x - wx)
-        clearance = -side * cross
-        heading = yaw0 + side * psi
-        rel = np.arctan2(np.sin(heading), np.cos(heading)) - np.arctan2(tw[:, 1], tw[:, 0])
-        alpha = side * np.arctan2(np.sin(rel), np.cos(rel))
-        radius = np.maximum(v2 / params.ay_max_mps2, params.turn_radius_m)
-        dmax = 2 * np.arcsin(np.minimum(c / (2 * radius), 1.0))
-        room = clearance - c * np.sin(alpha + dmax / 2)
-        need = radius * (1 - np.cos(np.clip(alpha + dmax, 0.0, np.pi)))
-        aligned = np.abs(alpha) < np.pi / 2
-        towards = ~aligned | (room >= need)
-        back = np.minimum(dmax, np.maximum(alpha, 0.0))
-        dpsi = np.where(towards, dmax, -back)
-        dpsi = np.minimum(dpsi, params.arc_max_turn_rad - psi)
-        chord = psi + dpsi / 2
-        xi[:, k] = xi[:, k - 1] + c * np.cos(chord)
-        eta[:, k] = eta[:, k - 1] + side * c * np.sin(chord)
-        psi = psi + dpsi
-        v2 = np.maximum(v2 - 2 * params.ax_max_mps2 * c, 0.0)
+    for k in range(int(start.min()), params.arc_points):
+        dpsi, _ = _turn(
+            sub_pose,
+            wall,
+            sub_xi[:, k - 1 : k],
+            sub_eta[:, k - 1 : k],
+            sub_psi[:, k - 1 : k],
+            dmax[rows, k - 1 : k],
+            side,
+            params,
+        )
+        live = k >= start
+        chord = sub_psi[:, k - 1] + dpsi[:, 0] / 2
+        sub_xi[live, k] = (sub_xi[:, k - 1] + c * np.cos(chord))[live]
+        sub_eta[live, k] = (sub_eta[:, k - 1] + side * c * np.sin(chord))[live]
+        sub_psi[live, k] = (sub_psi[:, k - 1] + dpsi[:, 0])[live]
+    xi[rows], eta[rows] = sub_xi, sub_eta
     return xi, eta
+
+
+def _turn(  # noqa: PLR0917 - the chord rule needs the whole state
+    pose: tuple[NDArray[np.float64], ...],
+    wall: tuple[NDArray[np.float64], ...],
+    xi: NDArray[np.float64],
+    eta: NDArray[np.float64],
+    psi: NDArray[np.float64],
+    dmax: NDArray[np.float64],
+    side: float,
+    params: ReachParams,
+) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+    """Turn of the next chord from each point, and whether it may turn towards the wall.
+
+    Args:
+        pose: Object ``(x, y, yaw)``, each ``(N, 1)``.
+        wall: ``_wall_arrays`` of the wall on this side.
+        xi: Body-frame point the chord starts at, ``(N, K)``.
+        eta: Its lateral coordinate, ``(N, K)``.
+        psi: Heading change so far (towards the wall side), ``(N, K)``.
+        dmax: Largest turn of the chord, ``(N, K)``.
+        side: ``+1.0`` left, ``-1.0`` right.
+        params: Arc parameters.
+
+    Returns:
+        ``dpsi`` and ``towards``, each ``(N, K)``.
+    """
+    ox, oy, yaw0 = pose
+    cos0, sin0 = np.cos(yaw0), np.sin(yaw0)
+    x = ox + cos0 * xi - sin0 * eta
+    y = oy + sin0 * xi + cos0 * eta
+    wx, wy, tw = _wall_frame(wall, x.reshape(-1), y.reshape(-1))
+    wx, wy = wx.reshape(x.shape), wy.reshape(x.shape)
+    tx, ty = tw[:, 0].reshape(x.shape), tw[:, 1].reshape(x.shape)
+    clearance = -side * (tx * (y - wy) - ty * (x - wx))
+    heading = yaw0 + side * psi
+    rel = np.arctan2(np.sin(heading), np.cos(heading)) - np.arctan2(ty, tx)
+    alpha = side * np.arctan2(np.sin(rel), np.cos(rel))
+    radius = params.arc_step_m / (2 * np.sin(np.maximum(dmax, 1e-12) / 2))
+    room = clearance - params.arc_step_m * np.sin(alpha + dmax / 2)
+    need = radius * (1 - np.cos(np.clip(alpha + dmax, 0.0, np.pi)))
+    towards = (np.abs(alpha) >= np.pi / 2) | (room >= need)
+    back = np.minimum(dmax, np.maximum(alpha, 0.0))
+    dpsi = np.minimum(np.where(towards, dmax, -back), params.arc_max_turn_rad - psi)
+    return dpsi, towards

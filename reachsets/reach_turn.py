@@ -65,13 +65,13 @@ def steering_arcs(
     Returns:
         ``(xi, eta)``, each ``(N, P)`` with ``P = arc_points``, starting at the front corner.
     """
-    xi, eta, _ = arc_profile(objects, params)
+    xi, eta, _, _ = arc_profile(objects, params)
     return xi, side * eta
 
 
 def arc_profile(
     objects: ObjectStates, params: ReachParams
-) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """The left steering arc in closed form, vectorised over objects and points.
 
     The heading after chord ``k`` is ``min(sum of the chords' turns, arc_max_turn_rad)`` (each
@@ -79,8 +79,8 @@ def arc_profile(
     points half-way between the headings before and after it.
 
     Returns:
-        ``(xi, eta, psi)``, each ``(N, P)``: the left arc (the right one is ``(xi, -eta)``)
-        and the heading at each point.
+        ``(xi, eta, psi, dmax)``: the left arc (the right one is ``(xi, -eta)``) and the
+        heading at each point, each ``(N, P)``; the largest turn of each chord, ``(N, P - 1)``.
     """
     c = params.arc_step_m
     k = np.arange(params.arc_points - 1)
@@ -97,7 +97,7 @@ def arc_profile(
     eta[:, 0] = np.asarray(objects.width_m) / 2
     xi[:, 1:] = c * np.cos(chord)
     eta[:, 1:] = c * np.sin(chord)
-    return np.cumsum(xi, axis=1), np.cumsum(eta, axis=1), psi
+    return np.cumsum(xi, axis=1), np.cumsum(eta, axis=1), psi, dmax
 
 
 def steering_arc_scalar(
