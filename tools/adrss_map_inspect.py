@@ -119,7 +119,12 @@ def inspect(pair: dict[str, Any]) -> None:
                 f"{float(str(r.lat_range.maximum)):.2f}]"
                 for r in o.occupied_regions
             ]
-            print(f"   {name}:", "; ".join(regs))
+            v = o.velocity
+            speed = (
+                f" v_lon[{float(str(v.speed_lon_min)):.2f},{float(str(v.speed_lon_max)):.2f}]"
+                f" v_lat[{float(str(v.speed_lat_min)):.2f},{float(str(v.speed_lat_max)):.2f}]"
+            )
+            print(f"   {name}:", "; ".join(regs), speed)
 
 
 def main() -> None:

@@ -122,12 +122,18 @@ def explain(prep: PreparedGraph, pair: dict[str, Any]) -> None:
                 f"lat[{r.lat_min:.2f},{r.lat_max:.2f}]"
                 for r in obj.regions
             ]
-            print(f"      {name}: {'; '.join(regs)}")
+            sp = obj.speed
+            print(
+                f"      {name}: {'; '.join(regs)} v_lon[{sp.lon_min_mps:.2f},{sp.lon_max_mps:.2f}]"
+                f" v_lat[{sp.lat_min_mps:.2f},{sp.lat_max_mps:.2f}]"
+            )
 
 
 def _fmt(side: dict[str, Any]) -> str:
     parts = [
         f"{s['type'][:14]}({s['lon_d']:.2f},{s['lat_d']:.2f}){'!' if d else ''}"
+        f"[{s.get('ego_v_lon', 0):.1f},{s.get('ego_v_lat', 0):.1f}|"
+        f"{s.get('other_v_lon', 0):.1f},{s.get('other_v_lat', 0):.1f}]"
         for s, d in zip(side["situations"], side["dangerous"] or [False] * 99, strict=False)
     ]
     return " ".join(parts) or "-"

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from rss.scene.roadarea import SegmentPlan, cut_window
+from rss.scene.roadarea import SegmentPlan, cut_between, cut_window
 from rss.scene.routes import lateral
 
 if TYPE_CHECKING:
@@ -42,8 +42,11 @@ def _cross_section(prep: PreparedGraph, base: Step, j: int, j_lo: int, j_hi: int
 
 def corridor_plans(
     prep: PreparedGraph, tree: RouteTree, target: int, matches: Matches, boxes: tuple[int, int]
-) -> list[SegmentPlan]:
-    """Segment plans from the ego's lane to ``target`` for the two ``boxes`` (ego first)."""
+) -> tuple[list[SegmentPlan], dict[int, tuple[int, float]] | None]:
+    """Segment plans from the ego's lane to ``target`` for the two ``boxes`` (ego first).
+
+    Also returns where the connecting route touches each box (:func:`cut_between`).
+    """
     path = tree.path(target)
     occupied = {lane for box in boxes for lane in matches.lanes_of(box).tolist() if lane in tree.k}
     ks = [tree.k[lane] for lane in path]
@@ -69,5 +72,7 @@ def corridor_plans(
         plan.lanes = [s for s in plan.lanes if s[0] not in used]
         used.update(s[0] for s in plan.lanes)
     plans = [p for p in plans if p.lanes]
-    cut_window(plans, matches, boxes)
-    return plans
+    ends = cut_between(plans, matches, boxes)
+    if ends is None:
+        cut_window(plans, matches, boxes)
+    return plans, ends

@@ -41,7 +41,14 @@ from rss.scene.intersection import (
     relation,
     route_priority,
 )
-from rss.scene.roadarea import SegmentPlan, build_road, cut_window, place_object
+from rss.scene.roadarea import (
+    SegmentPlan,
+    build_road,
+    cut_between,
+    cut_window,
+    lane_heading,
+    place_object,
+)
 from rss.scene.routes import cross_section, follows_traffic, predict_routes
 
 if TYPE_CHECKING:
@@ -153,8 +160,17 @@ class FrameContext:
         i: int,
         ego_plans: list[SegmentPlan],
         obj_plans: list[SegmentPlan] | None,
+        ends: dict[int, tuple[int, float]] | None = None,
     ) -> Constellation | None:
-        """Build one constellation of object ``i`` (``obj_plans`` only for intersections)."""
+        """Build one constellation of object ``i`` (``obj_plans`` only for intersections).
+
+        ``ends`` (from :func:`cut_between`): where the connecting route touches each box;
+        its speeds are then resolved along the road-area direction there, as ad-rss does.
+        """
+        route_heading: dict[int, float | None] = {0: None, i + 1: None}
+        for box, (lane, at) in (ends or {}).items():
+            fwd = any(lane == s[0] and s[1] for p in ego_plans for s in p.lanes)
+            route_heading[box] = lane_heading(self.prep, lane, at) + (0.0 if fwd else np.pi)
         ego_road, ego_placed, limit = build_road(self.prep, ego_plans)
         obj_road: tuple[RoadSegment, ...] = ()
         obj_placed = ego_placed
@@ -170,6 +186,7 @@ class FrameContext:
             ObjectType.EgoVehicle,
             self.ego_velocity,
             self.headings[0],
+            route_heading[0],
         )
         other = place_object(
             self.matches,
@@ -179,6 +196,7 @@ class FrameContext:
             ObjectType(int(o.object_type[i])),
             (float(o.vx_mps[i]), float(o.vy_mps[i])),
             self.headings[i + 1],
+            route_heading[i + 1],
         )
         if ego is None or other is None:
             return None
@@ -294,8 +312,10 @@ def _following(
         if math.cos(float(f.objects.yaw_rad[i]) - heading) < _FOLLOWING_COS:
             continue
         plans = [SegmentPlan(lanes=[step]) for step in route]
-        cut_window(plans, f.matches, (0, box))
-        c = f.constellation(ConstellationType.SameDirection, i, plans, None)
+        ends = cut_between(plans, f.matches, (0, box))
+        if ends is None:
+            cut_window(plans, f.matches, (0, box))
+        c = f.constellation(ConstellationType.SameDirection, i, plans, None, ends)
         if c is not None:
             return c
     return None
@@ -305,8 +325,8 @@ def _corridor(
     f: FrameContext, i: int, target: int, kind: ConstellationType
 ) -> Constellation | None:
     """A same/opposite-direction constellation along the connecting route to ``target``."""
-    plans = corridor_plans(f.prep, f.tree, target, f.matches, (0, i + 1))
-    return f.constellation(kind, i, plans, None)
+    plans, ends = corridor_plans(f.prep, f.tree, target, f.matches, (0, i + 1))
+    return f.constellation(kind, i, plans, None, ends)
 
 
 @dataclass

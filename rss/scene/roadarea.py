@@ -40,7 +40,15 @@ if TYPE_CHECKING:
     from rss.scene.matching import Matches
     from rss.scene.routes import Step
 
-__all__ = ["PlacedLane", "SegmentPlan", "build_road", "cut_window", "place_object"]
+__all__ = [
+    "PlacedLane",
+    "SegmentPlan",
+    "build_road",
+    "cut_between",
+    "cut_window",
+    "lane_heading",
+    "place_object",
+]
 
 _EPS = 1e-6
 
@@ -96,6 +104,63 @@ def _direction(prep: PreparedGraph, lane: int, *, forward: bool) -> LaneDrivingD
     if code == LaneDrivingDirection.Positive:
         return LaneDrivingDirection.Negative
     return LaneDrivingDirection.Positive
+
+
+def _extent(
+    plans: list[SegmentPlan], matches: Matches, box: int
+) -> tuple[tuple[int, float], tuple[int, float]] | None:
+    """``((segment, param) of the rear, (segment, param) of the front)`` of a box."""
+    where = {lane: (k, fwd) for k, plan in enumerate(plans) for lane, fwd in plan.lanes}
+    ends: list[tuple[int, float]] = []
+    for i in matches.rows(box):
+        hit = where.get(int(matches.lane[i]))
+        if hit is not None:
+            lo, hi = _road_param(
+                float(matches.lon_min[i]), float(matches.lon_max[i]), forward=hit[1]
+            )
+            ends += [(hit[0], lo), (hit[0], hi)]
+    return (min(ends), max(ends)) if ends else None
+
+
+def cut_between(
+    plans: list[SegmentPlan], matches: Matches, boxes: tuple[int, int]
+) -> dict[int, tuple[int, float]] | None:
+    """Keep only the road between two boxes, as ad-rss' connecting-route road areas do.
+
+    The road area then starts at the front of the rear vehicle and ends at the rear of the
+    front vehicle (both keep zero-length regions at the ends), so no length uncertainty
+    of the lanes under the vehicles stretches the gap. Returns, per box, the route end it
+    touches as ``(lane, parametric position in its point order)``, or ``None`` (plans
+    unchanged) where the boxes overlap longitudinally.
+    """
+    a, b = (_extent(plans, matches, box) for box in boxes)
+    if a is None or b is None:
+        return None
+    (rear, front), (rear_box, front_box) = (
+        ((a, b), boxes) if a[1] <= b[0] else ((b, a), boxes[::-1])
+    )
+    if rear[1] >= front[0]:
+        return None
+    (k0, p0), (k1, p1) = rear[1], front[0]
+    del plans[k1 + 1 :]
+    del plans[:k0]
+    plans[0].p0 = min(p0, 1.0 - 0.001)
+    plans[-1].p1 = max(p1, plans[-1].p0 + 0.001)
+    ends = {}
+    for box, plan, at in ((rear_box, plans[0], plans[0].p0), (front_box, plans[-1], plans[-1].p1)):
+        lanes = {int(matches.lane[i]) for i in matches.rows(box)}
+        lane, fwd = next((s for s in plan.lanes if s[0] in lanes), plan.lanes[0])
+        ends[box] = (lane, at if fwd else 1.0 - at)
+    return ends
+
+
+def lane_heading(prep: PreparedGraph, lane: int, param: float) -> float:
+    """Heading [rad] of ``lane``'s point order at parametric position ``param`` (centre line)."""
+    c = prep.graph.centre_m[lane]
+    seg = np.hypot(np.diff(c[:, 0]), np.diff(c[:, 1]))
+    s = np.concatenate([[0.0], np.cumsum(seg)])
+    k = int(np.clip(np.searchsorted(s, param * s[-1], side="right") - 1, 0, len(seg) - 1))
+    return math.atan2(float(c[k + 1, 1] - c[k, 1]), float(c[k + 1, 0] - c[k, 0]))
 
 
 def cut_window(
@@ -173,6 +238,7 @@ def place_object(  # noqa: PLR0917 - one object: identity, matches, velocity
     object_type: ObjectType,
     velocity_mps: tuple[float, float],
     headings: dict[int, float],
+    route_heading_rad: float | None = None,
 ) -> LaneObject | None:
     """Regions and lane-frame speeds of ``box`` in a road area; ``None`` if outside it.
 
@@ -184,6 +250,8 @@ def place_object(  # noqa: PLR0917 - one object: identity, matches, velocity
         object_type: ad-rss object type.
         velocity_mps: ``(vx, vy)`` in the map frame.
         headings: Heading of each lane's point order at the box centre (by lane index).
+        route_heading_rad: Road-area direction where the connecting route touches the
+            box (ad-rss ``route_heading_start/end``); replaces the lane heading at its centre.
     """
     regions = []
     heading = None
@@ -208,6 +276,8 @@ def place_object(  # noqa: PLR0917 - one object: identity, matches, velocity
             heading = headings[lane] + (0.0 if where.forward else np.pi)
     if not regions or heading is None:
         return None
+    if route_heading_rad is not None:
+        heading = route_heading_rad
     vx, vy = velocity_mps
     c, s = math.cos(heading), math.sin(heading)
     lon = float(abs(vx * c + vy * s))

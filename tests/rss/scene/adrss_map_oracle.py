@@ -101,11 +101,17 @@ def _answer(pair: dict[str, dict[str, float]]) -> dict[str, Any]:
     ad.rss.core.RssSituationChecking().checkSituation(snapshot, states)
     for c in snapshot.constellations:
         rp = c.relative_position
+        speeds = {}
+        for who, state in (("ego", c.ego_state), ("other", c.other_state)):
+            v = state.structured_object_state.velocity
+            speeds[f"{who}_v_lon"] = _value(v.speed_lon_max)
+            speeds[f"{who}_v_lat"] = _value(v.speed_lat_max)
         answer["situations"].append(
             {
                 "type": str(c.constellation_type).split("::")[-1],
                 "lon_d": _value(rp.longitudinal_distance),
                 "lat_d": _value(rp.lateral_distance),
+                **speeds,
             }
         )
     answer["dangerous"] = [bool(ad.rss.state.isDangerous(s)) for s in states.individual_responses]

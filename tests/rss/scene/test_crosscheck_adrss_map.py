@@ -90,6 +90,10 @@ def ours(prep: PreparedGraph, pair: dict[str, Any]) -> dict[str, Any]:
                     "type": c.constellation_type.name,
                     "lon_d": float(result.relative.lon_distance_m[i]),
                     "lat_d": float(result.relative.lat_distance_m[i]),
+                    "ego_v_lon": c.ego.speed.lon_max_mps,
+                    "ego_v_lat": c.ego.speed.lat_max_mps,
+                    "other_v_lon": c.other.speed.lon_max_mps,
+                    "other_v_lat": c.other.speed.lat_max_mps,
                 }
             )
         out["dangerous"] = [bool(x) for x in result.dangerous]
@@ -116,7 +120,9 @@ def compare(mine: list[dict[str, Any]], theirs: list[dict[str, Any]]) -> dict[st
         "compared": float(len(lon)),
         "lon_median_m": float(np.median(lon)),
         "lon_within_0_5": float(np.mean(np.array(lon) < 0.5)),
+        "lon_within_0_01": float(np.mean(np.array(lon) < 0.01)),
         "lat_within_0_2": float(np.mean(np.array(lat) < 0.2)),
+        "lat_within_0_01": float(np.mean(np.array(lat) < 0.01)),
     }
 
 

@@ -71,5 +71,11 @@ def test_velocity_conversion_at_20_degrees():
     ox, oy, oyaw = _pose(-0.8, r)
     obj = objects((ox, oy, oyaw - np.deg2rad(20.0), 10.0))
     (c,) = create_scene(prep, ego(ex, ey, eyaw, 10.0), obj, SETTINGS).constellations
-    assert c.other.speed.lon_min_mps == pytest.approx(10.0 * np.cos(np.deg2rad(20.0)), abs=0.02)
-    assert c.other.speed.lat_min_mps == pytest.approx(10.0 * np.sin(np.deg2rad(20.0)), abs=0.05)
+    # as ad-rss: relative to the road heading where the connecting route reaches the
+    # object (its rear, about half its projected length before its centre on the arc;
+    # the footprint's rearmost vertex lies a little further back: +-0.5 degrees)
+    rear = (2.0 * np.cos(np.deg2rad(20.0)) + 1.0 * np.sin(np.deg2rad(20.0))) / r
+    delta = np.deg2rad(20.0) - rear
+    assert c.other.speed.lon_min_mps == pytest.approx(10.0 * np.cos(delta), abs=0.03)
+    assert c.other.speed.lat_min_mps == pytest.approx(10.0 * np.sin(delta), abs=0.1)
+    assert np.hypot(c.other.speed.lon_min_mps, c.other.speed.lat_min_mps) == pytest.approx(10.0)
