@@ -34,6 +34,7 @@ def reach_inputs_from_arrays(
     object_width_m: Any = None,
     track_left_m: Any = None,
     track_right_m: Any = None,
+    track: TrackBounds | None = None,
     road: RoadLayout | None = None,
     zones: ZoneMap | None = None,
 ) -> ReachInputs:
@@ -56,6 +57,8 @@ def reach_inputs_from_arrays(
         object_width_m: Object widths ``(N,)``; missing -> ego width.
         track_left_m: Left track bound ``(M, 2)``, optional.
         track_right_m: Right track bound ``(P, 2)``, optional (both or neither).
+        track: Prebuilt track bounds, instead of ``track_left_m``/``track_right_m`` (shared
+            by the frames of a drive, so the engine sees one map).
         road: Public-road layout, optional.
         zones: Roborace zones, optional.
 
@@ -88,7 +91,6 @@ def reach_inputs_from_arrays(
         length_m=size(object_length_m, ego_length_m),
         width_m=size(object_width_m, ego_width_m),
     )
-    track = None
-    if track_left_m is not None and track_right_m is not None:
+    if track is None and track_left_m is not None and track_right_m is not None:
         track = TrackBounds(np.asarray(track_left_m), np.asarray(track_right_m))
     return ReachInputs(ego=ego, objects=objects, track=track, road=road, zones=zones)

@@ -2,20 +2,27 @@
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
 
 from loaders.maps.model import LaneDirection, LaneKind, LineType
 from reachsets.adapter import reach_inputs_from_arrays
-from reachsets.inputs import RightOfWayRule, RoadLane, RoadLayout
+from reachsets.inputs import RightOfWayRule, RoadLane, RoadLayout, TrackBounds
 
 if TYPE_CHECKING:
     from loaders.maps.model import LaneMap
     from loaders.records import Frame
     from reachsets.inputs import ReachInputs
 
-__all__ = ["PLAN_FALLBACK_HORIZON_S", "frame_to_reach_inputs", "road_layout_from_lane_map"]
+__all__ = [
+    "PLAN_FALLBACK_HORIZON_S",
+    "ReachMap",
+    "frame_to_reach_inputs",
+    "prepare_map",
+    "road_layout_from_lane_map",
+]
 
 #: Without a plan the ego is assumed to keep its speed and heading for this long.
 PLAN_FALLBACK_HORIZON_S = 4.0
@@ -50,12 +57,38 @@ def road_layout_from_lane_map(lane_map: LaneMap) -> RoadLayout | None:
     return RoadLayout(lanes=tuple(lanes), solid_lines_m=tuple(solid), right_of_way=rules)
 
 
-def frame_to_reach_inputs(frame: Frame, lane_map: LaneMap | None) -> ReachInputs:
+@dataclass(frozen=True, slots=True)
+class ReachMap:
+    """A lane map converted once for the engine (shared by all frames of a drive).
+
+    Attributes:
+        track: Track bounds of a ``track`` map.
+        road: Road layout of any other map (``None`` without road lanes).
+    """
+
+    track: TrackBounds | None = None
+    road: RoadLayout | None = None
+
+
+def prepare_map(lane_map: LaneMap | None) -> ReachMap:
+    """Convert a lane map for the engine.
+
+    A ``track`` map gives the track bounds (``boundaries_m = (left, right)``), other maps a
+    road layout.
+    """
+    if lane_map is None:
+        return ReachMap()
+    if lane_map.format == "track" and len(lane_map.boundaries_m) >= 2:  # noqa: PLR2004
+        return ReachMap(track=TrackBounds(lane_map.boundaries_m[0], lane_map.boundaries_m[1]))
+    return ReachMap(road=road_layout_from_lane_map(lane_map))
+
+
+def frame_to_reach_inputs(frame: Frame, lane_map: LaneMap | ReachMap | None) -> ReachInputs:
     """Engine inputs of one frame.
 
     The plan becomes the ego trajectory (its ``t_offset_s`` when known, else timed from its
-    speeds); without a plan the ego keeps its current speed and heading. A ``track`` map
-    gives the track bounds (``boundaries_m = (left, right)``); other maps give a road layout.
+    speeds); without a plan the ego keeps its current speed and heading. The map is
+    converted with ``prepare_map`` (pass a ``ReachMap`` to convert it once per drive).
     """
     ego = frame.ego
     plan = frame.plan
@@ -72,13 +105,7 @@ def frame_to_reach_inputs(frame: Frame, lane_map: LaneMap | None) -> ReachInputs
         speed = np.full_like(t, ego.speed_mps)
     actors = frame.actors
     valid = np.asarray(actors.valid, dtype=bool)
-    left = right = None
-    road = None
-    if lane_map is not None:
-        if lane_map.format == "track" and len(lane_map.boundaries_m) >= 2:  # noqa: PLR2004
-            left, right = lane_map.boundaries_m[0], lane_map.boundaries_m[1]
-        else:
-            road = road_layout_from_lane_map(lane_map)
+    prepared = lane_map if isinstance(lane_map, ReachMap) else prepare_map(lane_map)
     return reach_inputs_from_arrays(
         ego_x_m=x,
         ego_y_m=y,
@@ -94,7 +121,6 @@ def frame_to_reach_inputs(frame: Frame, lane_map: LaneMap | None) -> ReachInputs
         object_speed_mps=actors.speed_mps[valid],
         object_length_m=actors.length_m[valid],
         object_width_m=actors.width_m[valid],
-        track_left_m=left,
-        track_right_m=right,
-        road=road,
+        track=prepared.track,
+        road=prepared.road,
     )

@@ -15,7 +15,10 @@ if TYPE_CHECKING:
 
     from loaders.records import Frame
 
-__all__ = ["EngineOutput", "EngineRunner", "FrameResult", "evaluate_frames"]
+__all__ = ["CHUNK_FRAMES", "EngineOutput", "EngineRunner", "FrameResult", "evaluate_frames"]
+
+#: Frames handed at once to engines that evaluate consecutive frames in one batch.
+CHUNK_FRAMES = 32
 
 
 @dataclass(frozen=True, slots=True)
@@ -91,9 +94,38 @@ def evaluate_frames(
         frames: Frames of one drive, in time order.
         engines: Engine runners; each keeps its own state across frames.
 
+    Frames are taken ``CHUNK_FRAMES`` at a time; an engine with a ``step_many`` method gets
+    them in one call (same results as ``step`` on each in turn). An error while reading
+    frames is raised after the frames read before it have been evaluated and yielded.
+
     Yields:
         Each frame with its result.
     """
-    for frame in frames:
-        outputs = {engine.name: engine.step(frame) for engine in engines}
-        yield frame, FrameResult(frame=frame.index, t_ns=frame.t_ns, outputs=outputs)
+    it = iter(frames)
+    while True:
+        chunk: list[Frame] = []
+        try:
+            for frame in it:
+                chunk.append(frame)
+                if len(chunk) == CHUNK_FRAMES:
+                    break
+        except Exception:
+            yield from _evaluate_chunk(chunk, engines)
+            raise
+        yield from _evaluate_chunk(chunk, engines)
+        if len(chunk) < CHUNK_FRAMES:
+            return
+
+
+def _evaluate_chunk(
+    chunk: Sequence[Frame], engines: Sequence[EngineRunner]
+) -> Iterator[tuple[Frame, FrameResult]]:
+    if not chunk:
+        return
+    outputs = {}
+    for engine in engines:
+        many = getattr(engine, "step_many", None)
+        outputs[engine.name] = many(chunk) if many else [engine.step(f) for f in chunk]
+    for j, frame in enumerate(chunk):
+        found = {name: out[j] for name, out in outputs.items()}
+        yield frame, FrameResult(frame=frame.index, t_ns=frame.t_ns, outputs=found)

@@ -4,12 +4,14 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from reachsets.engine import evaluate
+from reachsets.engine import evaluate_many
 from reachsets.params import ReachMethod, ReachParams
 from workbench.evaluate.pipeline import EngineOutput
-from workbench.reach_adapter import frame_to_reach_inputs
+from workbench.reach_adapter import frame_to_reach_inputs, prepare_map
 
 if TYPE_CHECKING:
+    from collections.abc import Sequence
+
     from loaders.maps.model import LaneMap
     from loaders.records import Frame
     from reachsets.engine import ReachResult, RuleState
@@ -21,7 +23,8 @@ class ReachRunner:
     """Evaluates every frame's plan against the rule-conform reachable sets of the others.
 
     The rule memory (past-time LTL state) is carried from frame to frame; a fresh runner
-    starts a replay at any frame with empty memory.
+    starts a replay at any frame with empty memory. ``step_many`` evaluates consecutive
+    frames in one batch (``reachsets.engine.evaluate_many``) with the same results.
     """
 
     name = "reachsets"
@@ -41,15 +44,19 @@ class ReachRunner:
             full_geometry: Reduce every set (needed to draw them), not only the cells that
                 can touch the ego; the verdict is the same either way.
         """
-        self._lane_map = lane_map
+        self._map = prepare_map(lane_map)
         self._params = ReachParams(method=method, full_geometry=full_geometry)
         self._state: RuleState | None = None
 
     def step(self, frame: Frame) -> EngineOutput:
         """Evaluate one frame."""
-        inputs = frame_to_reach_inputs(frame, self._lane_map)
-        result, self._state = evaluate(inputs, self._params, self._state)
-        return _output(result)
+        return self.step_many([frame])[0]
+
+    def step_many(self, frames: Sequence[Frame]) -> list[EngineOutput]:
+        """Evaluate consecutive frames at once (as ``step`` on each in turn)."""
+        inputs = [frame_to_reach_inputs(f, self._map) for f in frames]
+        results, self._state = evaluate_many(inputs, self._params, self._state)
+        return [_output(r) for r in results]
 
 
 def _output(result: ReachResult) -> EngineOutput:
