@@ -126,8 +126,8 @@ def decide(  # noqa: PLR0917  (one engine step over arrays)
     other_brake = ~oth_b_ego_f & ego_b_oth_f
     both = ~ego_b_oth_b
     safe = ego_brake | other_brake | both
-    found, last = memory.lookup_must_brake(agents.object_id)
-    last = last & found & ~safe
+    found, stored = memory.lookup_must_brake(agents.object_id)
+    last = stored & found & ~safe
     stopped = DRIVE_AWAY_STOPPED_MAX_SPEED_MPS
     ego_stopped = bool(le(ego.speed_max_mps[0], stopped, SPEED_PRECISION))
     both_stopped = ego_stopped & le(agents.speed_max_mps, stopped, SPEED_PRECISION)
@@ -138,15 +138,17 @@ def decide(  # noqa: PLR0917  (one engine step over arrays)
     )
     response[~safe & (both_stopped | (rule2 & ego_stopped))] = UnstructuredResponse.DriveAway
     is_safe = response == UnstructuredResponse.ContinueForward
-    phi = np.arctan2(ego.y_m[0] - agents.y_m, ego.x_m[0] - agents.x_m)
     drive = response == UnstructuredResponse.DriveAway
-    begin = np.where(drive, normalize_angle(phi - drive_away_max_angle_rad), np.nan)
-    end = np.where(drive, normalize_angle(phi + drive_away_max_angle_rad), np.nan)
+    begin, end = np.full(safe.shape, np.nan), np.full(safe.shape, np.nan)
+    if drive.any():
+        phi = np.arctan2(ego.y_m[0] - agents.y_m, ego.x_m[0] - agents.x_m)
+        begin = np.where(drive, normalize_angle(phi - drive_away_max_angle_rad), np.nan)
+        end = np.where(drive, normalize_angle(phi + drive_away_max_angle_rad), np.nan)
     # drive-away persistence
-    steering = normalize_angle(ego.yaw_rad[0] + ego.steering_angle_rad[0])
     has, slot = memory.lookup_drive_away(agents.object_id)
-    pos_x, pos_y = agents.x_m.copy(), agents.y_m.copy()
+    pos_x, pos_y = agents.x_m, agents.y_m
     if has.any():
+        steering = normalize_angle(ego.yaw_rad[0] + ego.steering_angle_rad[0])
         s_begin, s_end = memory.heading_begin_rad[slot], memory.heading_end_rad[slot]
         unmoved = eq(agents.x_m, memory.other_x_m[slot], DISTANCE_PRECISION) & eq(
             agents.y_m, memory.other_y_m[slot], DISTANCE_PRECISION
@@ -157,8 +159,7 @@ def decide(  # noqa: PLR0917  (one engine step over arrays)
         drive = drive | keep
         pos_x = np.where(keep, memory.other_x_m[slot], pos_x)
         pos_y = np.where(keep, memory.other_y_m[slot], pos_y)
-    remembered = safe | (found & ~safe)
-    _, stored = memory.lookup_must_brake(agents.object_id)
+    remembered = safe | found
     new_value = np.where(safe, other_brake, stored)
     memory_out = UnstructuredMemory(
         agents.object_id[remembered],

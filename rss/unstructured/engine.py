@@ -20,7 +20,7 @@ from rss.unstructured.errors import UnstructuredInputError
 from rss.unstructured.memory import UnstructuredMemory
 from rss.unstructured.pedestrian_batch import pedestrian_sets_batch
 from rss.unstructured.response import UnstructuredProperResponse, resolve_unstructured
-from rss.unstructured.sets import TrajectorySets
+from rss.unstructured.sets import TrajectorySets, hulls_of
 from rss.unstructured.vehicle_batch import vehicle_sets_batch
 
 if TYPE_CHECKING:
@@ -35,6 +35,10 @@ __all__ = [
     "intersections",
     "trajectory_sets",
 ]
+
+
+#: The memory of a fresh start.
+_NO_MEMORY = UnstructuredMemory.empty()
 
 
 @dataclass(frozen=True)
@@ -128,9 +132,9 @@ def intersections(
         & (ego_sets.brake[:, None] | agent_sets.brake[None, :])
     )
     e, a = np.nonzero(candidates)
-    ego_hulls = ego_sets.hulls_at(e)
+    ego_hulls, agent_hulls = hulls_of([(ego_sets, e), (agent_sets, a)])
     shapely.prepare(ego_hulls)
-    hit = shapely.intersects(ego_hulls, agent_sets.hulls_at(a))
+    hit = shapely.intersects(ego_hulls, agent_hulls)
     e, a = e[hit], a[hit]
     e_brake, a_brake, owner = ego_sets.brake[e], agent_sets.brake[a], agent_sets.owner[a]
     for flags, mask in zip(out, (e_brake, a_brake, e_brake & a_brake), strict=True):
@@ -167,27 +171,35 @@ def check_unstructured(  # noqa: PLR0917  (one engine step)
     Raises:
         UnstructuredInputError: ``ego`` is not one row or ``agent_dynamics`` mismatches.
     """
-    memory = memory or UnstructuredMemory.empty()
+    memory = memory or _NO_MEMORY
     if len(ego) != 1:
         raise UnstructuredInputError("ego", f"must hold exactly one row, got {len(ego)}")
-    if len(agent_dynamics) != len(agents):
+    n = len(agents)
+    if len(agent_dynamics) != n:
         raise UnstructuredInputError(
-            "agent_dynamics", f"needs {len(agents)} entries, got {len(agent_dynamics)}"
+            "agent_dynamics", f"needs {n} entries, got {len(agent_dynamics)}"
         )
-    ego_valid = bool(ego.valid()[0])
-    valid = agents.valid() & ego_valid
+    both = UnstructuredAgents.concat((ego, agents))
+    checked = both.valid()
+    ego_valid = bool(checked[0])
+    valid = checked[1:] & ego_valid
     ok = bool(valid.all() and ego_valid)
     idx = np.flatnonzero(valid)
     sub = agents if ok else agents.take(idx)
-    ego_sets, sub_sets = _ego_and_agent_sets(
-        ego if ego_valid else None, sub, ego_dynamics, [agent_dynamics[int(i)] for i in idx]
-    )
+    if ego_valid:
+        rows = None if ok else np.concatenate(([0], idx + 1))
+        ego_sets, sub_sets = _ego_and_agent_sets(
+            both if rows is None else both.take(rows),
+            [ego_dynamics, *(agent_dynamics[int(i)] for i in idx)],
+        )
+    else:
+        ego_sets, sub_sets = TrajectorySets.empty(1), TrajectorySets.empty(0)
     hits = intersections(ego_sets, sub_sets)
     sub_dec, memory_out = decide(
         *hits, ego, sub, ego_dynamics.unstructured.drive_away_max_angle, memory
     )
-    decisions = _expand(sub_dec, idx, len(agents))
-    agent_sets = TrajectorySets.concat([(sub_sets, idx)], len(agents))
+    decisions = sub_dec if ok else _expand(sub_dec, idx, n)
+    agent_sets = sub_sets if ok else TrajectorySets.concat([(sub_sets, idx)], n)
     proper = resolve_unstructured(decisions, agents, ego, ego_dynamics, default_ego)
     result = UnstructuredResult(
         ok, valid, agents.object_id, decisions, ego_sets, agent_sets, proper
@@ -197,19 +209,14 @@ def check_unstructured(  # noqa: PLR0917  (one engine step)
 
 
 def _ego_and_agent_sets(
-    ego: UnstructuredAgents | None,
-    agents: UnstructuredAgents,
-    ego_dynamics: RssDynamics,
-    agent_dynamics: Sequence[RssDynamics],
+    both: UnstructuredAgents, dynamics: Sequence[RssDynamics]
 ) -> tuple[TrajectorySets, TrajectorySets]:
-    """The ego's and the agents' sets, built in one batch per settings and model."""
-    if ego is None:
-        return TrajectorySets.empty(1), trajectory_sets(agents, agent_dynamics)
-    both = UnstructuredAgents.concat((ego, agents))
+    """The sets of the ego (row 0 of ``both``) and of the agents, built in shared batches."""
     mask = np.zeros(len(both), dtype=bool)
     mask[0] = True
-    sets = trajectory_sets(both, [ego_dynamics, *agent_dynamics], ego=mask)
-    return sets.select(sets.owner == 0, 1), sets.select(sets.owner > 0, len(agents), shift=1)
+    sets = trajectory_sets(both, dynamics, ego=mask)
+    first = sets.owner == 0
+    return sets.select(first, 1), sets.select(~first, len(both) - 1, shift=1)
 
 
 def _expand(dec: Decisions, idx: IntArray, n: int) -> Decisions:

@@ -45,6 +45,7 @@ Real = Any
 
 __all__ = [
     "ANGULAR_VELOCITY_PRECISION",
+    "Phase",
     "Points",
     "Real",
     "footprints",
@@ -175,11 +176,12 @@ def _step_speeds(
 ) -> tuple[FloatArray, FloatArray]:
     """Speeds at the step ends ``(K + 1, M)`` and step distances ``(K, M)``.
 
-    Each step is :func:`rss.physics.accelerated_limited_movement` from the previous speed.
-    With a constant acceleration the sequence is the running sum ``v0 + Σ a·dt`` (added
-    in the same order) cut at standstill or at the cap; that guess is checked by applying
-    the step to all steps at once, and the few inputs it does not reproduce exactly (tiny
-    accelerations against the tolerances) are iterated step by step.
+    Each step is :func:`rss.physics.accelerated_limited_movement` from the previous speed
+    with that step's acceleration ``accel`` ``(K, M)``. Without caps the sequence is the
+    running sum ``v0 + Σ a·dt`` (added in the same order) cut at standstill or at the cap;
+    that guess is checked by applying the step to all steps at once, and the inputs it
+    does not reproduce exactly (tiny accelerations against the tolerances, a cap reached in
+    an earlier phase) are iterated step by step.
     """
     run = np.cumsum(np.concatenate((v0[None], accel * dt)), axis=0)
     cap = tmax(max_speed_mps, v0, SPEED_PRECISION)
@@ -188,10 +190,35 @@ def _step_speeds(
     v1, dist = accelerated_limited_movement(guess[:-1], max_speed_mps, accel, dt)
     if not np.array_equal(np.where(moving, v1, guess[:-1]), guess[1:]):
         for k in range(dt.shape[0]):
-            v1k, dk = accelerated_limited_movement(guess[k], max_speed_mps, accel, dt[k])
+            v1k, dk = accelerated_limited_movement(guess[k], max_speed_mps, accel[k], dt[k])
             guess[k + 1] = np.where(moving[k], v1k, guess[k])
             dist[k] = dk
     return guess, np.where(moving, dist, 0.0)
+
+
+@dataclass(frozen=True)
+class Phase:
+    """One phase of :func:`vehicle_integrate` (each field broadcast against the points).
+
+    Attributes:
+        accel_mps2: Acceleration during the phase [m/s²].
+        duration_s: Duration >= 0 [s].
+        ratio: Yaw-rate change ratio ∈ [-1, 1]: the yaw rate at a step end is the rate at
+            the phase start plus ``ratio · change · t`` (t from the phase start).
+    """
+
+    accel_mps2: Real
+    duration_s: Real
+    ratio: Real
+
+
+def _phase_grid(duration: FloatArray, step_s: float) -> FloatArray:
+    """Step ends ``(K + 1, 1)`` of a phase: ``t + step`` added one by one up to the longest."""
+    grid = [0.0]
+    longest = float(duration.max()) if duration.size else 0.0
+    while grid[-1] < longest and longest - grid[-1] >= DURATION_PRECISION:  # tolerant <
+        grid.append(grid[-1] + step_s)
+    return np.array(grid)[:, None]
 
 
 def vehicle_integrate(  # noqa: PLR0917  (kernel over arrays)
@@ -203,11 +230,14 @@ def vehicle_integrate(  # noqa: PLR0917  (kernel over arrays)
     step_s: float,
     max_speed_mps: Real,
     min_radius_m: float,
+    then: Phase | None = None,
 ) -> Points:
     """Drive ``duration`` in steps while the yaw rate changes linearly (``ratio`` ∈ [-1, 1]).
 
     ad-rss ``calculateTrajectoryPoint`` of the vehicle model: at the end of each step the
     yaw rate is ``yaw_rate_0 + ratio · change · t``, then one arc of the step length.
+    ``then`` continues from the end point with a second phase (its own grid from 0, the
+    yaw rate changing from the end rate), as a second call on the end points would.
     Vectorised over ``(steps K, points M)``: only the speeds are iterated (each step's
     speed depends on the previous one through the caps); headings are a cumulative sum
     and positions the sum of the chords ``2 r sin(Δψ/2) · (cos, sin)(ψ + Δψ/2)``. Stack
@@ -216,21 +246,33 @@ def vehicle_integrate(  # noqa: PLR0917  (kernel over arrays)
     Returns:
         The end points, shape of the broadcast inputs.
     """
-    fields = (p.x_m, p.y_m, p.yaw_rad, p.speed_mps, p.yaw_rate_radps)
-    b = np.broadcast_arrays(*fields, accel_mps2, duration_s, ratio, max_speed_mps)
+    phases = [Phase(accel_mps2, duration_s, ratio), *([then] if then is not None else [])]
+    fields = (p.x_m, p.y_m, p.yaw_rad, p.speed_mps, p.yaw_rate_radps, max_speed_mps)
+    b = np.broadcast_arrays(
+        *fields, *(v for ph in phases for v in (ph.accel_mps2, ph.duration_s, ph.ratio))
+    )
     shape = b[0].shape
-    x0, y0, yaw0, v0, rate0, accel, duration, ratio_m, vcap = (np.ravel(a) for a in b)
-    grid = [0.0]  # step ends: t + step added one by one, as the sequential loop does
-    longest = float(duration.max()) if duration.size else 0.0
-    while grid[-1] < longest and longest - grid[-1] >= DURATION_PRECISION:  # tolerant <
-        grid.append(grid[-1] + step_s)
-    if len(grid) == 1:
+    flat = [np.ravel(a) for a in b]
+    x0, y0, yaw0, v0, rate0, vcap = flat[:6]
+    columns = np.arange(x0.shape[0])
+    rate_end, steps = rate0, []
+    for k in range(len(phases)):
+        accel, duration, ratio_m = flat[6 + 3 * k : 9 + 3 * k]
+        t = _phase_grid(duration, step_s)
+        if t.shape[0] == 1:
+            continue
+        active = lt(t[:-1], duration, DURATION_PRECISION)  # (K, M)
+        full = ge(duration, t[1:], DURATION_PRECISION)
+        dt = np.where(full, step_s, duration - t[:-1])
+        rate = rate_end + yaw_rate_change_radps2 * np.where(full, t[1:], duration) * ratio_m
+        last = active.sum(axis=0) - 1
+        rate_end = np.where(last >= 0, rate[np.maximum(last, 0), columns], rate_end)
+        steps.append((np.broadcast_to(accel, dt.shape), active, dt, rate))
+    if not steps:
         return Points(*(np.array(a, dtype=np.float64) for a in b[:5]))
-    t = np.array(grid)[:, None]
-    active = lt(t[:-1], duration, DURATION_PRECISION)  # (K, M)
-    full = ge(duration, t[1:], DURATION_PRECISION)
-    dt = np.where(full, step_s, duration - t[:-1])
-    rate = rate0 + yaw_rate_change_radps2 * np.where(full, t[1:], duration) * ratio_m
+    accel, active, dt, rate = (
+        np.concatenate([s[i] for s in steps]) if len(steps) > 1 else steps[0][i] for i in range(4)
+    )
     moving = active & ~eq(dt, 0.0, DURATION_PRECISION)
     speeds, dist = _step_speeds(v0, accel, np.where(moving, dt, 0.0), moving, vcap)
     turning = ~eq(rate, 0.0, ANGULAR_VELOCITY_PRECISION)
@@ -244,8 +286,6 @@ def vehicle_integrate(  # noqa: PLR0917  (kernel over arrays)
     chord = np.where(arc, 2.0 * radius * np.sin(half), dist)
     x = x0 + np.sum(chord * np.cos(yaw[:-1] + half), axis=0)
     y = y0 + np.sum(chord * np.sin(yaw[:-1] + half), axis=0)
-    last = active.sum(axis=0) - 1
-    rate_end = np.where(last >= 0, rate[np.maximum(last, 0), np.arange(x0.shape[0])], rate0)
     return Points(
         x.reshape(shape),
         y.reshape(shape),

@@ -16,6 +16,7 @@ circles of the reference.
 from __future__ import annotations
 
 import functools
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -40,7 +41,7 @@ from rss.unstructured.pedestrian import CIRCLE_VERTICES, heading_ratios
 from rss.unstructured.sets import TrajectorySets, front_and_sides
 
 if TYPE_CHECKING:
-    from rss.batch import FloatArray
+    from rss.batch import FloatArray, IntArray
     from rss.dynamics import UnstructuredSettings
     from rss.unstructured.agents import UnstructuredAgents
     from rss.unstructured.batch import AgentDynamics
@@ -162,28 +163,85 @@ def _standing(agents: UnstructuredAgents, dyn: AgentDynamics) -> TrajectorySets:
     return plan_sets(table, _CIRCLES)
 
 
+@dataclass(frozen=True)
+class _Layout:
+    """Constant row arrays of one settings (see :func:`_moving`)."""
+
+    phase: IntArray  # (rf + rb,) 0 = front (speed_max, accel_max), 1 = back
+    ratio_rt: FloatArray  # (rf + rb, 1) heading-change ratios during rho
+    starts: IntArray  # (M,) start row of every move after rho (rf + rb = the current pose)
+    dist_pick: IntArray  # (M,) into [brake_min, brake_max, accel_max, sides (Sb), cf (Kc), 0]
+    ratio: FloatArray  # (M, 1) heading-change ratio of every move
+
+
+@functools.lru_cache(maxsize=16)
+def _layout(u: UnstructuredSettings) -> _Layout:
+    nf, nb, sb, kc, ncf = _counts(u)
+    rf, rb = 2 * nf + 1, 2 * nb + 1
+    f_right, f_left = heading_ratios(nf - 1)
+    b_right, b_left = heading_ratios(nb - 1)
+    cf_right, cf_left = heading_ratios(ncf - 1)
+    start = rf + rb
+    left, centre, right = 2 * nf - 1, rf - 1, 0
+    front = list(range(rf))
+    lr = [1.0, 0.0, -1.0]
+
+    def arr(values: object, dtype: type = np.int64) -> np.ndarray:
+        out: np.ndarray = np.array(values, dtype=dtype)
+        out.setflags(write=False)
+        return out
+
+    return _Layout(
+        phase=arr([0] * rf + [1] * rb),
+        ratio_rt=arr([*f_right, *f_left, 0.0, *b_right, *b_left, 0.0], np.float64)[:, None],
+        starts=arr(
+            [
+                *front,
+                *[start] * (3 * sb),
+                *range(rf, rf + rb),
+                *front,
+                *[left] * ncf,
+                *[right] * ncf,
+                *[left, centre, right] * kc,
+                start,
+            ]
+        ),
+        dist_pick=arr(
+            [0] * rf
+            + [3 + k for k in range(sb) for _ in lr]
+            + [1] * rb
+            + [2] * (rf + 2 * ncf)
+            + [3 + sb + k for k in range(kc) for _ in lr]
+            + [3 + sb + kc]
+        ),
+        ratio=arr(
+            [0.0] * rf + lr * sb + [0.0] * (rb + rf) + [*cf_left, *cf_right] + lr * kc + [0.0],
+            np.float64,
+        )[:, None],
+    )
+
+
 def _moving(agents: UnstructuredAgents, dyn: AgentDynamics) -> TrajectorySets:
     """Moving pedestrians (:func:`rss.unstructured.pedestrian._moving`)."""
     u, a = dyn.settings, agents
-    nf, nb, sb, kc, ncf = _counts(u)
-    rf, rb, n = 2 * nf + 1, 2 * nb + 1, len(a)
+    nf, _, sb, kc, _ = _counts(u)
+    lay = _layout(u)
     rho, vcap, radius = dyn.response_time_s, dyn.max_speed_mps, u.pedestrian_turning_radius
     amax, bmax, bmin = dyn.accel_max_mps2, dyn.brake_max_mps2, dyn.brake_min_mps2
-    zeros = np.zeros(n)
+    zeros = np.zeros(len(a))
     # response time: front rows [right nf | left nf | centre], then back rows likewise
-    f_right, f_left = heading_ratios(nf - 1)
-    b_right, b_left = heading_ratios(nb - 1)
-    phase = np.repeat([0, 1], [rf, rb])
     rt = pedestrian_move_timed(
-        Points(a.x_m, a.y_m, a.yaw_rad, np.stack((a.speed_max_mps, a.speed_min_mps))[phase], zeros),
-        np.stack((amax, bmax))[phase],
+        Points(
+            a.x_m, a.y_m, a.yaw_rad, np.stack((a.speed_max_mps, a.speed_min_mps))[lay.phase], zeros
+        ),
+        np.stack((amax, bmax))[lay.phase],
         rho,
-        np.concatenate((f_right, f_left, [0.0], b_right, b_left, [0.0]))[:, None],
+        lay.ratio_rt,
         radius,
         vcap,
     )
     # distances after rho: back brake_max to standstill, front brake_min / accel_max, rho
-    v_back, v_front = rt.speed_mps[-1], rt.speed_mps[rf - 1]
+    v_back, v_front = rt.speed_mps[-1], rt.speed_mps[2 * nf]
     t_back = np.where(gt(v_back, 0.0, SPEED_PRECISION), v_back / -bmax, 0.0)
     t_after = np.maximum(0.0, _t_stop(a, dyn) - rho)
     _, dist = accelerated_limited_movement(
@@ -197,41 +255,22 @@ def _moving(agents: UnstructuredAgents, dyn: AgentDynamics) -> TrajectorySets:
     width = (accel_max_d - brake_max_d) / (kc - 1.0)
     cf_d = brake_max_d + width * np.arange(kc)[:, None]
     cf_d = np.where(le(cf_d, accel_max_d, DISTANCE_PRECISION), cf_d, accel_max_d)
-    # every move after rho: start rows into [response-time rows | the current pose]
-    start = rf + rb
-    left, centre, right = 2 * nf - 1, rf - 1, 0
-    front_rows = list(range(rf))
-    rows = [
-        *front_rows,
-        *[start] * (3 * sb),
-        *range(rf, rf + rb),
-        *front_rows,
-        *[left] * ncf,
-        *[right] * ncf,
-        *[left, centre, right] * kc,
-        start,
-    ]
-    dist_rows = np.concatenate(
-        (
-            np.broadcast_to(brake_min_d, (rf, n)),
-            np.repeat(side_d, 3, axis=0),
-            np.broadcast_to(brake_max_d, (rb, n)),
-            np.broadcast_to(accel_max_d, (rf + 2 * ncf, n)),
-            np.repeat(cf_d, 3, axis=0),
-            zeros[None],
+    palette = np.concatenate(
+        (brake_min_d[None], brake_max_d[None], accel_max_d[None], side_d, cf_d, zeros[None])
+    )
+    # every move after rho starts from a response-time row or the current pose
+    x, y, yaw, speed = (
+        np.concatenate((getattr(rt, f), start[None]))[lay.starts]
+        for f, start in (
+            ("x_m", a.x_m),
+            ("y_m", a.y_m),
+            ("yaw_rad", a.yaw_rad),
+            ("speed_mps", a.speed_min_mps),
         )
     )
-    cf_right, cf_left = heading_ratios(ncf - 1)
-    lr = [1.0, 0.0, -1.0]
-    ratio_rows = np.array(
-        [0.0] * rf + lr * sb + [0.0] * (rb + rf) + [*cf_left, *cf_right] + lr * kc + [0.0]
+    moved = pedestrian_move(
+        Points(x, y, yaw, speed, zeros), palette[lay.dist_pick], lay.ratio, radius
     )
-    current = Points(a.x_m, a.y_m, a.yaw_rad, a.speed_min_mps, zeros)
-    x, y, yaw, speed = (
-        np.concatenate((getattr(rt, f), getattr(current, f)[None]))[rows]
-        for f in ("x_m", "y_m", "yaw_rad", "speed_mps")
-    )
-    moved = pedestrian_move(Points(x, y, yaw, speed, zeros), dist_rows, ratio_rows[:, None], radius)
     corners = footprints(moved, a.length_m, a.width_m, dyn.front_extra_m)
-    table = np.moveaxis(corners, 2, 1).reshape(-1, n, 2)
+    table = np.moveaxis(corners, 2, 1).reshape(-1, len(a), 2)
     return plan_sets(table, pedestrian_plan(u))

@@ -28,6 +28,7 @@ __all__ = [
     "Pieces",
     "TrajectorySets",
     "front_and_sides",
+    "hulls_of",
     "pieces_from_points",
 ]
 
@@ -112,18 +113,21 @@ class TrajectorySets:
         return self.coords.min(axis=0), self.coords.max(axis=0)
 
     def hulls_at(self, index: IntArray) -> np.ndarray:
-        """Shapely hulls of the pieces at ``index`` (each built once, all in one call)."""
-        missing = np.unique(index[~self._built[index]])
-        if missing.size:
-            points = np.swapaxes(self.coords[:, missing], 0, 1)  # (M, K, 2)
-            sizes = self.size[missing]
-            real = np.arange(points.shape[1]) < sizes[:, None]
-            lines = shapely.linestrings(
-                points[real], indices=np.repeat(np.arange(missing.size), sizes)
-            )
-            self._hulls[missing] = shapely.convex_hull(lines)
-            self._built[missing] = True
-        return np.asarray(self._hulls[index])
+        """Shapely hulls of the pieces at ``index`` (each built once)."""
+        return hulls_of([(self, index)])[0]
+
+    def _missing(self, index: IntArray) -> tuple[IntArray, FloatArray, IntArray]:
+        """Pieces at ``index`` without a hull: ids, their real points ``(Σ size, 2)``, sizes."""
+        wanted = np.zeros(self._built.shape, dtype=bool)
+        wanted[index] = True
+        missing = np.flatnonzero(wanted & ~self._built)
+        points = np.swapaxes(self.coords[:, missing], 0, 1)  # (M, K, 2)
+        sizes = self.size[missing]
+        return missing, points[np.arange(points.shape[1]) < sizes[:, None]], sizes
+
+    def _store(self, missing: IntArray, hulls: np.ndarray) -> None:
+        self._hulls[missing] = hulls
+        self._built[missing] = True
 
     @property
     def hulls(self) -> np.ndarray:
@@ -147,6 +151,22 @@ class TrajectorySets:
                 merged = shapely.Polygon(merged.exterior)
             out[a] = merged
         return out
+
+
+def hulls_of(requests: Sequence[tuple[TrajectorySets, IntArray]]) -> list[np.ndarray]:
+    """Hulls of the pieces at each ``(sets, index)``; the missing ones built in one call."""
+    todo = [(sets, *sets._missing(index)) for sets, index in requests]  # noqa: SLF001
+    todo = [t for t in todo if t[1].size]
+    if todo:
+        sizes = np.concatenate([t[3] for t in todo])
+        lines = shapely.linestrings(
+            np.concatenate([t[2] for t in todo]), indices=np.repeat(np.arange(sizes.size), sizes)
+        )
+        hulls = shapely.convex_hull(lines)
+        bounds = np.cumsum([0, *(t[1].size for t in todo)])
+        for (sets, missing, _, _), lo, hi in zip(todo, bounds[:-1], bounds[1:], strict=True):
+            sets._store(missing, hulls[lo:hi])  # noqa: SLF001
+    return [np.asarray(sets._hulls[index]) for sets, index in requests]  # noqa: SLF001
 
 
 def _pad(coords: FloatArray, width: int) -> FloatArray:

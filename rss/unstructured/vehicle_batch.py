@@ -1,15 +1,16 @@
-"""Vehicle trajectory sets, fast: every point of a batch in three kernel calls.
+"""Vehicle trajectory sets, fast: every point of a batch in two kernel calls.
 
 Same model and pieces as the step-by-step :func:`rss.unstructured.vehicle.vehicle_sets`
 (its reference; ``tests/rss/unstructured/test_batch.py`` holds them equal), but the agents
 may have different dynamics values (one batch for the ego and every vehicle sharing the
-unstructured settings) and the points are computed in three stacked calls:
+unstructured settings) and the points are computed in two stacked calls:
 
-1. :func:`vehicle_integrate`: response time, front (``accel_max`` from ``speed_max``) and
-   back (``brake_max`` from ``speed_min``), every yaw-rate ratio;
+1. :func:`vehicle_integrate` with two phases: response time, front (``accel_max`` from
+   ``speed_max``) and back (``brake_max`` from ``speed_min``) for every yaw-rate ratio,
+   and the continue-forward extremes (the outermost front rows continued after rho with
+   a further yaw-rate change);
 2. :func:`vehicle_arc`: every arc after the response time (back to standstill, front with
-   ``brake_min`` and ``accel_max``, the side accelerations);
-3. :func:`vehicle_integrate`: the continue-forward extremes (further yaw-rate change).
+   ``brake_min`` and ``accel_max``, the side accelerations).
 
 The rows of the footprint table (``R`` rows of ``N`` agents)::
 
@@ -26,6 +27,7 @@ copies of pieces and leaves the union unchanged.
 from __future__ import annotations
 
 import functools
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -33,6 +35,7 @@ import numpy as np
 from rss.physics import ACCELERATION_PRECISION, SPEED_PRECISION, gt, lt
 from rss.unstructured.batch import PiecePlan, RowPieces, plan_sets
 from rss.unstructured.kinematics import (
+    Phase,
     Points,
     footprints,
     time_in_movement,
@@ -44,7 +47,7 @@ from rss.unstructured.sets import front_and_sides
 from rss.unstructured.vehicle import ratio_pairs
 
 if TYPE_CHECKING:
-    from rss.batch import FloatArray
+    from rss.batch import BoolArray, FloatArray, IntArray
     from rss.dynamics import UnstructuredSettings
     from rss.unstructured.agents import UnstructuredAgents
     from rss.unstructured.batch import AgentDynamics
@@ -113,7 +116,78 @@ def vehicle_plan(u: UnstructuredSettings) -> PiecePlan:
     return pieces.plan()
 
 
-def _take(p: Points, rows: list[int]) -> Points:
+@dataclass(frozen=True)
+class _Layout:
+    """Constant row arrays of one settings (see :func:`vehicle_sets_batch`).
+
+    ``*_pick`` arrays index a per-agent palette of values (rows of a ``(V, N)`` stack).
+    """
+
+    rows1: IntArray  # (R,) start speed / accel / duration: 0 = front, 1 = back
+    ratio1: FloatArray  # (R, 1)
+    accel2_pick: IntArray  # (R,) into [0, accel_max, cf accels (Kc)]
+    timed2: BoolArray  # (R, 1) rows with a second phase (duration t_after)
+    ratio2: FloatArray  # (R, 1)
+    response: IntArray  # (rf + rb,) the response-time rows of the output
+    extras: IntArray  # (2 Ncf + 2 Kc,) the continue-forward extremes
+    arc_starts: IntArray  # (A,) start row of every arc
+    arc_accel_pick: IntArray  # (A,) into [brake_max, brake_min, side (Kb), accel_max, cf (Kc)]
+    arc_time_pick: IntArray  # (A,) into [t_back, t_after, side times (Kb), cf times (Kc)]
+
+
+@functools.lru_cache(maxsize=16)
+def _layout(u: UnstructuredSettings) -> _Layout:
+    nf, nb, kb, kc, ncf = _counts(u)
+    rf, rb = 2 * nf + 1, 2 * nb + 1
+    n_extra = 2 * ncf + 2 * kc
+    f_right, f_left = ratio_pairs(nf - 1)
+    b_right, b_left = ratio_pairs(nb - 1)
+    cf_right, cf_left = ratio_pairs(ncf - 1)
+    outer = [f_left[-1], f_right[0]]
+    left, centre, right = 2 * nf - 1, rf - 1, 0
+    front = list(range(rf))
+
+    def arr(values: object, dtype: type = np.int64) -> np.ndarray:
+        out: np.ndarray = np.array(values, dtype=dtype)
+        out.setflags(write=False)
+        return out
+
+    return _Layout(
+        rows1=arr([0] * rf + [1] * rb + [0] * n_extra),
+        ratio1=arr(
+            [*f_right, *f_left, 0.0, *b_right, *b_left, 0.0, *np.repeat(outer, ncf), *outer * kc],
+            np.float64,
+        )[:, None],
+        accel2_pick=arr(
+            [0] * (rf + rb) + [1] * (2 * ncf) + [2 + k for k in range(kc) for _ in "lr"]
+        ),
+        timed2=arr([False] * (rf + rb) + [True] * n_extra, bool)[:, None],
+        ratio2=arr([0.0] * (rf + rb) + [*cf_left, *cf_right] + [1.0, -1.0] * kc, np.float64)[
+            :, None
+        ],
+        response=arr(range(rf + rb)),
+        extras=arr(range(rf + rb, rf + rb + n_extra)),
+        arc_starts=arr(
+            [*range(rf, rf + rb), *front, *[left, centre, right] * kb, *front, *[centre] * kc]
+        ),
+        arc_accel_pick=arr(
+            [0] * rb
+            + [1] * rf
+            + [2 + k for k in range(kb) for _ in "lcr"]
+            + [2 + kb] * rf
+            + [3 + kb + k for k in range(kc)]
+        ),
+        arc_time_pick=arr(
+            [0] * rb
+            + [1] * rf
+            + [2 + k for k in range(kb) for _ in "lcr"]
+            + [1] * rf
+            + [2 + kb + k for k in range(kc)]
+        ),
+    )
+
+
+def _take(p: Points, rows: IntArray) -> Points:
     """Rows of ``(R, N)`` points."""
     return Points(
         p.x_m[rows], p.y_m[rows], p.yaw_rad[rows], p.speed_mps[rows], p.yaw_rate_radps[rows]
@@ -123,6 +197,15 @@ def _take(p: Points, rows: list[int]) -> Points:
 def vehicle_sets_batch(agents: UnstructuredAgents, dyn: AgentDynamics) -> TrajectorySets:
     """Brake and continue-forward sets of ``N`` vehicles (per-agent dynamics values).
 
+    1. One stepped integration (two phases): the response time of the front rows
+       ``[right nf | left nf | centre]`` and of the back rows (likewise), and the
+       continue-forward extremes, which continue the outermost front rows with a second
+       phase (further yaw-rate change; its duration is ``t_after`` also for braking
+       intermediate accelerations, where the reference cuts it at standstill: the same
+       end points up to rounding).
+    2. One arc call for everything after the response time.
+    3. Footprints of all rows, then the pieces of :func:`vehicle_plan`.
+
     Args:
         agents: The vehicles ``(N,)``.
         dyn: Their dynamics ``(N,)`` (one settings).
@@ -130,84 +213,50 @@ def vehicle_sets_batch(agents: UnstructuredAgents, dyn: AgentDynamics) -> Trajec
     Returns:
         The pieces (owner = index into ``agents``).
     """
-    u = dyn.settings
-    nf, nb, kb, kc, ncf = _counts(u)
-    rf, rb = 2 * nf + 1, 2 * nb + 1
+    u, a = dyn.settings, agents
+    nf, _, kb, kc, _ = _counts(u)
+    lay = _layout(u)
     rho, vcap = dyn.response_time_s, dyn.max_speed_mps
     amax, bmax, bmin = dyn.accel_max_mps2, dyn.brake_max_mps2, dyn.brake_min_mps2
-    a = agents
     t_after = np.maximum(0.0, time_to_stop(a.speed_max_mps, rho, vcap, amax, bmin) - rho)
-
-    def integrate(p: Points, accel: FloatArray, duration: FloatArray, ratio: FloatArray) -> Points:
-        return vehicle_integrate(
-            p,
-            accel,
-            duration,
-            ratio[:, None],
-            u.vehicle_yaw_rate_change,
-            u.vehicle_trajectory_calculation_step,
-            vcap,
-            u.vehicle_min_radius,
-        )
-
-    # 1. response time: front rows [right nf | left nf | centre], then back rows likewise
-    f_right, f_left = ratio_pairs(nf - 1)
-    b_right, b_left = ratio_pairs(nb - 1)
-    phase = np.repeat([0, 1], [rf, rb])
+    cf_accels = step_accelerations_batch(bmin, amax, kc - 1)
     speed = np.stack((a.speed_max_mps, a.speed_min_mps))
     accel = np.stack((amax, bmax))
-    rt = integrate(
-        Points(a.x_m, a.y_m, a.yaw_rad, speed[phase], a.yaw_rate_radps),
-        accel[phase],
-        time_in_movement(speed, accel, rho)[phase],
-        np.concatenate((f_right, f_left, [0.0], b_right, b_left, [0.0])),
+    out = vehicle_integrate(
+        Points(a.x_m, a.y_m, a.yaw_rad, speed[lay.rows1], a.yaw_rate_radps),
+        accel[lay.rows1],
+        time_in_movement(speed, accel, rho)[lay.rows1],
+        lay.ratio1,
+        u.vehicle_yaw_rate_change,
+        u.vehicle_trajectory_calculation_step,
+        vcap,
+        u.vehicle_min_radius,
+        Phase(
+            np.concatenate((np.zeros((1, len(a))), amax[None], cf_accels))[lay.accel2_pick],
+            np.where(lay.timed2, t_after, 0.0),
+            lay.ratio2,
+        ),
     )
-    left, centre, right = 2 * nf - 1, rf - 1, 0
-    v_centre = rt.speed_mps[centre]
-    # 2. arcs after the response time
+    rt = _take(out, lay.response)
+    v_centre = rt.speed_mps[2 * nf]  # the front centre row
     v_back = rt.speed_mps[-1]
     t_back = np.where(gt(v_back, 0.0, SPEED_PRECISION), v_back / -bmax, 0.0)
     side_accels = step_accelerations_batch(bmax, bmin, kb - 1)
-    cf_accels = step_accelerations_batch(bmin, amax, kc - 1)
-    side_times = time_in_movement(v_centre, side_accels, t_after)
-    cf_times = time_in_movement(v_centre, cf_accels, t_after)
-    front_rows = list(range(rf))
-    starts = [*range(rf, rf + rb), *front_rows, *[left, centre, right] * kb, *front_rows]
-    arc_accel = np.concatenate(
-        (
-            np.broadcast_to(bmax, (rb, len(a))),
-            np.broadcast_to(bmin, (rf, len(a))),
-            np.repeat(side_accels, 3, axis=0),
-            np.broadcast_to(amax, (rf, len(a))),
-            cf_accels,
-        )
-    )
-    arc_time = np.concatenate(
-        (
-            np.broadcast_to(t_back, (rb, len(a))),
-            np.broadcast_to(t_after, (rf, len(a))),
-            np.repeat(side_times, 3, axis=0),
-            np.broadcast_to(t_after, (rf, len(a))),
-            cf_times,
-        )
-    )
+    times = time_in_movement(v_centre, np.concatenate((side_accels, cf_accels)), t_after)
     arcs = vehicle_arc(
-        _take(rt, starts + [centre] * kc), arc_accel, arc_time, vcap, u.vehicle_min_radius
+        _take(rt, lay.arc_starts),
+        np.concatenate((bmax[None], bmin[None], side_accels, amax[None], cf_accels))[
+            lay.arc_accel_pick
+        ],
+        np.concatenate((t_back[None], t_after[None], times))[lay.arc_time_pick],
+        vcap,
+        u.vehicle_min_radius,
     )
-    # 3. continue-forward extremes: further yaw-rate change from the front corners
-    cf_right, cf_left = ratio_pairs(ncf - 1)
-    extras = integrate(
-        _take(rt, [left] * ncf + [right] * ncf + [left, right] * kc),
-        np.concatenate((np.broadcast_to(amax, (2 * ncf, len(a))), np.repeat(cf_accels, 2, axis=0))),
-        np.concatenate(
-            (np.broadcast_to(t_after, (2 * ncf, len(a))), np.repeat(cf_times, 2, axis=0))
-        ),
-        np.concatenate((cf_left, cf_right, np.tile([1.0, -1.0], kc))),
-    )
+    extra_points = _take(out, lay.extras)
     current = Points(a.x_m, a.y_m, a.yaw_rad, a.speed_min_mps, a.yaw_rate_radps)
     points = Points(
         *(
-            np.concatenate((getattr(arcs, f), getattr(extras, f), getattr(current, f)[None]))
+            np.concatenate((getattr(arcs, f), getattr(extra_points, f), getattr(current, f)[None]))
             for f in ("x_m", "y_m", "yaw_rad", "speed_mps", "yaw_rate_radps")
         )
     )

@@ -38,11 +38,19 @@ def random_ego(rng: np.random.Generator) -> UnstructuredAgents:
     )
 
 
-def random_frame(rng: np.random.Generator, n: int) -> tuple[UnstructuredAgents, list[RssDynamics]]:
-    """``n`` agents within 60 m: half vehicles, half pedestrians (some standing)."""
+def random_frame(
+    rng: np.random.Generator, n: int, pedestrian_share: float = 0.5
+) -> tuple[UnstructuredAgents, list[RssDynamics]]:
+    """``n`` agents within 60 m: vehicles and pedestrians (some standing).
+
+    Args:
+        rng: The generator.
+        n: Number of agents.
+        pedestrian_share: Probability of a pedestrian (0: vehicles only, 1: pedestrians only).
+    """
     rows, dynamics = [], []
     for i in range(n):
-        pedestrian = bool(rng.random() < 0.5)
+        pedestrian = bool(rng.random() < pedestrian_share)
         top = 2.5 if pedestrian else 15.0
         speed = float(rng.choice([0.0, rng.uniform(0.0, top), rng.uniform(0.0, top)]))
         radius, angle = float(rng.uniform(2.0, 60.0)), float(rng.uniform(-np.pi, np.pi))

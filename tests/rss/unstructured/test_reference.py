@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from rss.unstructured.kinematics import (
+    Phase,
     Points,
     footprints,
     pedestrian_move,
@@ -77,6 +78,39 @@ def test_vehicle_integrate_matches_the_stepwise_reference(seed: int) -> None:
         )
         for i in range(M)
     ]
+    _assert_close(fast, ref)
+
+
+@pytest.mark.parametrize("seed", [3, 4])
+def test_two_phase_integration_matches_two_stepwise_drives(seed: int) -> None:
+    """``then`` continues from the end point (braking to standstill, caps, mixed durations)."""
+    rng = np.random.default_rng(seed)
+    p = _points(rng)
+    accel = rng.choice([-8.0, -4.0, 0.0, 3.5], (2, M))
+    duration = rng.choice([0.0, 5e-4, 0.2, 1.0, 2.0, 3.3], (2, M))
+    ratio = rng.choice([-1.0, 0.0, 0.5, 1.0], (2, M))
+    vcap = rng.choice([10.0, 100.0], M)
+    fast = vehicle_integrate(
+        p,
+        accel[0],
+        duration[0],
+        ratio[0],
+        0.3,
+        0.2,
+        vcap,
+        3.5,
+        Phase(accel[1], duration[1], ratio[1]),
+    )
+    ref = []
+    for i in range(M):
+        mid = ref_vehicle_integrate(
+            _pose(p, i), accel[0, i], duration[0, i], ratio[0, i], 0.3, 0.2, vcap[i], 3.5
+        )
+        ref.append(
+            ref_vehicle_integrate(
+                mid, accel[1, i], duration[1, i], ratio[1, i], 0.3, 0.2, vcap[i], 3.5
+            )
+        )
     _assert_close(fast, ref)
 
 
