@@ -55,23 +55,28 @@ def eq(a: FloatArray | float, b: FloatArray | float, precision: float) -> np.nda
 
 
 def gt(a: FloatArray | float, b: FloatArray | float, precision: float) -> np.ndarray:
-    """Tolerant ``a > b``: strictly greater and not equal within ``precision``."""
-    return np.asarray(np.greater(a, b) & ~eq(a, b, precision))
+    """Tolerant ``a > b``: strictly greater and not equal within ``precision``.
+
+    Computed as ``a - b >= precision`` (one subtraction: the rounded difference has the
+    sign of the exact one and ``fl(b - a) == -fl(a - b)``, so this is the same set,
+    NaN and infinities included).
+    """
+    return np.asarray(np.subtract(a, b) >= precision)
 
 
 def lt(a: FloatArray | float, b: FloatArray | float, precision: float) -> np.ndarray:
-    """Tolerant ``a < b``."""
-    return np.asarray(np.less(a, b) & ~eq(a, b, precision))
+    """Tolerant ``a < b`` (``b - a >= precision``, see :func:`gt`)."""
+    return np.asarray(np.subtract(b, a) >= precision)
 
 
 def ge(a: FloatArray | float, b: FloatArray | float, precision: float) -> np.ndarray:
-    """Tolerant ``a >= b`` (greater or equal within ``precision``)."""
-    return np.asarray(gt(a, b, precision) | eq(a, b, precision))
+    """Tolerant ``a >= b``: greater or equal within ``precision`` (``b - a < precision``)."""
+    return np.asarray(np.subtract(b, a) < precision)
 
 
 def le(a: FloatArray | float, b: FloatArray | float, precision: float) -> np.ndarray:
-    """Tolerant ``a <= b``."""
-    return np.asarray(lt(a, b, precision) | eq(a, b, precision))
+    """Tolerant ``a <= b`` (``a - b < precision``)."""
+    return np.asarray(np.subtract(a, b) < precision)
 
 
 def tmax(a: FloatArray | float, b: FloatArray | float, precision: float) -> FloatArray:

@@ -88,3 +88,37 @@ def test_tolerant_comparisons() -> None:
     assert physics.gt(59.7241, 59.722994, physics.DISTANCE_PRECISION)
     assert physics.eq(6.0, 6.0005, physics.DISTANCE_PRECISION)
     assert float(physics.tmax(-0.0005, 0.0, physics.DISTANCE_PRECISION)) == -0.0005
+
+
+def test_tolerant_comparisons_match_their_definitions() -> None:
+    """One-subtraction forms vs ``a > b and not a == b`` (and the others) element by element."""
+    rng = np.random.default_rng(0)
+    p = physics.DISTANCE_PRECISION
+    base = rng.uniform(-10.0, 10.0, 4000)
+    offsets = np.array([0.0, p, -p, p / 2, -p / 2, np.nextafter(p, 0.0), np.nextafter(p, 1.0)])
+    a = np.concatenate((base, base, [np.nan, np.inf, -np.inf, np.inf, 1.0, np.nan]))
+    b = np.concatenate(
+        (
+            base + rng.choice(offsets, 4000),
+            rng.uniform(-10.0, 10.0, 4000),
+            [1.0, np.inf, -np.inf, 1.0, np.inf, np.nan],
+        )
+    )
+    with np.errstate(invalid="ignore"):  # inf - inf
+        _compare_all(a, b, p)
+
+
+def _compare_all(a: np.ndarray, b: np.ndarray, p: float) -> None:
+    for i in range(a.size):
+        x, y = float(a[i]), float(b[i])
+        eq = abs(x - y) < p
+        gt = x > y and not eq
+        lt = x < y and not eq
+        assert bool(physics.gt(x, y, p)) == gt, (x, y)
+        assert bool(physics.lt(x, y, p)) == lt, (x, y)
+        assert bool(physics.ge(x, y, p)) == (gt or eq), (x, y)
+        assert bool(physics.le(x, y, p)) == (lt or eq), (x, y)
+    assert (
+        physics.gt(a, b, p)
+        == np.array([bool(physics.gt(x, y, p)) for x, y in zip(a, b, strict=True)])
+    ).all()
