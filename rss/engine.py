@@ -16,6 +16,7 @@ import numpy as np
 from rss.checks import RawStates, check_all
 from rss.extraction import Relative, extract
 from rss.memory import RssMemory, apply_memory, is_dangerous
+from rss.merge import merge_similar
 from rss.response import ProperResponses, resolve
 from rss.states import InvalidReason
 
@@ -66,10 +67,10 @@ def check_frames(
     Returns:
         ``(result, memory)``: the result and the memory after frame ``F-1``.
     """
-    rel = extract(batch)
+    frame = np.asarray(frame, dtype=np.int64)
+    batch, rel = merge_similar(batch, extract(batch), frame)
     raw = check_all(batch, rel)
     valid = rel.invalid == InvalidReason.Valid
-    frame = np.asarray(frame, dtype=np.int64)
     states, new_memory = apply_memory(batch, rel, raw, valid, frame, memory or RssMemory.empty())
     dangerous = is_dangerous(states) & valid
     responses = resolve(batch, states, dangerous, frame, n_frames, default_ego)

@@ -38,6 +38,11 @@ if TYPE_CHECKING:
 __all__ = ["read_opendrive"]
 
 _STEP_M = 0.5
+#: Borders of two junction lanes with common end points (within ``_SHARED_END_M``) and
+#: closer than this everywhere are shared (neighbours): connecting roads of one junction
+#: built from different curves (arc / spiral) deviate by up to ~0.2 m in between.
+_SHARED_BORDER_M = 0.3
+_SHARED_END_M = 0.05
 _EPS_M = 1e-9
 _KINDS = {
     "driving": LaneKind.ROAD,
@@ -266,7 +271,44 @@ class _Builder:
                 left_neighbour_opposite=abs(lid) == 1 and left in self.lanes,
             )
         groups = tuple(tuple(ids) for _, ids in sorted(self.junction_lanes.items()))
+        for ids in groups:
+            _junction_neighbours(out, ids)
         return LaneMap(lanes=out, source=self.label, format="opendrive", intersections=groups)
+
+
+def _resampled(line: NDArray[np.float64], n: int = 9) -> NDArray[np.float64]:
+    steps = np.hypot(*np.diff(line, axis=0).T)
+    s = np.concatenate([[0.0], np.cumsum(steps)])
+    at = np.linspace(0.0, s[-1], n)
+    return np.stack([np.interp(at, s, line[:, 0]), np.interp(at, s, line[:, 1])], axis=1)
+
+
+def _junction_neighbours(lanes: dict[str, Lane], ids: tuple[str, ...]) -> None:
+    """Link lanes of different junction roads that share a border as neighbours.
+
+    Connecting roads of one junction often run side by side on coinciding reference
+    lines (one per direction); ad-map treats such lanes as neighbours, so lateral
+    cross-sections inside junctions span both.
+    """
+    sides = {
+        (lane_id, side): _resampled(getattr(lanes[lane_id], f"{side}_m"))
+        for lane_id in ids
+        for side in ("left", "right")
+    }
+    for (a, side_a), line_a in sides.items():
+        if getattr(lanes[a], f"{side_a}_neighbour") is not None:
+            continue
+        for (b, side_b), line_b in sides.items():
+            if b.split("_")[0] == a.split("_")[0]:
+                continue
+            opposite = side_a == side_b
+            other = line_b[::-1] if opposite else line_b
+            gaps = np.hypot(*(line_a - other).T)
+            if max(gaps[0], gaps[-1]) < _SHARED_END_M and float(gaps.max()) < _SHARED_BORDER_M:
+                lanes[a] = _replace(
+                    lanes[a], **{f"{side_a}_neighbour": b, f"{side_a}_neighbour_opposite": opposite}
+                )
+                break
 
 
 def _replace(lane: Lane, **changes: object) -> Lane:

@@ -114,3 +114,31 @@ def test_town01_and_karlsruhe_load(external_dir):
             assert gap < 0.5
     karlsruhe = read_opendrive(external_dir / "maps" / "Karlsruhe.xodr")
     assert Counter(ln.kind for ln in karlsruhe.lanes.values())[LaneKind.ROAD] == 2
+
+
+def _one_lane_road(rid: str, x: float, hdg: float, junction: str) -> str:
+    return f"""
+  <road id="{rid}" length="50" junction="{junction}">
+    <planView><geometry s="0" x="{x}" y="0" hdg="{hdg}" length="50"><line/></geometry></planView>
+    <lanes><laneSection s="0">
+      <center><lane id="0" type="none"/></center>
+      <right><lane id="-1" type="driving"><width sOffset="0" a="3.5" b="0" c="0" d="0"/></lane></right>
+    </laneSection></lanes>
+  </road>"""
+
+
+@pytest.mark.parametrize(("junction", "linked"), [("7", True), ("-1", False)])
+def test_junction_roads_on_one_reference_line_are_opposite_neighbours(junction, linked):
+    """Two connecting roads of a junction drawn on the same line in opposite directions."""
+    there = _one_lane_road("10", 0.0, 0.0, junction)
+    back = _one_lane_road("11", 50.0, math.pi, junction)
+    m = read_opendrive(_doc(there, back))
+    a, b = m.lanes["10_0_-1"], m.lanes["11_0_-1"]
+    if linked:
+        assert (a.left_neighbour, b.left_neighbour) == ("11_0_-1", "10_0_-1")
+        assert a.left_neighbour_opposite
+        assert b.left_neighbour_opposite
+    else:  # ordinary roads keep their own lanes only
+        assert a.left_neighbour is None
+        assert b.left_neighbour is None
+    assert a.right_neighbour is None
