@@ -89,7 +89,9 @@ class FrameBatch:
         rows = slice(int(self.offsets[f]), int(self.offsets[f + 1]))
         objs = self.objects
         return RuleContext(
-            objects=ObjectStates(**{k.name: getattr(objs, k.name)[rows] for k in fields(objs)}),
+            objects=ObjectStates.rows_of(
+                {k.name: getattr(objs, k.name) for k in fields(objs)}, rows
+            ),
             ego_x_m=float(self.ego_x_m[f]),
             ego_y_m=float(self.ego_y_m[f]),
             ego_yaw_rad=float(self.ego_yaw_rad[f]),
@@ -169,7 +171,7 @@ def stack_frames(
     skipped_ids = tuple(tuple(str(i) for i in part) for part in np.split(skipped, cut[:-1]))
     frame = frame_all[rows]
     return FrameBatch(
-        objects=ObjectStates(**{k: v[rows] for k, v in cols.items()}),
+        objects=ObjectStates.rows_of(cols, rows),
         frame=frame,
         offsets=np.searchsorted(frame, np.arange(len(inputs) + 1)),
         skipped_ids=skipped_ids,

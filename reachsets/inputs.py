@@ -142,9 +142,26 @@ class ObjectStates:
 
     def take(self, index: NDArray[np.intp]) -> ObjectStates:
         """The objects at ``index`` (``(M,)`` integer positions)."""
-        return ObjectStates(
-            **{f.name: getattr(self, f.name)[index] for f in fields(self)},
-        )
+        return ObjectStates.rows_of({f.name: getattr(self, f.name) for f in fields(self)}, index)
+
+    @classmethod
+    def rows_of(cls, columns: dict[str, NDArray[Any]], index: Any) -> ObjectStates:
+        """Rows ``index`` of columns taken from checked ``ObjectStates`` (no re-validation).
+
+        Args:
+            columns: Field name -> ``(N,)`` array, each from an ``ObjectStates`` (or a
+                concatenation of them).
+            index: Integer positions or a slice.
+
+        Returns:
+            The objects, with read-only arrays.
+        """
+        out = object.__new__(cls)
+        for name, col in columns.items():
+            arr = np.array(col[index])
+            arr.flags.writeable = False
+            object.__setattr__(out, name, arr)
+        return out
 
     @classmethod
     def empty(cls) -> ObjectStates:

@@ -129,6 +129,9 @@ class _Chains:
 
 
 def _chains(ids: Sequence[str], frame: NDArray[np.intp], n_frames: int) -> _Chains:
+    if n_frames == 1:  # every row is a chain of its own, continuing the memory
+        rows = np.arange(len(ids))
+        return _Chains(rows, rows, np.ones(len(ids), dtype=bool), [str(i) for i in ids], rows)
     id_arr = np.asarray(ids, dtype=str)
     order = np.lexsort((frame, id_arr)) if len(id_arr) else np.zeros(0, dtype=np.intp)
     sid, sframe = id_arr[order], frame[order]

@@ -115,16 +115,16 @@ def _interp_rows(
 
     ``xp`` rows are non-decreasing; values are held beyond both ends.
     """
-    k = xp.shape[1]
+    n, k = xp.shape
     j = np.clip((xp[:, None, :] <= q[None, :, None]).sum(axis=2) - 1, 0, k - 2)
-    x0 = np.take_along_axis(xp, j, 1)
-    x1 = np.take_along_axis(xp, j + 1, 1)
-    span = x1 - x0
+    j += (np.arange(n) * k)[:, None]  # flat index of the interval start
+    x0 = xp.ravel()[j]
+    span = xp.ravel()[j + 1] - x0
     w = np.clip((q - x0) / np.where(span > 0, span, 1.0), 0.0, 1.0)
     out = []
     for fp in fps:
-        f0 = np.take_along_axis(fp, j, 1)
-        out.append(f0 + w * (np.take_along_axis(fp, j + 1, 1) - f0))
+        f0 = fp.ravel()[j]
+        out.append(f0 + w * (fp.ravel()[j + 1] - f0))
     return out
 
 

@@ -72,10 +72,10 @@ def simple_reach_vertices(
     v0 = np.asarray(objects.speed_mps, dtype=np.float64)[:, None]
     a = np.broadcast_to(np.asarray(a_max_mps2, dtype=np.float64), v0.shape[:1])[:, None]
     t = np.asarray(times_s, dtype=np.float64)
-    c, r, b = _profiles(v0, a, t)
-    c_p, r_p, b_p = (
-        np.concatenate([np.zeros_like(v[:, :1]), v[:, :-1]], axis=1) for v in (c, r, b)
-    )
+    # profiles at 0 and every stamp; primed = at the previous stamp (0 before the first)
+    c_all, r_all, b_all = _profiles(v0, a, np.concatenate([[0.0], t]))
+    c, r = c_all[:, 1:], r_all[:, 1:]
+    c_p, r_p, b_p = c_all[:, :-1], r_all[:, :-1], b_all[:, :-1]
     # No reversing: the rear edge stays where c - r peaked; its half-width keeps growing.
     rear_xi = np.maximum.accumulate(c_p - r_p, axis=1)
     rear_eta = r_p
