@@ -101,14 +101,15 @@ def _direct(f: FrameContext, box: int, max_m: float) -> tuple[list[Connecting], 
 def _drop_longer(f: FrameContext, routes: list[Connecting]) -> list[Connecting]:
     """Drop routes that extend a shorter one (ad-map ``filterDuplicatedConnectingRoutes``).
 
-    A route is a longer version of another when it passes through the other's target
-    lane, or when its target overlaps the other's (ad-map links overlapping intersection
-    lanes, so the longer route is the shorter one plus that overlap).
+    A route is a longer version of a shorter one when it passes through the other's target
+    lane or ends on a lane linked to it: ad-map's shortest route to that region would run
+    through the object's nearer region.
     """
+    g = f.prep.graph
     kept: list[Connecting] = []
     for cr in sorted(routes, key=lambda c: c.length_m):
-        path = set(f.tree.path(cr.target))
-        if any(k.target in path for k in kept):
+        near = {*f.tree.path(cr.target), *g.successors[cr.target], *g.predecessors[cr.target]}
+        if any(k.target in near for k in kept):
             continue
         kept.append(cr)
     return kept
