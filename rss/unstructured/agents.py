@@ -89,9 +89,15 @@ class UnstructuredAgents:
         """
         n = None
         for name in self.__dataclass_fields__:
-            value = np.array(
-                getattr(self, name), dtype=np.int64 if name.startswith("object") else np.float64
-            )
+            value = getattr(self, name)
+            dtype = np.int64 if name.startswith("object") else np.float64
+            if not (  # a frozen array owning its data is kept (take, concat)
+                isinstance(value, np.ndarray)
+                and value.dtype == dtype
+                and value.flags.owndata
+                and not value.flags.writeable
+            ):
+                value = np.array(value, dtype=dtype)
             if value.ndim != 1 or (n is not None and value.shape[0] != n):
                 raise UnstructuredInputError(
                     name, f"must be 1-D of length {n}, got shape {value.shape}"
@@ -114,21 +120,18 @@ class UnstructuredAgents:
     @staticmethod
     def concat(parts: Sequence[UnstructuredAgents]) -> UnstructuredAgents:
         """The agents of ``parts``, one after the other."""
-        names = UnstructuredAgents.__dataclass_fields__
         return UnstructuredAgents(
-            **{n: np.concatenate([getattr(p, n) for p in parts]) for n in names}
+            **{n: _frozen(np.concatenate([getattr(p, n) for p in parts])) for n in _FIELDS}
         )
 
     def take(self, index: IntArray) -> UnstructuredAgents:
         """The agents at ``index``."""
-        return UnstructuredAgents(**{n: getattr(self, n)[index] for n in self.__dataclass_fields__})
+        return UnstructuredAgents(**{n: _frozen(getattr(self, n)[index]) for n in _FIELDS})
 
     def valid(self) -> np.ndarray:
         """``(N,)`` agents ad-rss accepts (finite, angles within ±2π, speeds ordered, a model)."""
-        values = np.stack(
-            [getattr(self, n) for n in self.__dataclass_fields__ if not n.startswith("object")]
-        )
-        angles = np.stack((self.yaw_rad, self.steering_angle_rad))
+        values = np.stack([getattr(self, n) for n in _FLOAT_FIELDS])
+        angles = values[_ANGLE_ROWS]
         return np.asarray(
             np.isfinite(values).all(axis=0)
             & (np.abs(angles) <= _ANGLE_LIMIT_RAD).all(axis=0)
@@ -138,3 +141,13 @@ class UnstructuredAgents:
             & (self.width_m > 0.0)
             & (motion_model(self.object_type) != MotionModel.INVALID)
         )
+
+
+def _frozen(values: np.ndarray) -> np.ndarray:
+    values.setflags(write=False)
+    return values
+
+
+_FIELDS = tuple(UnstructuredAgents.__dataclass_fields__)
+_FLOAT_FIELDS = tuple(n for n in _FIELDS if not n.startswith("object"))
+_ANGLE_ROWS = [_FLOAT_FIELDS.index("yaw_rad"), _FLOAT_FIELDS.index("steering_angle_rad")]

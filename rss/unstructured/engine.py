@@ -30,6 +30,7 @@ if TYPE_CHECKING:
     from rss.dynamics import RssDynamics, UnstructuredSettings
 
 __all__ = [
+    "FIRST_ROUND_MIN_PAIRS",
     "UnstructuredResult",
     "check_unstructured",
     "intersections",
@@ -115,31 +116,52 @@ def intersections(
     Touching counts as intersecting (ad-rss: not ``disjoint``). Candidate piece pairs are
     those whose axis-aligned boxes overlap (numpy, all pairs at once; the boxes hold the
     hulls' own vertices, so the test is exact) and of which at least one piece is a brake
-    piece (continue-forward pairs decide nothing); only their hulls are built and tested,
-    in one shapely call (ego hulls prepared).
+    piece (continue-forward pairs decide nothing); only their hulls are built and tested
+    (shapely, ego hulls prepared). With many candidates the brake-brake pairs go first: an
+    agent whose brake set meets the ego's has all three conditions (``T_b ⊆ T_f``), so its
+    other pairs are skipped.
     """
     n = agent_sets.count
-    out = [np.zeros(n, dtype=bool) for _ in range(3)]
+    flags = np.zeros((3, n), dtype=bool)
     if n == 0 or ego_sets.owner.size == 0 or agent_sets.owner.size == 0:
-        return out[0], out[1], out[2]
+        return flags[0], flags[1], flags[2]
     e_lo, e_hi = ego_sets.bounds()
     a_lo, a_hi = agent_sets.bounds()
+    e_brake, a_brake = ego_sets.brake[:, None], agent_sets.brake[None, :]
     candidates = (
         (e_lo[:, None, 0] <= a_hi[None, :, 0])
         & (a_lo[None, :, 0] <= e_hi[:, None, 0])
         & (e_lo[:, None, 1] <= a_hi[None, :, 1])
         & (a_lo[None, :, 1] <= e_hi[:, None, 1])
-        & (ego_sets.brake[:, None] | agent_sets.brake[None, :])
+        & (e_brake | a_brake)
     )
-    e, a = np.nonzero(candidates)
+    if np.count_nonzero(candidates) > FIRST_ROUND_MIN_PAIRS:
+        both = candidates & e_brake & a_brake
+        _mark(flags, ego_sets, agent_sets, both)
+        decided = flags[2][agent_sets.owner]
+        candidates &= ~both & ~decided[None, :]
+    _mark(flags, ego_sets, agent_sets, candidates)
+    return flags[0], flags[1], flags[2]
+
+
+#: Candidate pairs above which the brake-brake pairs are tested in a first round.
+FIRST_ROUND_MIN_PAIRS = 64
+
+
+def _mark(
+    flags: BoolArray, ego_sets: TrajectorySets, agent_sets: TrajectorySets, pairs: BoolArray
+) -> None:
+    """Test the piece pairs ``(E, P)`` and set the three conditions ``(3, N)`` they meet."""
+    e, a = np.nonzero(pairs)
+    if e.size == 0:
+        return
     ego_hulls, agent_hulls = hulls_of([(ego_sets, e), (agent_sets, a)])
     shapely.prepare(ego_hulls)
     hit = shapely.intersects(ego_hulls, agent_hulls)
     e, a = e[hit], a[hit]
     e_brake, a_brake, owner = ego_sets.brake[e], agent_sets.brake[a], agent_sets.owner[a]
-    for flags, mask in zip(out, (e_brake, a_brake, e_brake & a_brake), strict=True):
-        flags[owner[mask]] = True
-    return out[0], out[1], out[2]
+    for row, mask in enumerate((e_brake, a_brake, e_brake & a_brake)):
+        flags[row, owner[mask]] = True
 
 
 def check_unstructured(  # noqa: PLR0917  (one engine step)
