@@ -31,7 +31,7 @@ from rss.scene.roadarea import SegmentPlan, build_road, cut_window, place_object
 from rss.scene.routes import lateral
 
 if TYPE_CHECKING:
-    from rss.scene.pairs import FrameContext
+    from rss.scene.frame import FrameContext
     from rss.scene.routes import Step
 
 __all__ = ["BOUNDARY_DYNAMICS", "LEFT_BOUNDARY_ID", "RIGHT_BOUNDARY_ID", "boundary_constellations"]

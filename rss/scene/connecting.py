@@ -25,7 +25,7 @@ from rss.scene.intersection import conflict
 from rss.scene.routes import predict_routes
 
 if TYPE_CHECKING:
-    from rss.scene.pairs import FrameContext
+    from rss.scene.frame import FrameContext
     from rss.scene.routes import Step
 
 __all__ = ["Connecting", "Kind", "connecting_routes"]

@@ -17,9 +17,10 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from rss.scene.boundaries import boundary_constellations
+from rss.scene.frame import FrameContext, ego_routes, lane_headings
 from rss.scene.inputs import Scene, conservative_stop_m
 from rss.scene.matching import BoxArrays, match_boxes
-from rss.scene.pairs import FrameContext, ego_routes, lane_headings, object_constellations
+from rss.scene.pairs import object_constellations
 from rss.scene.routes import RouteTree, connect
 
 if TYPE_CHECKING:

@@ -1,0 +1,199 @@
+"""What the constellations of one frame share: :class:`FrameContext`, the ego's routes.
+
+One :class:`FrameContext` per frame holds the prepared graph, the ego and the objects,
+the map matching, the route tree from the ego and the lane headings at each box, and
+builds single constellations from segment plans (speed-limit modes applied to both
+dynamics).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from rss.model import Constellation, ObjectType
+from rss.params import RestrictSpeedLimitMode
+from rss.scene.roadarea import build_road, lane_heading, place_object
+from rss.scene.routes import predict_routes
+
+if TYPE_CHECKING:
+    from rss.dynamics import RssDynamics
+    from rss.model import ConstellationType, RoadSegment
+    from rss.params import SceneSettings
+    from rss.scene.inputs import SceneEgo, SceneObjects
+    from rss.scene.lanegraph import PreparedGraph
+    from rss.scene.matching import Matches
+    from rss.scene.roadarea import SegmentPlan
+    from rss.scene.routes import RouteTree, Step
+
+__all__ = ["FrameContext", "ego_routes", "lane_headings"]
+
+#: Lanes across the heading (beyond 45 degrees) are no start of a vehicle's routes.
+_FOLLOWING_COS = float(np.cos(np.pi / 4))
+_SPEED_FACTOR = {
+    RestrictSpeedLimitMode.NONE: None,
+    RestrictSpeedLimitMode.EXACT_SPEED_LIMIT: 1.0,
+    RestrictSpeedLimitMode.INCREASED_SPEED_LIMIT_5: 1.05,
+    RestrictSpeedLimitMode.INCREASED_SPEED_LIMIT_10: 1.1,
+}
+
+
+@functools.lru_cache(maxsize=256)
+def _limited(dyn: RssDynamics, limit: float, mode: RestrictSpeedLimitMode) -> RssDynamics:
+    factor = _SPEED_FACTOR[mode]
+    if factor is None or not np.isfinite(limit):
+        return dyn
+    return dataclasses.replace(dyn, max_speed_on_acceleration_mps=limit * factor)
+
+
+@dataclass
+class FrameContext:
+    """What the constellations of one frame share.
+
+    Attributes:
+        prep: The prepared lane graph.
+        ego: The ego.
+        objects: The other objects (box ``i + 1`` is object ``i``; box 0 is the ego).
+        settings: Scene settings.
+        matches: Map matching of all boxes.
+        tree: Connecting routes from the ego's anchor lane.
+        headings: Per box, the heading of each touched lane's point order at its centre.
+        ego_velocity: ``(vx, vy)`` of the ego in the map frame.
+    """
+
+    prep: PreparedGraph
+    ego: SceneEgo
+    objects: SceneObjects
+    settings: SceneSettings
+    matches: Matches
+    tree: RouteTree
+    headings: dict[int, dict[int, float]]
+    ego_velocity: tuple[float, float]
+
+    def forward(self, box: int) -> bool:
+        """Whether the box heads along its anchor lane's point order."""
+        yaw = self.ego.yaw_rad if box == 0 else float(self.objects.yaw_rad[box - 1])
+        return bool(np.cos(yaw - self.matches.anchor_heading_rad[box]) >= 0.0)
+
+    def starts(self, box: int) -> list[tuple[int, bool, float]]:
+        """Lanes the box may drive on: ``(lane, forward, length behind its centre)``.
+
+        The anchor first, then every other touched lane aligned with the box heading
+        (ad-rss considers every map-matched lane of a vehicle).
+        """
+        m = self.matches
+        yaw = self.ego.yaw_rad if box == 0 else float(self.objects.yaw_rad[box - 1])
+        anchor = int(m.anchor[box])
+        out = []
+        for i in m.rows(box):
+            lane = int(m.lane[i])
+            cos = math.cos(yaw - float(m.heading_rad[i]))
+            if lane != anchor and abs(cos) < _FOLLOWING_COS:
+                continue
+            fwd = cos >= 0.0
+            p = (
+                float(m.anchor_s[box])
+                if lane == anchor
+                else 0.5 * float(m.lon_min[i] + m.lon_max[i])
+            )
+            behind = float(self.prep.centre_length_m[lane]) * (p if fwd else 1.0 - p)
+            out.append((lane, fwd, behind))
+        out.sort(key=lambda item: item[0] != anchor)
+        return out
+
+    def routes(self, box: int, horizon_m: float) -> list[tuple[Step, ...]]:
+        """Predicted routes from every lane in :meth:`starts`."""
+        out: list[tuple[Step, ...]] = []
+        for lane, fwd, behind in self.starts(box):
+            out.extend(
+                predict_routes(
+                    self.prep, lane, forward=fwd, horizon_m=horizon_m, travelled_m=behind
+                )
+            )
+        return out
+
+    def constellation(
+        self,
+        kind: ConstellationType,
+        i: int,
+        ego_plans: list[SegmentPlan],
+        obj_plans: list[SegmentPlan] | None,
+        ends: dict[int, tuple[int, float]] | None = None,
+    ) -> Constellation | None:
+        """Build one constellation of object ``i`` (``obj_plans`` only for intersections).
+
+        ``ends`` (from :func:`cut_between`): where the connecting route touches each box;
+        its speeds are then resolved along the road-area direction there, as ad-rss does.
+        """
+        route_heading: dict[int, float | None] = {0: None, i + 1: None}
+        for box, (lane, at) in (ends or {}).items():
+            fwd = any(lane == s[0] and s[1] for p in ego_plans for s in p.lanes)
+            route_heading[box] = lane_heading(self.prep, lane, at) + (0.0 if fwd else np.pi)
+        ego_road, ego_placed, limit = build_road(self.prep, ego_plans)
+        obj_road: tuple[RoadSegment, ...] = ()
+        obj_placed = ego_placed
+        if obj_plans is not None:
+            obj_road, obj_placed, limit2 = build_road(self.prep, obj_plans, len(self.prep.graph))
+            limit = np.nanmax([limit, limit2]) if np.isfinite([limit, limit2]).any() else limit
+        o = self.objects
+        ego = place_object(
+            self.matches,
+            0,
+            ego_placed,
+            self.ego.object_id,
+            ObjectType.EgoVehicle,
+            self.ego_velocity,
+            self.headings[0],
+            route_heading[0],
+        )
+        other = place_object(
+            self.matches,
+            i + 1,
+            obj_placed,
+            int(o.ids[i]),
+            ObjectType(int(o.object_type[i])),
+            (float(o.vx_mps[i]), float(o.vy_mps[i])),
+            self.headings[i + 1],
+            route_heading[i + 1],
+        )
+        if ego is None or other is None:
+            return None
+        mode = self.settings.restrict_speed_limit_mode
+        return Constellation(
+            constellation_type=kind,
+            ego=ego,
+            other=other,
+            ego_dynamics=_limited(self.ego.dynamics, float(limit), mode),
+            other_dynamics=_limited(o.dynamics[i], float(limit), mode),
+            ego_road=ego_road,
+            intersecting_road=obj_road,
+        )
+
+
+def lane_headings(matches: Matches, n: int) -> dict[int, dict[int, float]]:
+    """Per box, the heading of each touched lane at the box centre."""
+    out: dict[int, dict[int, float]] = {b: {} for b in range(n)}
+    for b, lane, h in zip(matches.box, matches.lane, matches.heading_rad, strict=True):
+        out[int(b)][int(lane)] = float(h)
+    return out
+
+
+def ego_routes(f: FrameContext, horizon_m: float) -> list[tuple[Step, ...]]:
+    """The ego's routes: its plan continued by the prediction, else the prediction."""
+    if not f.ego.route:
+        return f.routes(0, horizon_m)
+    lane, fwd, behind = f.starts(0)[0]
+    base = ((lane, fwd), *(s for s in f.ego.route if s[0] != lane))
+    tails = predict_routes(
+        f.prep,
+        base[-1][0],
+        forward=base[-1][1],
+        horizon_m=horizon_m,
+        travelled_m=behind if len(base) == 1 else 0.0,
+    )
+    return [base + tail[1:] for tail in tails]
