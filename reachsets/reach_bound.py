@@ -114,21 +114,21 @@ def wall_aware_arcs(
     sub_xi, sub_eta, sub_psi = xi[rows], eta[rows], psi[rows]
     c = params.arc_step_m
     for k in range(int(start.min()), params.arc_points):
-        dpsi, _ = _turn(
-            sub_pose,
+        live = np.flatnonzero(k >= start)
+        dpsi = _turn(
+            (sub_pose[0][live], sub_pose[1][live], sub_pose[2][live]),
             wall,
-            sub_xi[:, k - 1 : k],
-            sub_eta[:, k - 1 : k],
-            sub_psi[:, k - 1 : k],
-            dmax[rows, k - 1 : k],
+            sub_xi[live, k - 1 : k],
+            sub_eta[live, k - 1 : k],
+            sub_psi[live, k - 1 : k],
+            dmax[rows[live], k - 1 : k],
             side,
             params,
-        )
-        live = k >= start
-        chord = sub_psi[:, k - 1] + dpsi[:, 0] / 2
-        sub_xi[live, k] = (sub_xi[:, k - 1] + c * np.cos(chord))[live]
-        sub_eta[live, k] = (sub_eta[:, k - 1] + side * c * np.sin(chord))[live]
-        sub_psi[live, k] = (sub_psi[:, k - 1] + dpsi[:, 0])[live]
+        )[0][:, 0]
+        chord = sub_psi[live, k - 1] + dpsi / 2
+        sub_xi[live, k] = sub_xi[live, k - 1] + c * np.cos(chord)
+        sub_eta[live, k] = sub_eta[live, k - 1] + side * c * np.sin(chord)
+        sub_psi[live, k] = sub_psi[live, k - 1] + dpsi
     xi[rows], eta[rows] = sub_xi, sub_eta
     return xi, eta
 
