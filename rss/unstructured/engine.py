@@ -92,19 +92,23 @@ def trajectory_sets(
     if len(dynamics) != n:
         raise UnstructuredInputError("dynamics", f"needs {n} entries, got {len(dynamics)}")
     extra = np.where(ego, [d.min_longitudinal_safety_distance_m for d in dynamics], 0.0)
-    groups: dict[tuple[UnstructuredSettings, int], list[int]] = {}
-    settings: dict[int, UnstructuredSettings] = {}  # hash each settings object once
+    by_object: dict[tuple[int, int], list[int]] = {}  # settings objects by identity first
     for i, (dyn, model) in enumerate(
         zip(dynamics, motion_model(agents.object_type).tolist(), strict=True)
     ):
-        key = settings.setdefault(id(dyn.unstructured), dyn.unstructured)
-        groups.setdefault((key, model), []).append(i)
+        by_object.setdefault((id(dyn.unstructured), model), []).append(i)
+    groups: dict[tuple[UnstructuredSettings, int], list[int]] = {}
+    for (_, model), rows in by_object.items():
+        groups.setdefault((dynamics[rows[0]].unstructured, model), []).extend(rows)
     parts = []
-    for (_, model), rows in groups.items():
+    for (_, model), unordered in groups.items():
+        rows = sorted(unordered)
         idx = np.array(rows, dtype=np.int64)
         sub = agents if len(rows) == n else agents.take(idx)
         build = pedestrian_sets_batch if model == MotionModel.PEDESTRIAN else vehicle_sets_batch
         parts.append((build(sub, AgentDynamics.of([dynamics[i] for i in rows], extra[idx])), idx))
+    if len(parts) == 1 and parts[0][1].size == n:
+        return parts[0][0]  # one batch of every agent, in order
     return TrajectorySets.concat(parts, n)
 
 

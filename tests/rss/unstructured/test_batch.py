@@ -120,3 +120,21 @@ def test_hulls_are_built_once_and_are_the_hulls_of_the_points() -> None:
     for i, hull in enumerate(sets.hulls):
         points = shapely.multipoints(sets.coords[: sets.size[i], i])
         assert shapely.equals(hull, shapely.convex_hull(points))
+
+
+def test_grouping_by_settings_keeps_every_agent_its_own_dynamics() -> None:
+    """Equal settings from distinct objects share a batch, other settings get their own."""
+    rng = np.random.default_rng(11)
+    agents, dyns = random_frame(rng, 12)
+    copy = dataclasses.replace(DEFAULT_VEHICLE_DYNAMICS.unstructured)
+    wide = dataclasses.replace(copy, vehicle_min_radius=6.0)
+    mixed = [
+        dataclasses.replace(d, unstructured=(copy, wide, d.unstructured)[i % 3])
+        if d is DEFAULT_VEHICLE_DYNAMICS
+        else d
+        for i, d in enumerate(dyns)
+    ]
+    joint = trajectory_sets(agents, mixed)
+    for i in range(len(agents)):
+        alone = trajectory_sets(agents.take(np.array([i])), [mixed[i]])
+        _same_sets(joint, alone, i)
