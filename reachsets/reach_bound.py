@@ -18,7 +18,8 @@ wall-following construction in the spirit of the reference's double arc (see doc
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 import shapely
@@ -37,134 +38,175 @@ __all__ = ["wall_aware_arcs"]
 _TANGENT_HALF_STEP_M = 0.5
 
 
-def _wall_arrays(wall: Any) -> tuple[NDArray[np.float64], ...]:
-    """Wall vertices ``(M, 2)``, segment vectors, their lengths and cumulative arc length."""
-    pts = shapely.get_coordinates(wall)
-    seg = np.diff(pts, axis=0)
-    seg_len = np.hypot(seg[:, 0], seg[:, 1])
-    return pts, seg, seg_len, np.concatenate([[0.0], np.cumsum(seg_len)])
+@dataclass(frozen=True, slots=True)
+class _Walls:
+    """Both walls as plain arrays (left first): vertices, segments and arc lengths.
+
+    The right wall's arc length continues after the left's plus a 1 m gap, so one
+    ``np.interp`` serves both; lookups are clamped to each wall's own range.
+
+    Attributes:
+        pts: Vertices of both walls, ``(M, 2)``.
+        cum: Arc length at each vertex, ``(M,)``.
+        start: Segment start points, ``(S, 2)`` (segments within one wall only).
+        seg: Segment vectors, ``(S, 2)``.
+        seg_len: Segment lengths, ``(S,)``.
+        seg_s: Arc length at each segment start, ``(S,)``.
+        seg_wall: Wall of each segment (0 left, 1 right), ``(S,)``.
+        lo: Arc length where each wall starts, ``(2,)``.
+        hi: Arc length where each wall ends, ``(2,)``.
+    """
+
+    pts: NDArray[np.float64]
+    cum: NDArray[np.float64]
+    start: NDArray[np.float64]
+    seg: NDArray[np.float64]
+    seg_len: NDArray[np.float64]
+    seg_s: NDArray[np.float64]
+    seg_wall: NDArray[np.intp]
+    lo: NDArray[np.float64]
+    hi: NDArray[np.float64]
+
+
+def _walls(track: TrackGeometry) -> _Walls:
+    parts = [shapely.get_coordinates(track.left), shapely.get_coordinates(track.right)]
+    cums = []
+    offset = 0.0
+    for pts in parts:
+        seg_len = np.hypot(*np.diff(pts, axis=0).T)
+        cums.append(offset + np.concatenate([[0.0], np.cumsum(seg_len)]))
+        offset = cums[-1][-1] + 1.0
+    seg = np.concatenate([np.diff(p, axis=0) for p in parts])
+    return _Walls(
+        pts=np.concatenate(parts),
+        cum=np.concatenate(cums),
+        start=np.concatenate([p[:-1] for p in parts]),
+        seg=seg,
+        seg_len=np.hypot(seg[:, 0], seg[:, 1]),
+        seg_s=np.concatenate([c[:-1] for c in cums]),
+        seg_wall=np.repeat([0, 1], [len(p) - 1 for p in parts]),
+        lo=np.array([c[0] for c in cums]),
+        hi=np.array([c[-1] for c in cums]),
+    )
 
 
 def _wall_frame(
-    wall: tuple[NDArray[np.float64], ...], x: NDArray[np.float64], y: NDArray[np.float64]
-) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
-    """Nearest wall point and unit tangent for ``(N,)`` positions: ``(wx, wy)``, ``t``.
+    walls: _Walls, x: NDArray[np.float64], y: NDArray[np.float64], which: NDArray[np.intp]
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """Nearest point and unit tangent of wall ``which`` for ``(P,)`` positions.
 
-    Plain numpy over all ``(N, M)`` point-segment pairs of ``_wall_arrays`` (no shapely
-    calls in the arc loop): the nearest point's arc length ``s`` on the wall, the tangent
-    through the wall points at ``s -+ 0.5 m`` (clamped to the ends).
+    Plain numpy over all point-segment pairs (no shapely calls in the arc loop): the nearest
+    point's arc length ``s`` on the wall, the tangent through the wall points at
+    ``s -+ 0.5 m`` (clamped to the wall's ends).
+
+    Returns:
+        ``(wx, wy, tx, ty)``, each ``(P,)``.
     """
-    pts, seg, seg_len, cum = wall
-    dx = x[:, None] - pts[None, :-1, 0]
-    dy = y[:, None] - pts[None, :-1, 1]
-    u = np.clip((dx * seg[:, 0] + dy * seg[:, 1]) / np.maximum(seg_len**2, 1e-24), 0.0, 1.0)
-    ox = dx - u * seg[:, 0]
-    oy = dy - u * seg[:, 1]
-    best = np.argmin(ox * ox + oy * oy, axis=1)
-    s = cum[best] + u[np.arange(len(best)), best] * seg_len[best]
+    dx = x[:, None] - walls.start[:, 0]
+    dy = y[:, None] - walls.start[:, 1]
+    sx, sy = walls.seg[:, 0], walls.seg[:, 1]
+    u = np.clip((dx * sx + dy * sy) / np.maximum(walls.seg_len**2, 1e-24), 0.0, 1.0)
+    ox = dx - u * sx
+    oy = dy - u * sy
+    d2 = np.where(walls.seg_wall == which[:, None], ox * ox + oy * oy, np.inf)
+    best = np.argmin(d2, axis=1)
+    s = walls.seg_s[best] + u[np.arange(len(best)), best] * walls.seg_len[best]
     probe = np.concatenate(
         [
             s,
-            np.minimum(s + _TANGENT_HALF_STEP_M, cum[-1]),
-            np.maximum(s - _TANGENT_HALF_STEP_M, 0.0),
+            np.minimum(s + _TANGENT_HALF_STEP_M, walls.hi[which]),
+            np.maximum(s - _TANGENT_HALF_STEP_M, walls.lo[which]),
         ]
     )
-    px = np.interp(probe, cum, pts[:, 0]).reshape(3, -1)
-    py = np.interp(probe, cum, pts[:, 1]).reshape(3, -1)
-    t = np.stack([px[1] - px[2], py[1] - py[2]], axis=1)
-    t /= np.maximum(np.hypot(t[:, 0], t[:, 1]), 1e-12)[:, None]
-    return px[0], py[0], t
+    px = np.interp(probe, walls.cum, walls.pts[:, 0]).reshape(3, -1)
+    py = np.interp(probe, walls.cum, walls.pts[:, 1]).reshape(3, -1)
+    tx, ty = px[1] - px[2], py[1] - py[2]
+    norm = np.maximum(np.hypot(tx, ty), 1e-12)
+    return px[0], py[0], tx / norm, ty / norm
 
 
 def wall_aware_arcs(
-    objects: ObjectStates, params: ReachParams, track: TrackGeometry, side: float
-) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Body-frame wall-aware edge curve of every object on one side.
+    objects: ObjectStates, params: ReachParams, track: TrackGeometry
+) -> tuple[tuple[NDArray[np.float64], NDArray[np.float64]], ...]:
+    """Body-frame wall-aware edge curves of every object, both sides at once.
 
-    The curve is the ``turn`` arc until its first chord that may not turn towards the wall:
-    every chord's rule is first checked on the ``turn`` arc at once, and only the curves
+    Each curve is the ``turn`` arc until its first chord that may not turn towards its wall:
+    every chord's rule is first checked on the ``turn`` arcs at once, and only the curves
     that turn back are continued chord by chord from there.
 
     Args:
         objects: The objects (N).
         params: Arc parameters as for ``steering_arcs``.
         track: Track geometry; the left wall bounds the left curve, the right wall the right.
-        side: ``+1.0`` left, ``-1.0`` right.
 
     Returns:
-        ``(xi, eta)``, each ``(N, P)``.
+        ``((xi, eta) left, (xi, eta) right)``, each array ``(N, P)``.
     """
     xi, eta, psi, dmax = arc_profile(objects, params)
+    n = len(objects)
+    if n == 0:
+        return (xi, eta), (xi, -eta)
+    # rows: the left curves, then the right ones
+    side = np.repeat([1.0, -1.0], n)[:, None]
+    which = np.repeat([0, 1], n)
+    xi, eta, psi, dmax = (np.concatenate([v, v]) for v in (xi, eta, psi, dmax))
     eta = side * eta
-    if len(objects) == 0:
-        return xi, eta
-    wall = _wall_arrays(track.left if side > 0 else track.right)
-    pose = (
-        np.asarray(objects.x_m, dtype=np.float64)[:, None],
-        np.asarray(objects.y_m, dtype=np.float64)[:, None],
-        np.asarray(objects.yaw_rad, dtype=np.float64)[:, None],
+    walls = _walls(track)
+    pose = tuple(
+        np.tile(np.asarray(v, dtype=np.float64), 2)[:, None]
+        for v in (objects.x_m, objects.y_m, objects.yaw_rad)
     )
-    ok = _turn(pose, wall, xi[:, :-1], eta[:, :-1], psi[:, :-1], dmax, side, params)[1]
-    back = ~ok
+    chords = (xi[:, :-1], eta[:, :-1], psi[:, :-1], dmax)
+    back = ~_turn(pose, walls, which, side, chords, params)[1]
     rows = np.flatnonzero(back.any(axis=1))
-    if len(rows) == 0:
-        return xi, eta
     start = np.argmax(back[rows], axis=1) + 1  # first chord (1-based) that turns back
-    sub_pose = (pose[0][rows], pose[1][rows], pose[2][rows])
-    sub_xi, sub_eta, sub_psi = xi[rows], eta[rows], psi[rows]
     c = params.arc_step_m
-    for k in range(int(start.min()), params.arc_points):
-        live = np.flatnonzero(k >= start)
+    for k in range(int(start.min()) if len(rows) else params.arc_points, params.arc_points):
+        r = rows[k >= start]
         dpsi = _turn(
-            (sub_pose[0][live], sub_pose[1][live], sub_pose[2][live]),
-            wall,
-            sub_xi[live, k - 1 : k],
-            sub_eta[live, k - 1 : k],
-            sub_psi[live, k - 1 : k],
-            dmax[rows[live], k - 1 : k],
-            side,
+            (pose[0][r], pose[1][r], pose[2][r]),
+            walls,
+            which[r],
+            side[r],
+            (xi[r, k - 1 : k], eta[r, k - 1 : k], psi[r, k - 1 : k], dmax[r, k - 1 : k]),
             params,
         )[0][:, 0]
-        chord = sub_psi[live, k - 1] + dpsi / 2
-        sub_xi[live, k] = sub_xi[live, k - 1] + c * np.cos(chord)
-        sub_eta[live, k] = sub_eta[live, k - 1] + side * c * np.sin(chord)
-        sub_psi[live, k] = sub_psi[live, k - 1] + dpsi
-    xi[rows], eta[rows] = sub_xi, sub_eta
-    return xi, eta
+        chord = psi[r, k - 1] + dpsi / 2
+        xi[r, k] = xi[r, k - 1] + c * np.cos(chord)
+        eta[r, k] = eta[r, k - 1] + side[r, 0] * c * np.sin(chord)
+        psi[r, k] = psi[r, k - 1] + dpsi
+    return (xi[:n], eta[:n]), (xi[n:], eta[n:])
 
 
 def _turn(  # noqa: PLR0917 - the chord rule needs the whole state
     pose: tuple[NDArray[np.float64], ...],
-    wall: tuple[NDArray[np.float64], ...],
-    xi: NDArray[np.float64],
-    eta: NDArray[np.float64],
-    psi: NDArray[np.float64],
-    dmax: NDArray[np.float64],
-    side: float,
+    walls: _Walls,
+    which: NDArray[np.intp],
+    side: NDArray[np.float64],
+    chords: tuple[NDArray[np.float64], ...],
     params: ReachParams,
 ) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
     """Turn of the next chord from each point, and whether it may turn towards the wall.
 
     Args:
-        pose: Object ``(x, y, yaw)``, each ``(N, 1)``.
-        wall: ``_wall_arrays`` of the wall on this side.
-        xi: Body-frame point the chord starts at, ``(N, K)``.
-        eta: Its lateral coordinate, ``(N, K)``.
-        psi: Heading change so far (towards the wall side), ``(N, K)``.
-        dmax: Largest turn of the chord, ``(N, K)``.
-        side: ``+1.0`` left, ``-1.0`` right.
+        pose: Object ``(x, y, yaw)`` of each curve, each ``(R, 1)``.
+        walls: Both walls.
+        which: Wall of each curve (0 left, 1 right), ``(R,)``.
+        side: ``+1.0`` for a left curve, ``-1.0`` for a right one, ``(R, 1)``.
+        chords: Body-frame start ``(xi, eta)`` of each chord, the heading change so far
+            (towards the wall side) and the chord's largest turn, each ``(R, K)``.
         params: Arc parameters.
 
     Returns:
-        ``dpsi`` and ``towards``, each ``(N, K)``.
+        ``dpsi`` and ``towards``, each ``(R, K)``.
     """
+    xi, eta, psi, dmax = chords
     ox, oy, yaw0 = pose
     cos0, sin0 = np.cos(yaw0), np.sin(yaw0)
     x = ox + cos0 * xi - sin0 * eta
     y = oy + sin0 * xi + cos0 * eta
-    wx, wy, tw = _wall_frame(wall, x.reshape(-1), y.reshape(-1))
-    wx, wy = wx.reshape(x.shape), wy.reshape(x.shape)
-    tx, ty = tw[:, 0].reshape(x.shape), tw[:, 1].reshape(x.shape)
+    flat = np.repeat(which, x.shape[1])
+    wx, wy, tx, ty = (v.reshape(x.shape) for v in _wall_frame(walls, x.ravel(), y.ravel(), flat))
     clearance = -side * (tx * (y - wy) - ty * (x - wx))
     heading = yaw0 + side * psi
     rel = np.arctan2(np.sin(heading), np.cos(heading)) - np.arctan2(ty, tx)

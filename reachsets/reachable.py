@@ -32,8 +32,7 @@ def deletion_polygons(
     if params.method == ReachMethod.SIMPLE:
         return None
     if params.method == ReachMethod.BOUND and track is not None:
-        left = wall_aware_arcs(objects, params, track, 1.0)
-        right = wall_aware_arcs(objects, params, track, -1.0)
+        left, right = wall_aware_arcs(objects, params, track)
     else:
         left = steering_arcs(objects, params, 1.0)
         right = steering_arcs(objects, params, -1.0)
