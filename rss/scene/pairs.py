@@ -162,16 +162,19 @@ class _Pair:
     out: dict[tuple[object, ...], Constellation | None] = dataclasses.field(default_factory=dict)
 
     def add_corridor(self, cr: Connecting, kind: ConstellationType) -> None:
-        """A same/opposite-direction constellation; following along a predicted route."""
+        """A same/opposite-direction constellation along the connecting route.
+
+        SameDirection falls back to a predicted route through both vehicles.
+        """
         key = (kind, cr.target)
         if key in self.out:
             return
-        c = None
-        if kind == ConstellationType.SameDirection:
+        c = _corridor(self.f, self.i, cr.target, kind)
+        if c is None and kind == ConstellationType.SameDirection:
             if not self.obj_routes:
                 self.obj_routes = self.f.routes(self.i + 1, self.reach_m)
             c = _following(self.f, self.i, self.ego_routes, self.obj_routes)
-        self.out[key] = c or _corridor(self.f, self.i, cr.target, kind)
+        self.out[key] = c
 
     def add_intersection(
         self, routes: tuple[tuple[Step, ...], tuple[Step, ...]], kind: ConstellationType | None

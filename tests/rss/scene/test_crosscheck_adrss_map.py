@@ -100,15 +100,34 @@ def ours(prep: PreparedGraph, pair: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
+#: ad-rss 5.0 resolves the speeds of a Following pair with the object behind along the
+#: other vehicle's heading (docs/rss_scene.md, deviations): its ego then has a lateral speed
+#: although it drives along its (straight) lane.
+_SWAPPED_HEADING_MPS = 0.3
+
+
+def _swapped_headings(answer: dict[str, Any]) -> bool:
+    return any(
+        abs(s.get("ego_v_lat", 0.0)) > _SWAPPED_HEADING_MPS
+        for s in answer["situations"]
+        if s["type"] == "SameDirection"
+    )
+
+
 def compare(mine: list[dict[str, Any]], theirs: list[dict[str, Any]]) -> dict[str, float]:
     """Agreement rates (types, verdicts) and distance errors."""
     types = verdicts = 0
+    plain = plain_verdicts = 0
     lon, lat = [], []
     for a, b in zip(mine, theirs, strict=True):
         ta = {s["type"] for s in a["situations"]}
         tb = {s["type"] for s in b["situations"]} - {"NotRelevant"}
         types += ta == tb
-        verdicts += any(a["dangerous"]) == any(b["dangerous"])
+        same_verdict = any(a["dangerous"]) == any(b["dangerous"])
+        verdicts += same_verdict
+        if not _swapped_headings(b):
+            plain += 1
+            plain_verdicts += same_verdict
         single = len(a["situations"]) == len(b["situations"]) == 1
         if single and ta == tb and ta <= {"SameDirection", "OppositeDirection"}:
             lon.append(abs(a["situations"][0]["lon_d"] - b["situations"][0]["lon_d"]))
@@ -117,6 +136,8 @@ def compare(mine: list[dict[str, Any]], theirs: list[dict[str, Any]]) -> dict[st
     return {
         "types": types / n,
         "verdicts": verdicts / n,
+        "verdicts_without_swapped_headings": plain_verdicts / max(plain, 1),
+        "swapped_heading_pairs": float(n - plain),
         "compared": float(len(lon)),
         "lon_median_m": float(np.median(lon)),
         "lon_within_0_5": float(np.mean(np.array(lon) < 0.5)),
@@ -161,10 +182,12 @@ def test_town01_against_ad_rss_map_integration(external_dir):
         theirs += json.loads(out.strip().splitlines()[-1])
     stats = compare([ours(prep, p) for p in pairs], theirs)
     sys.stderr.write(f"ad-rss map integration cross-check: {stats}\n")
-    # measured (docs/rss_scene.md): types 99.0 %, verdicts 94.4 %, lateral within 0.2 m
-    # 98.0 %, longitudinal within 0.5 m 92.0 %, median error 1.6 mm
+    # measured (docs/rss_scene.md): types 99.0 %, verdicts 94.6 % (98.6 % outside the 85
+    # pairs with ad-rss' swapped route headings), lateral within 0.2 m 97.2 %,
+    # longitudinal within 0.5 m 90.4 %, median error 1.6 mm
     assert stats["types"] >= 0.985
-    assert stats["verdicts"] >= 0.935
-    assert stats["lat_within_0_2"] >= 0.97
-    assert stats["lon_within_0_5"] >= 0.9
+    assert stats["verdicts"] >= 0.94
+    assert stats["verdicts_without_swapped_headings"] >= 0.98
+    assert stats["lat_within_0_2"] >= 0.96
+    assert stats["lon_within_0_5"] >= 0.89
     assert stats["lon_median_m"] <= 0.01
