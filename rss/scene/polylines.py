@@ -1,10 +1,11 @@
-"""Linear referencing on many polylines at once (flat numpy arrays, no per-line objects).
+"""Points along many polylines at once (flat numpy arrays, no per-line objects).
 
 The lane centre lines of a map are stored once as one vertex array with offsets; every
-query is a ``(line, value)`` pair, so one call serves all pairs of a frame. The kernels
-follow GEOS' linear referencing (``line_locate_point`` / ``line_interpolate_point``):
-the nearest segment wins (the first one on ties), arc lengths are summed segment by
-segment, and positions are clamped to the line::
+query is a ``(line, arc length)`` pair, so one call serves all pairs of a frame. The
+kernel follows GEOS' ``line_interpolate_point``: arc lengths are summed segment by
+segment, a position falls in the first segment whose end lies beyond it, and positions
+are clamped to the line (projection stays with ``shapely.line_locate_point``, which is
+faster than a numpy version over ragged segment lists)::
 
     line l:  xy[start[l]] ──seg──▶ xy[start[l] + 1] ──seg──▶ ... xy[start[l + 1] - 1]
     s:       s_at[start[l]] = 0      s_at[...] = |seg 0|          s_at[...] = length[l]
@@ -23,7 +24,7 @@ import shapely
 if TYPE_CHECKING:
     from rss.batch import FloatArray, IntArray
 
-__all__ = ["Polylines", "heading_at", "interpolate", "locate", "polylines"]
+__all__ = ["Polylines", "heading_at", "interpolate", "polylines"]
 
 
 @dataclass(frozen=True)
@@ -77,59 +78,6 @@ def polylines(lines: np.ndarray) -> Polylines:
         global_m=s_at + np.repeat(offset, np.diff(start)),
         offset_m=offset,
     )
-
-
-def _point_segment_distance(p: FloatArray, a: FloatArray, b: FloatArray) -> FloatArray:
-    """Distance of points ``p`` to segments ``a``-``b``, all ``(Q, 2)``."""
-    d = b - a
-    len2 = d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1]
-    safe = np.where(len2 > 0.0, len2, 1.0)
-    r = ((p[:, 0] - a[:, 0]) * d[:, 0] + (p[:, 1] - a[:, 1]) * d[:, 1]) / safe
-    cross = ((a[:, 1] - p[:, 1]) * d[:, 0] - (a[:, 0] - p[:, 0]) * d[:, 1]) / safe
-    to_a = p - a
-    to_b = p - b
-    dist_a = np.sqrt(to_a[:, 0] * to_a[:, 0] + to_a[:, 1] * to_a[:, 1])
-    dist_b = np.sqrt(to_b[:, 0] * to_b[:, 0] + to_b[:, 1] * to_b[:, 1])
-    inner = np.abs(cross) * np.sqrt(len2)
-    out: FloatArray = np.where(
-        (len2 == 0.0) | (r <= 0.0), dist_a, np.where(r >= 1.0, dist_b, inner)
-    )
-    return out
-
-
-def locate(lines: Polylines, which: IntArray, points_m: FloatArray) -> FloatArray:
-    """Arc length of the point nearest to each of ``points_m`` ``(Q, 2)`` on line ``which``.
-
-    Returns:
-        ``(Q,)`` arc lengths in [0, line length].
-    """
-    q = len(which)
-    if q == 0:
-        return np.zeros(0)
-    first = lines.start[which]
-    counts = lines.start[which + 1] - first - 1
-    group = np.repeat(np.arange(q), counts)
-    group_start = np.concatenate([[0], np.cumsum(counts)[:-1]])
-    seg = first[group] + np.arange(len(group)) - group_start[group]
-    p = points_m[group]
-    dist = _point_segment_distance(p, lines.xy_m[seg], lines.xy_m[seg + 1])
-    best = np.minimum.reduceat(dist, group_start)
-    hit = np.flatnonzero((dist == best[group]) | np.isnan(best[group]))
-    first_hit = np.ones(len(hit), dtype=np.bool_)
-    first_hit[1:] = group[hit[1:]] != group[hit[:-1]]
-    k = seg[hit[first_hit]]
-    a, b, pt = lines.xy_m[k], lines.xy_m[k + 1], points_m
-    d = b - a
-    len2 = d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1]
-    factor = ((pt[:, 0] - a[:, 0]) * d[:, 0] + (pt[:, 1] - a[:, 1]) * d[:, 1]) / np.where(
-        len2 > 0.0, len2, 1.0
-    )
-    factor = np.where(np.all(pt == a, axis=1), 0.0, np.where(np.all(pt == b, axis=1), 1.0, factor))
-    seg_len = lines.segment_m[k]
-    out: FloatArray = lines.s_at_m[k] + np.where(
-        factor <= 0.0, 0.0, np.where(factor <= 1.0, factor * seg_len, seg_len)
-    )
-    return out
 
 
 def interpolate(lines: Polylines, which: IntArray, s_m: FloatArray) -> FloatArray:

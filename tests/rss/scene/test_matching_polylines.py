@@ -1,4 +1,4 @@
-"""Flat-array linear referencing (``rss.scene.polylines``) against shapely, its reference."""
+"""Points along flat-array polylines (``rss.scene.polylines``) against shapely, the reference."""
 
 from __future__ import annotations
 
@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 import shapely
 
-from rss.scene.polylines import heading_at, interpolate, locate, polylines
+from rss.scene.polylines import heading_at, interpolate, polylines
 
 #: Agreement with GEOS: the same formulas, so differences are a few ulps of the coordinates.
 TOL_M = 1e-9
@@ -22,22 +22,6 @@ def _lines(rng: np.random.Generator) -> np.ndarray:
         start = rng.uniform(-50.0, 50.0, 2)
         out.append(shapely.LineString(np.vstack([start, start + np.cumsum(steps, axis=0)])))
     return np.array(out, dtype=object)
-
-
-@pytest.mark.parametrize("seed", [0, 1, 2])
-def test_locate_matches_shapely(seed: int) -> None:
-    rng = np.random.default_rng(seed)
-    lines = _lines(rng)
-    flat = polylines(lines)
-    which = rng.integers(0, len(lines), 3000)
-    points = rng.uniform(-60.0, 80.0, (3000, 2))
-    vertices = rng.integers(0, len(flat.xy_m), 200)  # exactly on vertices too
-    points[:200] = flat.xy_m[vertices]
-    which[:200] = np.searchsorted(flat.start, vertices, side="right") - 1
-    ref = shapely.line_locate_point(lines[which], shapely.points(points))
-    got = locate(flat, which, points)
-    np.testing.assert_allclose(got, ref, rtol=0.0, atol=TOL_M)
-    np.testing.assert_allclose(flat.length_m, shapely.length(lines), rtol=0.0, atol=0.0)
 
 
 @pytest.mark.parametrize("seed", [0, 1, 2])
@@ -64,6 +48,9 @@ def test_interpolate_and_heading_match_shapely(seed: int) -> None:
 
 def test_empty_queries() -> None:
     flat = polylines(_lines(np.random.default_rng(0)))
-    none = np.zeros(0, dtype=np.int64)
-    assert locate(flat, none, np.zeros((0, 2))).shape == (0,)
-    assert interpolate(flat, none, np.zeros(0)).shape == (0, 2)
+    assert interpolate(flat, np.zeros(0, dtype=np.int64), np.zeros(0)).shape == (0, 2)
+
+
+def test_lengths_match_shapely() -> None:
+    lines = _lines(np.random.default_rng(3))
+    np.testing.assert_array_equal(polylines(lines).length_m, shapely.length(lines))

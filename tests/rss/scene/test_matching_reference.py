@@ -68,3 +68,12 @@ def test_regions_match_pairwise_reference(town01, seed: int, yaw_noise: float) -
     touched = town01.tree.query(polys, predicate="intersects")[0]
     assert set(m.box.tolist()) <= set(touched.tolist())
     assert np.all(m.anchor[np.unique(m.box)] >= 0)
+
+
+def test_boxes_off_the_map_touch_nothing(town01) -> None:
+    far = np.full(3, 1e5)
+    boxes = BoxArrays(far, far + np.arange(3.0), np.zeros(3), np.full(3, 4.5), np.full(3, 1.9))
+    m = match_boxes(town01, boxes)
+    assert m.box.size == 0
+    np.testing.assert_array_equal(m.anchor, [-1, -1, -1])
+    assert m.starts == [0, 0, 0, 0]
