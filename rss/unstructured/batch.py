@@ -24,7 +24,7 @@ if TYPE_CHECKING:
     from rss.batch import BoolArray, FloatArray, IntArray
     from rss.dynamics import RssDynamics, UnstructuredSettings
 
-__all__ = ["CORNERS", "AgentDynamics", "PiecePlan", "RowPieces", "plan_sets"]
+__all__ = ["CORNERS", "AgentDynamics", "PiecePlan", "RowPieces", "constant", "plan_sets", "span"]
 
 #: Corners per footprint (FR, FL, BL, BR).
 CORNERS = 4
@@ -156,3 +156,15 @@ def plan_sets(corners: FloatArray, plan: PiecePlan) -> TrajectorySets:
     coords = corners[plan.index.T].reshape(width, pieces * n, 2)
     owner = np.tile(np.arange(n), pieces)
     return TrajectorySets(coords, np.repeat(plan.size, n), owner, np.repeat(plan.brake, n), n)
+
+
+def constant(values: object, dtype: type = np.int64) -> np.ndarray:
+    """A read-only array (the cached row layouts of the builders)."""
+    out: np.ndarray = np.array(values, dtype=dtype)
+    out.setflags(write=False)
+    return out
+
+
+def span(start: int, stop: int) -> list[int]:
+    """Rows ``start .. stop - 1``."""
+    return list(range(start, stop))

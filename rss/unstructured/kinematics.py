@@ -320,7 +320,8 @@ def pedestrian_move(p: Points, distance_m: Real, ratio: Real, turning_radius_m: 
         turning, oy + np.sin(start + dpsi) * radius, p.y_m + np.sin(p.yaw_rad) * distance_m
     )
     yaw = np.where(turning, p.yaw_rad + dpsi, p.yaw_rad)
-    moved = replace(p, x_m=x, y_m=y, yaw_rad=yaw).broadcast()
+    moved = replace(p, x_m=x, y_m=y, yaw_rad=yaw)
+    # ``take`` broadcasts every field to the mask's (full) shape
     return moved.take(eq(distance_m, 0.0, DISTANCE_PRECISION) & np.ones(x.shape, dtype=bool), p)
 
 
@@ -346,11 +347,13 @@ def footprints(p: Points, length_m: Real, width_m: Real, front_extra_m: FloatArr
         width_m: Width [m].
         front_extra_m: Added in front (the ego's ``min_longitudinal_safety_distance``).
     """
-    front = np.asarray(length_m) / 2.0 + front_extra_m
-    back = -np.asarray(length_m) / 2.0
-    half_w = np.asarray(width_m) / 2.0
-    lon = np.stack(np.broadcast_arrays(front, front, back, back), axis=-1)
-    lat = np.stack(np.broadcast_arrays(-half_w, half_w, half_w, -half_w), axis=-1)
+    front, back, half_w = np.broadcast_arrays(
+        np.asarray(length_m) / 2.0 + front_extra_m,
+        -np.asarray(length_m) / 2.0,
+        np.asarray(width_m) / 2.0,
+    )
+    lon = np.stack((front, front, back, back), axis=-1)
+    lat = np.stack((-half_w, half_w, half_w, -half_w), axis=-1)
     c, s = np.cos(p.yaw_rad)[..., None], np.sin(p.yaw_rad)[..., None]
     x = p.x_m[..., None] + c * lon - s * lat
     y = p.y_m[..., None] + s * lon + c * lat

@@ -29,7 +29,7 @@ from rss.physics import (
     gt,
     le,
 )
-from rss.unstructured.batch import CORNERS, PiecePlan, RowPieces, plan_sets
+from rss.unstructured.batch import CORNERS, PiecePlan, RowPieces, constant, plan_sets, span
 from rss.unstructured.kinematics import (
     Points,
     footprints,
@@ -80,9 +80,6 @@ def pedestrian_plan(u: UnstructuredSettings) -> PiecePlan:
     o_cfs = o_er + ncf
     current = o_cfs + 3 * kc
 
-    def rows(start: int, stop: int) -> list[int]:
-        return list(range(start, stop))
-
     def triple(start: int) -> tuple[int, int, int]:
         return (start, start + 1, start + 2)
 
@@ -94,13 +91,13 @@ def pedestrian_plan(u: UnstructuredSettings) -> PiecePlan:
         brake=True,
     )
     sides = [triple(o_sides + 3 * k) for k in range(sb)]
-    front = (rows(nf, 2 * nf), rf - 1, rows(0, nf))
+    front = (span(nf, 2 * nf), rf - 1, span(0, nf))
     front_and_sides(pieces, brake_max_loc, sides, front, brake=True)
     pieces.add(*brake_max_loc, current, brake=True)
     cf_front = (
-        rows(o_cf + nf, o_cf + 2 * nf) + rows(o_el, o_el + ncf),
+        span(o_cf + nf, o_cf + 2 * nf) + span(o_el, o_el + ncf),
         o_cf + rf - 1,
-        rows(o_cf, o_cf + nf) + rows(o_er, o_er + ncf),
+        span(o_cf, o_cf + nf) + span(o_er, o_er + ncf),
     )
     cf_sides = [triple(o_cfs + 3 * k) for k in range(kc)]
     front_and_sides(pieces, brake_max_loc, cf_sides, cf_front, brake=False)
@@ -186,15 +183,10 @@ def _layout(u: UnstructuredSettings) -> _Layout:
     front = list(range(rf))
     lr = [1.0, 0.0, -1.0]
 
-    def arr(values: object, dtype: type = np.int64) -> np.ndarray:
-        out: np.ndarray = np.array(values, dtype=dtype)
-        out.setflags(write=False)
-        return out
-
     return _Layout(
-        phase=arr([0] * rf + [1] * rb),
-        ratio_rt=arr([*f_right, *f_left, 0.0, *b_right, *b_left, 0.0], np.float64)[:, None],
-        starts=arr(
+        phase=constant([0] * rf + [1] * rb),
+        ratio_rt=constant([*f_right, *f_left, 0.0, *b_right, *b_left, 0.0], np.float64)[:, None],
+        starts=constant(
             [
                 *front,
                 *[start] * (3 * sb),
@@ -206,7 +198,7 @@ def _layout(u: UnstructuredSettings) -> _Layout:
                 start,
             ]
         ),
-        dist_pick=arr(
+        dist_pick=constant(
             [0] * rf
             + [3 + k for k in range(sb) for _ in lr]
             + [1] * rb
@@ -214,7 +206,7 @@ def _layout(u: UnstructuredSettings) -> _Layout:
             + [3 + sb + k for k in range(kc) for _ in lr]
             + [3 + sb + kc]
         ),
-        ratio=arr(
+        ratio=constant(
             [0.0] * rf + lr * sb + [0.0] * (rb + rf) + [*cf_left, *cf_right] + lr * kc + [0.0],
             np.float64,
         )[:, None],

@@ -33,7 +33,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from rss.physics import ACCELERATION_PRECISION, SPEED_PRECISION, gt, lt
-from rss.unstructured.batch import PiecePlan, RowPieces, plan_sets
+from rss.unstructured.batch import PiecePlan, RowPieces, constant, plan_sets, span
 from rss.unstructured.kinematics import (
     Phase,
     Points,
@@ -93,22 +93,19 @@ def vehicle_plan(u: UnstructuredSettings) -> PiecePlan:
     o_lr = o_er + ncf
     current = o_lr + 2 * kc
 
-    def rows(start: int, stop: int) -> list[int]:
-        return list(range(start, stop))
-
     pieces = RowPieces()
-    b_right, b_left, b_centre = rows(0, nb), rows(nb, 2 * nb), rb - 1
+    b_right, b_left, b_centre = span(0, nb), span(nb, 2 * nb), rb - 1
     pieces.add(b_left, b_centre, brake=True)
     pieces.add(b_centre, b_right, brake=True)
     brake_max_loc = (b_left[-1], b_centre, b_right[0])
     sides = [(o_sides + 3 * k, o_sides + 3 * k + 1, o_sides + 3 * k + 2) for k in range(kb)]
-    front = (rows(o_fb + nf, o_fb + 2 * nf), o_fb + rf - 1, rows(o_fb, o_fb + nf))
+    front = (span(o_fb + nf, o_fb + 2 * nf), o_fb + rf - 1, span(o_fb, o_fb + nf))
     brake_min_loc = front_and_sides(pieces, brake_max_loc, sides, front, brake=True)
     pieces.add(*brake_max_loc, current, brake=True)
     cf_front = (
-        rows(o_cf + nf, o_cf + 2 * nf) + rows(o_el, o_el + ncf),
+        span(o_cf + nf, o_cf + 2 * nf) + span(o_el, o_el + ncf),
         o_cf + rf - 1,
-        rows(o_er, o_er + ncf) + rows(o_cf, o_cf + nf),
+        span(o_er, o_er + ncf) + span(o_cf, o_cf + nf),
     )
     cf_sides = [(o_lr + 2 * k, o_cfc + k, o_lr + 2 * k + 1) for k in range(kc)]
     front_and_sides(pieces, brake_min_loc, cf_sides, cf_front, brake=False)
@@ -147,37 +144,32 @@ def _layout(u: UnstructuredSettings) -> _Layout:
     left, centre, right = 2 * nf - 1, rf - 1, 0
     front = list(range(rf))
 
-    def arr(values: object, dtype: type = np.int64) -> np.ndarray:
-        out: np.ndarray = np.array(values, dtype=dtype)
-        out.setflags(write=False)
-        return out
-
     return _Layout(
-        rows1=arr([0] * rf + [1] * rb + [0] * n_extra),
-        ratio1=arr(
+        rows1=constant([0] * rf + [1] * rb + [0] * n_extra),
+        ratio1=constant(
             [*f_right, *f_left, 0.0, *b_right, *b_left, 0.0, *np.repeat(outer, ncf), *outer * kc],
             np.float64,
         )[:, None],
-        accel2_pick=arr(
+        accel2_pick=constant(
             [0] * (rf + rb) + [1] * (2 * ncf) + [2 + k for k in range(kc) for _ in "lr"]
         ),
-        timed2=arr([False] * (rf + rb) + [True] * n_extra, bool)[:, None],
-        ratio2=arr([0.0] * (rf + rb) + [*cf_left, *cf_right] + [1.0, -1.0] * kc, np.float64)[
+        timed2=constant([False] * (rf + rb) + [True] * n_extra, bool)[:, None],
+        ratio2=constant([0.0] * (rf + rb) + [*cf_left, *cf_right] + [1.0, -1.0] * kc, np.float64)[
             :, None
         ],
-        response=arr(range(rf + rb)),
-        extras=arr(range(rf + rb, rf + rb + n_extra)),
-        arc_starts=arr(
+        response=constant(range(rf + rb)),
+        extras=constant(range(rf + rb, rf + rb + n_extra)),
+        arc_starts=constant(
             [*range(rf, rf + rb), *front, *[left, centre, right] * kb, *front, *[centre] * kc]
         ),
-        arc_accel_pick=arr(
+        arc_accel_pick=constant(
             [0] * rb
             + [1] * rf
             + [2 + k for k in range(kb) for _ in "lcr"]
             + [2 + kb] * rf
             + [3 + kb + k for k in range(kc)]
         ),
-        arc_time_pick=arr(
+        arc_time_pick=constant(
             [0] * rb
             + [1] * rf
             + [2 + k for k in range(kb) for _ in "lcr"]
