@@ -1,8 +1,9 @@
 """``check_unstructured``: trajectory sets, decisions and the proper response of one frame.
 
-Pure: ``(ego, agents, dynamics, memory) -> (UnstructuredResult, memory)``. Agents sharing
-the same dynamics and motion model are computed in one batch; the ego's and the agents'
-convex pieces are intersected with one STRtree query.
+Pure: ``(ego, agents, dynamics, memory) -> (UnstructuredResult, memory)``. The ego and the
+agents sharing its unstructured settings and motion model are computed in one batch (per-
+agent dynamics values); the ego's and the agents' convex pieces are paired by a numpy box
+test and the remaining pairs tested exactly with shapely (:func:`intersections`).
 """
 
 from __future__ import annotations

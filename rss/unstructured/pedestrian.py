@@ -1,4 +1,7 @@
-"""Pedestrian trajectory sets (ad-rss ``TrajectoryPedestrian``), batched over agents.
+"""Pedestrian trajectory sets (ad-rss ``TrajectoryPedestrian``), step by step.
+
+The reference of :mod:`rss.unstructured.pedestrian_batch` (which the engine runs): one
+dynamics per call, one kernel call per step in ad-rss' order.
 
 During the response time rho the heading change is bounded by circles of radius
 ``pedestrian_turning_radius / ratio``; after rho the pedestrian walks straight (the

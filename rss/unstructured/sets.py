@@ -3,8 +3,9 @@
 ad-rss builds each set by successive ``boost::geometry::union_`` of convex hulls of
 footprint groups (a step's vehicle locations, the estimation between two steps, the gap
 to the current footprint). Here the hulls are kept as separate convex pieces: two sets
-intersect iff some pair of their pieces does, which an STRtree answers for all agents in
-one query. :meth:`TrajectorySets.polygons` merges the pieces for display and IoU checks.
+intersect iff some pair of their pieces does (:func:`rss.unstructured.engine.intersections`
+tests all agents at once). A piece is stored as its points; its shapely hull is built on
+demand. :meth:`TrajectorySets.polygons` merges the pieces for display and IoU checks.
 
 Footprint arrays are ``(N, 4, 2)`` (one per agent) or ``(R, N, 4, 2)`` (R per agent).
 """

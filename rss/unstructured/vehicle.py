@@ -1,4 +1,7 @@
-"""Vehicle trajectory sets T(C_b) and T(C_f) (ad-rss ``TrajectoryVehicle``), batched over agents.
+"""Vehicle trajectory sets T(C_b) and T(C_f) (ad-rss ``TrajectoryVehicle``), step by step.
+
+The reference of :mod:`rss.unstructured.vehicle_batch` (which the engine runs): one
+dynamics per call, one kernel call per step in ad-rss' order.
 
 1. Response time rho: yaw rate changes linearly (ratio ∈ [-1, 1] of
    ``vehicle_yaw_rate_change``), integrated in ``vehicle_trajectory_calculation_step``
