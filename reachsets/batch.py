@@ -25,6 +25,7 @@ if TYPE_CHECKING:
     from reachsets.inputs import ReachInputs, RoadLayout, ZoneMap
     from reachsets.occupancy import EgoOccupancy
     from reachsets.params import ReachParams
+    from reachsets.rules_road import RoadGeometry
     from reachsets.track import TrackGeometry
 
 __all__ = ["FrameBatch", "stack_frames"]
@@ -53,6 +54,7 @@ class FrameBatch:
         track: Track geometry, if any.
         road: Public-road layout, if any.
         zones: Roborace zones, if any.
+        road_geometry: The road layout's static shapes, if any.
     """
 
     objects: ObjectStates
@@ -73,6 +75,7 @@ class FrameBatch:
     track: TrackGeometry | None
     road: RoadLayout | None
     zones: ZoneMap | None
+    road_geometry: RoadGeometry | None = None
 
     @property
     def n_frames(self) -> int:
@@ -107,11 +110,15 @@ class FrameBatch:
             lat_obj_m=self.lat_obj_m[rows],
             road=self.road,
             zones=self.zones,
+            road_geometry=self.road_geometry,
         )
 
 
 def stack_frames(
-    inputs: Sequence[ReachInputs], params: ReachParams, track: TrackGeometry | None
+    inputs: Sequence[ReachInputs],
+    params: ReachParams,
+    track: TrackGeometry | None,
+    road_geometry: RoadGeometry | None = None,
 ) -> FrameBatch:
     """Stack consecutive frames that share one map and select the objects to evaluate.
 
@@ -124,6 +131,7 @@ def stack_frames(
         inputs: The frames, in time order.
         params: Engine parameters.
         track: The frames' track geometry, if any.
+        road_geometry: The static shapes of the frames' road layout, if any.
 
     Returns:
         The batch.
@@ -189,4 +197,5 @@ def stack_frames(
         track=track,
         road=inputs[0].road,
         zones=inputs[0].zones,
+        road_geometry=road_geometry,
     )

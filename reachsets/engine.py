@@ -33,7 +33,7 @@ from reachsets.patches import (
 )
 from reachsets.reachable import deletion_polygons, reachable_sets, simple_vertices
 from reachsets.rules_f1 import evaluate_f1
-from reachsets.rules_road import evaluate_road
+from reachsets.rules_road import evaluate_road, prepare_road
 from reachsets.rules_roborace import evaluate_roborace
 from reachsets.track import TrackGeometry, build_track
 from reachsets.verdict import first_hits
@@ -43,10 +43,11 @@ if TYPE_CHECKING:
 
     from numpy.typing import NDArray
 
-    from reachsets.inputs import ReachInputs, TrackBounds
+    from reachsets.inputs import ReachInputs, RoadLayout, TrackBounds
     from reachsets.ltl import LtlMemory
     from reachsets.occupancy import EgoOccupancy
     from reachsets.params import ReachParams
+    from reachsets.rules_road import RoadGeometry
 
 __all__ = ["AppliedPatch", "Collision", "ReachResult", "RuleState", "evaluate", "evaluate_many"]
 
@@ -93,11 +94,15 @@ class RuleState:
         ltl: Past-time LTL memory (node key -> object id -> bit).
         track_bounds: The bounds ``track`` was derived from (reused while unchanged).
         track: Derived track geometry.
+        road: The road layout ``road_geometry`` was built from (reused while the same object).
+        road_geometry: Its static shapes.
     """
 
     ltl: Mapping[str, Mapping[str, bool]] = field(default_factory=dict)
     track_bounds: TrackBounds | None = None
     track: TrackGeometry | None = None
+    road: RoadLayout | None = None
+    road_geometry: RoadGeometry | None = None
 
 
 @dataclass(frozen=True)
@@ -243,7 +248,11 @@ def evaluate_many(
     results: list[ReachResult] = []
     for run in _runs(inputs):
         track = _prepared_track(run[0].track, params, state)
-        batch = stack_frames(run, params, track)
+        road = run[0].road
+        road_geo = state.road_geometry if road is not None and state.road is road else None
+        if road is not None and road_geo is None and params.rules_enabled:
+            road_geo = prepare_road(road)
+        batch = stack_frames(run, params, track, road_geo)
         patches, memory = _rule_patches(batch, state.ltl)
         sets: NDArray[Any]
         if params.full_geometry or params.keep_largest_part_only:
@@ -251,7 +260,9 @@ def evaluate_many(
         else:
             sets, hits = _verdict(batch, patches)
         results += _split(batch, sets, hits, patches)
-        state = RuleState(ltl=memory, track_bounds=run[-1].track, track=track)
+        state = RuleState(
+            ltl=memory, track_bounds=run[-1].track, track=track, road=road, road_geometry=road_geo
+        )
     return results, state
 
 

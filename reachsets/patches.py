@@ -19,6 +19,7 @@ if TYPE_CHECKING:
     from reachsets.inputs import ObjectStates, RoadLayout, ZoneMap
     from reachsets.occupancy import EgoOccupancy
     from reachsets.params import ReachParams
+    from reachsets.rules_road import RoadGeometry
     from reachsets.track import TrackGeometry
 
 __all__ = ["RuleContext", "RulePatch", "keep_largest_part", "patch_grid", "subtract_patches"]
@@ -63,6 +64,7 @@ class RuleContext:
             (zeros without a track).
         road: Public-road layout, if any.
         zones: Roborace zones, if any.
+        road_geometry: The road layout's static shapes, when already built.
     """
 
     objects: ObjectStates
@@ -81,6 +83,7 @@ class RuleContext:
     lat_obj_m: NDArray[np.float64]
     road: RoadLayout | None
     zones: ZoneMap | None
+    road_geometry: RoadGeometry | None = None
 
     @cached_property
     def footprints(self) -> NDArray[np.object_]:

@@ -30,6 +30,7 @@ road.speed_limit    H below_limit                              step k: the half-
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -44,13 +45,61 @@ if TYPE_CHECKING:
 
     from numpy.typing import NDArray
 
-__all__ = ["RIGHT_OF_WAY", "STAY_ON_ROAD", "WITHIN_LIMIT", "evaluate_road", "max_travel_m"]
+    from reachsets.inputs import RoadLayout
+
+__all__ = [
+    "RIGHT_OF_WAY",
+    "STAY_ON_ROAD",
+    "WITHIN_LIMIT",
+    "RoadGeometry",
+    "evaluate_road",
+    "max_travel_m",
+    "prepare_road",
+]
 
 STAY_ON_ROAD = Historically(Atom("on_road"))
 RIGHT_OF_WAY = Since(Atom("on_yield"), And((Atom("on_yield"), Atom("can_stop"))))
 WITHIN_LIMIT = Historically(Atom("below_limit"))
 
 _FAR_M = 1000.0
+
+
+@dataclass(frozen=True, slots=True)
+class RoadGeometry:
+    """The static shapes of a road layout, built once per layout (``prepare_road``).
+
+    Attributes:
+        lane_polys: Lane polygons (made valid, prepared), ``(Lanes,)``.
+        drivable: Union of all lanes (prepared).
+        solid: Union of the solid lines, or ``None`` without any.
+        lanes_by_id: Lane id -> index into ``lane_polys``.
+    """
+
+    lane_polys: NDArray[np.object_]
+    drivable: Any
+    solid: Any
+    lanes_by_id: dict[str, int]
+
+
+def prepare_road(road: RoadLayout) -> RoadGeometry:
+    """Build the static shapes of ``road``."""
+    lane_polys = np.array(
+        [shapely.make_valid(shapely.polygons(ln.polygon_m)) for ln in road.lanes], dtype=object
+    )
+    drivable = shapely.union_all(lane_polys)
+    solid = (
+        shapely.union_all(shapely.linestrings(list(road.solid_lines_m)))
+        if road.solid_lines_m
+        else None
+    )
+    shapely.prepare(lane_polys)
+    shapely.prepare(drivable)
+    return RoadGeometry(
+        lane_polys=lane_polys,
+        drivable=drivable,
+        solid=solid,
+        lanes_by_id={ln.lane_id: k for k, ln in enumerate(road.lanes)},
+    )
 
 
 def max_travel_m(
@@ -88,11 +137,8 @@ def evaluate_road(
     p = ctx.params.road
     objs = ctx.objects
     ids = [str(i) for i in objs.ids]
-    lane_polys = np.array(
-        [shapely.make_valid(shapely.polygons(ln.polygon_m)) for ln in road.lanes], dtype=object
-    )
-    lanes_by_id = {ln.lane_id: k for k, ln in enumerate(road.lanes)}
-    drivable = shapely.union_all(lane_polys)
+    geo = ctx.road_geometry if ctx.road_geometry is not None else prepare_road(road)
+    lane_polys, lanes_by_id, drivable = geo.lane_polys, geo.lanes_by_id, geo.drivable
     centres = shapely.points(objs.x_m, objs.y_m)
     contains = np.asarray(shapely.contains(lane_polys[None, :], centres[:, None]))  # (N, Lanes)
     heading = np.stack([np.cos(objs.yaw_rad), np.sin(objs.yaw_rad)], axis=1)
@@ -139,7 +185,7 @@ def evaluate_road(
         box = shapely.buffer(centres[i], reach_radius[i], quad_segs=2)
         patches.append(RulePatch(int(i), "road.stay_on_road", shapely.difference(box, drivable)))
     for i in np.flatnonzero(atoms["in_lane"]):
-        geom = _opposite_across_solid(ctx, int(i), lane_polys, cos_dir[i], contains[i])
+        geom = _opposite_across_solid(ctx, int(i), geo, cos_dir[i], contains[i])
         if geom is not None:
             patches.append(RulePatch(int(i), "road.no_opposite", geom))
     patches.extend(
@@ -185,16 +231,14 @@ def _right_of_way(
 def _opposite_across_solid(
     ctx: RuleContext,
     i: int,
-    lane_polys: NDArray[np.object_],
+    geo: RoadGeometry,
     cos_dir: NDArray[np.float64],
     inside: NDArray[np.bool_],
 ) -> Any:
     """Union of opposite lanes object ``i`` reaches only across a solid line, or ``None``."""
-    road = ctx.road
-    assert road is not None
-    if not road.solid_lines_m:
+    solid, lane_polys = geo.solid, geo.lane_polys
+    if solid is None:
         return None
-    solid = shapely.union_all(shapely.linestrings(list(road.solid_lines_m)))
     centre = shapely.points(ctx.objects.x_m[i], ctx.objects.y_m[i])
     chosen = []
     for k in np.flatnonzero((cos_dir < 0) & ~inside):
