@@ -252,9 +252,10 @@ class _ObjectRows:
         self.speeds.append((s.lon_min_mps, s.lon_max_mps, s.lat_min_mps, s.lat_max_mps))
         regions = obj.regions
         self.width = max(self.width, len(regions))
+        rows, ks = self.at
         for k, r in enumerate(regions):
-            self.at[0].append(row)
-            self.at[1].append(k)
+            rows.append(row)
+            ks.append(k)
             self.lanes.append(r.lane_id)
             self.params.append((r.lon_min, r.lon_max, r.lat_min, r.lat_max))
 
@@ -312,13 +313,15 @@ class _RoadRows:
                 )
             )
             self.shape[1] = max(self.shape[1], len(segment.lanes))
+            lanes_append, metric_append = self.lanes.append, self.metric.append
             for m, lane in enumerate(segment.lanes):
-                metric = (lane.length_min_m, lane.length_max_m, lane.width_min_m, lane.width_max_m)
+                l0, l1 = lane.length_min_m, lane.length_max_m
+                w0, w1 = lane.width_min_m, lane.width_max_m
                 lane_id, direction = lane.lane_id, lane.driving_direction
                 try:
                     ok = (
-                        0.0 <= metric[0] <= metric[1] < math.inf
-                        and 0.0 <= metric[2] <= metric[3] < math.inf
+                        0.0 <= l0 <= l1 < math.inf
+                        and 0.0 <= w0 <= w1 < math.inf
                         and direction in _DIRECTION_CODES
                         and lane_id >= 0
                         and lane_id not in seen
@@ -328,8 +331,8 @@ class _RoadRows:
                 if not ok:
                     _raise_lane(lane)
                 seen.add(lane_id)
-                self.lanes.append((row, j, m, lane_id, int(direction)))
-                self.metric.append(metric)
+                lanes_append((row, j, m, lane_id, direction))
+                metric_append((l0, l1, w0, w1))
 
     def arrays(self) -> RoadAreaArrays:
         shape = (self.count, *self.shape)
