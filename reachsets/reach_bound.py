@@ -91,26 +91,36 @@ def _walls(track: TrackGeometry) -> _Walls:
 
 
 def _wall_frame(
-    walls: _Walls, x: NDArray[np.float64], y: NDArray[np.float64], which: NDArray[np.intp]
+    walls: _Walls, x: NDArray[np.float64], y: NDArray[np.float64], which: NDArray[np.intp] | int
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """Nearest point and unit tangent of wall ``which`` for ``(P,)`` positions.
 
     Plain numpy over all point-segment pairs (no shapely calls in the arc loop): the nearest
     point's arc length ``s`` on the wall, the tangent through the wall points at
-    ``s -+ 0.5 m`` (clamped to the wall's ends).
+    ``s -+ 0.5 m`` (clamped to the wall's ends). ``which`` is one wall for all positions
+    (only its segments are searched) or one per position (both walls' segments are
+    searched, the other wall's masked: fewer calls for few positions).
 
     Returns:
         ``(wx, wy, tx, ty)``, each ``(P,)``.
     """
-    dx = x[:, None] - walls.start[:, 0]
-    dy = y[:, None] - walls.start[:, 1]
-    sx, sy = walls.seg[:, 0], walls.seg[:, 1]
-    u = np.clip((dx * sx + dy * sy) / np.maximum(walls.seg_len**2, 1e-24), 0.0, 1.0)
+    seg = (
+        np.flatnonzero(walls.seg_wall == which)
+        if isinstance(which, int)
+        else np.arange(len(walls.seg))
+    )
+    start, vec, length = walls.start[seg], walls.seg[seg], walls.seg_len[seg]
+    dx = x[:, None] - start[:, 0]
+    dy = y[:, None] - start[:, 1]
+    sx, sy = vec[:, 0], vec[:, 1]
+    u = np.clip((dx * sx + dy * sy) / np.maximum(length**2, 1e-24), 0.0, 1.0)
     ox = dx - u * sx
     oy = dy - u * sy
-    d2 = np.where(walls.seg_wall == which[:, None], ox * ox + oy * oy, np.inf)
+    d2 = ox * ox + oy * oy
+    if not isinstance(which, int):
+        d2 = np.where(walls.seg_wall == which[:, None], d2, np.inf)
     best = np.argmin(d2, axis=1)
-    s = walls.seg_s[best] + u[np.arange(len(best)), best] * walls.seg_len[best]
+    s = walls.seg_s[seg[best]] + u[np.arange(len(best)), best] * length[best]
     probe = np.concatenate(
         [
             s,
@@ -156,8 +166,20 @@ def wall_aware_arcs(
         np.tile(np.asarray(v, dtype=np.float64), 2)[:, None]
         for v in (objects.x_m, objects.y_m, objects.yaw_rad)
     )
-    chords = (xi[:, :-1], eta[:, :-1], psi[:, :-1], dmax)
-    back = ~_turn(pose, walls, which, side, chords, params)[1]
+    # every chord of the turn arcs at once, one wall at a time (many positions)
+    back = np.concatenate(
+        [
+            ~_turn(
+                tuple(v[rows] for v in pose),
+                walls,
+                w,
+                side[rows],
+                (xi[rows, :-1], eta[rows, :-1], psi[rows, :-1], dmax[rows]),
+                params,
+            )[1]
+            for w, rows in ((0, slice(0, n)), (1, slice(n, 2 * n)))
+        ]
+    )
     rows = np.flatnonzero(back.any(axis=1))
     start = np.argmax(back[rows], axis=1) + 1  # first chord (1-based) that turns back
     c = params.arc_step_m
@@ -181,7 +203,7 @@ def wall_aware_arcs(
 def _turn(  # noqa: PLR0917 - the chord rule needs the whole state
     pose: tuple[NDArray[np.float64], ...],
     walls: _Walls,
-    which: NDArray[np.intp],
+    which: NDArray[np.intp] | int,
     side: NDArray[np.float64],
     chords: tuple[NDArray[np.float64], ...],
     params: ReachParams,
@@ -191,7 +213,7 @@ def _turn(  # noqa: PLR0917 - the chord rule needs the whole state
     Args:
         pose: Object ``(x, y, yaw)`` of each curve, each ``(R, 1)``.
         walls: Both walls.
-        which: Wall of each curve (0 left, 1 right), ``(R,)``.
+        which: Wall of each curve (0 left, 1 right), ``(R,)``, or one wall for all.
         side: ``+1.0`` for a left curve, ``-1.0`` for a right one, ``(R, 1)``.
         chords: Body-frame start ``(xi, eta)`` of each chord, the heading change so far
             (towards the wall side) and the chord's largest turn, each ``(R, K)``.
@@ -205,7 +227,7 @@ def _turn(  # noqa: PLR0917 - the chord rule needs the whole state
     cos0, sin0 = np.cos(yaw0), np.sin(yaw0)
     x = ox + cos0 * xi - sin0 * eta
     y = oy + sin0 * xi + cos0 * eta
-    flat = np.repeat(which, x.shape[1])
+    flat = which if isinstance(which, int) else np.repeat(which, x.shape[1])
     wx, wy, tx, ty = (v.reshape(x.shape) for v in _wall_frame(walls, x.ravel(), y.ravel(), flat))
     clearance = -side * (tx * (y - wy) - ty * (x - wx))
     heading = yaw0 + side * psi
