@@ -22,7 +22,14 @@ if TYPE_CHECKING:
     from reachsets.rules_road import RoadGeometry
     from reachsets.track import TrackGeometry
 
-__all__ = ["RuleContext", "RulePatch", "keep_largest_part", "patch_grid", "subtract_patches"]
+__all__ = [
+    "PatchGrid",
+    "RuleContext",
+    "RulePatch",
+    "keep_largest_part",
+    "patch_grid",
+    "subtract_patches",
+]
 
 
 @dataclass(frozen=True, slots=True)
@@ -92,49 +99,77 @@ class RuleContext:
         return rectangles(o.x_m, o.y_m, o.yaw_rad, o.length_m, o.width_m).reshape(len(o))
 
 
+@dataclass(frozen=True, slots=True)
+class PatchGrid:
+    """The rule patches to subtract, each minus its object's current footprint.
+
+    Attributes:
+        every: Per object, the union of the patches that hold at every step, ``(N,)``
+            (``None`` where there are none).
+        at: Per object and step, the union of the patches of that step only, ``(N, T)``
+            (``None`` where there are none or the cell was not asked for).
+    """
+
+    every: NDArray[np.object_]
+    at: NDArray[np.object_]
+
+
 def patch_grid(
     patches: Sequence[RulePatch],
     footprints: NDArray[np.object_],
     n_steps: int,
     cells: NDArray[np.bool_] | None = None,
-) -> NDArray[np.object_]:
-    """Union of the patches per object and step, ``(N, T)`` (``None`` where no patch applies).
-
-    Only the ``cells`` mask (default: all) is filled.
+) -> PatchGrid:
+    """The patches per object (all steps) and per cell (one step), for the ``cells`` mask.
 
     Every patch loses the object's own current footprint first, so a rule never deletes
-    where the object already is.
+    where the object already is. Subtracting both (``subtract_patches``) removes their union.
     """
     n = len(footprints)
-    every: list[list[Any]] = [[] for _ in range(n)]
-    at: dict[tuple[int, int], list[Any]] = {}
+    every_parts: list[list[Any]] = [[] for _ in range(n)]
+    at_parts: dict[tuple[int, int], list[Any]] = {}
     for patch in patches:
         if patch.step is None:
-            every[patch.object_index].append(patch.geometry)
+            every_parts[patch.object_index].append(patch.geometry)
         else:
-            at.setdefault((patch.object_index, patch.step), []).append(patch.geometry)
+            at_parts.setdefault((patch.object_index, patch.step), []).append(patch.geometry)
     want = np.ones((n, n_steps), dtype=bool) if cells is None else np.asarray(cells, dtype=bool)
-    grid = np.full((n, n_steps), None, dtype=object)
-    # the patches that hold at every step: one union per object, shared by its cells
-    for i in np.flatnonzero([bool(g) for g in every] if n else []):
-        if want[i].any():
-            grid[i, want[i]] = shapely.difference(shapely.union_all(every[i]), footprints[i])
-    for (row, k), geoms in at.items():
+    every = np.full(n, None, dtype=object)
+    at = np.full((n, n_steps), None, dtype=object)
+    for i, parts in enumerate(every_parts):
+        if parts and want[i].any():
+            every[i] = shapely.difference(shapely.union_all(parts), footprints[i])
+    for (row, k), parts in at_parts.items():
         if want[row, k]:
-            grid[row, k] = shapely.difference(
-                shapely.union_all(geoms + every[row]), footprints[row]
-            )
-    return grid
+            at[row, k] = shapely.difference(shapely.union_all(parts), footprints[row])
+    return PatchGrid(every, at)
 
 
-def subtract_patches(reach: NDArray[np.object_], grid: NDArray[np.object_]) -> NDArray[np.object_]:
-    """``reach - grid`` element-wise, ``(N, T)``; cells without a patch are kept as they are."""
+def subtract_patches(
+    reach: NDArray[np.object_], grid: PatchGrid, rows: NDArray[np.intp] | None = None
+) -> NDArray[np.object_]:
+    """``reach`` minus the patches of its cells, element-wise.
+
+    Args:
+        reach: Geometries, ``(N, T)``, or ``(C,)`` cells when ``rows`` is given.
+        grid: The patches.
+        rows: For ``(C,)`` cells, the object row and the step of each, ``(2, C)``.
+
+    Returns:
+        The reduced geometries, same shape; cells without a patch are kept as they are.
+    """
     if reach.size == 0:
         return reach
-    has = np.asarray([g is not None for g in grid.reshape(-1)], dtype=bool).reshape(grid.shape)
-    out = reach.copy()
-    out[has] = shapely.difference(reach[has], grid[has].astype(object))
-    return out
+    if rows is None:
+        i, k = np.indices(reach.shape).reshape(2, -1)
+    else:
+        i, k = rows
+    out = reach.reshape(-1).copy()
+    for cut in (grid.every[i], grid.at[i, k]):
+        has = np.asarray([g is not None for g in cut], dtype=bool)
+        if has.any():
+            out[has] = shapely.difference(out[has], cut[has].astype(object))
+    return out.reshape(reach.shape)
 
 
 def keep_largest_part(geoms: NDArray[np.object_]) -> NDArray[np.object_]:

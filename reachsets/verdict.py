@@ -20,11 +20,14 @@ import numpy as np
 import shapely
 
 from reachsets.convex import convex_touch
+from reachsets.patches import subtract_patches
 
 if TYPE_CHECKING:
     from collections.abc import Callable
 
     from numpy.typing import NDArray
+
+    from reachsets.patches import PatchGrid
 
 __all__ = ["first_hits"]
 
@@ -35,7 +38,7 @@ def first_hits(
     *,
     area: Any = None,
     deletion: Callable[[], NDArray[np.object_] | None] | None = None,
-    patches: Callable[[NDArray[np.bool_]], NDArray[np.object_]] | None = None,
+    patches: Callable[[NDArray[np.bool_]], PatchGrid] | None = None,
 ) -> NDArray[np.bool_]:
     """Cells whose reduced set touches the ego footprint, up to each object's first hit.
 
@@ -45,8 +48,8 @@ def first_hits(
         area: Drivable area to trim to (prepared shapely geometry), or ``None``.
         deletion: Returns the method's deletion polygon per object, ``(N,)`` (called at most
             once, only when some cell touches), or ``None`` for none.
-        patches: Returns the union of the rule patches per cell for the cells of a
-            ``(N, T)`` mask, ``(N, T)`` geometries (``None`` where no patch applies).
+        patches: Returns the rule patches for the cells of a ``(N, T)`` mask (called at
+            most once, only when some cell touches), or ``None`` for none.
 
     Returns:
         ``(N, T)`` mask; each row's first ``True`` is the object's first collision step and
@@ -57,6 +60,7 @@ def first_hits(
     if not touch.any():
         return hits
     cut = deletion() if deletion is not None else None
+    grid = patches(touch) if patches is not None else None
     todo = touch.copy()
     size = 1
     while True:
@@ -64,7 +68,7 @@ def first_hits(
         cells = todo & (np.cumsum(todo, axis=1) <= size)
         if not cells.any():
             break
-        hits |= _reduced_touch(sets_m, ego_m, cells, area=area, cut=cut, patches=patches)
+        hits |= _reduced_touch(sets_m, ego_m, cells, area=area, cut=cut, grid=grid)
         todo &= ~cells
         size *= 2
     # keep only the first hit per row
@@ -78,7 +82,7 @@ def _reduced_touch(
     *,
     area: Any,
     cut: NDArray[np.object_] | None,
-    patches: Callable[[NDArray[np.bool_]], NDArray[np.object_]] | None,
+    grid: PatchGrid | None,
 ) -> NDArray[np.bool_]:
     """``((S - D - P) & E)`` touches ``area`` on the ``cells`` mask, ``(N, T)``.
 
@@ -95,11 +99,8 @@ def _reduced_touch(
     part = polys[: len(i)]
     if cut is not None:
         part = shapely.difference(part, cut[i])
-    if patches is not None:
-        grid = patches(cells)[i, k]
-        has = np.asarray([g is not None for g in grid], dtype=bool)
-        if has.any():
-            part[has] = shapely.difference(part[has], grid[has].astype(object))
+    if grid is not None:
+        part = subtract_patches(part, grid, np.stack([i, k]))
     part = shapely.intersection(part, polys[len(i) :])
     ok = shapely.intersects(part, area) if area is not None else ~shapely.is_empty(part)
     out = np.zeros(cells.shape, dtype=bool)

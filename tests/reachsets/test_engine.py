@@ -73,7 +73,13 @@ def test_split_sets_keep_every_part():
 def test_patch_never_removes_own_footprint():
     foot = shapely.box(0, 0, 4, 2)
     grid = patch_grid([RulePatch(0, "r", shapely.box(-10, -10, 10, 10))], np.array([foot]), 2)
-    assert shapely.area(shapely.intersection(grid[0, 0], foot)) == pytest.approx(0.0)
+    assert shapely.area(shapely.intersection(grid.every[0], foot)) == pytest.approx(0.0)
+    step = patch_grid(
+        [RulePatch(0, "r", shapely.box(-10, -10, 10, 10), step=1)], np.array([foot]), 2
+    )
+    assert step.every[0] is None
+    assert step.at[0, 0] is None
+    assert shapely.area(shapely.intersection(step.at[0, 1], foot)) == pytest.approx(0.0)
 
 
 def test_state_carries_track_geometry():
