@@ -108,7 +108,13 @@ def explain(prep: PreparedGraph, pair: dict[str, Any]) -> None:
         for name, road in (("ego road", c.ego_road), ("obj road", c.intersecting_road)):
             if road:
                 segs = [
-                    ",".join(
+                    (
+                        f"b{seg.min_length_before_intersecting_area_m:.2f}"
+                        f" a{seg.min_length_after_intersecting_area_m:.2f}:"
+                        if seg.segment_type.name == "Intersection"
+                        else ""
+                    )
+                    + ",".join(
                         f"{lid(ln.lane_id % len(prep.graph))}({ln.length_min_m:.2f}/"
                         f"{ln.length_max_m:.2f})"
                         for ln in seg.lanes

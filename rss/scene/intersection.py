@@ -21,6 +21,7 @@ import weakref
 from typing import TYPE_CHECKING
 
 import numpy as np
+import shapely
 
 from rss.model import ConstellationType, LaneDrivingDirection, RoadSegmentType
 from rss.scene.roadarea import SegmentPlan
@@ -201,15 +202,48 @@ def conflict(
     return None
 
 
+_SPANS: dict[
+    int, tuple[weakref.ref[PreparedGraph], dict[tuple[int, int], tuple[float, float]]]
+] = {}
+
+
+def area_span(prep: PreparedGraph, lane: int, other: int) -> tuple[float, float]:
+    """Lengths of ``lane`` before and after the part of its *area* inside ``other``'s.
+
+    As ad-rss (``extractInnerRegions`` of the lane in the other lane's polygon): the
+    vertices of the two lanes' common area are projected on ``lane``'s centre line; the
+    parametric range they span is the intersecting part, its outside measured in the
+    lane's minimal length. Lanes without common area keep the whole lane before it.
+    Cached per prepared graph.
+    """
+    cached = _SPANS.get(id(prep))
+    if cached is None or cached[0]() is not prep:
+        cached = (weakref.ref(prep), {})
+        _SPANS[id(prep)] = cached
+    spans = cached[1]
+    key = (lane, other)
+    if key not in spans:
+        length = float(prep.length_min_m[lane])
+        shared = shapely.intersection(prep.polygons[lane], prep.polygons[other])
+        if shapely.is_empty(shared) or shapely.area(shared) <= 0.0:
+            spans[key] = prep.conflict_span_m.get(key, (length, 0.0))
+        else:
+            s = shapely.line_locate_point(
+                prep.centre_lines[lane],
+                shapely.points(shapely.get_coordinates(shared)),
+                normalized=True,
+            )
+            spans[key] = (float(np.min(s)) * length, (1.0 - float(np.max(s))) * length)
+    return spans[key]
+
+
 def intersection_plans(
     prep: PreparedGraph, route: tuple[Step, ...], upto: int, other_lane: int
 ) -> list[SegmentPlan]:
     """Single-lane segments along ``route[:upto + 1]``, the last one the intersection."""
     plans = [SegmentPlan(lanes=[step]) for step in route[:upto]]
     lane, fwd = route[upto]
-    before, after = prep.conflict_span_m.get(
-        (lane, other_lane), (0.0, float(prep.length_min_m[lane]))
-    )
+    before, after = area_span(prep, lane, other_lane)
     if not fwd:
         before, after = after, before
     plans.append(

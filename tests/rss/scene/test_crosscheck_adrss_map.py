@@ -182,7 +182,7 @@ def test_town01_against_ad_rss_map_integration(external_dir):
         theirs += json.loads(out.strip().splitlines()[-1])
     stats = compare([ours(prep, p) for p in pairs], theirs)
     sys.stderr.write(f"ad-rss map integration cross-check: {stats}\n")
-    # measured (docs/rss_scene.md): types 99.0 %, verdicts 94.6 % (98.6 % outside the 85
+    # measured (docs/rss_scene.md): types 99.0 %, verdicts 94.8 % (98.8 % outside the 85
     # pairs with ad-rss' swapped route headings), lateral within 0.2 m 97.2 %,
     # longitudinal within 0.5 m 90.4 %, median error 1.6 mm
     assert stats["types"] >= 0.985
