@@ -118,12 +118,24 @@ def max_travel_m(
     return np.asarray(np.where(t <= t_cap, accel, capped), dtype=np.float64)
 
 
-def _lane_direction(centre: NDArray[np.float64], x: float, y: float) -> NDArray[np.float64]:
-    """Unit driving direction of a lane centre line at its point nearest to (x, y)."""
-    d = np.hypot(centre[:, 0] - x, centre[:, 1] - y)
-    k = int(np.clip(np.argmin(d), 0, len(centre) - 2))
+def _lane_directions(
+    centre: NDArray[np.float64], x: NDArray[np.float64], y: NDArray[np.float64]
+) -> NDArray[np.float64]:
+    """Unit driving direction of a lane centre line at its point nearest to each position.
+
+    Args:
+        centre: Lane centre line, ``(C, 2)``, ``C >= 2``.
+        x: Positions x, ``(N,)``.
+        y: Positions y, ``(N,)``.
+
+    Returns:
+        ``(N, 2)`` directions (of the segment starting at the nearest point; the last
+        segment for the last point).
+    """
+    d2 = (centre[None, :, 0] - x[:, None]) ** 2 + (centre[None, :, 1] - y[:, None]) ** 2
+    k = np.clip(np.argmin(d2, axis=1), 0, len(centre) - 2)
     t = centre[k + 1] - centre[k]
-    return np.asarray(t / max(float(np.hypot(*t)), 1e-12), dtype=np.float64)
+    return np.asarray(t / np.maximum(np.hypot(t[:, 0], t[:, 1]), 1e-12)[:, None])
 
 
 def evaluate_road(
@@ -142,14 +154,12 @@ def evaluate_road(
     centres = shapely.points(objs.x_m, objs.y_m)
     contains = np.asarray(shapely.contains(lane_polys[None, :], centres[:, None]))  # (N, Lanes)
     heading = np.stack([np.cos(objs.yaw_rad), np.sin(objs.yaw_rad)], axis=1)
-    cos_dir = np.array(
+    cos_dir = np.stack(
         [
-            [
-                float(heading[i] @ _lane_direction(ln.centre_m, objs.x_m[i], objs.y_m[i]))
-                for ln in road.lanes
-            ]
-            for i in range(n)
-        ]
+            np.sum(heading * _lane_directions(ln.centre_m, objs.x_m, objs.y_m), axis=1)
+            for ln in road.lanes
+        ],
+        axis=1,
     ).reshape(n, len(road.lanes))
     aligned = contains & (cos_dir > 0)
     shrunk = shapely.buffer(ctx.footprints, -p.on_road_margin_m)
