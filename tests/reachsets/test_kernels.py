@@ -13,7 +13,12 @@ from hypothesis import strategies as st
 from reachsets.convex import convex_touch
 from reachsets.footprints import rectangle_corners
 from reachsets.inputs import TrackBounds
-from reachsets.occupancy import ego_occupancy, ego_occupancy_scalar, trajectory_times
+from reachsets.occupancy import (
+    ego_occupancy,
+    ego_occupancy_many,
+    ego_occupancy_scalar,
+    trajectory_times,
+)
 from reachsets.params import ReachParams
 from reachsets.reach_simple import simple_reach_polygons, simple_reach_scalar, simple_reach_vertices
 from reachsets.reach_turn import funnel_polygons, steering_arc_scalar, steering_arcs
@@ -178,3 +183,22 @@ def test_track_projection_matches_shapely():
     y = track.centre_m[pick, 1] + rng.uniform(-8.0, 8.0, 200)
     want = [track.project_scalar(a, b) for a, b in zip(x, y, strict=True)]
     np.testing.assert_allclose(track.project(x, y), want, atol=1e-6)
+
+
+def test_occupancy_of_many_plans_of_different_lengths_matches_scalar():
+    """Plans padded to one length (last point held) give each plan's own footprints."""
+    short = straight_ego(speed=12.0, horizon=2.0, points=7)
+    turning = type(short)(
+        np.linspace(0.0, 30.0, 12),
+        np.linspace(0.0, 8.0, 12) ** 1.5,
+        np.linspace(0.2, 3.0, 12),
+        np.linspace(15.0, 0.0, 12),
+        np.full(12, np.nan),
+        5.0,
+        2.0,
+    )
+    single = straight_ego(points=1)
+    occ = ego_occupancy_many([short, turning, single], TIMES)
+    for f, plan in enumerate([short, turning, single]):
+        want = np.asarray(ego_occupancy_scalar(plan, list(TIMES)))
+        np.testing.assert_allclose(occ.corners_m[f], want, atol=1e-9)
