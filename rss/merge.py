@@ -26,7 +26,13 @@ from rss.model import ConstellationType, RoadSegmentType
 from rss.states import InvalidReason
 
 if TYPE_CHECKING:
-    from rss.batch import ConstellationBatch, IntArray, ObjectArrays, RoadAreaArrays
+    from rss.batch import (
+        ConstellationBatch,
+        DynamicsArrays,
+        IntArray,
+        ObjectArrays,
+        RoadAreaArrays,
+    )
     from rss.extraction import Relative
 
 __all__ = ["merge_positions", "merge_similar"]
@@ -55,51 +61,88 @@ def merge_positions(a: int, b: int, dist_a: float, dist_b: float) -> tuple[int, 
     return (side.pop(), dist) if side else (_OVERLAP, 0.0)
 
 
-def _intersection_lanes(road: RoadAreaArrays, row: int) -> tuple[int, ...]:
-    inter = road.segment_type[row] == int(RoadSegmentType.Intersection)
-    lanes = road.lane_id[row][inter]
-    return tuple(sorted(int(v) for v in lanes[lanes >= 0]))
+def _lane_keys(road: RoadAreaArrays, kinds: IntArray) -> IntArray:
+    """``(C, R * L)`` sorted lane ids of the Intersection segments of intersection types.
+
+    -1 pads; rows of other types are all -1.
+    """
+    c = road.lane_id.shape[0]
+    inter = road.segment_type == int(RoadSegmentType.Intersection)
+    lanes = np.where(inter[:, :, None], road.lane_id, -1).reshape(c, -1)
+    lanes[~np.isin(kinds, list(_INTERSECTION_TYPES))] = -1
+    out: IntArray = np.sort(lanes, axis=1)
+    return out
+
+
+_DYNAMICS: list[str] = []
+
+
+def _dynamics_keys(dyn: DynamicsArrays) -> IntArray:
+    if not _DYNAMICS:
+        _DYNAMICS.extend(f.name for f in dataclasses.fields(dyn))
+    values = np.stack([getattr(dyn, name) for name in _DYNAMICS], axis=1)
+    out: IntArray = np.ascontiguousarray(values, dtype=np.float64).view(np.int64)
+    return out
 
 
 def _groups(batch: ConstellationBatch, rel: Relative, frame: IntArray) -> list[list[int]]:
     """Rows to merge: valid, same frame, ids, type (and intersection lanes), dynamics."""
-    keys: dict[tuple[object, ...], list[int]] = {}
-    dyn = [
-        np.stack([getattr(d, f.name) for f in dataclasses.fields(d)], axis=1)
-        for d in (batch.ego_dynamics, batch.other_dynamics)
-    ]
-    for row in np.flatnonzero(rel.invalid == int(InvalidReason.Valid)).tolist():
-        kind = int(batch.constellation_type[row])
-        key: tuple[object, ...] = (
-            int(frame[row]),
-            int(batch.ego.object_id[row]),
-            int(batch.other.object_id[row]),
-            kind,
-            dyn[0][row].tobytes(),
-            dyn[1][row].tobytes(),
-        )
-        if kind in _INTERSECTION_TYPES:
-            key += (
-                _intersection_lanes(batch.ego_road, row),
-                _intersection_lanes(batch.intersecting_road, row),
-            )
-        keys.setdefault(key, []).append(row)
-    return [rows for rows in keys.values() if len(rows) > 1]
+    valid = np.flatnonzero(rel.invalid == int(InvalidReason.Valid))
+    if len(valid) < 2:  # noqa: PLR2004 - a group needs two rows
+        return []
+    kinds = batch.constellation_type
+    ids = np.stack([frame, batch.ego.object_id, batch.other.object_id, kinds], axis=1)
+    keys = np.concatenate(
+        [
+            ids.astype(np.int64),
+            _lane_keys(batch.ego_road, kinds),
+            _lane_keys(batch.intersecting_road, kinds),
+            _dynamics_keys(batch.ego_dynamics),
+            _dynamics_keys(batch.other_dynamics),
+        ],
+        axis=1,
+    )[valid]
+    found: dict[tuple[int, ...], list[int]] = {}
+    for row, key in zip(valid.tolist(), keys.tolist(), strict=True):
+        found.setdefault(tuple(key), []).append(row)
+    return [rows for rows in found.values() if len(rows) > 1]
 
 
-def _union_speeds(obj: ObjectArrays, groups: list[list[int]]) -> ObjectArrays:
+_SPEEDS = ("speed_lon_min_mps", "speed_lon_max_mps", "speed_lat_min_mps", "speed_lat_max_mps")
+
+
+@dataclasses.dataclass(frozen=True)
+class _Layout:
+    """Groups as one row list: ``rows`` concatenated, ``starts`` / ``sizes`` per group."""
+
+    rows: IntArray
+    starts: IntArray
+    sizes: IntArray
+
+    def reduce(self, values: np.ndarray, op: np.ufunc) -> np.ndarray:
+        """``values`` with every group's rows set to ``op`` over the group."""
+        out = values.copy()
+        out[self.rows] = np.repeat(op.reduceat(values[self.rows], self.starts), self.sizes)
+        return out
+
+    def fill(self, values: np.ndarray, per_group: list[float] | list[int]) -> np.ndarray:
+        """``values`` with every group's rows set to its entry of ``per_group``."""
+        out = values.copy()
+        out[self.rows] = np.repeat(np.asarray(per_group, dtype=values.dtype), self.sizes)
+        return out
+
+
+def _layout(groups: list[list[int]]) -> _Layout:
+    sizes = np.array([len(g) for g in groups], dtype=np.int64)
+    starts = np.concatenate([[0], np.cumsum(sizes)[:-1]]).astype(np.int64)
+    return _Layout(np.array([r for g in groups for r in g], dtype=np.int64), starts, sizes)
+
+
+def _union_speeds(obj: ObjectArrays, layout: _Layout) -> ObjectArrays:
     fields = {
-        name: getattr(obj, name).copy()
-        for name in (
-            "speed_lon_min_mps",
-            "speed_lon_max_mps",
-            "speed_lat_min_mps",
-            "speed_lat_max_mps",
-        )
+        name: layout.reduce(getattr(obj, name), np.minimum if "min" in name else np.maximum)
+        for name in _SPEEDS
     }
-    for rows in groups:
-        for name, values in fields.items():
-            values[rows] = values[rows].min() if name.endswith("min_mps") else values[rows].max()
     return dataclasses.replace(obj, **fields)
 
 
@@ -119,25 +162,32 @@ def merge_similar(
     groups = _groups(batch, rel, frame)
     if not groups:
         return batch, rel
-    out = {f.name: getattr(rel, f.name).copy() for f in dataclasses.fields(rel)}
+    layout = _layout(groups)
+    lon, lon_d = rel.lon_position.tolist(), rel.lon_distance_m.tolist()
+    lat, lat_d = rel.lat_position.tolist(), rel.lat_distance_m.tolist()
+    merged: list[list[float]] = [[], [], [], []]
     for rows in groups:
-        lon, lon_d = int(out["lon_position"][rows[0]]), float(out["lon_distance_m"][rows[0]])
-        lat, lat_d = int(out["lat_position"][rows[0]]), float(out["lat_distance_m"][rows[0]])
+        first = rows[0]
+        m = [lon[first], lon_d[first], lat[first], lat_d[first]]
         for row in rows[1:]:
-            lon, lon_d = merge_positions(
-                lon, int(out["lon_position"][row]), lon_d, float(out["lon_distance_m"][row])
-            )
-            lat, lat_d = merge_positions(
-                lat, int(out["lat_position"][row]), lat_d, float(out["lat_distance_m"][row])
-            )
-        out["lon_position"][rows], out["lon_distance_m"][rows] = lon, lon_d
-        out["lat_position"][rows], out["lat_distance_m"][rows] = lat, lat_d
-        out["ego_in_correct_lane"][rows] = out["ego_in_correct_lane"][rows].all()
-        out["other_in_correct_lane"][rows] = out["other_in_correct_lane"][rows].any()
-        for who in ("ego", "other"):
-            enter, leave = out[f"{who}_dist_to_enter_m"], out[f"{who}_dist_to_leave_m"]
-            enter[rows], leave[rows] = enter[rows].min(), leave[rows].max()
-    merged = dataclasses.replace(
-        batch, ego=_union_speeds(batch.ego, groups), other=_union_speeds(batch.other, groups)
+            m[0], m[1] = merge_positions(int(m[0]), lon[row], m[1], lon_d[row])
+            m[2], m[3] = merge_positions(int(m[2]), lat[row], m[3], lat_d[row])
+        for column, value in zip(merged, m, strict=True):
+            column.append(value)
+    new_rel = type(rel)(
+        lon_position=layout.fill(rel.lon_position, merged[0]),
+        lon_distance_m=layout.fill(rel.lon_distance_m, merged[1]),
+        lat_position=layout.fill(rel.lat_position, merged[2]),
+        lat_distance_m=layout.fill(rel.lat_distance_m, merged[3]),
+        ego_in_correct_lane=layout.reduce(rel.ego_in_correct_lane, np.logical_and),
+        other_in_correct_lane=layout.reduce(rel.other_in_correct_lane, np.logical_or),
+        ego_dist_to_enter_m=layout.reduce(rel.ego_dist_to_enter_m, np.minimum),
+        ego_dist_to_leave_m=layout.reduce(rel.ego_dist_to_leave_m, np.maximum),
+        other_dist_to_enter_m=layout.reduce(rel.other_dist_to_enter_m, np.minimum),
+        other_dist_to_leave_m=layout.reduce(rel.other_dist_to_leave_m, np.maximum),
+        invalid=rel.invalid,
     )
-    return merged, type(rel)(**out)
+    merged_batch = dataclasses.replace(
+        batch, ego=_union_speeds(batch.ego, layout), other=_union_speeds(batch.other, layout)
+    )
+    return merged_batch, new_rel
