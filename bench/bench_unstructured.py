@@ -5,24 +5,53 @@ frames (seeded, agents within 60 m of the ego): mixed (half pedestrians), vehicl
 pedestrians only. "ours" is ``check_unstructured`` as the pipeline runs it (hulls of the
 set pieces built only where a box test cannot rule a pair out); "ours + sets" also builds
 every piece's hull, the geometry the viewer draws (ad-rss always computes its polygons).
+
+"Batched frames" (:func:`run_frames`, after the per-call table of :func:`run_calls`): the
+pipeline's call. A random mixed scene advanced in time (0.1 s per frame, everyone along
+its heading at its top speed) gives 32 consecutive frames; ours evaluates them one call
+per frame and in one ``check_unstructured_frames`` call (what ``workbench evaluate`` /
+``replay`` run, 32 frames per chunk); ad-rss evaluates them one call per frame (it has no
+batch call), timed on the first frames only (its time per agent-frame hardly depends on
+the frame).
 """
 
 from __future__ import annotations
 
+import dataclasses
 import os
 import time
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 import rss  # noqa: F401  (must precede ad_rss: the binding registers a module named ``rss``)
 from rss.params import DEFAULT_EGO_DYNAMICS
-from rss.unstructured import check_unstructured
+from rss.unstructured import FrameInputs, check_unstructured, check_unstructured_frames
 
-__all__ = ["run"]
+if TYPE_CHECKING:
+    from rss.unstructured import UnstructuredAgents
+
+__all__ = ["run", "run_calls", "run_frames"]
 
 #: (label, pedestrian share) of the frame kinds.
 KINDS = (("mixed", 0.5), ("vehicles", 0.0), ("pedestrians", 1.0))
 SIZES = (1, 10, 50)
+#: Consecutive frames of one batched call (``workbench.evaluate.pipeline.CHUNK_FRAMES``).
+CHUNK = 32
+#: Frames of the chunk the binding is timed on.
+BINDING_FRAMES = 6
+#: Time between frames [s].
+FRAME_DT_S = 0.1
+
+
+def _advanced(agents: UnstructuredAgents, t_s: float) -> UnstructuredAgents:
+    """The agents ``t_s`` later, each moved along its heading at its top speed."""
+    step = agents.speed_max_mps * t_s
+    return dataclasses.replace(
+        agents,
+        x_m=agents.x_m + step * np.cos(agents.yaw_rad),
+        y_m=agents.y_m + step * np.sin(agents.yaw_rad),
+    )
 
 
 def _best(fns: tuple[object, ...], rounds: int, calls: int = 3) -> list[float]:
@@ -44,7 +73,12 @@ def _best(fns: tuple[object, ...], rounds: int, calls: int = 3) -> list[float]:
 
 
 def run(quick: bool) -> str:  # noqa: FBT001  (bench/run.py interface)
-    """Markdown section: per-agent time of ``check_unstructured`` and of ad-rss."""
+    """Markdown sections: per call (:func:`run_calls`), batched frames (:func:`run_frames`)."""
+    return run_calls(quick) + "\n" + run_frames(quick)
+
+
+def run_calls(quick: bool) -> str:  # noqa: FBT001
+    """Markdown section: per-agent time of ``check_unstructured`` and of ad-rss, per call."""
     from tests.rss.oracle_unstructured import UnstructuredOracle  # noqa: PLC0415
     from tests.rss.unstructured.generators import random_ego, random_frame  # noqa: PLC0415
 
@@ -91,6 +125,64 @@ def run(quick: bool) -> str:  # noqa: FBT001  (bench/run.py interface)
         + "\n".join(rows)
         + f"\n\nBest call of {repeats} rounds x 3 calls each (CPU time of the process; ours and"
         f" ad-rss take turns round by round), one ego + N agents per call; load average {load}"
+        f" ({os.cpu_count()} cores).\n"
+    )
+
+
+def run_frames(quick: bool) -> str:  # noqa: FBT001  (bench/run.py interface)
+    """Markdown section: per agent-frame time over 32 consecutive frames, batched and not."""
+    from tests.rss.oracle_unstructured import UnstructuredOracle  # noqa: PLC0415
+    from tests.rss.unstructured.generators import random_ego, random_frame  # noqa: PLC0415
+
+    rows = [
+        (
+            "| agents per frame | ours per frame ms/agent-frame | ours batched ms/agent-frame "
+            "| ad-rss ms/agent-frame | speed-up per frame | speed-up batched |"
+        ),
+        "|---|---|---|---|---|---|",
+    ]
+    rounds = 3 if quick else 5
+    d = DEFAULT_EGO_DYNAMICS
+    for n in SIZES:
+        rng = np.random.default_rng(100 + n)
+        ego0 = random_ego(rng)
+        agents0, dyn = random_frame(rng, n)
+        frames = [
+            FrameInputs(
+                _advanced(ego0, k * FRAME_DT_S), _advanced(agents0, k * FRAME_DT_S), d, dyn, d
+            )
+            for k in range(CHUNK)
+        ]
+
+        def per_frame(frames: list[FrameInputs] = frames) -> None:
+            memory = None
+            for f in frames:
+                _, memory = check_unstructured(f.ego, f.agents, d, f.agent_dynamics, d, memory)
+
+        def batched(frames: list[FrameInputs] = frames) -> None:
+            check_unstructured_frames(frames)
+
+        oracle = UnstructuredOracle()
+
+        def theirs(frames: list[FrameInputs] = frames, oracle: object = oracle) -> None:
+            for f in frames[:BINDING_FRAMES]:
+                oracle.evaluate(f.ego, f.agents, d, f.agent_dynamics, d)  # type: ignore[attr-defined]
+
+        t_frame, t_batch, t_ref = _best((per_frame, batched, theirs), rounds, calls=1)
+        t_frame, t_batch = (t / (CHUNK * n) * 1e3 for t in (t_frame, t_batch))
+        t_ref = t_ref / (BINDING_FRAMES * n) * 1e3
+        rows.append(
+            f"| {n} | {t_frame:.3f} | {t_batch:.3f} | {t_ref:.2f} "
+            f"| {t_ref / t_frame:.0f}x | {t_ref / t_batch:.0f}x |"
+        )
+    load = ", ".join(f"{x:.1f}" for x in os.getloadavg())
+    return (
+        "## Unstructured RSS, consecutive frames (ours batched)\n\n"
+        + "\n".join(rows)
+        + f"\n\n{CHUNK} consecutive frames of one mixed scene (ego + N agents, half"
+        f" pedestrians, advanced {FRAME_DT_S} s per frame); ours once per frame and in one"
+        f" batched call (the pipeline's), ad-rss once per frame on the first {BINDING_FRAMES}"
+        f" frames; best of {rounds} rounds (CPU time, taking turns); load average {load}"
         f" ({os.cpu_count()} cores).\n"
     )
 

@@ -1,9 +1,13 @@
-"""``check_unstructured``: trajectory sets, decisions and the proper response of one frame.
+"""``check_unstructured``: trajectory sets, decisions and the proper response of a frame.
 
 Pure: ``(ego, agents, dynamics, memory) -> (UnstructuredResult, memory)``. The ego and the
 agents sharing its unstructured settings and motion model are computed in one batch (per-
 agent dynamics values); the ego's and the agents' convex pieces are paired by a numpy box
 test and the remaining pairs tested exactly with shapely (:func:`intersections`).
+
+:func:`check_unstructured_frames` does the same for consecutive frames: the sets of every
+frame in shared batches, the intersections in one go, then the decisions frame by frame
+(the only part that needs the memory). :func:`check_unstructured` is its one-frame case.
 """
 
 from __future__ import annotations
@@ -12,16 +16,16 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
-import shapely
 
 from rss.unstructured.agents import MotionModel, UnstructuredAgents, motion_model
 from rss.unstructured.batch import AgentDynamics
 from rss.unstructured.decision import Decisions, UnstructuredResponse, decide
 from rss.unstructured.errors import UnstructuredInputError
+from rss.unstructured.intersect import FIRST_ROUND_MIN_PAIRS, intersections
 from rss.unstructured.memory import UnstructuredMemory
 from rss.unstructured.pedestrian_batch import pedestrian_sets_batch
 from rss.unstructured.response import UnstructuredProperResponse, resolve_unstructured
-from rss.unstructured.sets import TrajectorySets, hulls_of
+from rss.unstructured.sets import TrajectorySets
 from rss.unstructured.vehicle_batch import vehicle_sets_batch
 
 if TYPE_CHECKING:
@@ -32,8 +36,10 @@ if TYPE_CHECKING:
 
 __all__ = [
     "FIRST_ROUND_MIN_PAIRS",
+    "FrameInputs",
     "UnstructuredResult",
     "check_unstructured",
+    "check_unstructured_frames",
     "intersections",
     "trajectory_sets",
 ]
@@ -113,60 +119,33 @@ def trajectory_sets(
     return TrajectorySets.concat(parts, n)
 
 
-def intersections(
-    ego_sets: TrajectorySets, agent_sets: TrajectorySets
-) -> tuple[BoolArray, BoolArray, BoolArray]:
-    """``(T_ego,b ∩ T_oth,f, T_oth,b ∩ T_ego,f, T_ego,b ∩ T_oth,b)`` per agent ``(N,)``.
+@dataclass(frozen=True)
+class FrameInputs:
+    """The inputs of one frame (the arguments of :func:`check_unstructured` of that name).
 
-    Touching counts as intersecting (ad-rss: not ``disjoint``). Candidate piece pairs are
-    those whose axis-aligned boxes overlap (numpy, all pairs at once; the boxes hold the
-    hulls' own vertices, so the test is exact) and of which at least one piece is a brake
-    piece (continue-forward pairs decide nothing); only their hulls are built and tested
-    (shapely, ego hulls prepared). With many candidates the brake-brake pairs go first: an
-    agent whose brake set meets the ego's has all three conditions (``T_b ⊆ T_f``), so its
-    other pairs are skipped.
+    Attributes:
+        ego: The ego (one row, ENU).
+        agents: ``(N,)`` other participants, ENU.
+        ego_dynamics: Ego dynamics of the constellations.
+        agent_dynamics: One dynamics per agent.
+        default_ego: Default ego dynamics of the frame.
     """
-    n = agent_sets.count
-    flags = np.zeros((3, n), dtype=bool)
-    if n == 0 or ego_sets.owner.size == 0 or agent_sets.owner.size == 0:
-        return flags[0], flags[1], flags[2]
-    e_lo, e_hi = ego_sets.bounds()
-    a_lo, a_hi = agent_sets.bounds()
-    e_brake, a_brake = ego_sets.brake[:, None], agent_sets.brake[None, :]
-    candidates = (
-        (e_lo[:, None, 0] <= a_hi[None, :, 0])
-        & (a_lo[None, :, 0] <= e_hi[:, None, 0])
-        & (e_lo[:, None, 1] <= a_hi[None, :, 1])
-        & (a_lo[None, :, 1] <= e_hi[:, None, 1])
-        & (e_brake | a_brake)
-    )
-    if np.count_nonzero(candidates) > FIRST_ROUND_MIN_PAIRS:
-        both = candidates & e_brake & a_brake
-        _mark(flags, ego_sets, agent_sets, both)
-        decided = flags[2][agent_sets.owner]
-        candidates &= ~both & ~decided[None, :]
-    _mark(flags, ego_sets, agent_sets, candidates)
-    return flags[0], flags[1], flags[2]
 
+    ego: UnstructuredAgents
+    agents: UnstructuredAgents
+    ego_dynamics: RssDynamics
+    agent_dynamics: Sequence[RssDynamics]
+    default_ego: RssDynamics
 
-#: Candidate pairs above which the brake-brake pairs are tested in a first round.
-FIRST_ROUND_MIN_PAIRS = 64
-
-
-def _mark(
-    flags: BoolArray, ego_sets: TrajectorySets, agent_sets: TrajectorySets, pairs: BoolArray
-) -> None:
-    """Test the piece pairs ``(E, P)`` and set the three conditions ``(3, N)`` they meet."""
-    e, a = np.nonzero(pairs)
-    if e.size == 0:
-        return
-    ego_hulls, agent_hulls = hulls_of([(ego_sets, e), (agent_sets, a)])
-    shapely.prepare(ego_hulls)
-    hit = shapely.intersects(ego_hulls, agent_hulls)
-    e, a = e[hit], a[hit]
-    e_brake, a_brake, owner = ego_sets.brake[e], agent_sets.brake[a], agent_sets.owner[a]
-    for row, mask in enumerate((e_brake, a_brake, e_brake & a_brake)):
-        flags[row, owner[mask]] = True
+    def check(self) -> None:
+        """Raise :class:`UnstructuredInputError` unless one ego and one dynamics per agent."""
+        if len(self.ego) != 1:
+            raise UnstructuredInputError("ego", f"must hold exactly one row, got {len(self.ego)}")
+        n = len(self.agents)
+        if len(self.agent_dynamics) != n:
+            raise UnstructuredInputError(
+                "agent_dynamics", f"needs {n} entries, got {len(self.agent_dynamics)}"
+            )
 
 
 def check_unstructured(  # noqa: PLR0917  (one engine step)
@@ -198,52 +177,147 @@ def check_unstructured(  # noqa: PLR0917  (one engine step)
     Raises:
         UnstructuredInputError: ``ego`` is not one row or ``agent_dynamics`` mismatches.
     """
+    frame = FrameInputs(ego, agents, ego_dynamics, agent_dynamics, default_ego)
+    results, memory_out = check_unstructured_frames([frame], memory)
+    return results[0], memory_out
+
+
+def check_unstructured_frames(
+    frames: Sequence[FrameInputs], memory: UnstructuredMemory | None = None
+) -> tuple[list[UnstructuredResult], UnstructuredMemory]:
+    """:func:`check_unstructured` on consecutive frames, the memory carried from each to the next.
+
+    The sets do not depend on the memory: those of every ego and agent of every frame
+    are built in shared batches (rows = the ego and the agents of each frame) and
+    intersected in one go (pieces paired within their frame). Only the decisions run frame
+    by frame. The results equal ``F`` calls of :func:`check_unstructured` in order.
+
+    Args:
+        frames: ``(F,)`` frames in time order.
+        memory: Memory before the first frame (``None`` = fresh).
+
+    Returns:
+        ``(results (F,), memory after the last frame)``.
+
+    Raises:
+        UnstructuredInputError: A frame's ego is not one row or its dynamics mismatch.
+    """
     memory = memory or _NO_MEMORY
-    if len(ego) != 1:
-        raise UnstructuredInputError("ego", f"must hold exactly one row, got {len(ego)}")
-    n = len(agents)
-    if len(agent_dynamics) != n:
-        raise UnstructuredInputError(
-            "agent_dynamics", f"needs {n} entries, got {len(agent_dynamics)}"
-        )
-    both = UnstructuredAgents.concat((ego, agents))
-    checked = both.valid()
-    ego_valid = bool(checked[0])
-    valid = checked[1:] & ego_valid
-    ok = bool(valid.all() and ego_valid)
-    idx = np.flatnonzero(valid)
-    sub = agents if ok else agents.take(idx)
-    if ego_valid:
-        rows = None if ok else np.concatenate(([0], idx + 1))
-        ego_sets, sub_sets = _ego_and_agent_sets(
-            both if rows is None else both.take(rows),
-            [ego_dynamics, *(agent_dynamics[int(i)] for i in idx)],
-        )
-    else:
-        ego_sets, sub_sets = TrajectorySets.empty(1), TrajectorySets.empty(0)
-    hits = intersections(ego_sets, sub_sets)
-    sub_dec, memory_out = decide(
-        *hits, ego, sub, ego_dynamics.unstructured.drive_away_max_angle, memory
-    )
-    decisions = sub_dec if ok else _expand(sub_dec, idx, n)
-    agent_sets = sub_sets if ok else TrajectorySets.concat([(sub_sets, idx)], n)
-    proper = resolve_unstructured(decisions, agents, ego, ego_dynamics, default_ego)
-    result = UnstructuredResult(
-        ok, valid, agents.object_id, decisions, ego_sets, agent_sets, proper
-    )
-    invalid_ids = agents.object_id[~valid]
-    return result, memory_out.merged(memory, invalid_ids) if invalid_ids.size else memory_out
+    for frame in frames:
+        frame.check()
+    if not frames:
+        return [], memory
+    batch = _FramesBatch.build(frames)
+    results = []
+    for f, frame in enumerate(frames):
+        result, memory = batch.frame_result(f, frame, memory)
+        results.append(result)
+    return results, memory
 
 
-def _ego_and_agent_sets(
-    both: UnstructuredAgents, dynamics: Sequence[RssDynamics]
-) -> tuple[TrajectorySets, TrajectorySets]:
-    """The sets of the ego (row 0 of ``both``) and of the agents, built in shared batches."""
-    mask = np.zeros(len(both), dtype=bool)
-    mask[0] = True
-    sets = trajectory_sets(both, dynamics, ego=mask)
-    first = sets.owner == 0
-    return sets.select(first, 1), sets.select(~first, len(both) - 1, shift=1)
+@dataclass(frozen=True)
+class _FramesBatch:
+    """The sets and set intersections of ``F`` frames.
+
+    Rows are the ego and the agents of every frame, one frame after the other
+    (``start[f]`` = the ego of frame ``f``); "kept" rows are the valid ones of frames with a
+    valid ego. Pieces are ordered ego pieces first, then agent pieces, each by frame.
+    """
+
+    start: IntArray  # (F + 1,) first row of each frame
+    checked: BoolArray  # (R,) row valid on its own
+    ego_valid: BoolArray  # (F,)
+    kept_start: IntArray  # (F + 1,) first kept row of each frame
+    kept_row: IntArray  # (K,) row of each kept row
+    pieces: TrajectorySets  # owner = local agent index (egos: 0)
+    ego_bounds: IntArray  # (F + 1,) ego pieces of frame f: ego_bounds[f] .. [f + 1]
+    agent_bounds: IntArray  # (F + 1,) likewise, agent pieces
+    flags: tuple[BoolArray, BoolArray, BoolArray]  # (K,) each, the three conditions
+
+    @staticmethod
+    def build(frames: Sequence[FrameInputs]) -> _FramesBatch:
+        count = len(frames)
+        sizes = np.array([1 + len(f.agents) for f in frames], dtype=np.int64)
+        start = np.concatenate(([0], np.cumsum(sizes)))
+        rows = UnstructuredAgents.concat([p for f in frames for p in (f.ego, f.agents)])
+        dynamics = [d for f in frames for d in (f.ego_dynamics, *f.agent_dynamics)]
+        row_frame = np.repeat(np.arange(count), sizes)
+        is_ego = np.zeros(len(rows), dtype=bool)
+        is_ego[start[:-1]] = True
+        checked = rows.valid()
+        ego_valid = checked[start[:-1]]
+        keep = checked & ego_valid[row_frame]
+        kept_row = np.flatnonzero(keep)
+        if kept_row.size < len(rows):
+            rows = rows.take(kept_row)
+            dynamics = [dynamics[i] for i in kept_row.tolist()]
+        sets = trajectory_sets(rows, dynamics, ego=is_ego[kept_row])
+        piece_row = kept_row[sets.owner]
+        frame = row_frame[piece_row]
+        agent = ~is_ego[piece_row]
+        order = np.argsort(agent * count + frame, kind="stable")
+        frame, piece_row = frame[order], piece_row[order]
+        egos = int(np.count_nonzero(~agent))
+        pieces = TrajectorySets(
+            np.take(sets.coords, order, axis=1),  # C order (``[:, order]`` is not)
+            sets.size[order],
+            sets.owner[order],
+            sets.brake[order],
+            sets.count,
+        )
+        flags = intersections(
+            pieces.piece_range(0, egos, pieces.owner[:egos], sets.count),
+            pieces.piece_range(egos, pieces.owner.size, pieces.owner[egos:], sets.count),
+            (frame[:egos], frame[egos:]) if count > 1 else None,
+        )
+        frames_at = np.arange(count + 1)
+        return _FramesBatch(
+            start,
+            checked,
+            ego_valid,
+            np.searchsorted(kept_row, start),
+            kept_row,
+            pieces.piece_range(
+                0, pieces.owner.size, np.maximum(piece_row - start[frame] - 1, 0), sets.count
+            ),
+            np.searchsorted(frame[:egos], frames_at),
+            egos + np.searchsorted(frame[egos:], frames_at),
+            flags,
+        )
+
+    def frame_result(
+        self, f: int, frame: FrameInputs, memory: UnstructuredMemory
+    ) -> tuple[UnstructuredResult, UnstructuredMemory]:
+        """The result of frame ``f`` and the memory after it."""
+        agents, ego = frame.agents, frame.ego
+        n = len(agents)
+        ego_valid = bool(self.ego_valid[f])
+        valid = self.checked[self.start[f] + 1 : self.start[f + 1]] & ego_valid
+        ok = bool(ego_valid and valid.all())
+        lo, hi = self.kept_start[f] + ego_valid, self.kept_start[f + 1]
+        idx = self.kept_row[lo:hi] - (self.start[f] + 1)
+        sub = agents if ok else agents.take(idx)
+        ego_b_oth_f, oth_b_ego_f, ego_b_oth_b = (flag[lo:hi] for flag in self.flags)
+        sub_dec, memory_out = decide(
+            ego_b_oth_f,
+            oth_b_ego_f,
+            ego_b_oth_b,
+            ego,
+            sub,
+            frame.ego_dynamics.unstructured.drive_away_max_angle,
+            memory,
+        )
+        decisions = sub_dec if ok else _expand(sub_dec, idx, n)
+        e_lo, e_hi = self.ego_bounds[f : f + 2]
+        a_lo, a_hi = self.agent_bounds[f : f + 2]
+        ego_sets = self.pieces.piece_range(e_lo, e_hi, self.pieces.owner[e_lo:e_hi], 1)
+        agent_sets = self.pieces.piece_range(a_lo, a_hi, self.pieces.owner[a_lo:a_hi], n)
+        proper = resolve_unstructured(decisions, agents, ego, frame.ego_dynamics, frame.default_ego)
+        result = UnstructuredResult(
+            ok, valid, agents.object_id, decisions, ego_sets, agent_sets, proper
+        )
+        invalid_ids = agents.object_id[~valid]
+        return result, memory_out.merged(memory, invalid_ids) if invalid_ids.size else memory_out
 
 
 def _expand(dec: Decisions, idx: IntArray, n: int) -> Decisions:

@@ -3,7 +3,7 @@
 ad-rss builds each set by successive ``boost::geometry::union_`` of convex hulls of
 footprint groups (a step's vehicle locations, the estimation between two steps, the gap
 to the current footprint). Here the hulls are kept as separate convex pieces: two sets
-intersect iff some pair of their pieces does (:func:`rss.unstructured.engine.intersections`
+intersect iff some pair of their pieces does (:func:`rss.unstructured.intersect.intersections`
 tests all agents at once). A piece is stored as its points; its shapely hull is built on
 demand. :meth:`TrajectorySets.polygons` merges the pieces for display and IoU checks.
 
@@ -108,6 +108,19 @@ class TrajectorySets:
             self.brake[keep],
             count,
         )
+
+    def piece_range(self, lo: int, hi: int, owner: IntArray, count: int) -> TrajectorySets:
+        """Pieces ``lo .. hi - 1`` with new owners ``(hi - lo,)``, for ``count`` agents.
+
+        The part is a view: it shares this set's points and its hull cache (a hull built
+        through either is built for both).
+        """
+        part = TrajectorySets(
+            self.coords[:, lo:hi], self.size[lo:hi], owner, self.brake[lo:hi], count
+        )
+        object.__setattr__(part, "_hulls", self._hulls[lo:hi])
+        object.__setattr__(part, "_built", self._built[lo:hi])
+        return part
 
     def bounds(self) -> tuple[FloatArray, FloatArray]:
         """``(low, high)`` corners of every piece's axis-aligned box, ``(P, 2)`` each."""

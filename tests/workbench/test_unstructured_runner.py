@@ -14,11 +14,14 @@ from typing import Any
 import numpy as np
 import pytest
 
+from loaders import open_drive
 from loaders.maps.model import Lane, LaneKind, LaneMap
 from loaders.records import ActorTable, EgoState, Frame, ObjectClass
 from rss.model import ObjectType
 from rss.params import ConstellationCreationMode, RssParams, SceneSettings
 from rss.params import ObjectClass as DynClass
+from rss.unstructured import UnstructuredMemory
+from tests.rss.unstructured.frames_check import assert_same_memory, assert_same_result
 from tests.workbench.fakes import straight_road
 from workbench.cli.main import main
 from workbench.evaluate.unstructured_runner import UnstructuredRunner
@@ -220,6 +223,42 @@ def test_both_stopped_and_close_means_drive_away_with_memory():
     # the other moves: the drive-away state is dropped and the ego must brake
     moved = runner.step(_frame([{**car, "x": 16.5, "vx": 0.5}], ego_speed=0.0, index=1))
     assert moved.record["decisions"] == {"9": "Brake"}
+
+
+@pytest.mark.parametrize("name", ["pedestrian_crossing", "parking_lot"])
+def test_step_many_equals_step_by_step_on_the_sample_drives(name):
+    """Records, verdicts, the detail (sets, decisions) and the memory after each chunk."""
+    drive = open_drive(SAMPLES / f"{name}.mcap")
+    frames = list(drive.frames())
+    drive.close()
+    one, many = UnstructuredRunner(drive.lane_map), UnstructuredRunner(drive.lane_map)
+    expected, got = [], []
+    for lo in range(0, len(frames), 29):  # chunks that start mid-run of frames with pairs
+        chunk = frames[lo : lo + 29]
+        expected += [one.step(f) for f in chunk]
+        got += many.step_many(chunk)
+        assert_same_memory(many._memory or UnstructuredMemory.empty(), one._memory)
+    assert len(got) == len(frames)
+    checked = 0
+    for g, e in zip(got, expected, strict=True):
+        assert (g.record, g.is_safe, g.culprits, g.label, g.margin) == (
+            e.record,
+            e.is_safe,
+            e.culprits,
+            e.label,
+            e.margin,
+        )
+        assert (g.detail is None) == (e.detail is None)
+        if e.detail is not None:
+            assert g.detail.actor_ids == e.detail.actor_ids
+            for field in e.detail.ego.__dataclass_fields__:
+                np.testing.assert_array_equal(
+                    getattr(g.detail.ego, field), getattr(e.detail.ego, field)
+                )
+            assert_same_result(g.detail.result, e.detail.result)
+            checked += 1
+    assert checked > 20
+    assert any(not e.is_safe for e in expected)
 
 
 # --- CLI and golden files --------------------------------------------------------------------

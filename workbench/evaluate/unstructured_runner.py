@@ -25,15 +25,18 @@ from typing import TYPE_CHECKING, Any
 from rss.conformance import json_number
 from rss.params import ObjectClass, RssParams
 from rss.physics import ACCELERATION_LOWEST_MPS2
-from rss.unstructured import UnstructuredResponse, check_unstructured
+from rss.unstructured import FrameInputs, UnstructuredResponse, check_unstructured_frames
 from workbench.evaluate.pipeline import EngineOutput
 from workbench.rss_adapter import IdMap
 from workbench.unstructured_adapter import UnstructuredScope, frame_to_agents
 
 if TYPE_CHECKING:
+    from collections.abc import Sequence
+
     from loaders.maps.model import LaneMap
     from loaders.records import Frame
     from rss.unstructured import UnstructuredAgents, UnstructuredMemory, UnstructuredResult
+    from workbench.unstructured_adapter import FrameAgents
 
 __all__ = ["UnstructuredDetail", "UnstructuredRunner", "response_label"]
 
@@ -69,7 +72,9 @@ class UnstructuredRunner:
     """Checks the unstructured pairs of every frame (see ``workbench.unstructured_adapter``).
 
     The memory (22.1b of the last safe step, drive-away state) is carried from frame to
-    frame; a fresh runner starts a replay at any frame with empty memory.
+    frame; a fresh runner starts a replay at any frame with empty memory. ``step_many``
+    evaluates consecutive frames in one batch (``rss.unstructured.check_unstructured_frames``)
+    with the same results.
     """
 
     name = "unstructured"
@@ -88,15 +93,45 @@ class UnstructuredRunner:
 
     def step(self, frame: Frame) -> EngineOutput:
         """Evaluate one frame."""
-        inputs = frame_to_agents(frame, self._scope.select(frame), self._params, self._ids)
-        invalid = sorted(inputs.invalid)
-        if len(inputs.agents) == 0:
-            self._memory = None
-            return EngineOutput(record=_safe_record(self._params, invalid), is_safe=True)
+        return self.step_many([frame])[0]
+
+    def step_many(self, frames: Sequence[Frame]) -> list[EngineOutput]:
+        """Evaluate consecutive frames at once (as ``step`` on each in turn).
+
+        Each run of frames with unstructured pairs is one ``check_unstructured_frames``
+        call (sets and intersections of all its frames batched); a frame without pairs
+        forgets the memory, as ad-rss forgets absent objects.
+        """
+        inputs = [
+            frame_to_agents(f, self._scope.select(f), self._params, self._ids) for f in frames
+        ]
+        outputs: list[EngineOutput] = []
+        run: list[FrameAgents] = []
+        for frame_inputs in [*inputs, None]:
+            if frame_inputs is not None and len(frame_inputs.agents):
+                run.append(frame_inputs)
+                continue
+            outputs.extend(self._check(run))
+            run = []
+            if frame_inputs is not None:
+                self._memory = None
+                record = _safe_record(self._params, sorted(frame_inputs.invalid))
+                outputs.append(EngineOutput(record=record, is_safe=True))
+        return outputs
+
+    def _check(self, run: Sequence[FrameAgents]) -> list[EngineOutput]:
+        """Outputs of consecutive frames with pairs, the memory carried through them."""
+        if not run:
+            return []
         ego_dyn = self._params.for_class(ObjectClass.EGO)
-        result, self._memory = check_unstructured(
-            inputs.ego, inputs.agents, ego_dyn, inputs.dynamics, ego_dyn, self._memory
+        results, self._memory = check_unstructured_frames(
+            [FrameInputs(i.ego, i.agents, ego_dyn, i.dynamics, ego_dyn) for i in run],
+            self._memory,
         )
+        return [self._output(i, r) for i, r in zip(run, results, strict=True)]
+
+    def _output(self, inputs: FrameAgents, result: UnstructuredResult) -> EngineOutput:
+        """The record and verdict of one checked frame."""
         pr = result.proper_response
         decisions = {
             actor: str(UnstructuredResponse(int(code)))
@@ -113,7 +148,7 @@ class UnstructuredRunner:
             lat=(pr.lat_min_mps2, pr.lat_max_mps2),
         )
         record["constellations"] = len(inputs.agents)
-        record["invalid_objects"] = invalid
+        record["invalid_objects"] = sorted(inputs.invalid)
         return EngineOutput(
             record=record,
             is_safe=pr.is_safe,

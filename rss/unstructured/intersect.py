@@ -1,0 +1,135 @@
+"""Which trajectory sets intersect: a numpy box filter over piece pairs, then shapely.
+
+Two sets intersect iff some pair of their convex pieces does (touching counts, as ad-rss'
+``not disjoint``). The ego's pieces and the agents' pieces are paired by their axis-aligned
+boxes (exact: the boxes hold the hulls' own vertices) and by the brake flags (a pair of
+two continue-forward pieces decides nothing); only the remaining pairs get hulls and an
+exact shapely test. With many frames at once, pieces carry their frame and only pieces of
+the same frame are paired::
+
+    ego pieces (E)   [f0 f0 f0 | f1 f1 f1 | ...]      sorted by frame
+    agent pieces (A) [f0 f0 ...| f1 ...   | ...]      sorted by frame
+    pairs            each agent piece x the ego pieces of its frame
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+import shapely
+
+from rss.unstructured.sets import hulls_of
+
+if TYPE_CHECKING:
+    from rss.batch import BoolArray, IntArray
+    from rss.unstructured.sets import TrajectorySets
+
+__all__ = ["FIRST_ROUND_MIN_PAIRS", "intersections"]
+
+#: Candidate pairs above which the brake-brake pairs are tested in a first round.
+FIRST_ROUND_MIN_PAIRS = 64
+
+
+def intersections(
+    ego_sets: TrajectorySets,
+    agent_sets: TrajectorySets,
+    frames: tuple[IntArray, IntArray] | None = None,
+) -> tuple[BoolArray, BoolArray, BoolArray]:
+    """``(T_ego,b ∩ T_oth,f, T_oth,b ∩ T_ego,f, T_ego,b ∩ T_oth,b)`` per agent ``(N,)``.
+
+    Candidate piece pairs are those whose boxes overlap and of which at least one piece
+    is a brake piece; only their hulls are built and tested (shapely, ego hulls prepared).
+    With many candidates the brake-brake pairs go first: an agent whose brake set meets
+    the ego's has all three conditions (``T_b ⊆ T_f``), so its other pairs are skipped.
+    The answer does not depend on that order.
+
+    Args:
+        ego_sets: The ego pieces (of one ego, or of one ego per frame).
+        agent_sets: The agents' pieces (owner = agent index, ``N = agent_sets.count``).
+        frames: ``(ego piece frame (E,), agent piece frame (A,))``, each sorted: pair only
+            the pieces of the same frame. ``None``: one frame.
+    """
+    n = agent_sets.count
+    flags = np.zeros((3, n), dtype=bool)
+    if n == 0 or ego_sets.owner.size == 0 or agent_sets.owner.size == 0:
+        return flags[0], flags[1], flags[2]
+    e, a = (
+        _box_pairs(ego_sets, agent_sets)
+        if frames is None
+        else _frame_pairs(ego_sets, agent_sets, *frames)
+    )
+    if e.size > FIRST_ROUND_MIN_PAIRS:
+        both = ego_sets.brake[e] & agent_sets.brake[a]
+        _mark(flags, ego_sets, agent_sets, e[both], a[both])
+        rest = ~both & ~flags[2][agent_sets.owner[a]]
+        e, a = e[rest], a[rest]
+    _mark(flags, ego_sets, agent_sets, e, a)
+    return flags[0], flags[1], flags[2]
+
+
+def _box_pairs(ego_sets: TrajectorySets, agent_sets: TrajectorySets) -> tuple[IntArray, IntArray]:
+    """Candidate pairs ``(e, a)`` of one frame: every ego piece against every agent piece."""
+    e_lo, e_hi = ego_sets.bounds()
+    a_lo, a_hi = agent_sets.bounds()
+    candidates = (
+        (e_lo[:, None, 0] <= a_hi[None, :, 0])
+        & (a_lo[None, :, 0] <= e_hi[:, None, 0])
+        & (e_lo[:, None, 1] <= a_hi[None, :, 1])
+        & (a_lo[None, :, 1] <= e_hi[:, None, 1])
+        & (ego_sets.brake[:, None] | agent_sets.brake[None, :])
+    )
+    e, a = np.nonzero(candidates)
+    return e, a
+
+
+def _frame_pairs(
+    ego_sets: TrajectorySets, agent_sets: TrajectorySets, e_frame: IntArray, a_frame: IntArray
+) -> tuple[IntArray, IntArray]:
+    """Candidate pairs ``(e, a)`` of many frames, ego-major within each frame.
+
+    Agent pieces outside the box of their frame's whole ego set are dropped first (one
+    test per agent piece), then every remaining agent piece is paired with each ego piece
+    of its frame.
+    """
+    e_lo, e_hi = ego_sets.bounds()
+    a_lo, a_hi = agent_sets.bounds()
+    count = int(max(e_frame[-1], a_frame[-1])) + 1
+    e_start = np.searchsorted(e_frame, np.arange(count + 1))
+    e_count = np.diff(e_start)
+    # the box of every frame's ego set (frames without ego pieces: an empty box)
+    has = e_count > 0
+    f_lo = np.full((count, 2), np.inf)
+    f_hi = np.full((count, 2), -np.inf)
+    f_lo[has] = np.minimum.reduceat(e_lo, e_start[:-1][has])
+    f_hi[has] = np.maximum.reduceat(e_hi, e_start[:-1][has])
+    near = np.flatnonzero((f_lo[a_frame] <= a_hi).all(axis=1) & (a_lo <= f_hi[a_frame]).all(axis=1))
+    per = e_count[a_frame[near]]
+    a = np.repeat(near, per)
+    first = np.repeat(e_start[a_frame[near]] - (np.cumsum(per) - per), per)
+    e = first + np.arange(a.size)
+    keep = (
+        (e_lo[e] <= a_hi[a]).all(axis=1)
+        & (a_lo[a] <= e_hi[e]).all(axis=1)
+        & (ego_sets.brake[e] | agent_sets.brake[a])
+    )
+    return e[keep], a[keep]
+
+
+def _mark(
+    flags: BoolArray,
+    ego_sets: TrajectorySets,
+    agent_sets: TrajectorySets,
+    e: IntArray,
+    a: IntArray,
+) -> None:
+    """Test the piece pairs ``(e[k], a[k])`` and set the three conditions ``(3, N)`` they meet."""
+    if e.size == 0:
+        return
+    ego_hulls, agent_hulls = hulls_of([(ego_sets, e), (agent_sets, a)])
+    shapely.prepare(ego_hulls)
+    hit = shapely.intersects(ego_hulls, agent_hulls)
+    e, a = e[hit], a[hit]
+    e_brake, a_brake, owner = ego_sets.brake[e], agent_sets.brake[a], agent_sets.owner[a]
+    for row, mask in enumerate((e_brake, a_brake, e_brake & a_brake)):
+        flags[row, owner[mask]] = True
