@@ -330,7 +330,7 @@ def _verdict(
         verts,
         batch.ego_corners_m,
         area=area,
-        deletion=lambda: deletion_polygons(objs, params, track),
+        deletion=lambda rows: deletion_polygons(objs.take(rows), params, track),
         patches=(
             (lambda cells: patch_grid(patches, _footprints(batch), len(times), cells))
             if patches

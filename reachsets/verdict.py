@@ -37,7 +37,7 @@ def first_hits(
     ego_m: NDArray[np.float64],
     *,
     area: Any = None,
-    deletion: Callable[[], NDArray[np.object_] | None] | None = None,
+    deletion: Callable[[NDArray[np.intp]], NDArray[np.object_] | None] | None = None,
     patches: Callable[[NDArray[np.bool_]], PatchGrid] | None = None,
 ) -> NDArray[np.bool_]:
     """Cells whose reduced set touches the ego footprint, up to each object's first hit.
@@ -46,8 +46,9 @@ def first_hits(
         sets_m: Unreduced convex ``simple`` sets, ``(N, T, V, 2)`` vertices.
         ego_m: Ego footprint corners of each object's frame per step, ``(N, T, 4, 2)``.
         area: Drivable area to trim to (prepared shapely geometry), or ``None``.
-        deletion: Returns the method's deletion polygon per object, ``(N,)`` (called at most
-            once, only when some cell touches), or ``None`` for none.
+        deletion: Returns the method's deletion polygon of the objects at the given rows,
+            ``(M,)`` (called at most once, for the objects with a touching cell), or ``None``
+            for none.
         patches: Returns the rule patches for the cells of a ``(N, T)`` mask (called at
             most once, only when some cell touches), or ``None`` for none.
 
@@ -59,7 +60,13 @@ def first_hits(
     hits = np.zeros(touch.shape, dtype=bool)
     if not touch.any():
         return hits
-    cut = deletion() if deletion is not None else None
+    cut = None
+    if deletion is not None:
+        rows = np.flatnonzero(touch.any(axis=1))
+        found = deletion(rows)
+        if found is not None:
+            cut = np.full(len(touch), None, dtype=object)
+            cut[rows] = found
     grid = patches(touch) if patches is not None else None
     todo = touch.copy()
     size = 1
