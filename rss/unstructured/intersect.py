@@ -22,7 +22,7 @@ import shapely
 from rss.unstructured.sets import hulls_of
 
 if TYPE_CHECKING:
-    from rss.batch import BoolArray, IntArray
+    from rss.batch import BoolArray, FloatArray, IntArray
     from rss.unstructured.sets import TrajectorySets
 
 __all__ = ["FIRST_ROUND_MIN_PAIRS", "intersections"]
@@ -103,17 +103,23 @@ def _frame_pairs(
     f_hi = np.full((count, 2), -np.inf)
     f_lo[has] = np.minimum.reduceat(e_lo, e_start[:-1][has])
     f_hi[has] = np.maximum.reduceat(e_hi, e_start[:-1][has])
-    near = np.flatnonzero((f_lo[a_frame] <= a_hi).all(axis=1) & (a_lo <= f_hi[a_frame]).all(axis=1))
+    near = np.flatnonzero(_overlap(f_lo[a_frame], f_hi[a_frame], a_lo, a_hi))
     per = e_count[a_frame[near]]
     a = np.repeat(near, per)
     first = np.repeat(e_start[a_frame[near]] - (np.cumsum(per) - per), per)
     e = first + np.arange(a.size)
-    keep = (
-        (e_lo[e] <= a_hi[a]).all(axis=1)
-        & (a_lo[a] <= e_hi[e]).all(axis=1)
-        & (ego_sets.brake[e] | agent_sets.brake[a])
-    )
+    keep = _overlap(e_lo[e], e_hi[e], a_lo[a], a_hi[a]) & (ego_sets.brake[e] | agent_sets.brake[a])
     return e[keep], a[keep]
+
+
+def _overlap(lo1: FloatArray, hi1: FloatArray, lo2: FloatArray, hi2: FloatArray) -> BoolArray:
+    """``(M,)`` the boxes ``(M, 2)`` of the two sides overlap (touching included)."""
+    return np.asarray(
+        (lo1[:, 0] <= hi2[:, 0])
+        & (lo2[:, 0] <= hi1[:, 0])
+        & (lo1[:, 1] <= hi2[:, 1])
+        & (lo2[:, 1] <= hi1[:, 1])
+    )
 
 
 def _mark(
