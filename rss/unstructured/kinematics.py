@@ -45,12 +45,14 @@ Real = Any
 
 __all__ = [
     "ANGULAR_VELOCITY_PRECISION",
+    "ROW_LOOP_MIN_COLUMNS",
     "Phase",
     "Points",
     "Real",
     "footprints",
     "pedestrian_move",
     "pedestrian_move_timed",
+    "running_sum",
     "straight_move",
     "time_in_movement",
     "time_to_stop",
@@ -171,6 +173,26 @@ def vehicle_arc(
     return moved.take(skip, p)
 
 
+#: Columns from which :func:`running_sum` adds row by row (numpy's ``cumsum`` along the
+#: first axis walks each column separately, slow on wide arrays).
+ROW_LOOP_MIN_COLUMNS = 256
+
+
+def running_sum(first: FloatArray, steps: FloatArray) -> FloatArray:
+    """``[first, first + s_0, first + s_0 + s_1, ...]`` ``(K + 1, M)`` from ``(M,)``, ``(K, M)``.
+
+    The same additions in the same order as ``np.cumsum`` along the first axis (equal to the
+    bit); wide arrays are summed one row at a time, which is several times faster.
+    """
+    if first.shape[0] < ROW_LOOP_MIN_COLUMNS:
+        return np.cumsum(np.concatenate((first[None], steps)), axis=0)
+    out = np.empty((steps.shape[0] + 1, first.shape[0]))
+    out[0] = first
+    for k in range(steps.shape[0]):
+        np.add(out[k], steps[k], out=out[k + 1])
+    return out
+
+
 def _step_speeds(
     v0: FloatArray, accel: FloatArray, dt: FloatArray, moving: np.ndarray, max_speed_mps: Real
 ) -> tuple[FloatArray, FloatArray]:
@@ -183,7 +205,7 @@ def _step_speeds(
     does not reproduce exactly (tiny accelerations against the tolerances, a cap reached in
     an earlier phase) are iterated step by step.
     """
-    run = np.cumsum(np.concatenate((v0[None], accel * dt)), axis=0)
+    run = running_sum(v0, accel * dt)
     cap = tmax(max_speed_mps, v0, SPEED_PRECISION)
     guess = tmin(cap, np.where(le(run, 0.0, SPEED_PRECISION), 0.0, run), SPEED_PRECISION)
     guess[0] = v0
@@ -281,7 +303,7 @@ def vehicle_integrate(  # noqa: PLR0917  (kernel over arrays)
     radius = np.where(small, np.where(radius >= 0.0, min_radius_m, -min_radius_m), radius)
     arc = turning | small
     dpsi = np.where(arc, dist / radius, 0.0)
-    yaw = np.cumsum(np.concatenate((yaw0[None], dpsi)), axis=0)
+    yaw = running_sum(yaw0, dpsi)
     half = dpsi / 2.0
     chord = np.where(arc, 2.0 * radius * np.sin(half), dist)
     x = x0 + np.sum(chord * np.cos(yaw[:-1] + half), axis=0)

@@ -10,6 +10,7 @@ import pytest
 
 from rss.params import DEFAULT_EGO_DYNAMICS
 from rss.unstructured import FrameInputs, UnstructuredAgents, UnstructuredResponse
+from rss.unstructured.kinematics import ROW_LOOP_MIN_COLUMNS, running_sum
 from tests.rss.unstructured.frames_check import assert_frames_equal_one_by_one, one_by_one
 from tests.rss.unstructured.generators import random_ego, random_frame, random_sequence
 
@@ -90,3 +91,11 @@ def test_empty_chunk_and_empty_frames() -> None:
     none, _ = random_frame(rng, 0)
     assert_frames_equal_one_by_one([])
     assert_frames_equal_one_by_one([FrameInputs(ego, none, EGO, [], EGO)] * 3)
+
+
+@pytest.mark.parametrize("columns", [3, ROW_LOOP_MIN_COLUMNS + 5])
+def test_running_sum_equals_cumsum_to_the_bit(columns: int) -> None:
+    rng = np.random.default_rng(columns)
+    first, steps = rng.normal(size=columns), rng.normal(size=(17, columns)) * 1e3
+    want = np.cumsum(np.concatenate((first[None], steps)), axis=0)
+    np.testing.assert_array_equal(running_sum(first, steps), want)
