@@ -99,4 +99,5 @@ def create_scene(
         if not found:
             skipped.append(ids[i])
     skipped.extend(ids[i] for i in np.flatnonzero(~relevant))
-    return Scene(tuple(out), tuple(sorted(skipped)), ego_on_map=True)
+    areas = tuple(frame.road_areas.get(id(c), ()) for c in out)
+    return Scene(tuple(out), tuple(sorted(skipped)), ego_on_map=True, road_areas=areas)

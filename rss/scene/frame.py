@@ -11,14 +11,14 @@ from __future__ import annotations
 import dataclasses
 import functools
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 import numpy as np
 
 from rss.model import Constellation, ObjectType
 from rss.params import RestrictSpeedLimitMode
-from rss.scene.roadarea import build_road, lane_heading, place_object
+from rss.scene.roadarea import build_road, lane_heading, lane_window, place_object
 from rss.scene.routes import predict_routes
 
 if TYPE_CHECKING:
@@ -64,6 +64,8 @@ class FrameContext:
         tree: Connecting routes from the ego's anchor lane.
         headings: Per box, the heading of each touched lane's point order at its centre.
         ego_velocity: ``(vx, vy)`` of the ego in the map frame.
+        road_areas: Road-area lanes ``(lane, p0, p1)`` of each built constellation, by
+            ``id()`` of the constellation (see ``Scene.road_areas``).
     """
 
     prep: PreparedGraph
@@ -74,6 +76,7 @@ class FrameContext:
     tree: RouteTree
     headings: dict[int, dict[int, float]]
     ego_velocity: tuple[float, float]
+    road_areas: dict[int, tuple[tuple[int, float, float], ...]] = field(default_factory=dict)
 
     def forward(self, box: int) -> bool:
         """Whether the box heads along its anchor lane's point order."""
@@ -164,7 +167,7 @@ class FrameContext:
         if ego is None or other is None:
             return None
         mode = self.settings.restrict_speed_limit_mode
-        return Constellation(
+        built = Constellation(
             constellation_type=kind,
             ego=ego,
             other=other,
@@ -173,6 +176,12 @@ class FrameContext:
             ego_road=ego_road,
             intersecting_road=obj_road,
         )
+        placed = (*ego_placed.items(), *(obj_placed.items() if obj_plans is not None else ()))
+        self.road_areas[id(built)] = tuple(
+            (lane, *lane_window(where.p0, where.p1, forward=where.forward))
+            for lane, where in placed
+        )
+        return built
 
 
 def lane_headings(matches: Matches, n: int) -> dict[int, dict[int, float]]:

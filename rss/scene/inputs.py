@@ -78,11 +78,15 @@ class Scene:
         constellations: Constellations (several per object at intersections).
         not_relevant: Ids of objects without a constellation (far, off the map, no route).
         ego_on_map: Whether the ego touches a lane.
+        road_areas: Per constellation, the map lanes of its road area(s) as
+            ``(lane index, p0, p1)``: the window along the lane's point order (fractions of
+            its length). Empty for the road-boundary constellations. For display.
     """
 
     constellations: tuple[Constellation, ...]
     not_relevant: tuple[int, ...]
     ego_on_map: bool
+    road_areas: tuple[tuple[tuple[int, float, float], ...], ...] = ()
 
 
 def conservative_stop_m(speed_mps: float, dyn: RssDynamics) -> float:

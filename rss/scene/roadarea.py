@@ -47,6 +47,7 @@ __all__ = [
     "cut_between",
     "cut_window",
     "lane_heading",
+    "lane_window",
     "place_object",
 ]
 
@@ -95,6 +96,11 @@ def _road_param(
     lo: float, hi: float, *, forward: bool
 ) -> tuple[float, float]:  # lane point order -> road-area direction
     return (lo, hi) if forward else (1.0 - hi, 1.0 - lo)
+
+
+def lane_window(p0: float, p1: float, *, forward: bool) -> tuple[float, float]:
+    """A road-area window ``[p0, p1]`` of a lane as a window along its point order."""
+    return _road_param(p0, p1, forward=forward)
 
 
 def _direction(prep: PreparedGraph, lane: int, *, forward: bool) -> LaneDrivingDirection:

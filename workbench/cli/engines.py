@@ -72,7 +72,8 @@ def build_engines(
         drive: The opened drive (its lane map feeds the engines).
         names: Engine names from ``--engines``.
         reach_method: ``simple``, ``turn`` or ``bound``.
-        full_geometry: Compute every reachable set in full (needed to draw them).
+        full_geometry: Compute the geometry the viewer draws (every reachable set in full,
+            RSS road-area outlines).
         rss_params: RSS dynamics and scene settings for ``rss`` and ``unstructured``.
     """
     from reachsets.params import ReachMethod  # noqa: PLC0415 - keeps CLI start-up light
@@ -86,7 +87,7 @@ def build_engines(
             known = ", ".join(AVAILABLE_ENGINES)
             raise WorkbenchError(f"--engines: unknown engine {name!r} (known: {known})")
         if name == "rss":
-            engines.append(RssRunner(drive.lane_map, rss_params))
+            engines.append(RssRunner(drive.lane_map, rss_params, outlines=full_geometry))
             continue
         if name == "unstructured":
             engines.append(UnstructuredRunner(drive.lane_map, rss_params))

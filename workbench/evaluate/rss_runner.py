@@ -13,7 +13,7 @@ from rss.params import ObjectClass, RssParams
 from rss.scene import create_scene, prepare
 from rss.scene.boundaries import LEFT_BOUNDARY_ID, RIGHT_BOUNDARY_ID
 from workbench.evaluate.pipeline import EngineOutput
-from workbench.evaluate.rss_detail import RssFrameDetail
+from workbench.evaluate.rss_detail import RssFrameDetail, road_area_outlines
 from workbench.rss_adapter import IdMap, frame_to_scene, lane_graph_from_map
 
 if TYPE_CHECKING:
@@ -43,6 +43,7 @@ class RssRunner:
         params: RssParams | None = None,
         *,
         road_boundaries: bool = False,
+        outlines: bool = False,
     ) -> None:
         """Prepare the lane graph once.
 
@@ -51,8 +52,11 @@ class RssRunner:
             params: RSS dynamics and scene settings (defaults of ``rss.params``).
             road_boundaries: Also check the ego against the road boundaries along its
                 route (off by default, as in CARLA).
+            outlines: Also compute the road-area outline of every constellation (for the
+                viewer; ``detail.road_areas``).
         """
         self._road_boundaries = road_boundaries
+        self._outlines = outlines
         self._params = params or RssParams()
         self._prep: PreparedGraph | None = None
         if lane_map is not None and lane_map.format != "track":
@@ -94,6 +98,9 @@ class RssRunner:
                 labels=tuple(_label(self._ids, int(x)) for x in batch.other.object_id),
                 constellation_type=batch.constellation_type,
                 result=result,
+                road_areas=road_area_outlines(self._prep.graph, scene.road_areas)
+                if self._outlines
+                else (),
             ),
         )
 

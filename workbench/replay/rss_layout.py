@@ -3,8 +3,8 @@
 Per frame the viewer shows one line from the ego to every object it forms a constellation
 with, coloured by constellation type (red and thicker when dangerous) and labelled with the
 longitudinal / lateral distance against the safe distance of the object's most critical
-constellation (and how many more it has); the road area of each
-constellation as an outline; a red box around every dangerous object; the frame's proper
+constellation (and how many more it has); the road area of that constellation as an
+outline; a red box around every dangerous object; the frame's proper
 response and acceleration restrictions; and one state lane per object::
 
     state per object = worst over its constellations of
@@ -156,6 +156,7 @@ class RssColumns:
 class _Row:
     """One constellation, reduced to what is drawn."""
 
+    index: int
     label: str
     ctype: ConstellationType
     state: str
@@ -234,6 +235,7 @@ def _rows(detail: RssFrameDetail) -> list[_Row]:
             state = "safe"
         rows.append(
             _Row(
+                index=c,
                 label=label,
                 ctype=ConstellationType(int(detail.constellation_type[c])),
                 state=state,
@@ -281,13 +283,14 @@ class _Builder:
         where = {str(a): k for k, a in enumerate(actors.ids)}
         ego = np.array([frame.ego.x_m, frame.ego.y_m, Z_LINK_M])
         n_links = n_areas = n_boxes = 0
-        for c, row in enumerate(rows):
-            if c < len(detail.road_areas) and len(detail.road_areas[c]) > 1:
-                self.areas.append(np.asarray(detail.road_areas[c], dtype=np.float64))
+        best = _most_critical(rows)
+        for row in best.values():
+            rings = detail.road_areas[row.index] if detail.road_areas else ()
+            for ring in rings:
+                self.areas.append(np.asarray(ring, dtype=np.float64))
                 danger = row.state == "dangerous"
                 self.area_colors.append(DANGEROUS_COLOR if danger else ROAD_AREA_COLOR)
                 n_areas += 1
-        best = _most_critical(rows)
         per_object = Counter(row.label for row in rows)
         for label, row in best.items():
             k = where.get(label)

@@ -4,6 +4,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import shapely
 from rerun.chunk import RrdReader
 
 from loaders import open_drive
@@ -33,7 +34,7 @@ def _open_window() -> Drive:
 @pytest.fixture(scope="module")
 def cut_in() -> tuple[list[Frame], list[EngineOutput]]:
     drive = _open_window()
-    runner = RssRunner(drive.lane_map)
+    runner = RssRunner(drive.lane_map, outlines=True)
     frames = list(drive.frames())
     outputs = [runner.step(f) for f in frames]
     drive.close()
@@ -157,7 +158,7 @@ def test_replay_logs_state_lanes_constellations_and_plots(tmp_path, cut_in):
     frames, outputs = cut_in
     path = tmp_path / "rss.rrd"
     drive = _open_window()
-    runner = RssRunner(drive.lane_map)
+    runner = RssRunner(drive.lane_map, outlines=True)
     summary = replay_drive(drive, out=path, chunk_frames=7, engines=[runner])
     drive.close()
     assert summary.unsafe_frames == {"rss": sum(not o.is_safe for o in outputs)}
@@ -175,7 +176,7 @@ def test_replay_logs_state_lanes_constellations_and_plots(tmp_path, cut_in):
         flips = sum(a != b for a, b in zip(states[first:], states[first + 1 :], strict=False))
         assert len(changes) == 1 + flips
     store = RrdReader(path).store().stream().collect()
-    for entity in ("/world/rss/constellations", "/world/rss/dangerous"):
+    for entity in ("/world/rss/constellations", "/world/rss/dangerous", "/world/rss/road_areas"):
         table = store.reader(index="frame", contents=entity).to_arrow_table()
         assert table.num_rows == len(frames), entity
     for series in ("/plots/rss/acceleration/lon_max_mps2", "/plots/rss/distances/1/lon_m"):
@@ -197,3 +198,25 @@ def test_intersection_constellations_show_the_distances_to_enter():
     for rows, values in enter.values():
         assert len(rows) == len(values)
         assert np.all(values >= 0)
+
+
+def test_road_area_outlines_reach_from_the_ego_to_the_object(cut_in):
+    frames, outputs = cut_in
+    cols = layout_rss(frames, outputs)
+    assert np.all(cols.area_counts >= cols.link_counts)
+    first_area = np.concatenate([[0], np.cumsum(cols.area_counts)])
+    first_link = np.concatenate([[0], np.cumsum(cols.link_counts)])
+    checked = 0
+    for i, frame in enumerate(frames):
+        ids = [str(a) for a in frame.actors.ids]
+        rings = cols.area_strips_m[first_area[i] : first_area[i + 1], :, :2]
+        area = shapely.union_all([shapely.Polygon(r) for r in rings]) if len(rings) else None
+        for k in range(first_link[i], first_link[i + 1]):
+            row = ids.index(cols.link_labels[k].split(":", 1)[0])
+            obj = shapely.Point(frame.actors.x_m[row], frame.actors.y_m[row])
+            ego = shapely.Point(frame.ego.x_m, frame.ego.y_m)
+            assert area is not None
+            assert area.distance(obj) < frame.actors.length_m[row]
+            assert area.distance(ego) < 5.0
+            checked += 1
+    assert checked > len(frames)
