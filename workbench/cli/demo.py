@@ -95,7 +95,7 @@ class DemoRow:
     duration_s: float = 0.0
     frames_per_s: float = 0.0
     output: str = ""
-    unsafe: int | None = None
+    unsafe: dict[str, int] | None = None
     violations: int | None = None
     error: str = ""
 
@@ -129,15 +129,26 @@ def _replay_one(log: Path, target: Path, engine_names: list[str]) -> DemoRow:
         duration_s=s.duration_s,
         frames_per_s=s.frames_per_s,
         output=target.name,
-        unsafe=sum(s.unsafe_frames.values()) if engine_names else None,
+        unsafe=dict(s.unsafe_frames) if engine_names else None,
         violations=len(s.violations) if engine_names else None,
     )
+
+
+#: Short engine names of the summary table.
+_SHORT = {"reachsets": "reach", "rss": "rss", "unstructured": "unstr."}
+
+
+def _unsafe_cell(unsafe: dict[str, int] | None) -> str:
+    """``reach 120  rss 80  unstr. 0``, or ``-`` for a log that was not evaluated."""
+    if unsafe is None:
+        return "-"
+    return "  ".join(f"{_SHORT.get(name, name)} {n}" for name, n in unsafe.items())
 
 
 def _table(rows: list[DemoRow]) -> Table:
     table = Table(title="workbench demo", title_justify="left")
     numeric = {"frames", "actors", "unsafe", "violations", "frames/s"}
-    columns = ("log", "format", "frames", "actors", "duration", "unsafe", "violations")
+    columns = ("log", "format", "frames", "actors", "duration", "unsafe frames", "violations")
     for name in (*columns, "frames/s", "output"):
         table.add_column(name, justify="right" if name in numeric else "left", overflow="fold")
     for r in rows:
@@ -150,7 +161,7 @@ def _table(rows: list[DemoRow]) -> Table:
             str(r.frames),
             str(r.actors),
             f"{r.duration_s:.1f} s",
-            "-" if r.unsafe is None else str(r.unsafe),
+            _unsafe_cell(r.unsafe),
             "-" if r.violations is None else str(r.violations),
             f"{r.frames_per_s:.0f}",
             r.output,
@@ -166,7 +177,7 @@ def demo(
     ),
     engines: Annotated[
         str, typer.Option("--engines", help="Engines evaluated on every frame ('' for none).")
-    ] = "reachsets",
+    ] = "reachsets,rss,unstructured",
 ) -> None:
     """Re-evaluate every sample log in SAMPLES_DIR, replay it into OUT/<name>.rrd, summarise."""
     from workbench.replay.run import ReplayError  # noqa: PLC0415
