@@ -69,7 +69,7 @@ TYPE_COLORS = {
 }
 DANGEROUS_COLOR = 0xEF5350FF
 #: Road-area outline colour (dangerous constellations use ``DANGEROUS_COLOR``).
-ROAD_AREA_COLOR = 0x80DEEA90
+ROAD_AREA_COLOR = 0x80DEEA70
 #: Response state lanes: record key -> (lane name, values in severity order).
 RESPONSE_LANES = {
     "longitudinal_response": ("longitudinal", ("None", "BrakeMinCorrect", "BrakeMin")),

@@ -38,7 +38,7 @@ if TYPE_CHECKING:
 __all__ = ["RssSink", "object_path"]
 
 STATE_PATH = "rss/structured/state"
-_AREA_RADIUS_M = 0.1
+_AREA_RADIUS_M = 0.06
 _NOT_RELEVANT = "not relevant"
 _RESPONSE_COLORS = {"None": 0x4CAF50FF, "BrakeMinCorrect": 0xFFA726FF, "BrakeMin": 0xEF5350FF}
 
