@@ -142,7 +142,7 @@ class FrameContext:
         obj_placed = ego_placed
         if obj_plans is not None:
             obj_road, obj_placed, limit2 = build_road(self.prep, obj_plans, len(self.prep.graph))
-            limit = np.nanmax([limit, limit2]) if np.isfinite([limit, limit2]).any() else limit
+            limit = limit2 if (math.isnan(limit) or limit2 > limit) else limit
         o = self.objects
         ego = place_object(
             self.matches,

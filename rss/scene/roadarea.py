@@ -25,9 +25,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from rss.model import (
-    LaneDrivingDirection,
     LaneObject,
-    LaneSegment,
     ObjectType,
     OccupiedRegion,
     RoadSegment,
@@ -101,15 +99,6 @@ def _road_param(
 def lane_window(p0: float, p1: float, *, forward: bool) -> tuple[float, float]:
     """A road-area window ``[p0, p1]`` of a lane as a window along its point order."""
     return _road_param(p0, p1, forward=forward)
-
-
-def _direction(prep: PreparedGraph, lane: int, *, forward: bool) -> LaneDrivingDirection:
-    code = LaneDrivingDirection(int(prep.graph.direction[lane]))
-    if code == LaneDrivingDirection.Bidirectional or forward:
-        return code
-    if code == LaneDrivingDirection.Positive:
-        return LaneDrivingDirection.Negative
-    return LaneDrivingDirection.Positive
 
 
 def _extent(
@@ -205,23 +194,16 @@ def build_road(
     road: list[RoadSegment] = []
     placed: dict[int, PlacedLane] = {}
     limits = []
+    segments = prep.lane_segments
     for plan in plans:
         lanes = []
-        scale = plan.p1 - plan.p0
         for lane, fwd in plan.lanes:
-            lp0, lp1 = _road_param(plan.p0, plan.p1, forward=fwd)
-            w_min, w_max = prep.width_range(lane, lp0, lp1)
-            lane_id = lane + id_offset
             lanes.append(
-                LaneSegment(
-                    lane_id=lane_id,
-                    driving_direction=_direction(prep, lane, forward=fwd),
-                    length_min_m=float(prep.length_min_m[lane]) * scale,
-                    length_max_m=float(prep.length_max_m[lane]) * scale,
-                    width_min_m=w_min,
-                    width_max_m=w_max,
+                segments.lane_segment(
+                    lane, forward=fwd, id_offset=id_offset, p0=plan.p0, p1=plan.p1
                 )
             )
+            lane_id = lane + id_offset
             placed[lane] = PlacedLane(lane_id, fwd, plan.p0, plan.p1)
             limits.append(float(prep.graph.speed_limit_mps[lane]))
         road.append(
