@@ -1,4 +1,4 @@
-"""Vehicle trajectory sets, fast: every point of a batch in two kernel calls.
+"""Vehicle trajectory sets, fast: every point of a batch in two (wide batches: three) kernel calls.
 
 Same model and pieces as the step-by-step :func:`rss.unstructured.vehicle.vehicle_sets`
 (its reference; ``tests/rss/unstructured/test_batch.py`` holds them equal), but the agents
@@ -8,7 +8,9 @@ unstructured settings) and the points are computed in two stacked calls:
 1. :func:`vehicle_integrate` with two phases: response time, front (``accel_max`` from
    ``speed_max``) and back (``brake_max`` from ``speed_min``) for every yaw-rate ratio,
    and the continue-forward extremes (the outermost front rows continued after rho with
-   a further yaw-rate change);
+   a further yaw-rate change); in wide batches (many frames) the response-time rows get a
+   call of their own (:data:`SPLIT_MIN_AGENTS`), so they do not idle through the second
+   phase;
 2. :func:`vehicle_arc`: every arc after the response time (back to standstill, front with
    ``brake_min`` and ``accel_max``, the side accelerations).
 
