@@ -72,6 +72,23 @@ def _best(fns: tuple[object, ...], rounds: int, calls: int = 3) -> list[float]:
     return best
 
 
+def _row(labels: tuple[str, ...], ours_ms: tuple[float, float], ref_ms: float) -> str:
+    """A table row: labels, our two times, the binding's time, the two speed-ups."""
+    a, b = ours_ms
+    cells = [*labels, f"{a:.3f}", f"{b:.3f}", f"{ref_ms:.2f}", f"{ref_ms / a:.0f}x"]
+    return "| " + " | ".join([*cells, f"{ref_ms / b:.0f}x"]) + " |"
+
+
+def _section(title: str, rows: list[str], note: str) -> str:
+    """A Markdown section: the table, then the note and the machine's load."""
+    load = ", ".join(f"{x:.1f}" for x in os.getloadavg())
+    return (
+        f"## {title}\n\n"
+        + "\n".join(rows)
+        + f"\n\n{note}; load average {load} ({os.cpu_count()} cores).\n"
+    )
+
+
 def run(quick: bool) -> str:  # noqa: FBT001  (bench/run.py interface)
     """Markdown sections: per call (:func:`run_calls`), batched frames (:func:`run_frames`)."""
     return run_calls(quick) + "\n" + run_frames(quick)
@@ -115,17 +132,12 @@ def run_calls(quick: bool) -> str:  # noqa: FBT001
             ours()
             theirs()
             t_ours, t_sets, t_ref = (t / n * 1e3 for t in _best((ours, with_sets, theirs), repeats))
-            rows.append(
-                f"| {label} | {n} | {t_ours:.3f} | {t_sets:.3f} | {t_ref:.2f} "
-                f"| {t_ref / t_ours:.0f}x | {t_ref / t_sets:.0f}x |"
-            )
-    load = ", ".join(f"{x:.1f}" for x in os.getloadavg())
-    return (
-        "## Unstructured RSS (trajectory sets)\n\n"
-        + "\n".join(rows)
-        + f"\n\nBest call of {repeats} rounds x 3 calls each (CPU time of the process; ours and"
-        f" ad-rss take turns round by round), one ego + N agents per call; load average {load}"
-        f" ({os.cpu_count()} cores).\n"
+            rows.append(_row((label, str(n)), (t_ours, t_sets), t_ref))
+    return _section(
+        "Unstructured RSS (trajectory sets)",
+        rows,
+        f"Best call of {repeats} rounds x 3 calls each (CPU time of the process; ours and"
+        " ad-rss take turns round by round), one ego + N agents per call",
     )
 
 
@@ -171,19 +183,14 @@ def run_frames(quick: bool) -> str:  # noqa: FBT001  (bench/run.py interface)
         t_frame, t_batch, t_ref = _best((per_frame, batched, theirs), rounds, calls=1)
         t_frame, t_batch = (t / (CHUNK * n) * 1e3 for t in (t_frame, t_batch))
         t_ref = t_ref / (BINDING_FRAMES * n) * 1e3
-        rows.append(
-            f"| {n} | {t_frame:.3f} | {t_batch:.3f} | {t_ref:.2f} "
-            f"| {t_ref / t_frame:.0f}x | {t_ref / t_batch:.0f}x |"
-        )
-    load = ", ".join(f"{x:.1f}" for x in os.getloadavg())
-    return (
-        "## Unstructured RSS, consecutive frames (ours batched)\n\n"
-        + "\n".join(rows)
-        + f"\n\n{CHUNK} consecutive frames of one mixed scene (ego + N agents, half"
+        rows.append(_row((str(n),), (t_frame, t_batch), t_ref))
+    return _section(
+        "Unstructured RSS, consecutive frames (ours batched)",
+        rows,
+        f"{CHUNK} consecutive frames of one mixed scene (ego + N agents, half"
         f" pedestrians, advanced {FRAME_DT_S} s per frame); ours once per frame and in one"
         f" batched call (the pipeline's), ad-rss once per frame on the first {BINDING_FRAMES}"
-        f" frames; best of {rounds} rounds (CPU time, taking turns); load average {load}"
-        f" ({os.cpu_count()} cores).\n"
+        f" frames; best of {rounds} rounds (CPU time, taking turns)",
     )
 
 
