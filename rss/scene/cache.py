@@ -12,18 +12,24 @@ built from per-lane constants::
 
 Keys are lane indices of one :class:`~rss.scene.lanegraph.PreparedGraph`; the cache holds at
 most ``2 L`` entries per id offset (``L`` lanes), so it needs no eviction.
+
+:class:`GraphScalars` holds per-lane constants of the same graph as Python lists, for the
+per-object code of scene creation (scalar access to numpy arrays costs ≈ 100 ns a time).
 """
 
 from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+import numpy as np
+
 from rss.model import LaneDrivingDirection, LaneSegment
 
 if TYPE_CHECKING:
     from rss.scene.lanegraph import PreparedGraph
+    from rss.scene.routes import Step
 
-__all__ = ["LaneSegmentCache"]
+__all__ = ["GraphScalars", "LaneSegmentCache"]
 
 _FLIPPED = {
     LaneDrivingDirection.Positive: LaneDrivingDirection.Negative,
@@ -87,3 +93,36 @@ class LaneSegmentCache:
         if whole:
             self._whole[lane, forward, id_offset] = segment
         return segment
+
+
+class GraphScalars:
+    """Per-lane constants of one prepared graph as Python lists (see module docstring).
+
+    Attributes:
+        direction: ``(L,)`` traffic-direction codes relative to the point order.
+        speed_limit_mps: ``(L,)`` speed limits (NaN where unknown).
+        centre_length_m: ``(L,)`` centre-line lengths.
+        centre_xy_m: Per lane, the centre-line points ``[[x, y], ...]``.
+        centre_arc_m: Per lane, the cumulative arc length at each centre-line point
+            (starts at 0).
+        is_intersection: ``(L,)`` lane lies inside an intersection.
+        conflict_rows: ``(L, L)`` ``prep.conflicts`` as nested lists.
+        cross_sections: Memo of ``rss.scene.routes.cross_section`` by step.
+    """
+
+    def __init__(self, prep: PreparedGraph) -> None:
+        """Convert the arrays of ``prep`` once."""
+        g = prep.graph
+        self.direction: list[int] = [int(v) for v in g.direction]
+        self.speed_limit_mps: list[float] = np.asarray(g.speed_limit_mps, float).tolist()
+        self.centre_length_m: list[float] = np.asarray(prep.centre_length_m, float).tolist()
+        self.centre_xy_m: list[list[list[float]]] = [c.tolist() for c in g.centre_m]
+        self.centre_arc_m: list[list[float]] = [
+            np.concatenate(
+                [[0.0], np.cumsum(np.hypot(np.diff(c[:, 0]), np.diff(c[:, 1])))]
+            ).tolist()
+            for c in g.centre_m
+        ]
+        self.is_intersection: list[bool] = np.asarray(g.is_intersection, bool).tolist()
+        self.conflict_rows: list[list[bool]] = np.asarray(prep.conflicts, bool).tolist()
+        self.cross_sections: dict[Step, tuple[Step, ...]] = {}

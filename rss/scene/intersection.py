@@ -42,7 +42,7 @@ __all__ = [
     "route_priority",
 ]
 
-_JUNCTIONS: dict[int, tuple[weakref.ref[PreparedGraph], IntArray]] = {}
+_JUNCTIONS: dict[int, tuple[weakref.ref[PreparedGraph], IntArray, list[int]]] = {}
 
 
 class Relation(enum.Enum):
@@ -74,9 +74,18 @@ def junction_ids(prep: PreparedGraph) -> IntArray:
     Intersection lanes belong to one junction when they overlap, merge, split or link.
     Cached per prepared graph.
     """
+    return _junctions(prep)[0]
+
+
+def junction_list(prep: PreparedGraph) -> list[int]:
+    """:func:`junction_ids` as a Python list (fast scalar access)."""
+    return _junctions(prep)[1]
+
+
+def _junctions(prep: PreparedGraph) -> tuple[IntArray, list[int]]:
     cached = _JUNCTIONS.get(id(prep))
     if cached is not None and cached[0]() is prep:
-        return cached[1]
+        return cached[1], cached[2]
     g = prep.graph
     inter = [int(v) for v in np.flatnonzero(g.is_intersection)]
     members = set(inter)
@@ -90,8 +99,9 @@ def junction_ids(prep: PreparedGraph) -> IntArray:
             pairs.extend((group[0], b) for b in group[1:])
     out = _components(len(g), pairs)
     out[~g.is_intersection] = -1
-    _JUNCTIONS[id(prep)] = (weakref.ref(prep), out)
-    return out
+    as_list = [int(v) for v in out]
+    _JUNCTIONS[id(prep)] = (weakref.ref(prep), out, as_list)
+    return out, as_list
 
 
 def junctions_on(prep: PreparedGraph, route: tuple[Step, ...]) -> list[tuple[int, int, int]]:
@@ -100,11 +110,11 @@ def junctions_on(prep: PreparedGraph, route: tuple[Step, ...]) -> list[tuple[int
     A junction the route starts in is not listed (ad-rss analyses only intersections
     ahead).
     """
-    jid = junction_ids(prep)
+    jid = junction_list(prep)
     out: list[tuple[int, int, int]] = []
     for idx, (lane, _) in enumerate(route):
-        j = int(jid[lane])
-        if j < 0 or idx == 0 or int(jid[route[0][0]]) == j:
+        j = jid[lane]
+        if j < 0 or idx == 0 or jid[route[0][0]] == j:
             continue
         if out and out[-1][0] == j and out[-1][2] == idx - 1:
             out[-1] = (j, out[-1][1], idx)
@@ -116,7 +126,7 @@ def junctions_on(prep: PreparedGraph, route: tuple[Step, ...]) -> list[tuple[int
 def _entries(prep: PreparedGraph, lane: int) -> set[int]:
     """Lanes whose traffic leads into ``lane``."""
     g = prep.graph
-    code = int(g.direction[lane])
+    code = prep.scalars.direction[lane]
     if code == LaneDrivingDirection.Positive:
         return set(g.predecessors[lane])
     if code == LaneDrivingDirection.Negative:
@@ -125,11 +135,11 @@ def _entries(prep: PreparedGraph, lane: int) -> set[int]:
 
 
 def _same_arm(
-    prep: PreparedGraph, jid: IntArray, j: int, incoming: set[int], other: list[int]
+    prep: PreparedGraph, jid: list[int], j: int, incoming: set[int], other: list[int]
 ) -> bool:
     found = False
     for lane in other:
-        inside = int(jid[lane]) == j
+        inside = jid[lane] == j
         if lane in incoming or (inside and _entries(prep, lane) & incoming):
             found = True
         elif inside:
@@ -140,11 +150,11 @@ def _same_arm(
 
 
 def _opposite(
-    prep: PreparedGraph, jid: IntArray, j: int, arms: tuple[set[int], set[int]], other: list[int]
+    prep: PreparedGraph, jid: list[int], j: int, arms: tuple[set[int], set[int]], other: list[int]
 ) -> bool:
     in_arm, out_arm = arms
     start = next((k for k, lane in enumerate(other) if lane in out_arm), None)
-    if start is None and other and int(jid[other[0]]) == j and _entries(prep, other[0]) & out_arm:
+    if start is None and other and jid[other[0]] == j and _entries(prep, other[0]) & out_arm:
         start = 0
     return start is not None and any(lane in in_arm for lane in other[start:])
 
@@ -156,10 +166,10 @@ def relation(
     other: tuple[Step, ...],
 ) -> Relation:
     """How ``other`` meets the intersection ``span`` (from :func:`junctions_on`) of ``route``."""
-    jid = junction_ids(prep)
+    jid = junction_list(prep)
     j, first, last = span
     lanes = [lane for lane, _ in other]
-    if not any(int(jid[lane]) == j for lane in lanes):
+    if not any(jid[lane] == j for lane in lanes):
         return Relation.NONE
     before = route[first - 1]
     in_arm = {lane for lane, _ in cross_section(prep, before)}
@@ -171,8 +181,7 @@ def relation(
         return Relation.SAME_ARM
     mine = [lane for lane, _ in route[first : last + 1]]
     crossing = any(
-        int(jid[lane]) == j and lane not in mine and prep.conflicts[mine, lane].any()
-        for lane in lanes
+        jid[lane] == j and lane not in mine and prep.conflicts[mine, lane].any() for lane in lanes
     )
     if _opposite(prep, jid, j, (in_arm, out_arm), lanes) or not crossing:
         return Relation.OPPOSITE
@@ -187,13 +196,15 @@ def conflict(
     Conflicting: overlapping or merging intersection lanes, else the first lane both
     routes share (routes from one arm, merging routes).
     """
-    inter = prep.graph.is_intersection
+    lists = prep.scalars
+    inter = lists.is_intersection
     obj_lanes = [(io, lane) for io, (lane, _) in enumerate(obj_route) if inter[lane]]
     for ie, (a, _) in enumerate(ego_route):
         if not inter[a]:
             continue
+        row = lists.conflict_rows[a]
         for io, b in obj_lanes:
-            if prep.conflicts[a, b]:
+            if row[b]:
                 return ie, io
     where = {lane: io for io, (lane, _) in enumerate(obj_route)}
     for ie, (a, _) in enumerate(ego_route):

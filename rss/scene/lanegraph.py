@@ -26,7 +26,7 @@ import numpy as np
 import shapely
 
 from rss.errors import RssConstellationError
-from rss.scene.cache import LaneSegmentCache
+from rss.scene.cache import GraphScalars, LaneSegmentCache
 from rss.scene.polylines import Polylines, polylines
 
 if TYPE_CHECKING:
@@ -135,6 +135,11 @@ class PreparedGraph:
     def lane_segments(self) -> LaneSegmentCache:
         """Lane segments of road areas, built once per lane and orientation."""
         return LaneSegmentCache(self)
+
+    @functools.cached_property
+    def scalars(self) -> GraphScalars:
+        """Per-lane constants as Python lists (fast scalar access)."""
+        return GraphScalars(self)
 
     def width_range(self, lane: int, p0: float, p1: float) -> tuple[float, float]:
         """Min and max width of ``lane`` between parametric positions ``p0 <= p1``."""

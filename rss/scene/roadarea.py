@@ -18,6 +18,7 @@ the min / max over the window.
 
 from __future__ import annotations
 
+import bisect
 import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
@@ -151,11 +152,11 @@ def cut_between(
 
 def lane_heading(prep: PreparedGraph, lane: int, param: float) -> float:
     """Heading [rad] of ``lane``'s point order at parametric position ``param`` (centre line)."""
-    c = prep.graph.centre_m[lane]
-    seg = np.hypot(np.diff(c[:, 0]), np.diff(c[:, 1]))
-    s = np.concatenate([[0.0], np.cumsum(seg)])
-    k = int(np.clip(np.searchsorted(s, param * s[-1], side="right") - 1, 0, len(seg) - 1))
-    return math.atan2(float(c[k + 1, 1] - c[k, 1]), float(c[k + 1, 0] - c[k, 0]))
+    lists = prep.scalars
+    s = lists.centre_arc_m[lane]
+    c = lists.centre_xy_m[lane]
+    k = min(max(bisect.bisect_right(s, param * s[-1]) - 1, 0), len(s) - 2)
+    return math.atan2(c[k + 1][1] - c[k][1], c[k + 1][0] - c[k][0])
 
 
 def cut_window(

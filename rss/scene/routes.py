@@ -78,8 +78,15 @@ def lateral(prep: PreparedGraph, lane: int, *, forward: bool, right: bool) -> St
     return nb, forward != opposite
 
 
-def cross_section(prep: PreparedGraph, step: Step) -> list[Step]:
-    """All lanes side by side with ``step`` (itself included), orientations relative to it."""
+def cross_section(prep: PreparedGraph, step: Step) -> tuple[Step, ...]:
+    """All lanes side by side with ``step`` (itself included), orientations relative to it.
+
+    Memoised per prepared graph (``prep.scalars.cross_sections``).
+    """
+    memo = prep.scalars.cross_sections
+    found = memo.get(step)
+    if found is not None:
+        return found
     out = [step]
     for right in (False, True):
         cur: Step | None = step
@@ -89,7 +96,8 @@ def cross_section(prep: PreparedGraph, step: Step) -> list[Step]:
                 out.append(cur)
             else:
                 break
-    return out
+    memo[step] = result = tuple(out)
+    return result
 
 
 def longitudinal(prep: PreparedGraph, lane: int, *, forward: bool, ahead: bool) -> list[Step]:
@@ -155,7 +163,7 @@ def connect(
 
 def follows_traffic(prep: PreparedGraph, lane: int, *, forward: bool) -> bool:
     """Whether travelling ``lane`` with orientation ``forward`` is its traffic direction."""
-    direction = int(prep.graph.direction[lane])
+    direction = prep.scalars.direction[lane]
     if direction == LaneDrivingDirection.Bidirectional:
         return True
     return (direction == LaneDrivingDirection.Positive) == forward
@@ -172,12 +180,12 @@ def predict_routes(
     """
     routes: list[tuple[Step, ...]] = []
     stack: list[tuple[tuple[Step, ...], float]] = [(((start, forward),), -travelled_m)]
-    lengths = prep.centre_length_m
+    lengths = prep.scalars.centre_length_m
     while stack and len(routes) < _MAX_ROUTES:
         route, dist = stack.pop()
         lane, fwd = route[-1]
         nxt = [s for s in longitudinal(prep, lane, forward=fwd, ahead=True) if s not in route]
-        dist += float(lengths[lane])
+        dist += lengths[lane]
         if not nxt or dist > horizon_m:
             routes.append(route)
             continue
