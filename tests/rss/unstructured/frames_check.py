@@ -5,6 +5,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 import numpy as np
+import shapely
 
 from rss.unstructured import UnstructuredMemory, check_unstructured, check_unstructured_frames
 
@@ -21,6 +22,7 @@ __all__ = [
     "GEOMETRY_TOL_M",
     "assert_frames_equal_one_by_one",
     "assert_same_memory",
+    "assert_same_polygons",
     "assert_same_result",
     "assert_same_sets",
     "one_by_one",
@@ -61,6 +63,13 @@ def assert_same_sets(got: TrajectorySets, want: TrajectorySets) -> None:
         np.testing.assert_allclose(pa, pb, rtol=0.0, atol=GEOMETRY_TOL_M)
 
 
+def assert_same_polygons(got: TrajectorySets, want: TrajectorySets) -> None:
+    """The merged sets per agent from the hulls (cached ones included) agree to 1e-9 m²."""
+    for brake in (True, False):
+        for g, w in zip(got.polygons(brake=brake), want.polygons(brake=brake), strict=True):
+            assert shapely.area(shapely.symmetric_difference(g, w)) <= GEOMETRY_TOL_M
+
+
 def assert_same_result(got: UnstructuredResult, want: UnstructuredResult) -> None:
     """Flags, decisions, proper response equal; sets equal to the tolerance."""
     assert got.ok == want.ok
@@ -73,6 +82,8 @@ def assert_same_result(got: UnstructuredResult, want: UnstructuredResult) -> Non
     assert got.proper_response == want.proper_response
     assert_same_sets(got.ego_sets, want.ego_sets)
     assert_same_sets(got.agent_sets, want.agent_sets)
+    assert_same_polygons(got.ego_sets, want.ego_sets)
+    assert_same_polygons(got.agent_sets, want.agent_sets)
 
 
 def assert_same_memory(got: UnstructuredMemory, want: UnstructuredMemory | None) -> None:
