@@ -66,14 +66,15 @@ def _direct(f: FrameContext, box: int, max_m: float) -> tuple[list[Connecting], 
     pos0 = s0 if f.forward(0) else 1.0 - s0
     out: list[Connecting] = []
     found = False
-    for row in m.rows(box):
-        lane = int(m.lane[row])
+    lengths = prep.scalars.centre_length_m
+    for region in m.regions(box):
+        lane = region.lane
         if lane not in tree.k:
             continue
         fwd = tree.forward[lane]
-        mid = 0.5 * float(m.lon_min[row] + m.lon_max[row])
+        mid = 0.5 * (region.lon_min + region.lon_max)
         mid = mid if fwd else 1.0 - mid
-        length = float(prep.centre_length_m[lane])
+        length = lengths[lane]
         beside = 1 if mid >= pos0 else -1
         first = tree.first[lane] or beside
         last = tree.last[lane] or beside

@@ -91,20 +91,21 @@ class FrameContext:
         """
         m = self.matches
         yaw = self.ego.yaw_rad if box == 0 else float(self.objects.yaw_rad[box - 1])
-        anchor = int(m.anchor[box])
+        anchor = m.anchors[box]
+        lengths = self.prep.scalars.centre_length_m
         out = []
-        for i in m.rows(box):
-            lane = int(m.lane[i])
-            cos = math.cos(yaw - float(m.heading_rad[i]))
+        for region in m.regions(box):
+            lane = region.lane
+            cos = math.cos(yaw - region.heading_rad)
             if lane != anchor and abs(cos) < _FOLLOWING_COS:
                 continue
             fwd = cos >= 0.0
             p = (
                 float(m.anchor_s[box])
                 if lane == anchor
-                else 0.5 * float(m.lon_min[i] + m.lon_max[i])
+                else 0.5 * (region.lon_min + region.lon_max)
             )
-            behind = float(self.prep.centre_length_m[lane]) * (p if fwd else 1.0 - p)
+            behind = lengths[lane] * (p if fwd else 1.0 - p)
             out.append((lane, fwd, behind))
         out.sort(key=lambda item: item[0] != anchor)
         return out

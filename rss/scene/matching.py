@@ -18,8 +18,9 @@ gets regions for the lanes it touches; a box touching no lane gets none.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 import shapely
@@ -31,7 +32,15 @@ if TYPE_CHECKING:
     from rss.batch import FloatArray, IntArray
     from rss.scene.lanegraph import PreparedGraph
 
-__all__ = ["BoxArrays", "Matches", "box_polygons", "lane_heading", "match_boxes", "match_route"]
+__all__ = [
+    "BoxArrays",
+    "MatchRow",
+    "Matches",
+    "box_polygons",
+    "lane_heading",
+    "match_boxes",
+    "match_route",
+]
 
 _MIN_AREA_M2 = 1e-3
 _TANGENT_STEP_M = 0.5
@@ -56,6 +65,17 @@ class BoxArrays:
     yaw_rad: FloatArray
     length_m: FloatArray
     width_m: FloatArray
+
+
+class MatchRow(NamedTuple):
+    """One (box, lane) pair of :class:`Matches` as Python scalars (see its attributes)."""
+
+    lane: int
+    lon_min: float
+    lon_max: float
+    lat_min: float
+    lat_max: float
+    heading_rad: float
 
 
 @dataclass(frozen=True)
@@ -92,6 +112,31 @@ class Matches:
     def rows(self, box: int) -> range:
         """Pair indices of ``box`` (pairs are sorted by box)."""
         return range(self.starts[box], self.starts[box + 1])
+
+    @functools.cached_property
+    def _by_box(self) -> list[list[MatchRow]]:
+        rows = list(
+            map(
+                MatchRow,
+                self.lane.tolist(),
+                self.lon_min.tolist(),
+                self.lon_max.tolist(),
+                self.lat_min.tolist(),
+                self.lat_max.tolist(),
+                self.heading_rad.tolist(),
+            )
+        )
+        return [rows[a:b] for a, b in zip(self.starts[:-1], self.starts[1:], strict=True)]
+
+    @functools.cached_property
+    def anchors(self) -> list[int]:
+        """``anchor`` as a Python list."""
+        out: list[int] = self.anchor.tolist()
+        return out
+
+    def regions(self, box: int) -> list[MatchRow]:
+        """The pairs of ``box`` as Python scalars, in pair order (do not modify)."""
+        return self._by_box[box]
 
     def lanes_of(self, box: int) -> IntArray:
         """Lanes touched by ``box``."""

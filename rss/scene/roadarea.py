@@ -108,12 +108,10 @@ def _extent(
     """``((segment, param) of the rear, (segment, param) of the front)`` of a box."""
     where = {lane: (k, fwd) for k, plan in enumerate(plans) for lane, fwd in plan.lanes}
     ends: list[tuple[int, float]] = []
-    for i in matches.rows(box):
-        hit = where.get(int(matches.lane[i]))
+    for region in matches.regions(box):
+        hit = where.get(region.lane)
         if hit is not None:
-            lo, hi = _road_param(
-                float(matches.lon_min[i]), float(matches.lon_max[i]), forward=hit[1]
-            )
+            lo, hi = _road_param(region.lon_min, region.lon_max, forward=hit[1])
             ends += [(hit[0], lo), (hit[0], hi)]
     return (min(ends), max(ends)) if ends else None
 
@@ -144,7 +142,7 @@ def cut_between(
     plans[-1].p1 = max(p1, plans[-1].p0 + 0.001)
     ends = {}
     for box, plan, at in ((rear_box, plans[0], plans[0].p0), (front_box, plans[-1], plans[-1].p1)):
-        lanes = {int(matches.lane[i]) for i in matches.rows(box)}
+        lanes = {region.lane for region in matches.regions(box)}
         lane, fwd = next((s for s in plan.lanes if s[0] in lanes), plan.lanes[0])
         ends[box] = (lane, at if fwd else 1.0 - at)
     return ends
@@ -168,14 +166,12 @@ def cut_window(
     first, last = plans[0], plans[-1]
     lo: list[float] = []
     hi: list[float] = []
-    for i in (i for box in boxes for i in matches.rows(box)):
-        lane = int(matches.lane[i])
+    for region in (r for box in boxes for r in matches.regions(box)):
+        lane = region.lane
         for plan, out, pick in ((first, lo, 0), (last, hi, 1)):
             for lane_k, fwd in plan.lanes:
                 if lane_k == lane:
-                    rng = _road_param(
-                        float(matches.lon_min[i]), float(matches.lon_max[i]), forward=fwd
-                    )
+                    rng = _road_param(region.lon_min, region.lon_max, forward=fwd)
                     out.append(rng[pick])
     if first.segment_type == RoadSegmentType.Normal and lo:
         first.p0 = max(0.0, min(*lo, 1.0 - 0.001))
@@ -244,24 +240,20 @@ def place_object(  # noqa: PLR0917 - one object: identity, matches, velocity
     """
     regions = []
     heading = None
-    for i in matches.rows(box):
-        lane = int(matches.lane[i])
+    anchor = matches.anchors[box]
+    for lane, lon_min, lon_max, lat_min, lat_max, _ in matches.regions(box):
         where = placed.get(lane)
         if where is None:
             continue
-        lo, hi = _road_param(
-            float(matches.lon_min[i]), float(matches.lon_max[i]), forward=where.forward
-        )
-        la, lb = _road_param(
-            float(matches.lat_min[i]), float(matches.lat_max[i]), forward=where.forward
-        )
+        lo, hi = _road_param(lon_min, lon_max, forward=where.forward)
+        la, lb = _road_param(lat_min, lat_max, forward=where.forward)
         span = where.p1 - where.p0
         lo, hi = (lo - where.p0) / span, (hi - where.p0) / span
         if hi < -_EPS or lo > 1.0 + _EPS:
             continue
         lo, hi, la, lb = (min(1.0, max(0.0, v)) for v in (lo, hi, la, lb))
         regions.append(OccupiedRegion(where.lane_id, lo, hi, la, lb))
-        if heading is None or lane == matches.anchor[box]:
+        if heading is None or lane == anchor:
             heading = headings[lane] + (0.0 if where.forward else np.pi)
     if not regions or heading is None:
         return None
