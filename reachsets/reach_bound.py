@@ -18,13 +18,12 @@ wall-following construction in the spirit of the reference's double arc (see doc
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
-import shapely
 
 from reachsets.reach_turn import arc_profile
+from reachsets.walls import track_walls, wall_frame
 
 if TYPE_CHECKING:
     from numpy.typing import NDArray
@@ -32,107 +31,9 @@ if TYPE_CHECKING:
     from reachsets.inputs import ObjectStates
     from reachsets.params import ReachParams
     from reachsets.track import TrackGeometry
+    from reachsets.walls import Walls
 
 __all__ = ["wall_aware_arcs"]
-
-_TANGENT_HALF_STEP_M = 0.5
-
-
-@dataclass(frozen=True, slots=True)
-class _Walls:
-    """Both walls as plain arrays (left first): vertices, segments and arc lengths.
-
-    The right wall's arc length continues after the left's plus a 1 m gap, so one
-    ``np.interp`` serves both; lookups are clamped to each wall's own range.
-
-    Attributes:
-        pts: Vertices of both walls, ``(M, 2)``.
-        cum: Arc length at each vertex, ``(M,)``.
-        start: Segment start points, ``(S, 2)`` (segments within one wall only).
-        seg: Segment vectors, ``(S, 2)``.
-        seg_len: Segment lengths, ``(S,)``.
-        seg_s: Arc length at each segment start, ``(S,)``.
-        seg_wall: Wall of each segment (0 left, 1 right), ``(S,)``.
-        lo: Arc length where each wall starts, ``(2,)``.
-        hi: Arc length where each wall ends, ``(2,)``.
-    """
-
-    pts: NDArray[np.float64]
-    cum: NDArray[np.float64]
-    start: NDArray[np.float64]
-    seg: NDArray[np.float64]
-    seg_len: NDArray[np.float64]
-    seg_s: NDArray[np.float64]
-    seg_wall: NDArray[np.intp]
-    lo: NDArray[np.float64]
-    hi: NDArray[np.float64]
-
-
-def _walls(track: TrackGeometry) -> _Walls:
-    parts = [shapely.get_coordinates(track.left), shapely.get_coordinates(track.right)]
-    cums = []
-    offset = 0.0
-    for pts in parts:
-        seg_len = np.hypot(*np.diff(pts, axis=0).T)
-        cums.append(offset + np.concatenate([[0.0], np.cumsum(seg_len)]))
-        offset = cums[-1][-1] + 1.0
-    seg = np.concatenate([np.diff(p, axis=0) for p in parts])
-    return _Walls(
-        pts=np.concatenate(parts),
-        cum=np.concatenate(cums),
-        start=np.concatenate([p[:-1] for p in parts]),
-        seg=seg,
-        seg_len=np.hypot(seg[:, 0], seg[:, 1]),
-        seg_s=np.concatenate([c[:-1] for c in cums]),
-        seg_wall=np.repeat([0, 1], [len(p) - 1 for p in parts]),
-        lo=np.array([c[0] for c in cums]),
-        hi=np.array([c[-1] for c in cums]),
-    )
-
-
-def _wall_frame(
-    walls: _Walls, x: NDArray[np.float64], y: NDArray[np.float64], which: NDArray[np.intp] | int
-) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
-    """Nearest point and unit tangent of wall ``which`` for ``(P,)`` positions.
-
-    Plain numpy over all point-segment pairs (no shapely calls in the arc loop): the nearest
-    point's arc length ``s`` on the wall, the tangent through the wall points at
-    ``s -+ 0.5 m`` (clamped to the wall's ends). ``which`` is one wall for all positions
-    (only its segments are searched) or one per position (both walls' segments are
-    searched, the other wall's masked: fewer calls for few positions).
-
-    Returns:
-        ``(wx, wy, tx, ty)``, each ``(P,)``.
-    """
-    seg = (
-        np.flatnonzero(walls.seg_wall == which)
-        if isinstance(which, int)
-        else np.arange(len(walls.seg))
-    )
-    start, vec, length = walls.start[seg], walls.seg[seg], walls.seg_len[seg]
-    dx = x[:, None] - start[:, 0]
-    dy = y[:, None] - start[:, 1]
-    sx, sy = vec[:, 0], vec[:, 1]
-    u = np.clip((dx * sx + dy * sy) / np.maximum(length**2, 1e-24), 0.0, 1.0)
-    ox = dx - u * sx
-    oy = dy - u * sy
-    d2 = ox * ox + oy * oy
-    if not isinstance(which, int):
-        d2 = np.where(walls.seg_wall == which[:, None], d2, np.inf)
-    best = np.argmin(d2, axis=1)
-    s = walls.seg_s[seg[best]] + u[np.arange(len(best)), best] * length[best]
-    probe = np.concatenate(
-        [
-            s,
-            np.minimum(s + _TANGENT_HALF_STEP_M, walls.hi[which]),
-            np.maximum(s - _TANGENT_HALF_STEP_M, walls.lo[which]),
-        ]
-    )
-    px = np.interp(probe, walls.cum, walls.pts[:, 0]).reshape(3, -1)
-    py = np.interp(probe, walls.cum, walls.pts[:, 1]).reshape(3, -1)
-    tx, ty = px[1] - px[2], py[1] - py[2]
-    norm = np.maximum(np.hypot(tx, ty), 1e-12)
-    return px[0], py[0], tx / norm, ty / norm
 
 
 def wall_aware_arcs(
@@ -161,7 +62,7 @@ def wall_aware_arcs(
     which = np.repeat([0, 1], n)
     xi, eta, psi, dmax = (np.concatenate([v, v]) for v in (xi, eta, psi, dmax))
     eta = side * eta
-    walls = _walls(track)
+    walls = track_walls(track)
     pose = tuple(
         np.tile(np.asarray(v, dtype=np.float64), 2)[:, None]
         for v in (objects.x_m, objects.y_m, objects.yaw_rad)
@@ -202,7 +103,7 @@ def wall_aware_arcs(
 
 def _turn(  # noqa: PLR0917 - the chord rule needs the whole state
     pose: tuple[NDArray[np.float64], ...],
-    walls: _Walls,
+    walls: Walls,
     which: NDArray[np.intp] | int,
     side: NDArray[np.float64],
     chords: tuple[NDArray[np.float64], ...],
@@ -228,7 +129,7 @@ def _turn(  # noqa: PLR0917 - the chord rule needs the whole state
     x = ox + cos0 * xi - sin0 * eta
     y = oy + sin0 * xi + cos0 * eta
     flat = which if isinstance(which, int) else np.repeat(which, x.shape[1])
-    wx, wy, tx, ty = (v.reshape(x.shape) for v in _wall_frame(walls, x.ravel(), y.ravel(), flat))
+    wx, wy, tx, ty = (v.reshape(x.shape) for v in wall_frame(walls, x.ravel(), y.ravel(), flat))
     clearance = -side * (tx * (y - wy) - ty * (x - wx))
     heading = yaw0 + side * psi
     rel = np.arctan2(np.sin(heading), np.cos(heading)) - np.arctan2(ty, tx)

@@ -1,0 +1,223 @@
+"""Track walls as plain arrays and the nearest wall point of many positions (for ``bound``).
+
+Both walls (left first) are polylines; their segments are grouped into blocks of
+``BLOCK_SEGMENTS`` consecutive segments, each inside a disk around one of its vertices::
+
+         block b: disk of radius r_b around vertex c_b
+           .-------.
+    o----o-+--o----o-+--o----o     wall vertices
+           '-------'
+
+A position ``p`` is at most ``min_b |p - c_b|`` from its wall (``c_b`` lies on the wall) and
+at least ``|p - c_b| - r_b`` from any segment of block ``b``, so only the blocks with
+``|p - c_b| - r_b <= min_b' |p - c_b'|`` can hold the nearest segment. ``wall_frame`` measures
+only their segments, with the same arithmetic as the brute-force ``wall_frame_reference``
+(every position against every segment of its wall), so both give bit-identical results,
+including which segment wins a tie (the lowest index).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+import shapely
+
+if TYPE_CHECKING:
+    from numpy.typing import NDArray
+
+    from reachsets.track import TrackGeometry
+
+__all__ = ["BLOCK_SEGMENTS", "Walls", "track_walls", "wall_frame", "wall_frame_reference"]
+
+#: Consecutive wall segments per block of the candidate search.
+BLOCK_SEGMENTS = 4
+_TANGENT_HALF_STEP_M = 0.5
+#: Relative slack of the block bounds (they only need to be a safe superset).
+_SLACK = 1e-9
+#: Tracks whose walls are kept (the object is held, so its id is never reused meanwhile).
+_CACHE_SIZE = 4
+_CACHE: dict[int, tuple[TrackGeometry, Walls]] = {}
+
+
+@dataclass(frozen=True, slots=True)
+class Walls:
+    """Both walls (left first): vertices, segments, arc lengths and segment blocks.
+
+    The right wall's arc length continues after the left's plus a 1 m gap, so one
+    ``np.interp`` serves both; lookups are clamped to each wall's own range.
+
+    Attributes:
+        pts: Vertices of both walls, ``(M, 2)``.
+        cum: Arc length at each vertex, ``(M,)``.
+        start: Segment start points, ``(S, 2)`` (segments within one wall only).
+        seg: Segment vectors, ``(S, 2)``.
+        seg_len: Segment lengths, ``(S,)``.
+        seg_s: Arc length at each segment start, ``(S,)``.
+        seg_wall: Wall of each segment (0 left, 1 right), ``(S,)``.
+        lo: Arc length where each wall starts, ``(2,)``.
+        hi: Arc length where each wall ends, ``(2,)``.
+        blk_seg: Segments of each block, ascending, a short last block padded by
+            repeating its last segment, ``(B, BLOCK_SEGMENTS)``.
+        blk_centre: A vertex of each block, ``(B, 2)``.
+        blk_radius: Radius around it holding every vertex of the block, ``(B,)``.
+        blk_wall: Wall of each block, ``(B,)``.
+    """
+
+    pts: NDArray[np.float64]
+    cum: NDArray[np.float64]
+    start: NDArray[np.float64]
+    seg: NDArray[np.float64]
+    seg_len: NDArray[np.float64]
+    seg_s: NDArray[np.float64]
+    seg_wall: NDArray[np.intp]
+    lo: NDArray[np.float64]
+    hi: NDArray[np.float64]
+    blk_seg: NDArray[np.intp]
+    blk_centre: NDArray[np.float64]
+    blk_radius: NDArray[np.float64]
+    blk_wall: NDArray[np.intp]
+
+
+def track_walls(track: TrackGeometry) -> Walls:
+    """The walls of ``track``, built once per track (the last few tracks are kept)."""
+    hit = _CACHE.get(id(track))
+    if hit is not None and hit[0] is track:
+        return hit[1]
+    walls = _build(track)
+    if len(_CACHE) >= _CACHE_SIZE:
+        del _CACHE[next(iter(_CACHE))]
+    _CACHE[id(track)] = (track, walls)
+    return walls
+
+
+def _build(track: TrackGeometry) -> Walls:
+    parts = [shapely.get_coordinates(track.left), shapely.get_coordinates(track.right)]
+    cums = []
+    offset = 0.0
+    for pts in parts:
+        seg_len = np.hypot(*np.diff(pts, axis=0).T)
+        cums.append(offset + np.concatenate([[0.0], np.cumsum(seg_len)]))
+        offset = cums[-1][-1] + 1.0
+    seg = np.concatenate([np.diff(p, axis=0) for p in parts])
+    start = np.concatenate([p[:-1] for p in parts])
+    counts = [len(p) - 1 for p in parts]
+    first = np.cumsum([0, *counts])
+    blocks = [
+        np.minimum(np.arange(b, b + BLOCK_SEGMENTS), first[w + 1] - 1)
+        for w in range(2)
+        for b in range(int(first[w]), int(first[w + 1]), BLOCK_SEGMENTS)
+    ]
+    blk_seg = np.array(blocks, dtype=np.intp).reshape(-1, BLOCK_SEGMENTS)
+    centre = start[blk_seg[:, BLOCK_SEGMENTS // 2]]
+    ends = start[blk_seg] + seg[blk_seg]
+    reach = np.maximum(
+        np.hypot(*(start[blk_seg] - centre[:, None]).transpose(2, 0, 1)).max(axis=1),
+        np.hypot(*(ends - centre[:, None]).transpose(2, 0, 1)).max(axis=1),
+    )
+    return Walls(
+        pts=np.concatenate(parts),
+        cum=np.concatenate(cums),
+        start=start,
+        seg=seg,
+        seg_len=np.hypot(seg[:, 0], seg[:, 1]),
+        seg_s=np.concatenate([c[:-1] for c in cums]),
+        seg_wall=np.repeat([0, 1], counts),
+        lo=np.array([c[0] for c in cums]),
+        hi=np.array([c[-1] for c in cums]),
+        blk_seg=blk_seg,
+        blk_centre=centre,
+        blk_radius=reach * (1 + _SLACK) + _SLACK,
+        blk_wall=np.asarray(np.repeat([0, 1], [-(-c // BLOCK_SEGMENTS) for c in counts])),
+    )
+
+
+def _nearest(
+    walls: Walls,
+    x: NDArray[np.float64],
+    y: NDArray[np.float64],
+    seg: NDArray[np.intp],
+    valid: NDArray[np.bool_],
+) -> NDArray[np.float64]:
+    """Arc length of the nearest point on segments ``seg`` (``(P, K)``, ascending per row).
+
+    ``valid`` marks the pairs that may win (``(P, K)``). The pair arithmetic is the same for every
+    search, so the winner does not depend on which other segments were measured.
+    """
+    start, vec, length = walls.start[seg], walls.seg[seg], walls.seg_len[seg]
+    dx = x[:, None] - start[..., 0]
+    dy = y[:, None] - start[..., 1]
+    sx, sy = vec[..., 0], vec[..., 1]
+    u = np.clip((dx * sx + dy * sy) / np.maximum(length**2, 1e-24), 0.0, 1.0)
+    ox = dx - u * sx
+    oy = dy - u * sy
+    best = np.argmin(np.where(valid, ox * ox + oy * oy, np.inf), axis=1)
+    rows = np.arange(len(best))
+    s: NDArray[np.float64] = walls.seg_s[seg[rows, best]] + u[rows, best] * length[rows, best]
+    return s
+
+
+def _frame_at(
+    walls: Walls, s: NDArray[np.float64], which: NDArray[np.intp] | int
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """Wall point at arc length ``s`` and the unit tangent through ``s -+ 0.5 m``."""
+    probe = np.concatenate(
+        [
+            s,
+            np.minimum(s + _TANGENT_HALF_STEP_M, walls.hi[which]),
+            np.maximum(s - _TANGENT_HALF_STEP_M, walls.lo[which]),
+        ]
+    )
+    px = np.interp(probe, walls.cum, walls.pts[:, 0]).reshape(3, -1)
+    py = np.interp(probe, walls.cum, walls.pts[:, 1]).reshape(3, -1)
+    tx, ty = px[1] - px[2], py[1] - py[2]
+    norm = np.maximum(np.hypot(tx, ty), 1e-12)
+    return px[0], py[0], tx / norm, ty / norm
+
+
+def wall_frame_reference(
+    walls: Walls, x: NDArray[np.float64], y: NDArray[np.float64], which: NDArray[np.intp] | int
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """Slow reference of ``wall_frame``: every position against every segment of its wall."""
+    which_p = np.broadcast_to(np.asarray(which, dtype=np.intp), x.shape)
+    seg = np.broadcast_to(np.arange(len(walls.seg)), (len(x), len(walls.seg)))
+    s = _nearest(walls, x, y, seg, walls.seg_wall == which_p[:, None])
+    return _frame_at(walls, s, which)
+
+
+def wall_frame(
+    walls: Walls, x: NDArray[np.float64], y: NDArray[np.float64], which: NDArray[np.intp] | int
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """Nearest point and unit tangent of wall ``which`` for ``(P,)`` positions.
+
+    The nearest point's arc length ``s`` on the wall (searched in the candidate blocks only,
+    see the module docstring), then the tangent through the wall points at ``s -+ 0.5 m``
+    (clamped to the wall's ends).
+
+    Args:
+        walls: Both walls.
+        x: Positions, ``(P,)`` (m).
+        y: Positions, ``(P,)`` (m).
+        which: Wall of every position (0 left, 1 right), or one per position ``(P,)``.
+
+    Returns:
+        ``(wx, wy, tx, ty)``, each ``(P,)``.
+    """
+    cols = (
+        np.flatnonzero(walls.blk_wall == which)
+        if isinstance(which, int)
+        else np.arange(len(walls.blk_wall))
+    )
+    dist = np.hypot(x[:, None] - walls.blk_centre[cols, 0], y[:, None] - walls.blk_centre[cols, 1])
+    if not isinstance(which, int):
+        dist = np.where(walls.blk_wall == which[:, None], dist, np.inf)
+    upper = dist.min(axis=1, keepdims=True)
+    cand = dist - walls.blk_radius[cols] <= upper * (1 + _SLACK) + _SLACK
+    count = cand.sum(axis=1)
+    if len(x) == 0 or not count.all():  # non-finite positions: leave them to the reference
+        return wall_frame_reference(walls, x, y, which)
+    pick = np.argsort(~cand, axis=1, kind="stable")[:, : int(count.max())]
+    seg = walls.blk_seg[cols[pick]].reshape(len(x), -1)
+    valid = np.repeat(np.take_along_axis(cand, pick, axis=1), BLOCK_SEGMENTS, axis=1)
+    return _frame_at(walls, _nearest(walls, x, y, seg, valid), which)

@@ -1,0 +1,82 @@
+"""The block search of the nearest wall point agrees bit for bit with the brute force."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from reachsets.inputs import TrackBounds
+from reachsets.track import build_track
+from reachsets.walls import BLOCK_SEGMENTS, track_walls, wall_frame, wall_frame_reference
+
+
+def _loop_track() -> TrackBounds:
+    """A closed circuit: two half circles (radius 60 m) joined by 120 m straights, 12 m wide."""
+    phi = np.linspace(-np.pi / 2, np.pi / 2, 31)
+    right_turn = np.stack([60.0 + 60.0 * np.cos(phi), 60.0 * np.sin(phi)], 1)
+    centre = np.concatenate(
+        [
+            np.stack([np.linspace(-60.0, 60.0, 25)[:-1], np.full(24, -60.0)], 1),
+            right_turn[:-1],
+            np.stack([np.linspace(60.0, -60.0, 25)[:-1], np.full(24, 60.0)], 1),
+            np.stack([-right_turn[:-1, 0], -right_turn[:-1, 1]], 1),
+        ]
+    )
+    centre = np.concatenate([centre, centre[:1]])
+    tangent = np.gradient(centre, axis=0)
+    normal = np.stack([-tangent[:, 1], tangent[:, 0]], 1) / np.hypot(*tangent.T)[:, None]
+    return TrackBounds(centre + 6.0 * normal, centre - 6.0 * normal)
+
+
+_WALLS = track_walls(build_track(_loop_track()))
+
+
+def _assert_same(x: np.ndarray, y: np.ndarray, which: np.ndarray | int) -> None:
+    got = wall_frame(_WALLS, x, y, which)
+    want = wall_frame_reference(_WALLS, x, y, which)
+    for g, w in zip(got, want, strict=True):
+        np.testing.assert_array_equal(g, w)
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    seed=st.integers(0, 2**32 - 1),
+    spread=st.sampled_from([0.5, 5.0, 40.0, 200.0]),
+    mixed=st.booleans(),
+)
+def test_block_search_equals_brute_force(seed, spread, mixed):
+    rng = np.random.default_rng(seed)
+    n = int(rng.integers(1, 80))
+    pick = rng.integers(0, len(_WALLS.pts), n)
+    x = _WALLS.pts[pick, 0] + rng.normal(0.0, spread, n)
+    y = _WALLS.pts[pick, 1] + rng.normal(0.0, spread, n)
+    which = rng.integers(0, 2, n) if mixed else int(rng.integers(0, 2))
+    _assert_same(x, y, which)
+
+
+@pytest.mark.parametrize("which", [0, 1])
+def test_ties_pick_the_same_segment(which):
+    """Vertices (two segments equally near), the loop's centres (a whole arc equally near)."""
+    x = np.concatenate([_WALLS.pts[:, 0], [60.0, -60.0, 0.0]])
+    y = np.concatenate([_WALLS.pts[:, 1], [0.0, 0.0, 0.0]])
+    _assert_same(x, y, which)
+    _assert_same(x, y, np.full(len(x), which))
+
+
+def test_blocks_cover_each_wall_once():
+    own = _WALLS.seg_wall[_WALLS.blk_seg]
+    assert (own == _WALLS.blk_wall[:, None]).all()
+    assert np.array_equal(np.unique(_WALLS.blk_seg), np.arange(len(_WALLS.seg)))
+    assert (np.diff(_WALLS.blk_seg, axis=1) >= 0).all()
+    assert _WALLS.blk_seg.shape[1] == BLOCK_SEGMENTS
+
+
+def test_non_finite_positions_fall_back_to_the_reference():
+    x = np.array([np.nan, 0.0])
+    y = np.array([0.0, -66.0])
+    got = wall_frame(_WALLS, x, y, 1)
+    want = wall_frame_reference(_WALLS, x, y, 1)
+    for g, w in zip(got, want, strict=True):
+        np.testing.assert_array_equal(g, w)
