@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import enum
 import weakref
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, cast
 
 import numpy as np
 import shapely
@@ -42,6 +42,9 @@ __all__ = [
     "route_priority",
 ]
 
+#: Memoised route relations kept per prepared graph before the memo is emptied.
+_MEMO_SIZE = 100_000
+_MEMO: dict[int, tuple[weakref.ref[PreparedGraph], dict[object, object]]] = {}
 _JUNCTIONS: dict[int, tuple[weakref.ref[PreparedGraph], IntArray, list[int]]] = {}
 
 
@@ -108,8 +111,17 @@ def junctions_on(prep: PreparedGraph, route: tuple[Step, ...]) -> list[tuple[int
     """Intersections a route enters: ``(junction, first index, last index)`` in order.
 
     A junction the route starts in is not listed (ad-rss analyses only intersections
-    ahead).
+    ahead). Memoised like :func:`relation` (do not modify the result).
     """
+    memo = _memo(prep)
+    key = ("junctions_on", route)
+    found = memo.get(key)
+    if found is None:
+        memo[key] = found = _junctions_on(prep, route)
+    return cast("list[tuple[int, int, int]]", found)
+
+
+def _junctions_on(prep: PreparedGraph, route: tuple[Step, ...]) -> list[tuple[int, int, int]]:
     jid = junction_list(prep)
     out: list[tuple[int, int, int]] = []
     for idx, (lane, _) in enumerate(route):
@@ -159,13 +171,41 @@ def _opposite(
     return start is not None and any(lane in in_arm for lane in other[start:])
 
 
+def _memo(prep: PreparedGraph) -> dict[object, object]:
+    """Results of the pure route functions below, per prepared graph (bounded)."""
+    cached = _MEMO.get(id(prep))
+    if cached is None or cached[0]() is not prep:
+        cached = (weakref.ref(prep), {})
+        _MEMO[id(prep)] = cached
+    if len(cached[1]) > _MEMO_SIZE:
+        cached[1].clear()
+    return cached[1]
+
+
 def relation(
     prep: PreparedGraph,
     route: tuple[Step, ...],
     span: tuple[int, int, int],
     other: tuple[Step, ...],
 ) -> Relation:
-    """How ``other`` meets the intersection ``span`` (from :func:`junctions_on`) of ``route``."""
+    """How ``other`` meets the intersection ``span`` (from :func:`junctions_on`) of ``route``.
+
+    Memoised per prepared graph (routes repeat from frame to frame).
+    """
+    memo = _memo(prep)
+    key = ("relation", route, span, other)
+    found = memo.get(key)
+    if found is None:
+        memo[key] = found = _relation(prep, route, span, other)
+    return cast("Relation", found)
+
+
+def _relation(
+    prep: PreparedGraph,
+    route: tuple[Step, ...],
+    span: tuple[int, int, int],
+    other: tuple[Step, ...],
+) -> Relation:
     jid = junction_list(prep)
     j, first, last = span
     lanes = [lane for lane, _ in other]
@@ -194,8 +234,18 @@ def conflict(
     """Indices ``(ie, io)`` of the first conflicting intersection lanes, or ``None``.
 
     Conflicting: overlapping or merging intersection lanes, else the first lane both
-    routes share (routes from one arm, merging routes).
+    routes share (routes from one arm, merging routes). Memoised like :func:`relation`.
     """
+    memo = _memo(prep)
+    key = ("conflict", ego_route, obj_route)
+    if key not in memo:
+        memo[key] = _conflict(prep, ego_route, obj_route)
+    return cast("tuple[int, int] | None", memo[key])
+
+
+def _conflict(
+    prep: PreparedGraph, ego_route: tuple[Step, ...], obj_route: tuple[Step, ...]
+) -> tuple[int, int] | None:
     lists = prep.scalars
     inter = lists.is_intersection
     obj_lanes = [(io, lane) for io, (lane, _) in enumerate(obj_route) if inter[lane]]
