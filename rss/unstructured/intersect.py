@@ -25,10 +25,12 @@ if TYPE_CHECKING:
     from rss.batch import BoolArray, FloatArray, IntArray
     from rss.unstructured.sets import TrajectorySets
 
-__all__ = ["FIRST_ROUND_MIN_PAIRS", "intersections"]
+__all__ = ["FIRST_ROUND_MIN_PAIRS", "SECOND_ROUND_PAIRS", "intersections"]
 
 #: Candidate pairs above which the brake-brake pairs are tested in a first round.
 FIRST_ROUND_MIN_PAIRS = 64
+#: Pairs per (agent, condition) tested in the second round (the others only if it missed).
+SECOND_ROUND_PAIRS = 2
 
 
 def intersections(
@@ -42,7 +44,10 @@ def intersections(
     is a brake piece; only their hulls are built and tested (shapely, ego hulls prepared).
     With many candidates the brake-brake pairs go first: an agent whose brake set meets
     the ego's has all three conditions (``T_b ⊆ T_f``), so its other pairs are skipped.
-    The answer does not depend on that order.
+    Every other pair decides one condition of one agent; of each (agent, condition) the
+    :data:`SECOND_ROUND_PAIRS` pairs with the largest box overlap go next, the rest only
+    where those missed. The answer does not depend on that order (each condition is an
+    "any" over its pairs).
 
     Args:
         ego_sets: The ego pieces (of one ego, or of one ego per frame).
@@ -54,24 +59,51 @@ def intersections(
     flags = np.zeros((3, n), dtype=bool)
     if n == 0 or ego_sets.owner.size == 0 or agent_sets.owner.size == 0:
         return flags[0], flags[1], flags[2]
+    boxes = (*ego_sets.bounds(), *agent_sets.bounds())
     e, a = (
-        _box_pairs(ego_sets, agent_sets)
+        _box_pairs(ego_sets, agent_sets, boxes)
         if frames is None
-        else _frame_pairs(ego_sets, agent_sets, *frames)
+        else _frame_pairs(ego_sets, agent_sets, boxes, *frames)
     )
     if e.size > FIRST_ROUND_MIN_PAIRS:
         both = ego_sets.brake[e] & agent_sets.brake[a]
         _mark(flags, ego_sets, agent_sets, e[both], a[both])
         rest = ~both & ~flags[2][agent_sets.owner[a]]
         e, a = e[rest], a[rest]
+        # each remaining pair decides one condition (row 0 or 1) of its agent: first the
+        # pairs of each (agent, condition) whose boxes overlap most, then the undecided rest
+        row = np.where(ego_sets.brake[e], 0, 1)
+        group = agent_sets.owner[a] * 2 + row
+        first = _best_per_group(group, _overlap_area(boxes, e, a), SECOND_ROUND_PAIRS)
+        _mark(flags, ego_sets, agent_sets, e[first], a[first])
+        rest = ~first & ~flags[row, agent_sets.owner[a]]
+        e, a = e[rest], a[rest]
     _mark(flags, ego_sets, agent_sets, e, a)
     return flags[0], flags[1], flags[2]
 
 
-def _box_pairs(ego_sets: TrajectorySets, agent_sets: TrajectorySets) -> tuple[IntArray, IntArray]:
+def _overlap_area(boxes: tuple[FloatArray, ...], e: IntArray, a: IntArray) -> FloatArray:
+    """``(M,)`` area [m²] of the overlap of the pairs' boxes."""
+    e_lo, e_hi, a_lo, a_hi = boxes
+    side = np.minimum(e_hi[e], a_hi[a]) - np.maximum(e_lo[e], a_lo[a])
+    return np.asarray(side[:, 0] * side[:, 1])
+
+
+def _best_per_group(group: IntArray, score: FloatArray, count: int) -> BoolArray:
+    """``(M,)`` the ``count`` items of highest ``score`` in each group."""
+    order = np.lexsort((-score, group))
+    ranked = group[order]
+    rank = np.arange(order.size) - np.searchsorted(ranked, ranked)
+    best = np.zeros(order.size, dtype=bool)
+    best[order[rank < count]] = True
+    return best
+
+
+def _box_pairs(
+    ego_sets: TrajectorySets, agent_sets: TrajectorySets, boxes: tuple[FloatArray, ...]
+) -> tuple[IntArray, IntArray]:
     """Candidate pairs ``(e, a)`` of one frame: every ego piece against every agent piece."""
-    e_lo, e_hi = ego_sets.bounds()
-    a_lo, a_hi = agent_sets.bounds()
+    e_lo, e_hi, a_lo, a_hi = boxes
     candidates = (
         (e_lo[:, None, 0] <= a_hi[None, :, 0])
         & (a_lo[None, :, 0] <= e_hi[:, None, 0])
@@ -84,7 +116,11 @@ def _box_pairs(ego_sets: TrajectorySets, agent_sets: TrajectorySets) -> tuple[In
 
 
 def _frame_pairs(
-    ego_sets: TrajectorySets, agent_sets: TrajectorySets, e_frame: IntArray, a_frame: IntArray
+    ego_sets: TrajectorySets,
+    agent_sets: TrajectorySets,
+    boxes: tuple[FloatArray, ...],
+    e_frame: IntArray,
+    a_frame: IntArray,
 ) -> tuple[IntArray, IntArray]:
     """Candidate pairs ``(e, a)`` of many frames, ego-major within each frame.
 
@@ -92,8 +128,7 @@ def _frame_pairs(
     test per agent piece), then every remaining agent piece is paired with each ego piece
     of its frame.
     """
-    e_lo, e_hi = ego_sets.bounds()
-    a_lo, a_hi = agent_sets.bounds()
+    e_lo, e_hi, a_lo, a_hi = boxes
     count = int(max(e_frame[-1], a_frame[-1])) + 1
     e_start = np.searchsorted(e_frame, np.arange(count + 1))
     e_count = np.diff(e_start)
