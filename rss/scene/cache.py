@@ -23,10 +23,11 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from rss.model import LaneDrivingDirection, LaneSegment
+from rss.model import LaneDrivingDirection, LaneSegment, RoadSegment
 
 if TYPE_CHECKING:
     from rss.scene.lanegraph import PreparedGraph
+    from rss.scene.roadarea import PlacedLane
     from rss.scene.routes import Step
 
 __all__ = ["GraphScalars", "LaneSegmentCache"]
@@ -53,6 +54,12 @@ class LaneSegmentCache:
         self._length_min = prep.length_min_m.tolist()
         self._length_max = prep.length_max_m.tolist()
         self._whole: dict[tuple[int, bool, int], LaneSegment] = {}
+        #: Whole (uncut) road segments of ``rss.scene.roadarea.build_road`` by plan
+        #: ``(lanes, type, before, after, id offset)``: segment, placed lanes, finite limits.
+        self.whole_roads: dict[
+            tuple[object, ...],
+            tuple[RoadSegment, tuple[tuple[int, PlacedLane], ...], tuple[float, ...]],
+        ] = {}
 
     def direction(self, lane: int, *, forward: bool) -> LaneDrivingDirection:
         """Traffic direction of ``lane`` relative to a road area it runs ``forward`` in."""
@@ -105,6 +112,10 @@ class GraphScalars:
         centre_xy_m: Per lane, the centre-line points ``[[x, y], ...]``.
         centre_arc_m: Per lane, the cumulative arc length at each centre-line point
             (starts at 0).
+        left_neighbour: ``(L,)`` adjacent lane on the left, -1 for none.
+        right_neighbour: ``(L,)`` adjacent lane on the right, -1 for none.
+        left_opposite: ``(L,)`` the left neighbour's point order is reversed.
+        right_opposite: ``(L,)`` the right neighbour's point order is reversed.
         is_intersection: ``(L,)`` lane lies inside an intersection.
         conflict_rows: ``(L, L)`` ``prep.conflicts`` as nested lists.
         cross_sections: Memo of ``rss.scene.routes.cross_section`` by step.
@@ -123,6 +134,10 @@ class GraphScalars:
             ).tolist()
             for c in g.centre_m
         ]
+        self.left_neighbour: list[int] = [int(v) for v in g.left_neighbour]
+        self.right_neighbour: list[int] = [int(v) for v in g.right_neighbour]
+        self.left_opposite: list[bool] = [bool(v) for v in g.left_opposite]
+        self.right_opposite: list[bool] = [bool(v) for v in g.right_opposite]
         self.is_intersection: list[bool] = np.asarray(g.is_intersection, bool).tolist()
         self.conflict_rows: list[list[bool]] = np.asarray(prep.conflicts, bool).tolist()
         self.cross_sections: dict[Step, tuple[Step, ...]] = {}

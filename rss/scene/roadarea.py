@@ -190,29 +190,43 @@ def build_road(
     """
     road: list[RoadSegment] = []
     placed: dict[int, PlacedLane] = {}
-    limits = []
-    segments = prep.lane_segments
+    limits: list[float] = []
+    whole = prep.lane_segments.whole_roads
     for plan in plans:
-        lanes = []
-        for lane, fwd in plan.lanes:
-            lanes.append(
-                segments.lane_segment(
-                    lane, forward=fwd, id_offset=id_offset, p0=plan.p0, p1=plan.p1
-                )
-            )
-            lane_id = lane + id_offset
-            placed[lane] = PlacedLane(lane_id, fwd, plan.p0, plan.p1)
-            limits.append(float(prep.graph.speed_limit_mps[lane]))
-        road.append(
-            RoadSegment(
-                lanes=tuple(lanes),
-                segment_type=plan.segment_type,
-                min_length_before_intersecting_area_m=plan.before_m,
-                min_length_after_intersecting_area_m=plan.after_m,
-            )
+        if plan.p0 == 0.0 and plan.p1 == 1.0:
+            key = (tuple(plan.lanes), plan.segment_type, plan.before_m, plan.after_m, id_offset)
+            built = whole.get(key)
+            if built is None:
+                whole[key] = built = _segment(prep, plan, id_offset)
+        else:
+            built = _segment(prep, plan, id_offset)
+        road.append(built[0])
+        placed.update(built[1])
+        limits.extend(built[2])
+    return tuple(road), placed, max(limits) if limits else float("nan")
+
+
+def _segment(
+    prep: PreparedGraph, plan: SegmentPlan, id_offset: int
+) -> tuple[RoadSegment, tuple[tuple[int, PlacedLane], ...], tuple[float, ...]]:
+    """One plan as ``(road segment, placed lanes, finite speed limits of its lanes)``."""
+    segments = prep.lane_segments
+    speed_limits = prep.scalars.speed_limit_mps
+    lanes = []
+    placed = []
+    for lane, fwd in plan.lanes:
+        lanes.append(
+            segments.lane_segment(lane, forward=fwd, id_offset=id_offset, p0=plan.p0, p1=plan.p1)
         )
-    finite = [v for v in limits if np.isfinite(v)]
-    return tuple(road), placed, max(finite) if finite else float("nan")
+        placed.append((lane, PlacedLane(lane + id_offset, fwd, plan.p0, plan.p1)))
+    segment = RoadSegment(
+        lanes=tuple(lanes),
+        segment_type=plan.segment_type,
+        min_length_before_intersecting_area_m=plan.before_m,
+        min_length_after_intersecting_area_m=plan.after_m,
+    )
+    finite = tuple(v for lane, _ in plan.lanes if math.isfinite(v := speed_limits[lane]))
+    return segment, tuple(placed), finite
 
 
 def place_object(  # noqa: PLR0917 - one object: identity, matches, velocity

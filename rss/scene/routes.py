@@ -69,12 +69,12 @@ class RouteTree:
 
 def lateral(prep: PreparedGraph, lane: int, *, forward: bool, right: bool) -> Step | None:
     """The neighbour of ``lane`` to the right (or left) of the road-area direction."""
-    g = prep.graph
+    lists = prep.scalars
     use_right = right == forward
-    nb = int(g.right_neighbour[lane] if use_right else g.left_neighbour[lane])
+    nb = (lists.right_neighbour if use_right else lists.left_neighbour)[lane]
     if nb < 0:
         return None
-    opposite = bool(g.right_opposite[lane] if use_right else g.left_opposite[lane])
+    opposite = (lists.right_opposite if use_right else lists.left_opposite)[lane]
     return nb, forward != opposite
 
 
