@@ -129,17 +129,17 @@ def _reach(route: tuple[Step, ...], lengths: list[float], start_m: float) -> dic
 def _merging(f: FrameContext, box: int, max_m: float) -> Connecting | None:
     """The shortest merge of an ego and an object route within ``max_m``, if any."""
     prep = f.prep
-    lengths = prep.centre_length_m
+    lengths = prep.scalars.centre_length_m
     best: tuple[float, Connecting] | None = None
     ego, obj = (
         [
-            (r, _reach(r, [float(lengths[s[0]]) for s in r], behind))
+            (r, _reach(r, [lengths[s[0]] for s in r], behind))
             for lane, fwd, behind in f.starts(b)
             for r in predict_routes(prep, lane, forward=fwd, horizon_m=max_m, travelled_m=behind)
         ]
         for b in (0, box)
     )
-    inter = prep.graph.is_intersection
+    inter = prep.scalars.is_intersection
     for er, e_at in ego:
         for orr, o_at in obj:
             common = [lane for lane, _ in er if lane in o_at]
@@ -162,7 +162,7 @@ def _merging(f: FrameContext, box: int, max_m: float) -> Connecting | None:
                 if any(s[0] == lane for s in orr)
                 else [s[0] for s in orr]
             )
-            through = bool(inter[cut_e].any() or inter[cut_o].any())
+            through = any(inter[x] for x in cut_e) or any(inter[x] for x in cut_o)
             if best is None or min(a, b) < best[0]:
                 best = (min(a, b), Connecting(Kind.MERGING, -1, max(a, b), through))
     return None if best is None else best[1]
