@@ -23,8 +23,6 @@ import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-import numpy as np
-
 from rss.model import (
     LaneObject,
     ObjectType,
@@ -95,6 +93,10 @@ def _road_param(
     lo: float, hi: float, *, forward: bool
 ) -> tuple[float, float]:  # lane point order -> road-area direction
     return (lo, hi) if forward else (1.0 - hi, 1.0 - lo)
+
+
+def _unit(v: float) -> float:
+    return min(1.0, max(0.0, v))
 
 
 def lane_window(p0: float, p1: float, *, forward: bool) -> tuple[float, float]:
@@ -259,16 +261,16 @@ def place_object(  # noqa: PLR0917 - one object: identity, matches, velocity
         where = placed.get(lane)
         if where is None:
             continue
-        lo, hi = _road_param(lon_min, lon_max, forward=where.forward)
-        la, lb = _road_param(lat_min, lat_max, forward=where.forward)
-        span = where.p1 - where.p0
-        lo, hi = (lo - where.p0) / span, (hi - where.p0) / span
+        fwd, p0 = where.forward, where.p0
+        lo, hi = _road_param(lon_min, lon_max, forward=fwd)
+        la, lb = _road_param(lat_min, lat_max, forward=fwd)
+        span = where.p1 - p0
+        lo, hi = (lo - p0) / span, (hi - p0) / span
         if hi < -_EPS or lo > 1.0 + _EPS:
             continue
-        lo, hi, la, lb = (min(1.0, max(0.0, v)) for v in (lo, hi, la, lb))
-        regions.append(OccupiedRegion(where.lane_id, lo, hi, la, lb))
+        regions.append(OccupiedRegion(where.lane_id, _unit(lo), _unit(hi), _unit(la), _unit(lb)))
         if heading is None or lane == anchor:
-            heading = headings[lane] + (0.0 if where.forward else np.pi)
+            heading = headings[lane] + (0.0 if fwd else math.pi)
     if not regions or heading is None:
         return None
     if route_heading_rad is not None:
