@@ -18,12 +18,13 @@ wall-following construction in the spirit of the reference's double arc (see doc
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
 
 from reachsets.reach_turn import arc_profile
-from reachsets.walls import track_walls, wall_frame
+from reachsets.walls import track_walls, wall_frame, wall_frame_reference
 
 if TYPE_CHECKING:
     from numpy.typing import NDArray
@@ -33,7 +34,75 @@ if TYPE_CHECKING:
     from reachsets.track import TrackGeometry
     from reachsets.walls import Walls
 
-__all__ = ["wall_aware_arcs"]
+__all__ = ["wall_aware_arcs", "wall_aware_arcs_reference"]
+
+
+@dataclass(frozen=True, slots=True)
+class _Curves:
+    """The object pose and wall of each edge curve (left curves first, then right ones).
+
+    Attributes:
+        x: Object x of each curve, ``(R, 1)`` (m).
+        y: Object y, ``(R, 1)`` (m).
+        yaw: Object heading, ``(R, 1)`` (rad).
+        cos: Its cosine, ``(R, 1)``.
+        sin: Its sine, ``(R, 1)``.
+        side: ``+1.0`` for a left curve, ``-1.0`` for a right one, ``(R, 1)``.
+        which: Wall of each curve (0 left, 1 right), ``(R,)``.
+    """
+
+    x: NDArray[np.float64]
+    y: NDArray[np.float64]
+    yaw: NDArray[np.float64]
+    cos: NDArray[np.float64]
+    sin: NDArray[np.float64]
+    side: NDArray[np.float64]
+    which: NDArray[np.intp]
+
+    def take(self, rows: NDArray[np.intp] | slice) -> _Curves:
+        """The curves ``rows``."""
+        return _Curves(
+            x=self.x[rows],
+            y=self.y[rows],
+            yaw=self.yaw[rows],
+            cos=self.cos[rows],
+            sin=self.sin[rows],
+            side=self.side[rows],
+            which=self.which[rows],
+        )
+
+
+def _start(
+    objects: ObjectStates, params: ReachParams
+) -> tuple[_Curves, tuple[NDArray[np.float64], ...]]:
+    """Both sides' ``turn`` arcs as rows (left, then right): curves and ``(xi, eta, psi, dmax)``."""
+    xi, eta, psi, dmax = arc_profile(objects, params)
+    n = len(objects)
+    side = np.repeat([1.0, -1.0], n)[:, None]
+    xi, eta, psi, dmax = (np.concatenate([v, v]) for v in (xi, eta, psi, dmax))
+    x, y, yaw = (
+        np.tile(np.asarray(v, dtype=np.float64), 2)[:, None]
+        for v in (objects.x_m, objects.y_m, objects.yaw_rad)
+    )
+    curves = _Curves(x, y, yaw, np.cos(yaw), np.sin(yaw), side, np.repeat([0, 1], n))
+    return curves, (xi, side * eta, psi, dmax)
+
+
+def _advance(  # noqa: PLR0917 - one chord of the curve state
+    arcs: tuple[NDArray[np.float64], ...],
+    rows: NDArray[np.intp] | slice,
+    k: int,
+    dpsi: NDArray[np.float64],
+    side: NDArray[np.float64],
+    params: ReachParams,
+) -> None:
+    """Point ``k`` of curves ``rows`` after turning chord ``k`` by ``dpsi`` (in place)."""
+    xi, eta, psi, _ = arcs
+    c = params.arc_step_m
+    chord = psi[rows, k - 1] + dpsi / 2
+    xi[rows, k] = xi[rows, k - 1] + c * np.cos(chord)
+    eta[rows, k] = eta[rows, k - 1] + side * c * np.sin(chord)
+    psi[rows, k] = psi[rows, k - 1] + dpsi
 
 
 def wall_aware_arcs(
@@ -42,8 +111,10 @@ def wall_aware_arcs(
     """Body-frame wall-aware edge curves of every object, both sides at once.
 
     Each curve is the ``turn`` arc until its first chord that may not turn towards its wall:
-    every chord's rule is first checked on the ``turn`` arcs at once, and only the curves
-    that turn back are continued chord by chord from there.
+    every chord's rule is first checked on the ``turn`` arcs at once (all curves, both walls),
+    and only the curves that turn back are continued chord by chord from there, together
+    (each from its own first turning-back chord on; ``wall_aware_arcs_reference`` is the
+    curve-by-curve reference).
 
     Args:
         objects: The objects (N).
@@ -53,83 +124,82 @@ def wall_aware_arcs(
     Returns:
         ``((xi, eta) left, (xi, eta) right)``, each array ``(N, P)``.
     """
-    xi, eta, psi, dmax = arc_profile(objects, params)
     n = len(objects)
     if n == 0:
+        xi, eta, _, _ = arc_profile(objects, params)
         return (xi, eta), (xi, -eta)
-    # rows: the left curves, then the right ones
-    side = np.repeat([1.0, -1.0], n)[:, None]
-    which = np.repeat([0, 1], n)
-    xi, eta, psi, dmax = (np.concatenate([v, v]) for v in (xi, eta, psi, dmax))
-    eta = side * eta
+    curves, (xi, eta, psi, dmax) = _start(objects, params)
     walls = track_walls(track)
-    pose = tuple(
-        np.tile(np.asarray(v, dtype=np.float64), 2)[:, None]
-        for v in (objects.x_m, objects.y_m, objects.yaw_rad)
-    )
-    # every chord of the turn arcs at once, one wall at a time (many positions)
-    back = np.concatenate(
-        [
-            ~_turn(
-                tuple(v[rows] for v in pose),
-                walls,
-                w,
-                side[rows],
-                (xi[rows, :-1], eta[rows, :-1], psi[rows, :-1], dmax[rows]),
-                params,
-            )[1]
-            for w, rows in ((0, slice(0, n)), (1, slice(n, 2 * n)))
-        ]
-    )
+    back = ~_turn(curves, walls, (xi[:, :-1], eta[:, :-1], psi[:, :-1], dmax), params)[1]
     rows = np.flatnonzero(back.any(axis=1))
-    start = np.argmax(back[rows], axis=1) + 1  # first chord (1-based) that turns back
-    c = params.arc_step_m
-    for k in range(int(start.min()) if len(rows) else params.arc_points, params.arc_points):
-        r = rows[k >= start]
-        dpsi = _turn(
-            (pose[0][r], pose[1][r], pose[2][r]),
-            walls,
-            which[r],
-            side[r],
-            (xi[r, k - 1 : k], eta[r, k - 1 : k], psi[r, k - 1 : k], dmax[r, k - 1 : k]),
-            params,
-        )[0][:, 0]
-        chord = psi[r, k - 1] + dpsi / 2
-        xi[r, k] = xi[r, k - 1] + c * np.cos(chord)
-        eta[r, k] = eta[r, k - 1] + side[r, 0] * c * np.sin(chord)
-        psi[r, k] = psi[r, k - 1] + dpsi
+    if len(rows):
+        start = (np.argmax(back[rows], axis=1) + 1)[:, None]  # first chord turning back
+        sub = curves.take(rows)
+        arcs = tuple(v[rows] for v in (xi, eta, psi, dmax))
+        for k in range(int(start.min()), params.arc_points):
+            dpsi = _turn(sub, walls, tuple(v[:, k - 1 : k] for v in arcs), params)[0]
+            # curves that still follow their turn arc keep it (their chord is not turned)
+            now = k >= start
+            old = tuple(v[:, k].copy() for v in arcs[:3])
+            _advance(arcs, slice(None), k, dpsi[:, 0], sub.side[:, 0], params)
+            for v, o in zip(arcs[:3], old, strict=True):
+                v[:, k] = np.where(now[:, 0], v[:, k], o)
+        xi[rows], eta[rows] = arcs[0], arcs[1]
     return (xi[:n], eta[:n]), (xi[n:], eta[n:])
 
 
-def _turn(  # noqa: PLR0917 - the chord rule needs the whole state
-    pose: tuple[NDArray[np.float64], ...],
+def wall_aware_arcs_reference(
+    objects: ObjectStates, params: ReachParams, track: TrackGeometry
+) -> tuple[tuple[NDArray[np.float64], NDArray[np.float64]], ...]:
+    """Slow reference of ``wall_aware_arcs``: curve by curve, chord by chord.
+
+    Each curve keeps its ``turn`` arc while every chord so far may turn towards the wall;
+    from its first chord that may not, every chord is turned by the rule.
+    """
+    curves, arcs = _start(objects, params)
+    walls = track_walls(track)
+    for i in range(2 * len(objects)):
+        one = curves.take(slice(i, i + 1))
+        ruled = False
+        for k in range(1, params.arc_points):
+            chord = tuple(v[i : i + 1, k - 1 : k] for v in arcs)
+            dpsi, towards = _turn(one, walls, chord, params, reference=True)
+            ruled = ruled or not bool(towards[0, 0])
+            if ruled:
+                _advance(arcs, slice(i, i + 1), k, dpsi[:, 0], one.side[:, 0], params)
+    n = len(objects)
+    xi, eta = arcs[0], arcs[1]
+    return (xi[:n], eta[:n]), (xi[n:], eta[n:])
+
+
+def _turn(
+    curves: _Curves,
     walls: Walls,
-    which: NDArray[np.intp] | int,
-    side: NDArray[np.float64],
     chords: tuple[NDArray[np.float64], ...],
     params: ReachParams,
+    *,
+    reference: bool = False,
 ) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
     """Turn of the next chord from each point, and whether it may turn towards the wall.
 
     Args:
-        pose: Object ``(x, y, yaw)`` of each curve, each ``(R, 1)``.
+        curves: The curves (R).
         walls: Both walls.
-        which: Wall of each curve (0 left, 1 right), ``(R,)``, or one wall for all.
-        side: ``+1.0`` for a left curve, ``-1.0`` for a right one, ``(R, 1)``.
         chords: Body-frame start ``(xi, eta)`` of each chord, the heading change so far
             (towards the wall side) and the chord's largest turn, each ``(R, K)``.
         params: Arc parameters.
+        reference: Search the walls with the brute-force reference.
 
     Returns:
         ``dpsi`` and ``towards``, each ``(R, K)``.
     """
     xi, eta, psi, dmax = chords
-    ox, oy, yaw0 = pose
-    cos0, sin0 = np.cos(yaw0), np.sin(yaw0)
-    x = ox + cos0 * xi - sin0 * eta
-    y = oy + sin0 * xi + cos0 * eta
-    flat = which if isinstance(which, int) else np.repeat(which, x.shape[1])
-    wx, wy, tx, ty = (v.reshape(x.shape) for v in wall_frame(walls, x.ravel(), y.ravel(), flat))
+    side, yaw0 = curves.side, curves.yaw
+    x = curves.x + curves.cos * xi - curves.sin * eta
+    y = curves.y + curves.sin * xi + curves.cos * eta
+    flat = np.repeat(curves.which, x.shape[1]) if x.shape[1] > 1 else curves.which
+    search = wall_frame_reference if reference else wall_frame
+    wx, wy, tx, ty = (v.reshape(x.shape) for v in search(walls, x.ravel(), y.ravel(), flat))
     clearance = -side * (tx * (y - wy) - ty * (x - wx))
     heading = yaw0 + side * psi
     rel = np.arctan2(np.sin(heading), np.cos(heading)) - np.arctan2(ty, tx)

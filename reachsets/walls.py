@@ -34,6 +34,8 @@ __all__ = ["BLOCK_SEGMENTS", "Walls", "track_walls", "wall_frame", "wall_frame_r
 #: Consecutive wall segments per block of the candidate search.
 BLOCK_SEGMENTS = 4
 _TANGENT_HALF_STEP_M = 0.5
+#: Above this many positions of both walls, each wall is searched on its own (no gathers).
+_SPLIT_POSITIONS = 128
 #: Relative slack of the block bounds (they only need to be a safe superset).
 _SLACK = 1e-9
 #: Tracks whose walls are kept (the object is held, so its id is never reused meanwhile).
@@ -51,18 +53,23 @@ class Walls:
     Attributes:
         pts: Vertices of both walls, ``(M, 2)``.
         cum: Arc length at each vertex, ``(M,)``.
-        start: Segment start points, ``(S, 2)`` (segments within one wall only).
-        seg: Segment vectors, ``(S, 2)``.
+        start: Segment start points as ``(x, y)`` rows, ``(2, S)`` (segments within one
+            wall only).
+        seg: Segment vectors as ``(x, y)`` rows, ``(2, S)``.
         seg_len: Segment lengths, ``(S,)``.
         seg_s: Arc length at each segment start, ``(S,)``.
         seg_wall: Wall of each segment (0 left, 1 right), ``(S,)``.
         lo: Arc length where each wall starts, ``(2,)``.
         hi: Arc length where each wall ends, ``(2,)``.
+        seg_len2: Squared segment lengths floored at 1e-24 m^2, ``(S,)``.
         blk_seg: Segments of each block, ascending, a short last block padded by
-            repeating its last segment, ``(B, BLOCK_SEGMENTS)``.
-        blk_centre: A vertex of each block, ``(B, 2)``.
-        blk_radius: Radius around it holding every vertex of the block, ``(B,)``.
-        blk_wall: Wall of each block, ``(B,)``.
+            repeating its last segment, then one empty block (never a candidate),
+            ``(B + 1, BLOCK_SEGMENTS)``.
+        blk_x: A vertex of each block (infinite for the empty block), ``(B + 1,)``.
+        blk_y: Its y, ``(B + 1,)``.
+        blk_radius: Radius around it holding every vertex of the block, ``(B + 1,)``.
+        blk_wall: Wall of each block (-1 for the empty block), ``(B + 1,)``.
+        wall_blk: Blocks of each wall, ascending, padded with the empty block, ``(2, Bw)``.
     """
 
     pts: NDArray[np.float64]
@@ -74,10 +81,13 @@ class Walls:
     seg_wall: NDArray[np.intp]
     lo: NDArray[np.float64]
     hi: NDArray[np.float64]
+    seg_len2: NDArray[np.float64]
     blk_seg: NDArray[np.intp]
-    blk_centre: NDArray[np.float64]
+    blk_x: NDArray[np.float64]
+    blk_y: NDArray[np.float64]
     blk_radius: NDArray[np.float64]
     blk_wall: NDArray[np.intp]
+    wall_blk: NDArray[np.intp]
 
 
 def track_walls(track: TrackGeometry) -> Walls:
@@ -116,20 +126,29 @@ def _build(track: TrackGeometry) -> Walls:
         np.hypot(*(start[blk_seg] - centre[:, None]).transpose(2, 0, 1)).max(axis=1),
         np.hypot(*(ends - centre[:, None]).transpose(2, 0, 1)).max(axis=1),
     )
+    per_wall = [-(-c // BLOCK_SEGMENTS) for c in counts]
+    empty = len(blk_seg)
+    wall_blk = np.full((2, max(per_wall)), empty, dtype=np.intp)
+    wall_blk[0, : per_wall[0]] = np.arange(per_wall[0])
+    wall_blk[1, : per_wall[1]] = per_wall[0] + np.arange(per_wall[1])
+    seg_len = np.hypot(seg[:, 0], seg[:, 1])
     return Walls(
         pts=np.concatenate(parts),
         cum=np.concatenate(cums),
-        start=start,
-        seg=seg,
-        seg_len=np.hypot(seg[:, 0], seg[:, 1]),
+        start=np.ascontiguousarray(start.T),
+        seg=np.ascontiguousarray(seg.T),
+        seg_len=seg_len,
         seg_s=np.concatenate([c[:-1] for c in cums]),
         seg_wall=np.repeat([0, 1], counts),
         lo=np.array([c[0] for c in cums]),
         hi=np.array([c[-1] for c in cums]),
-        blk_seg=blk_seg,
-        blk_centre=centre,
-        blk_radius=reach * (1 + _SLACK) + _SLACK,
-        blk_wall=np.asarray(np.repeat([0, 1], [-(-c // BLOCK_SEGMENTS) for c in counts])),
+        seg_len2=np.maximum(seg_len**2, 1e-24),
+        blk_seg=np.concatenate([blk_seg, blk_seg[-1:]]),
+        blk_x=np.append(centre[:, 0], np.inf),
+        blk_y=np.append(centre[:, 1], np.inf),
+        blk_radius=np.append(reach * (1 + _SLACK) + _SLACK, 0.0),
+        blk_wall=np.repeat([0, 1, -1], [*per_wall, 1]),
+        wall_blk=wall_blk,
     )
 
 
@@ -145,16 +164,16 @@ def _nearest(
     ``valid`` marks the pairs that may win (``(P, K)``). The pair arithmetic is the same for every
     search, so the winner does not depend on which other segments were measured.
     """
-    start, vec, length = walls.start[seg], walls.seg[seg], walls.seg_len[seg]
-    dx = x[:, None] - start[..., 0]
-    dy = y[:, None] - start[..., 1]
-    sx, sy = vec[..., 0], vec[..., 1]
-    u = np.clip((dx * sx + dy * sy) / np.maximum(length**2, 1e-24), 0.0, 1.0)
+    dx = x[:, None] - walls.start[0][seg]
+    dy = y[:, None] - walls.start[1][seg]
+    sx, sy = walls.seg[0][seg], walls.seg[1][seg]
+    u = np.minimum(np.maximum((dx * sx + dy * sy) / walls.seg_len2[seg], 0.0), 1.0)
     ox = dx - u * sx
     oy = dy - u * sy
     best = np.argmin(np.where(valid, ox * ox + oy * oy, np.inf), axis=1)
     rows = np.arange(len(best))
-    s: NDArray[np.float64] = walls.seg_s[seg[rows, best]] + u[rows, best] * length[rows, best]
+    win = seg[rows, best]
+    s: NDArray[np.float64] = walls.seg_s[win] + u[rows, best] * walls.seg_len[win]
     return s
 
 
@@ -181,7 +200,7 @@ def wall_frame_reference(
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """Slow reference of ``wall_frame``: every position against every segment of its wall."""
     which_p = np.broadcast_to(np.asarray(which, dtype=np.intp), x.shape)
-    seg = np.broadcast_to(np.arange(len(walls.seg)), (len(x), len(walls.seg)))
+    seg = np.broadcast_to(np.arange(len(walls.seg_len)), (len(x), len(walls.seg_len)))
     s = _nearest(walls, x, y, seg, walls.seg_wall == which_p[:, None])
     return _frame_at(walls, s, which)
 
@@ -204,20 +223,25 @@ def wall_frame(
     Returns:
         ``(wx, wy, tx, ty)``, each ``(P,)``.
     """
-    cols = (
-        np.flatnonzero(walls.blk_wall == which)
-        if isinstance(which, int)
-        else np.arange(len(walls.blk_wall))
-    )
-    dist = np.hypot(x[:, None] - walls.blk_centre[cols, 0], y[:, None] - walls.blk_centre[cols, 1])
-    if not isinstance(which, int):
-        dist = np.where(walls.blk_wall == which[:, None], dist, np.inf)
-    upper = dist.min(axis=1, keepdims=True)
-    cand = dist - walls.blk_radius[cols] <= upper * (1 + _SLACK) + _SLACK
-    count = cand.sum(axis=1)
-    if len(x) == 0 or not count.all():  # non-finite positions: leave them to the reference
+    if len(x) == 0:
         return wall_frame_reference(walls, x, y, which)
-    pick = np.argsort(~cand, axis=1, kind="stable")[:, : int(count.max())]
-    seg = walls.blk_seg[cols[pick]].reshape(len(x), -1)
-    valid = np.repeat(np.take_along_axis(cand, pick, axis=1), BLOCK_SEGMENTS, axis=1)
+    if not isinstance(which, int) and len(x) > _SPLIT_POSITIONS:
+        out = np.empty((4, len(x)))
+        for wall in (0, 1):
+            mine = which == wall
+            out[:, mine] = wall_frame(walls, x[mine], y[mine], wall)
+        return out[0], out[1], out[2], out[3]
+    cols = walls.wall_blk[which]
+    dx = x[:, None] - walls.blk_x[cols]
+    dy = y[:, None] - walls.blk_y[cols]
+    d2 = dx * dx + dy * dy
+    upper = np.sqrt(d2.min(axis=1, keepdims=True))
+    if not np.isfinite(upper.sum()):  # non-finite positions: leave them to the reference
+        return wall_frame_reference(walls, x, y, which)
+    reach = upper * (1 + _SLACK) + _SLACK + walls.blk_radius[cols]
+    cand = d2 <= reach * reach
+    empty = len(walls.blk_seg) - 1
+    pick = np.sort(np.where(cand, cols, empty), axis=1)[:, : int(cand.sum(axis=1).max())]
+    seg = walls.blk_seg[pick].reshape(len(x), -1)
+    valid = np.repeat(pick < empty, BLOCK_SEGMENTS, axis=1)
     return _frame_at(walls, _nearest(walls, x, y, seg, valid), which)

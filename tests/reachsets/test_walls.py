@@ -1,4 +1,5 @@
-"""The block search of the nearest wall point agrees bit for bit with the brute force."""
+"""The block search of the nearest wall point and the batched wall-aware curves agree bit for
+bit with their slow references."""
 
 from __future__ import annotations
 
@@ -8,8 +9,12 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from reachsets.inputs import TrackBounds
+from reachsets.params import ReachMethod, ReachParams
+from reachsets.reach_bound import wall_aware_arcs, wall_aware_arcs_reference
+from reachsets.reach_turn import steering_arcs
 from reachsets.track import build_track
 from reachsets.walls import BLOCK_SEGMENTS, track_walls, wall_frame, wall_frame_reference
+from tests.reachsets.helpers import objects
 
 
 def _loop_track() -> TrackBounds:
@@ -48,7 +53,7 @@ def _assert_same(x: np.ndarray, y: np.ndarray, which: np.ndarray | int) -> None:
 )
 def test_block_search_equals_brute_force(seed, spread, mixed):
     rng = np.random.default_rng(seed)
-    n = int(rng.integers(1, 80))
+    n = int(rng.integers(1, 300))  # above 128 positions of both walls: split by wall
     pick = rng.integers(0, len(_WALLS.pts), n)
     x = _WALLS.pts[pick, 0] + rng.normal(0.0, spread, n)
     y = _WALLS.pts[pick, 1] + rng.normal(0.0, spread, n)
@@ -66,9 +71,9 @@ def test_ties_pick_the_same_segment(which):
 
 
 def test_blocks_cover_each_wall_once():
-    own = _WALLS.seg_wall[_WALLS.blk_seg]
-    assert (own == _WALLS.blk_wall[:, None]).all()
-    assert np.array_equal(np.unique(_WALLS.blk_seg), np.arange(len(_WALLS.seg)))
+    own = _WALLS.seg_wall[_WALLS.blk_seg[:-1]]
+    assert (own == _WALLS.blk_wall[:-1, None]).all()
+    assert np.array_equal(np.unique(_WALLS.blk_seg[:-1]), np.arange(len(_WALLS.seg_len)))
     assert (np.diff(_WALLS.blk_seg, axis=1) >= 0).all()
     assert _WALLS.blk_seg.shape[1] == BLOCK_SEGMENTS
 
@@ -80,3 +85,31 @@ def test_non_finite_positions_fall_back_to_the_reference():
     want = wall_frame_reference(_WALLS, x, y, 1)
     for g, w in zip(got, want, strict=True):
         np.testing.assert_array_equal(g, w)
+
+
+def test_wall_aware_arcs_equal_the_curve_by_curve_reference():
+    """Objects across and beside the loop's walls, slow to fast: every curve bit for bit."""
+    track = build_track(_loop_track())
+    rng = np.random.default_rng(11)
+    n = 40
+    pick = rng.integers(0, len(track.centre_m), n)
+    lat = rng.uniform(-7.0, 7.0, n)
+    tangent = np.gradient(track.centre_m, axis=0)[pick]
+    rows = zip(
+        track.centre_m[pick, 0] + track.normal[pick, 0] * lat,
+        track.centre_m[pick, 1] + track.normal[pick, 1] * lat,
+        np.arctan2(tangent[:, 1], tangent[:, 0]) + rng.normal(0.0, 0.4, n),
+        rng.uniform(0.0, 60.0, n),
+        strict=True,
+    )
+    objs = objects(*rows)
+    params = ReachParams(method=ReachMethod.BOUND)
+    got = wall_aware_arcs(objs, params, track)
+    want = wall_aware_arcs_reference(objs, params, track)
+    for g_side, w_side in zip(got, want, strict=True):
+        for g, w in zip(g_side, w_side, strict=True):
+            np.testing.assert_array_equal(g, w)
+    # the case is not trivial: many curves leave their turn arc
+    left_turn = steering_arcs(objs, params, 1.0)
+    left_eta = got[0][1]
+    assert np.any(np.abs(left_eta - left_turn[1]) > 0.1, axis=1).sum() >= 5
