@@ -135,7 +135,9 @@ def _merging(f: FrameContext, box: int, max_m: float) -> Connecting | None:
         [
             (r, _reach(r, [lengths[s[0]] for s in r], behind))
             for lane, fwd, behind in f.starts(b)
-            for r in predict_routes(prep, lane, forward=fwd, horizon_m=max_m, travelled_m=behind)
+            for r in predict_routes(
+                prep, lane, forward=fwd, horizon_m=max_m, travelled_m=behind, memo=f.route_memo
+            )
         ]
         for b in (0, box)
     )

@@ -29,7 +29,7 @@ if TYPE_CHECKING:
     from rss.scene.lanegraph import PreparedGraph
     from rss.scene.matching import Matches
     from rss.scene.roadarea import SegmentPlan
-    from rss.scene.routes import RouteTree, Step
+    from rss.scene.routes import RouteMemo, RouteTree, Step
 
 __all__ = ["FrameContext", "ego_routes", "lane_headings"]
 
@@ -66,6 +66,7 @@ class FrameContext:
         ego_velocity: ``(vx, vy)`` of the ego in the map frame.
         road_areas: Road-area lanes ``(lane, p0, p1)`` of each built constellation, by
             ``id()`` of the constellation (see ``Scene.road_areas``).
+        route_memo: Predicted routes of this frame (``rss.scene.routes.predict_routes``).
     """
 
     prep: PreparedGraph
@@ -77,6 +78,7 @@ class FrameContext:
     headings: dict[int, dict[int, float]]
     ego_velocity: tuple[float, float]
     road_areas: dict[int, tuple[tuple[int, float, float], ...]] = field(default_factory=dict)
+    route_memo: RouteMemo = field(default_factory=dict)
 
     def forward(self, box: int) -> bool:
         """Whether the box heads along its anchor lane's point order."""
@@ -116,7 +118,12 @@ class FrameContext:
         for lane, fwd, behind in self.starts(box):
             out.extend(
                 predict_routes(
-                    self.prep, lane, forward=fwd, horizon_m=horizon_m, travelled_m=behind
+                    self.prep,
+                    lane,
+                    forward=fwd,
+                    horizon_m=horizon_m,
+                    travelled_m=behind,
+                    memo=self.route_memo,
                 )
             )
         return out
@@ -205,5 +212,6 @@ def ego_routes(f: FrameContext, horizon_m: float) -> list[tuple[Step, ...]]:
         forward=base[-1][1],
         horizon_m=horizon_m,
         travelled_m=behind if len(base) == 1 else 0.0,
+        memo=f.route_memo,
     )
     return [base + tail[1:] for tail in tails]

@@ -18,6 +18,7 @@ lane is its connecting route.
 from __future__ import annotations
 
 import heapq
+import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -26,7 +27,15 @@ from rss.model import LaneDrivingDirection
 if TYPE_CHECKING:
     from rss.scene.lanegraph import PreparedGraph
 
-__all__ = ["RouteTree", "Step", "connect", "cross_section", "follows_traffic", "predict_routes"]
+__all__ = [
+    "RouteMemo",
+    "RouteTree",
+    "Step",
+    "connect",
+    "cross_section",
+    "follows_traffic",
+    "predict_routes",
+]
 
 _LATERAL_COST_M = 0.1
 _MAX_ROUTES = 16
@@ -169,25 +178,60 @@ def follows_traffic(prep: PreparedGraph, lane: int, *, forward: bool) -> bool:
     return (direction == LaneDrivingDirection.Positive) == forward
 
 
+#: Per frame: ``(start, forward, travelled) -> [(lo, hi, routes)]`` (:func:`predict_routes`).
+RouteMemo = dict[tuple[int, bool, float], list[tuple[float, float, tuple[tuple[Step, ...], ...]]]]
+
+
 def predict_routes(
-    prep: PreparedGraph, start: int, *, forward: bool, horizon_m: float, travelled_m: float = 0.0
+    prep: PreparedGraph,
+    start: int,
+    *,
+    forward: bool,
+    horizon_m: float,
+    travelled_m: float = 0.0,
+    memo: RouteMemo | None = None,
 ) -> list[tuple[Step, ...]]:
     """Routes a vehicle on ``start`` may take in its driving direction, up to ``horizon_m``.
 
     Branches at every lane with several successors (at most 16 routes); a route ends at
     the horizon or where the map ends. ``travelled_m`` is the part of ``start`` already
     behind the vehicle.
+
+    With ``memo``, a search also records the horizon interval ``[lo, hi)`` in which every
+    horizon comparison it made comes out the same; a later call from the same start with
+    a horizon inside it returns the stored routes (the search would run identically).
     """
+    key = (start, forward, travelled_m)
+    if memo is not None:
+        for lo, hi, found in memo.get(key, ()):
+            if lo <= horizon_m < hi:
+                return list(found)
+    routes, lo, hi = _search(prep, (start, forward), horizon_m, travelled_m)
+    if memo is not None:
+        memo.setdefault(key, []).append((lo, hi, tuple(routes)))
+    return routes
+
+
+def _search(
+    prep: PreparedGraph, first: Step, horizon_m: float, travelled_m: float
+) -> tuple[list[tuple[Step, ...]], float, float]:
+    """Depth-first route search; also the horizon interval with the same comparisons."""
     routes: list[tuple[Step, ...]] = []
-    stack: list[tuple[tuple[Step, ...], float]] = [(((start, forward),), -travelled_m)]
+    stack: list[tuple[tuple[Step, ...], float]] = [((first,), -travelled_m)]
     lengths = prep.scalars.centre_length_m
+    lo, hi = -math.inf, math.inf
     while stack and len(routes) < _MAX_ROUTES:
         route, dist = stack.pop()
         lane, fwd = route[-1]
         nxt = [s for s in longitudinal(prep, lane, forward=fwd, ahead=True) if s not in route]
         dist += lengths[lane]
-        if not nxt or dist > horizon_m:
+        if not nxt:
             routes.append(route)
             continue
+        if dist > horizon_m:
+            hi = min(hi, dist)
+            routes.append(route)
+            continue
+        lo = max(lo, dist)
         stack.extend(((*route, s), dist) for s in nxt)
-    return routes
+    return routes, lo, hi
