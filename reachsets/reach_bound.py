@@ -88,21 +88,29 @@ def _start(
     return curves, (xi, side * eta, psi, dmax)
 
 
-def _advance(  # noqa: PLR0917 - one chord of the curve state
+def _advance(
     arcs: tuple[NDArray[np.float64], ...],
-    rows: NDArray[np.intp] | slice,
     k: int,
     dpsi: NDArray[np.float64],
     side: NDArray[np.float64],
     params: ReachParams,
-) -> None:
-    """Point ``k`` of curves ``rows`` after turning chord ``k`` by ``dpsi`` (in place)."""
-    xi, eta, psi, _ = arcs
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """Point ``k`` ``(xi, eta, psi)`` of every curve of ``arcs`` after turning chord ``k``.
+
+    Args:
+        arcs: ``(xi, eta, psi, ...)`` of the curves, each ``(R, P)``.
+        k: The point, ``1 <= k < P``.
+        dpsi: Turn of chord ``k`` of each curve, ``(R,)`` (rad).
+        side: ``+1.0`` for a left curve, ``-1.0`` for a right one, ``(R,)``.
+        params: Arc parameters.
+
+    Returns:
+        ``(xi, eta, psi)`` at point ``k``, each ``(R,)``.
+    """
+    xi, eta, psi = (v[:, k - 1] for v in arcs[:3])
     c = params.arc_step_m
-    chord = psi[rows, k - 1] + dpsi / 2
-    xi[rows, k] = xi[rows, k - 1] + c * np.cos(chord)
-    eta[rows, k] = eta[rows, k - 1] + side * c * np.sin(chord)
-    psi[rows, k] = psi[rows, k - 1] + dpsi
+    chord = psi + dpsi / 2
+    return xi + c * np.cos(chord), eta + side * c * np.sin(chord), psi + dpsi
 
 
 def wall_aware_arcs(
@@ -133,17 +141,16 @@ def wall_aware_arcs(
     back = ~_turn(curves, walls, (xi[:, :-1], eta[:, :-1], psi[:, :-1], dmax), params)[1]
     rows = np.flatnonzero(back.any(axis=1))
     if len(rows):
-        start = (np.argmax(back[rows], axis=1) + 1)[:, None]  # first chord turning back
+        start = np.argmax(back[rows], axis=1) + 1  # first chord turning back
         sub = curves.take(rows)
         arcs = tuple(v[rows] for v in (xi, eta, psi, dmax))
         for k in range(int(start.min()), params.arc_points):
             dpsi = _turn(sub, walls, tuple(v[:, k - 1 : k] for v in arcs), params)[0]
             # curves that still follow their turn arc keep it (their chord is not turned)
             now = k >= start
-            old = tuple(v[:, k].copy() for v in arcs[:3])
-            _advance(arcs, slice(None), k, dpsi[:, 0], sub.side[:, 0], params)
-            for v, o in zip(arcs[:3], old, strict=True):
-                v[:, k] = np.where(now[:, 0], v[:, k], o)
+            new = _advance(arcs, k, dpsi[:, 0], sub.side[:, 0], params)
+            for v, w in zip(arcs[:3], new, strict=True):
+                v[:, k] = np.where(now, w, v[:, k])
         xi[rows], eta[rows] = arcs[0], arcs[1]
     return (xi[:n], eta[:n]), (xi[n:], eta[n:])
 
@@ -166,7 +173,11 @@ def wall_aware_arcs_reference(
             dpsi, towards = _turn(one, walls, chord, params, reference=True)
             ruled = ruled or not bool(towards[0, 0])
             if ruled:
-                _advance(arcs, slice(i, i + 1), k, dpsi[:, 0], one.side[:, 0], params)
+                new = _advance(
+                    tuple(v[i : i + 1] for v in arcs), k, dpsi[:, 0], one.side[:, 0], params
+                )
+                for v, w in zip(arcs[:3], new, strict=True):
+                    v[i : i + 1, k] = w
     n = len(objects)
     xi, eta = arcs[0], arcs[1]
     return (xi[:n], eta[:n]), (xi[n:], eta[n:])
@@ -206,7 +217,7 @@ def _turn(
     alpha = side * np.arctan2(np.sin(rel), np.cos(rel))
     radius = params.arc_step_m / (2 * np.sin(np.maximum(dmax, 1e-12) / 2))
     room = clearance - params.arc_step_m * np.sin(alpha + dmax / 2)
-    need = radius * (1 - np.cos(np.clip(alpha + dmax, 0.0, np.pi)))
+    need = radius * (1 - np.cos(np.minimum(np.maximum(alpha + dmax, 0.0), np.pi)))
     towards = (np.abs(alpha) >= np.pi / 2) | (room >= need)
     back = np.minimum(dmax, np.maximum(alpha, 0.0))
     dpsi = np.minimum(np.where(towards, dmax, -back), params.arc_max_turn_rad - psi)
