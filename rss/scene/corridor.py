@@ -48,7 +48,7 @@ def corridor_plans(
     Also returns where the connecting route touches each box (:func:`cut_between`).
     """
     path = tree.path(target)
-    occupied = {lane for box in boxes for lane in matches.lanes_of(box).tolist() if lane in tree.k}
+    occupied = {r.lane for box in boxes for r in matches.regions(box) if r.lane in tree.k}
     ks = [tree.k[lane] for lane in path]
     k_lo, k_hi = min(ks) - 1, max(ks) + 1
     extra = [lane for lane in occupied if k_lo <= tree.k[lane] <= k_hi]

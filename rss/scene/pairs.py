@@ -91,7 +91,7 @@ def _on_routes(f: FrameContext, box: int, routes: list[tuple[Step, ...]]) -> boo
 
     Routes include their same-direction neighbour lanes (ad-map's SameDrivingDirection).
     """
-    lanes = {int(lane) for lane in f.matches.lanes_of(box)}
+    lanes = {r.lane for r in f.matches.regions(box)}
     return any(
         lane in lanes
         for route in routes
