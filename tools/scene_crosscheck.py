@@ -27,16 +27,15 @@ from typing import Any
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-import numpy as np  # noqa: E402
 
 from loaders.maps.opendrive import read_opendrive  # noqa: E402
-from rss.params import DEFAULT_EGO_DYNAMICS, DEFAULT_VEHICLE_DYNAMICS  # noqa: E402
-from rss.scene import PreparedGraph, SceneEgo, SceneObjects, create_scene, prepare  # noqa: E402
+from rss.scene import PreparedGraph, create_scene, prepare  # noqa: E402
 from tests.rss.scene.test_crosscheck_adrss_map import (  # noqa: E402
     ORACLE,
     SETTINGS,
     compare,
     ours,
+    pair_inputs,
     placements,
 )
 from workbench.rss_adapter import lane_graph_from_map  # noqa: E402
@@ -84,20 +83,7 @@ def _admap_id(prep: PreparedGraph, lane: int) -> str:
 
 def explain(prep: PreparedGraph, pair: dict[str, Any]) -> None:
     """Print our side's internals for one pair (lane ids in ad-map's numbering)."""
-    e, o = pair["ego"], pair["other"]
-    ego = SceneEgo(1000, e["x"], e["y"], e["yaw"], e["v"], 4.5, 2.0, DEFAULT_EGO_DYNAMICS)
-    objects = SceneObjects(
-        ids=np.array([1]),
-        object_type=np.array([2]),
-        x_m=np.array([o["x"]]),
-        y_m=np.array([o["y"]]),
-        yaw_rad=np.array([o["yaw"]]),
-        vx_mps=np.array([o["v"] * np.cos(o["yaw"])]),
-        vy_mps=np.array([o["v"] * np.sin(o["yaw"])]),
-        length_m=np.array([4.5]),
-        width_m=np.array([1.9]),
-        dynamics=(DEFAULT_VEHICLE_DYNAMICS,),
-    )
+    ego, objects = pair_inputs(pair)
     lid = functools.partial(_admap_id, prep)
     logging.basicConfig(format="   %(message)s")
     logging.getLogger("rss.scene").setLevel(logging.DEBUG)

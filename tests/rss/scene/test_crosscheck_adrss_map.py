@@ -65,7 +65,8 @@ def placements(prep: PreparedGraph, seed: int, n: int) -> list[dict[str, Any]]:
     return pairs
 
 
-def ours(prep: PreparedGraph, pair: dict[str, Any]) -> dict[str, Any]:
+def pair_inputs(pair: dict[str, Any]) -> tuple[SceneEgo, SceneObjects]:
+    """Scene inputs of one placement (the oracle script builds the same vehicles)."""
     e, o = pair["ego"], pair["other"]
     ego = SceneEgo(1000, e["x"], e["y"], e["yaw"], e["v"], 4.5, 2.0, DEFAULT_EGO_DYNAMICS)
     objects = SceneObjects(
@@ -80,6 +81,11 @@ def ours(prep: PreparedGraph, pair: dict[str, Any]) -> dict[str, Any]:
         width_m=np.array([1.9]),
         dynamics=(DEFAULT_VEHICLE_DYNAMICS,),
     )
+    return ego, objects
+
+
+def ours(prep: PreparedGraph, pair: dict[str, Any]) -> dict[str, Any]:
+    ego, objects = pair_inputs(pair)
     scene = create_scene(prep, ego, objects, SETTINGS)
     out: dict[str, Any] = {"situations": [], "dangerous": []}
     if scene.constellations:
