@@ -22,7 +22,6 @@ from rss.batch import FloatArray, stack_constellations
 from rss.engine import check_frame
 from rss.params import DEFAULT_EGO_DYNAMICS, DEFAULT_VEHICLE_DYNAMICS, SceneSettings
 from rss.scene import (
-    BoxArrays,
     PreparedGraph,
     SceneEgo,
     SceneObjects,
@@ -30,6 +29,7 @@ from rss.scene import (
     match_boxes,
     prepare,
 )
+from rss.scene.create import scene_boxes
 from workbench.rss_adapter import lane_graph_from_map
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -138,13 +138,7 @@ def run(quick: bool) -> str:  # noqa: FBT001 - bench interface
 
 def _matching_s(prep: PreparedGraph, ego: SceneEgo, objects: SceneObjects) -> float:
     """Time of ``match_boxes`` alone on the boxes of one frame (s)."""
-    boxes = BoxArrays(
-        x_m=np.concatenate([[ego.x_m], objects.x_m]),
-        y_m=np.concatenate([[ego.y_m], objects.y_m]),
-        yaw_rad=np.concatenate([[ego.yaw_rad], objects.yaw_rad]),
-        length_m=np.concatenate([[ego.length_m], objects.length_m]),
-        width_m=np.concatenate([[ego.width_m], objects.width_m]),
-    )
+    boxes = scene_boxes(ego, objects)
     a = time.process_time()
     match_boxes(prep, boxes)
     return time.process_time() - a

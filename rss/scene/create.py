@@ -29,9 +29,20 @@ if TYPE_CHECKING:
     from rss.scene.inputs import SceneEgo, SceneObjects
     from rss.scene.lanegraph import PreparedGraph
 
-__all__ = ["create_scene"]
+__all__ = ["create_scene", "scene_boxes"]
 
 _MIN_RELEVANT_M = 100.0
+
+
+def scene_boxes(ego: SceneEgo, objects: SceneObjects) -> BoxArrays:
+    """The boxes map matching works on: box 0 is the ego, box ``i + 1`` object ``i``."""
+    return BoxArrays(
+        x_m=np.concatenate([[ego.x_m], objects.x_m]),
+        y_m=np.concatenate([[ego.y_m], objects.y_m]),
+        yaw_rad=np.concatenate([[ego.yaw_rad], objects.yaw_rad]),
+        length_m=np.concatenate([[ego.length_m], objects.length_m]),
+        width_m=np.concatenate([[ego.width_m], objects.width_m]),
+    )
 
 
 def create_scene(
@@ -55,14 +66,7 @@ def create_scene(
             route (``rss.scene.boundaries``).
     """
     n = len(objects.ids)
-    boxes = BoxArrays(
-        x_m=np.concatenate([[ego.x_m], objects.x_m]),
-        y_m=np.concatenate([[ego.y_m], objects.y_m]),
-        yaw_rad=np.concatenate([[ego.yaw_rad], objects.yaw_rad]),
-        length_m=np.concatenate([[ego.length_m], objects.length_m]),
-        width_m=np.concatenate([[ego.width_m], objects.width_m]),
-    )
-    matches = match_boxes(prep, boxes)
+    matches = match_boxes(prep, scene_boxes(ego, objects))
     ids = tuple(int(v) for v in objects.ids)
     if matches.anchor[0] < 0:
         return Scene((), ids, ego_on_map=False)
