@@ -34,6 +34,8 @@ __all__ = ["BLOCK_SEGMENTS", "Walls", "track_walls", "wall_frame", "wall_frame_r
 #: Consecutive wall segments per block of the candidate search.
 BLOCK_SEGMENTS = 4
 _TANGENT_HALF_STEP_M = 0.5
+#: Up to this many positions, the brute force makes fewer numpy calls than the block search.
+_BRUTE_POSITIONS = 6
 #: Above this many positions of both walls, each wall is searched on its own (no gathers).
 _SPLIT_POSITIONS = 128
 #: Relative slack of the block bounds (they only need to be a safe superset).
@@ -223,7 +225,7 @@ def wall_frame(
     Returns:
         ``(wx, wy, tx, ty)``, each ``(P,)``.
     """
-    if len(x) == 0:
+    if len(x) <= _BRUTE_POSITIONS:
         return wall_frame_reference(walls, x, y, which)
     if not isinstance(which, int) and len(x) > _SPLIT_POSITIONS:
         out = np.empty((4, len(x)))
