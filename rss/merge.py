@@ -92,18 +92,30 @@ def _groups(batch: ConstellationBatch, rel: Relative, frame: IntArray) -> list[l
         return []
     kinds = batch.constellation_type
     ids = np.stack([frame, batch.ego.object_id, batch.other.object_id, kinds], axis=1)
+    ids = ids.astype(np.int64)
+    # Only rows sharing (frame, pair, type) can merge: find them vectorised first, so a
+    # batch of many frames without similar constellations costs one sort.
+    sub = ids[valid]
+    order = np.lexsort(sub.T[::-1])
+    same = np.all(sub[order[1:]] == sub[order[:-1]], axis=1)
+    if not same.any():
+        return []
+    shared = np.zeros(len(valid), dtype=bool)
+    shared[order[1:][same]] = True
+    shared[order[:-1][same]] = True
+    candidates = valid[shared]
     keys = np.concatenate(
         [
-            ids.astype(np.int64),
-            _lane_keys(batch.ego_road, kinds),
-            _lane_keys(batch.intersecting_road, kinds),
-            _dynamics_keys(batch.ego_dynamics),
-            _dynamics_keys(batch.other_dynamics),
+            ids[candidates],
+            _lane_keys(batch.ego_road, kinds)[candidates],
+            _lane_keys(batch.intersecting_road, kinds)[candidates],
+            _dynamics_keys(batch.ego_dynamics)[candidates],
+            _dynamics_keys(batch.other_dynamics)[candidates],
         ],
         axis=1,
-    )[valid]
+    )
     found: dict[tuple[int, ...], list[int]] = {}
-    for row, key in zip(valid.tolist(), keys.tolist(), strict=True):
+    for row, key in zip(candidates.tolist(), keys.tolist(), strict=True):
         found.setdefault(tuple(key), []).append(row)
     return [rows for rows in found.values() if len(rows) > 1]
 
