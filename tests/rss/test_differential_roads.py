@@ -3,6 +3,8 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 import pytest
 
@@ -79,6 +81,19 @@ def _object(
     )
 
 
+def _disagreements(constellations: list[Constellation]) -> list[tuple[int, Any]]:
+    """Constellations (index, differences) where one batched call and ad-rss disagree."""
+    batch = stack_constellations(constellations)
+    result, _ = check_frames(batch, np.arange(batch.size), batch.size, DEFAULT_EGO_DYNAMICS)
+    failures = []
+    for i, c in enumerate(constellations):
+        answer = AdRssOracle().step([c], DEFAULT_EGO_DYNAMICS)
+        diffs = compare_frames(frame_record(result, batch, i), answer)
+        if diffs:
+            failures.append((i, diffs))
+    return failures
+
+
 @pytest.mark.parametrize("seed", [11, 12, 13])
 def test_multi_segment_roads_agree(seed: int) -> None:
     load_ad_rss()
@@ -101,14 +116,7 @@ def test_multi_segment_roads_agree(seed: int) -> None:
                 road,
             )
         )
-    batch = stack_constellations(constellations)
-    result, _ = check_frames(batch, np.arange(batch.size), batch.size, DEFAULT_EGO_DYNAMICS)
-    failures = []
-    for i, c in enumerate(constellations):
-        answer = AdRssOracle().step([c], DEFAULT_EGO_DYNAMICS)
-        diffs = compare_frames(frame_record(result, batch, i), answer)
-        if diffs:
-            failures.append((i, diffs))
+    failures = _disagreements(constellations)
     assert not failures, failures[:3]
 
 
@@ -174,13 +182,5 @@ def test_intersection_road_areas_agree(seed: int) -> None:
                 other_road,
             )
         )
-    batch = stack_constellations(constellations)
-    result, _ = check_frames(batch, np.arange(batch.size), batch.size, DEFAULT_EGO_DYNAMICS)
-    failures = []
-    for i, c in enumerate(constellations):
-        diffs = compare_frames(
-            frame_record(result, batch, i), AdRssOracle().step([c], DEFAULT_EGO_DYNAMICS)
-        )
-        if diffs:
-            failures.append((i, diffs))
+    failures = _disagreements(constellations)
     assert not failures, failures[:3]
