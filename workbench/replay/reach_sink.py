@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 import rerun as rr
 
-from workbench.replay.sink import send_strips, time_index
+from workbench.replay.sink import send_strips, state_configuration, time_index
 
 if TYPE_CHECKING:
     from numpy.typing import NDArray
@@ -42,14 +42,7 @@ class ReachSink:
     def __init__(self, recording: rr.RecordingStream) -> None:
         """Remember the stream and send the static state configuration."""
         self.recording = recording
-        recording.log(
-            "reach/state",
-            rr.StateConfiguration(
-                values=list(STATE_COLORS),
-                colors=np.array(list(STATE_COLORS.values()), dtype=np.uint32),
-            ),
-            static=True,
-        )
+        recording.log("reach/state", state_configuration(STATE_COLORS), static=True)
 
     def send_chunk(
         self, frame: NDArray[np.int64], t_ns: NDArray[np.int64], cols: ReachColumns

@@ -26,11 +26,9 @@ import rerun as rr
 
 from workbench.replay.reach_layout import StripColumns
 from workbench.replay.rss_layout import FRAME_STATES, OBJECT_STATES, RESPONSE_LANES
-from workbench.replay.sink import send_strips, time_index
+from workbench.replay.sink import send_strips, state_configuration, time_index
 
 if TYPE_CHECKING:
-    from collections.abc import Mapping
-
     from numpy.typing import NDArray
 
     from workbench.replay.rss_layout import RssColumns
@@ -48,25 +46,19 @@ def object_path(object_id: str) -> str:
     return f"rss/structured/objects/{rr.escape_entity_path_part(object_id)}"
 
 
-def _config(values: Mapping[str, int] | tuple[str, ...]) -> rr.StateConfiguration:
-    names = list(values)
-    colors = [
-        values[v] if not isinstance(values, tuple) else _RESPONSE_COLORS.get(v, 0x9E9E9EFF)
-        for v in names
-    ]
-    return rr.StateConfiguration(values=names, colors=np.array(colors, dtype=np.uint32))
-
-
 class RssSink:
     """Sends structured RSS columns on the ``frame`` and ``log_time`` timelines."""
 
     def __init__(self, recording: rr.RecordingStream) -> None:
         """Remember the stream and send the static state configurations."""
         self.recording = recording
-        recording.log(STATE_PATH, _config(FRAME_STATES), static=True)
+        recording.log(STATE_PATH, state_configuration(FRAME_STATES), static=True)
         for lane, values in RESPONSE_LANES.values():
-            recording.log(f"rss/structured/response/{lane}", _config(values), static=True)
+            colors = {v: _RESPONSE_COLORS[v] for v in values}
+            path = f"rss/structured/response/{lane}"
+            recording.log(path, state_configuration(colors), static=True)
         self._last: dict[str, str] = {}
+        self._object_config = state_configuration(OBJECT_STATES)
 
     def _states(
         self, path: str, frame: NDArray[np.int64], t_ns: NDArray[np.int64], states: list[str]
@@ -86,7 +78,7 @@ class RssSink:
                 self._last[object_id] = _NOT_RELEVANT
         for object_id, states in sorted(lanes.items()):
             if object_id not in self._last:
-                self.recording.log(object_path(object_id), _config(OBJECT_STATES), static=True)
+                self.recording.log(object_path(object_id), self._object_config, static=True)
             prev = [self._last.get(object_id, _NOT_RELEVANT), *states[:-1]]
             change = np.flatnonzero([s != p for s, p in zip(states, prev, strict=True)])
             if len(change):

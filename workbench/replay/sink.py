@@ -39,7 +39,14 @@ if TYPE_CHECKING:
     from workbench.replay.layout import ChunkLayout, MapLayout
     from workbench.replay.reach_layout import StripColumns
 
-__all__ = ["FRAME_TIMELINE", "TIME_TIMELINE", "RerunSink", "send_strips", "time_index"]
+__all__ = [
+    "FRAME_TIMELINE",
+    "TIME_TIMELINE",
+    "RerunSink",
+    "send_strips",
+    "state_configuration",
+    "time_index",
+]
 
 FRAME_TIMELINE = "frame"
 TIME_TIMELINE = "log_time"
@@ -58,6 +65,13 @@ def time_index(frame: NDArray[np.int64], t_ns: NDArray[np.int64]) -> list[rr.Tim
         rr.TimeColumn(FRAME_TIMELINE, sequence=frame),
         rr.TimeColumn(TIME_TIMELINE, timestamp=t_ns.astype("datetime64[ns]")),
     ]
+
+
+def state_configuration(colors: Mapping[str, int]) -> rr.StateConfiguration:
+    """The static configuration of a state lane: its values in order, packed RGBA each."""
+    return rr.StateConfiguration(
+        values=list(colors), colors=np.array(list(colors.values()), dtype=np.uint32)
+    )
 
 
 def send_strips(

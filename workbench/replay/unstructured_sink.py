@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 import rerun as rr
 
-from workbench.replay.sink import send_strips, time_index
+from workbench.replay.sink import send_strips, state_configuration, time_index
 from workbench.replay.unstructured_layout import COLORS, Category
 
 if TYPE_CHECKING:
@@ -46,14 +46,8 @@ class UnstructuredSink:
     def __init__(self, recording: rr.RecordingStream) -> None:
         """Remember the stream and send the static state configuration."""
         self.recording = recording
-        recording.log(
-            STATE_PATH,
-            rr.StateConfiguration(
-                values=[c.label for c in Category],
-                colors=np.array([COLORS[c] for c in Category], dtype=np.uint32),
-            ),
-            static=True,
-        )
+        lane = {c.label: COLORS[c] for c in Category}
+        recording.log(STATE_PATH, state_configuration(lane), static=True)
 
     def _mesh(self, path: str, index: list[rr.TimeColumn], cols: MeshColumns) -> None:
         vertices = rr.Mesh3D.columns(vertex_positions=cols.vertices_m, vertex_colors=cols.colors)
