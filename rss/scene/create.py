@@ -103,5 +103,6 @@ def create_scene(
         if not found:
             skipped.append(ids[i])
     skipped.extend(ids[i] for i in np.flatnonzero(~relevant))
-    areas = tuple(frame.road_areas.get(id(c), ()) for c in out)
+    built = frame.road_areas
+    areas = tuple(built[id(c)][1] if id(c) in built and built[id(c)][0] is c else () for c in out)
     return Scene(tuple(out), tuple(sorted(skipped)), ego_on_map=True, road_areas=areas)

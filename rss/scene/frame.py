@@ -64,8 +64,9 @@ class FrameContext:
         tree: Connecting routes from the ego's anchor lane.
         headings: Per box, the heading of each touched lane's point order at its centre.
         ego_velocity: ``(vx, vy)`` of the ego in the map frame.
-        road_areas: Road-area lanes ``(lane, p0, p1)`` of each built constellation, by
-            ``id()`` of the constellation (see ``Scene.road_areas``).
+        road_areas: Each built constellation with its road-area lanes ``(lane, p0, p1)``,
+            by ``id()`` (the constellation is held, so its id cannot be reused within the
+            frame; see ``Scene.road_areas``).
         route_memo: Predicted routes of this frame (``rss.scene.routes.predict_routes``).
     """
 
@@ -77,7 +78,9 @@ class FrameContext:
     tree: RouteTree
     headings: dict[int, dict[int, float]]
     ego_velocity: tuple[float, float]
-    road_areas: dict[int, tuple[tuple[int, float, float], ...]] = field(default_factory=dict)
+    road_areas: dict[int, tuple[Constellation, tuple[tuple[int, float, float], ...]]] = field(
+        default_factory=dict
+    )
     route_memo: RouteMemo = field(default_factory=dict)
 
     def forward(self, box: int) -> bool:
@@ -185,10 +188,11 @@ class FrameContext:
             intersecting_road=obj_road,
         )
         placed = (*ego_placed.items(), *(obj_placed.items() if obj_plans is not None else ()))
-        self.road_areas[id(built)] = tuple(
+        windows = tuple(
             (lane, *lane_window(where.p0, where.p1, forward=where.forward))
             for lane, where in placed
         )
+        self.road_areas[id(built)] = (built, windows)
         return built
 
 
