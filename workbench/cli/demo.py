@@ -210,7 +210,9 @@ def demo(
             )
         first = next((r for r in done if r.output == names.get(samples_dir / _FEATURED)), done[0])
         console.print("open one in the Rerun viewer with:")
-        console.print(f"  {_viewer_command()} {out / first.output}", highlight=False)
+        # never wrapped: the line must stay one command a user can copy, however long the path
+        command = f"  {_viewer_command()} {out / first.output}"
+        console.print(command, highlight=False, soft_wrap=True)
     if not done:
         raise typer.Exit(1)
 
