@@ -80,15 +80,35 @@ def _object_data(  # noqa: PLR0917 - one object's fields
     return data
 
 
+def append_structured(creation: Any, ego: Any, other: Any) -> bool:
+    """Append one pair's structured constellations (routes predicted, no speed limit)."""
+    return bool(
+        creation.appendConstellations(
+            ego,
+            ad.map.route.FullRoute(),
+            other,
+            getattr(ad.rss.map.RssRestrictSpeedLimitMode, "None"),
+            ad.map.landmark.LandmarkIdSet(),
+            ad.rss.map.RssConstellationCreationMode.Structured,
+        )
+    )
+
+
+def init_map(content: str) -> None:
+    """Load an OpenDRIVE map (text) into ad-map and silence ad-rss' logger."""
+    unknown = ad.map.intersection.IntersectionType.Unknown
+    light = ad.map.landmark.TrafficLightType.UNKNOWN
+    if not ad.map.access.initFromOpenDriveContent(content, 0.2, unknown, light):
+        raise SystemExit("ad-map cannot read the map")
+    ad.rss.map.setLogLevel("off")
+
+
 def _answer(pair: dict[str, dict[str, float]]) -> dict[str, Any]:
     creation = ad.rss.map.RssWorldModelCreation(1, _dynamics(1.0))
-    ok = creation.appendConstellations(
+    ok = append_structured(
+        creation,
         _object_data(EGO_ID, ad.rss.world.ObjectType.EgoVehicle, pair["ego"], 4.5, 2.0, 1.0),
-        ad.map.route.FullRoute(),
         _object_data(OTHER_ID, ad.rss.world.ObjectType.OtherVehicle, pair["other"], 4.5, 1.9, 2.0),
-        getattr(ad.rss.map.RssRestrictSpeedLimitMode, "None"),
-        ad.map.landmark.LandmarkIdSet(),
-        ad.rss.map.RssConstellationCreationMode.Structured,
     )
     answer: dict[str, Any] = {"ok": bool(ok), "situations": [], "dangerous": []}
     snapshot = ad.rss.core.RssSituationSnapshot()
@@ -124,11 +144,7 @@ def main() -> None:
     real_stdout = os.dup(1)
     os.dup2(os.open(os.devnull, os.O_WRONLY), 1)
     try:
-        unknown = ad.map.intersection.IntersectionType.Unknown
-        light = ad.map.landmark.TrafficLightType.UNKNOWN
-        if not ad.map.access.initFromOpenDriveContent(content, 0.2, unknown, light):
-            raise SystemExit("ad-map cannot read the map")
-        ad.rss.map.setLogLevel("off")
+        init_map(content)
         answers = [_answer(p) for p in pairs]
     finally:
         os.dup2(real_stdout, 1)
