@@ -97,9 +97,10 @@ def reference_ms_per_frame(frames: list[dict[str, Any]], map_path: Path) -> dict
     Returns:
         None when the reference cannot run (:func:`reference_unavailable` says why), else
         ``{"frames": n, "ms_per_frame": {phase: ms}, "constellations_per_frame": float,
-        "relevant_per_frame": float, "situations_per_frame": float, "failed_frames": int}``
-        with phases ``matching`` (``RssObjectData`` with ``getMapMatchedBoundingBox``, ego
-        and all objects), ``append`` (``appendConstellations``, all objects),
+        "relevant_per_frame": float, "situations_per_frame": float,
+        "types_per_frame": {constellation type: float}, "failed_frames": int}`` with
+        phases ``matching`` (``RssObjectData`` with ``getMapMatchedBoundingBox``, ego and
+        all objects), ``append`` (``appendConstellations``, all objects),
         ``world_model`` (``getWorldModel``), ``extraction``, ``checking``, ``resolving``
         (the ad-rss core chain); ``relevant`` counts constellations other than
         ``NotRelevant``, ``situations`` those after extraction (merged by id).

@@ -21,6 +21,7 @@ import json
 import os
 import sys
 import time
+from collections import Counter
 from pathlib import Path
 from typing import Any
 
@@ -61,7 +62,7 @@ def run_frame(frame: dict[str, Any], time_index: int, core: _Core) -> dict[str, 
 
     Returns:
         ``{"s": {phase: CPU s}, "constellations": int, "relevant": int,
-        "situations": int, "ok": bool}``.
+        "situations": int, "types": [constellation type per constellation], "ok": bool}``.
     """
     clock = [time.process_time()]
 
@@ -93,6 +94,7 @@ def run_frame(frame: dict[str, Any], time_index: int, core: _Core) -> dict[str, 
         "constellations": len(kinds),
         "relevant": sum(k != "NotRelevant" for k in kinds),
         "situations": len(situations.constellations),
+        "types": kinds,
         "ok": ok,
     }
 
@@ -102,12 +104,14 @@ def time_frames(frames: list[dict[str, Any]]) -> dict[str, Any]:
 
     Returns:
         ``{"frames": n, "ms_per_frame": {phase: ms}, "constellations_per_frame": float,
-        "relevant_per_frame": float, "situations_per_frame": float, "failed_frames": int}``;
-        ``relevant`` counts the world model's constellations other than ``NotRelevant``.
+        "relevant_per_frame": float, "situations_per_frame": float,
+        "types_per_frame": {type: float}, "failed_frames": int}``; ``relevant`` counts
+        the world model's constellations other than ``NotRelevant``.
     """
     run_frame(frames[0], 1, _Core())
     total = dict.fromkeys(PHASES, 0.0)
     counts = {"constellations": 0, "relevant": 0, "situations": 0}
+    types: Counter[str] = Counter()
     failed = 0
     core, scene = _Core(), frames[0].get("scene", 0)
     for k, frame in enumerate(frames):
@@ -118,12 +122,14 @@ def time_frames(frames: list[dict[str, Any]]) -> dict[str, Any]:
             total[phase] += seconds
         for key in counts:
             counts[key] += out[key]
+        types.update(out["types"])
         failed += not out["ok"]
     n = len(frames)
     return {
         "frames": n,
         "ms_per_frame": {phase: total[phase] / n * 1e3 for phase in PHASES},
         **{f"{key}_per_frame": value / n for key, value in counts.items()},
+        "types_per_frame": {kind: count / n for kind, count in sorted(types.items())},
         "failed_frames": failed,
     }
 

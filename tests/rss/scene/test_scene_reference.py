@@ -84,6 +84,7 @@ def test_reference_timing_structure(external_dir):
     assert result["relevant_per_frame"] > 0
     assert result["constellations_per_frame"] >= result["relevant_per_frame"]
     assert result["situations_per_frame"] > 0
+    assert sum(result["types_per_frame"].values()) == result["constellations_per_frame"]
 
 
 def test_reference_unavailable_says_why(tmp_path, monkeypatch):
