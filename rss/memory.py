@@ -112,7 +112,8 @@ def _runs(memory: RssMemory, batch: ConstellationBatch, frame: IntArray) -> _Run
     order = order_all[is_batch] - m
     initial_sorted = initial_all[is_batch]
     f = frame[order]
-    key_start = ~same_key[is_batch]
+    # a key's first constellation follows another key or the key's own memory row
+    key_start = (~same_key | (prev_row < m))[is_batch]
     new_run = np.ones(c, dtype=np.bool_)
     new_run[1:] = key_start[1:] | (f[1:] - f[:-1] > 1)
     if c:

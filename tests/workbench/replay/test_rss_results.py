@@ -97,15 +97,18 @@ def test_longitudinal_states_agree_with_the_plotted_distances(cut_in):
 def test_acceleration_restrictions_follow_the_response(cut_in):
     frames, outputs = cut_in
     cols = layout_rss(frames, outputs)
-    lon_max = cols.accel["lon_max_mps2"]
     braking = 0
-    for i, out in enumerate(outputs):
-        assert lon_max[i] == pytest.approx(
-            out.record["acceleration_restrictions"]["longitudinal"][1]
-        )
-        if out.record["longitudinal_response"] != "None":
-            assert lon_max[i] < 0
-            braking += 1
+    for response, series, key in (
+        ("longitudinal_response", "lon_max_mps2", "longitudinal"),
+        ("lateral_response_left", "lat_left_max_mps2", "lateral_left"),
+        ("lateral_response_right", "lat_right_max_mps2", "lateral_right"),
+    ):
+        upper = cols.accel[series]
+        for i, out in enumerate(outputs):
+            assert upper[i] == pytest.approx(out.record["acceleration_restrictions"][key][1])
+            if out.record[response] != "None":
+                assert upper[i] < 0
+                braking += 1
     assert braking > 0
     # lateral bounds of +-1000 m/s² mean "unbounded" and are not plotted
     for name, values in cols.accel.items():
