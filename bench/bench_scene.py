@@ -4,9 +4,14 @@ Map: CARLA Town01 (OpenDRIVE, from ``shared/external``) when present, else the h
 sample map. Ego and 50 vehicles are placed (seeded) on driving lanes within 120 m of the
 ego, heading along their lanes; each frame moves everyone at constant velocity. Timed per
 frame in CPU time of this process (``time.process_time``; other processes on a shared
-machine still slow it through shared caches): map matching + routes + constellations
-(``create_scene``; map matching alone is timed again apart, on the same boxes),
-``stack_constellations`` and ``check_frame`` (memory carried).
+machine still slow it through shared caches), two ways over the same frames:
+
+* batched, as the pipeline runs (``RssRunner.step_many``): chunks of ``CHUNK_FRAMES``
+  frames, map matching of all boxes of a chunk in one call (``match_frames``), then
+  routes + constellations per frame (``create_scene`` on the matches), one
+  ``stack_constellations`` and one ``check_frames`` per chunk (memory carried);
+* one call per frame (``RssRunner.step``): ``create_scene`` (map matching alone timed
+  again apart, on the same boxes), ``stack_constellations``, ``check_frame``.
 """
 
 from __future__ import annotations
@@ -19,7 +24,7 @@ import numpy as np
 from loaders.maps.lanelet2 import read_lanelet2
 from loaders.maps.opendrive import read_opendrive
 from rss.batch import FloatArray, stack_constellations
-from rss.engine import check_frame
+from rss.engine import check_frame, check_frames
 from rss.params import DEFAULT_EGO_DYNAMICS, DEFAULT_VEHICLE_DYNAMICS, SceneSettings
 from rss.scene import (
     PreparedGraph,
@@ -29,8 +34,13 @@ from rss.scene import (
     match_boxes,
     prepare,
 )
+from rss.scene.chunked import match_frames
 from rss.scene.create import scene_boxes
+from workbench.evaluate.pipeline import CHUNK_FRAMES
 from workbench.rss_adapter import lane_graph_from_map
+
+Drives = list[list[tuple[SceneEgo, SceneObjects]]]
+Phases = dict[str, float]
 
 ROOT = Path(__file__).resolve().parents[1]
 TOWN01 = ROOT.parent / "shared" / "external" / "maps" / "Town01.xodr"
@@ -90,6 +100,72 @@ def _moved(ego: SceneEgo, objects: SceneObjects, dt: float) -> tuple[SceneEgo, S
     return ego, objects
 
 
+def _drives(prep: PreparedGraph, scenes: int, frames: int) -> Drives:
+    """``scenes`` seeded scenes of ``frames`` frames each (everyone at constant velocity)."""
+    rng = np.random.default_rng(7)
+    out = []
+    for _ in range(scenes):
+        ego, objects = _scene_inputs(prep, rng)
+        drive = []
+        for _ in range(frames):
+            drive.append((ego, objects))
+            ego, objects = _moved(ego, objects, 0.1)
+        out.append(drive)
+    return out
+
+
+def _per_frame(prep: PreparedGraph, drives: Drives, settings: SceneSettings) -> Phases:
+    """One call per frame: ``create_scene``, ``stack_constellations``, ``check_frame``."""
+    t = dict.fromkeys(("match", "scene", "stack", "check"), 0.0)
+    for drive in drives:
+        memory = None
+        for ego, objects in drive:
+            a = time.process_time()
+            scene = create_scene(prep, ego, objects, settings)
+            b = time.process_time()
+            if scene.constellations:
+                batch = stack_constellations(scene.constellations)
+                c = time.process_time()
+                _, memory = check_frame(batch, DEFAULT_EGO_DYNAMICS, memory)
+                t["stack"] += c - b
+                t["check"] += time.process_time() - c
+            else:
+                memory = None
+            t["scene"] += b - a
+            t["match"] += _matching_s(prep, ego, objects)
+    return t
+
+
+def _batched(prep: PreparedGraph, drives: Drives, settings: SceneSettings) -> Phases:
+    """Chunks of ``CHUNK_FRAMES`` frames as ``RssRunner.step_many`` runs them: one
+    ``match_frames``, ``create_scene`` per frame on its matches, one stacking and one
+    ``check_frames`` per chunk."""
+    t = dict.fromkeys(("match", "scene", "stack", "check"), 0.0)
+    for drive in drives:
+        memory = None
+        for lo in range(0, len(drive), CHUNK_FRAMES):
+            chunk = drive[lo : lo + CHUNK_FRAMES]
+            a = time.process_time()
+            matches = match_frames(prep, [scene_boxes(ego, objects) for ego, objects in chunk])
+            b = time.process_time()
+            scenes = [
+                create_scene(prep, ego, objects, settings, matches=m)
+                for (ego, objects), m in zip(chunk, matches, strict=True)
+            ]
+            c = time.process_time()
+            counts = [len(s.constellations) for s in scenes]
+            batch = stack_constellations([x for s in scenes for x in s.constellations])
+            d = time.process_time()
+            frame = np.repeat(np.arange(len(chunk)), counts)
+            _, memory = check_frames(batch, frame, len(chunk), DEFAULT_EGO_DYNAMICS, memory)
+            memory = memory if counts[-1] else None
+            t["match"] += b - a
+            t["scene"] += c - a
+            t["stack"] += d - c
+            t["check"] += time.process_time() - d
+    return t
+
+
 def run(quick: bool) -> str:  # noqa: FBT001 - bench interface
     if TOWN01.is_file():
         name, lane_map = "Town01.xodr", read_opendrive(TOWN01)
@@ -98,40 +174,38 @@ def run(quick: bool) -> str:  # noqa: FBT001 - bench interface
     t0 = time.process_time()
     prep = prepare(lane_graph_from_map(lane_map))
     prep_ms = (time.process_time() - t0) * 1e3
-    rng = np.random.default_rng(7)
     settings = SceneSettings()
-    scenes, frames = (3, 10) if quick else (10, 40)
-    t_scene = t_match = t_stack = t_check = 0.0
-    constellations = 0
-    for _ in range(scenes):
-        ego, objects = _scene_inputs(prep, rng)
-        memory = None
-        for _ in range(frames):
-            a = time.process_time()
-            scene = create_scene(prep, ego, objects, settings)
-            b = time.process_time()
-            if scene.constellations:
-                batch = stack_constellations(scene.constellations)
-                c = time.process_time()
-                _, memory = check_frame(batch, DEFAULT_EGO_DYNAMICS, memory)
-                t_stack += c - b
-                t_check += time.process_time() - c
-            t_scene += b - a
-            t_match += _matching_s(prep, ego, objects)
-            constellations += len(scene.constellations)
-            ego, objects = _moved(ego, objects, 0.1)
-    n = scenes * frames
-    total = t_scene + t_stack + t_check
+    drives = _drives(prep, *((3, 10) if quick else (10, 40)))
+    n = sum(len(d) for d in drives)
+    constellations = sum(
+        len(create_scene(prep, ego, objects, settings).constellations)
+        for drive in drives
+        for ego, objects in drive
+    )
+    one = _per_frame(prep, drives, settings)
+    many = _batched(prep, drives, settings)
+
+    def ms(t: Phases, key: str) -> str:
+        return f"{t[key] / n * 1e3:.2f}"
+
+    def total(t: Phases) -> str:
+        return f"{(t['scene'] + t['stack'] + t['check']) / n * 1e3:.2f}"
+
     return (
         "## Scene creation + structured RSS (`bench/bench_scene.py`)\n\n"
         f"Map {name} ({len(prep.graph)} drivable lanes, prepared once in {prep_ms:.0f} ms); "
-        f"{N_OBJECTS} vehicles within {RADIUS_M:.0f} m of the ego; {n} frames.\n\n"
-        "| step | CPU ms per frame |\n|---|---|\n"
-        f"| scene creation (matching, routes, constellations) | {t_scene / n * 1e3:.2f} |\n"
-        f"| ↳ of which map matching (`match_boxes`, timed apart) | {t_match / n * 1e3:.2f} |\n"
-        f"| `stack_constellations` | {t_stack / n * 1e3:.2f} |\n"
-        f"| `check_frame` | {t_check / n * 1e3:.2f} |\n"
-        f"| total | {total / n * 1e3:.2f} |\n\n"
+        f"{N_OBJECTS} vehicles within {RADIUS_M:.0f} m of the ego; {len(drives)} drives, "
+        f"{n} frames. Batched: chunks of {CHUNK_FRAMES} frames as the pipeline hands them to "
+        "`RssRunner.step_many` (one map matching, stacking and engine call per chunk).\n\n"
+        f"| step | CPU ms per frame, batched {CHUNK_FRAMES} frames (as the pipeline runs) "
+        "| one call per frame |\n|---|---|---|\n"
+        f"| scene creation (matching, routes, constellations) | {ms(many, 'scene')} "
+        f"| {ms(one, 'scene')} |\n"
+        f"| ↳ of which map matching (`match_boxes`) | {ms(many, 'match')} "
+        f"| {ms(one, 'match')} (timed apart) |\n"
+        f"| `stack_constellations` | {ms(many, 'stack')} | {ms(one, 'stack')} |\n"
+        f"| `check_frames` / `check_frame` | {ms(many, 'check')} | {ms(one, 'check')} |\n"
+        f"| total | **{total(many)}** | {total(one)} |\n\n"
         f"Constellations per frame: {constellations / n:.1f}.\n"
     )
 

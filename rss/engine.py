@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from rss.batch import take_rows
 from rss.checks import RawStates, check_all
 from rss.extraction import Relative, extract
 from rss.memory import RssMemory, apply_memory, is_dangerous
@@ -24,7 +25,7 @@ if TYPE_CHECKING:
     from rss.batch import BoolArray, ConstellationBatch, IntArray
     from rss.dynamics import RssDynamics
 
-__all__ = ["FrameResult", "check_frame", "check_frames"]
+__all__ = ["FrameResult", "check_frame", "check_frames", "select_frame"]
 
 
 @dataclass(frozen=True)
@@ -82,3 +83,24 @@ def check_frame(
 ) -> tuple[FrameResult, RssMemory]:
     """Evaluate all constellations of one frame (see :func:`check_frames`)."""
     return check_frames(batch, np.zeros(batch.size, dtype=np.int64), 1, default_ego, memory)
+
+
+def select_frame(result: FrameResult, index: int) -> FrameResult:
+    """The result of frame ``index`` alone, as :func:`check_frame` returns it (``F = 1``).
+
+    Args:
+        result: Result of :func:`check_frames` over ``F`` frames.
+        index: Frame number in ``0..F-1``.
+
+    Returns:
+        Its constellations' rows (frame numbers 0) and its proper response (``(1,)``).
+    """
+    rows = np.flatnonzero(result.frame == index)
+    return FrameResult(
+        relative=take_rows(result.relative, rows),
+        states=take_rows(result.states, rows),
+        dangerous=result.dangerous[rows],
+        invalid=result.invalid[rows],
+        frame=np.zeros(rows.size, dtype=np.int64),
+        responses=take_rows(result.responses, np.array([index])),
+    )

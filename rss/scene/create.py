@@ -28,6 +28,7 @@ if TYPE_CHECKING:
     from rss.params import SceneSettings
     from rss.scene.inputs import SceneEgo, SceneObjects
     from rss.scene.lanegraph import PreparedGraph
+    from rss.scene.matching import Matches
 
 __all__ = ["create_scene", "scene_boxes"]
 
@@ -53,6 +54,7 @@ def create_scene(
     green_lights: frozenset[int] = frozenset(),
     *,
     road_boundaries: bool = False,
+    matches: Matches | None = None,
 ) -> Scene:
     """Constellations between the ego and every object (see module docstring).
 
@@ -64,9 +66,12 @@ def create_scene(
         green_lights: Indices of traffic lights known to be green (empty: none).
         road_boundaries: Add the two road-boundary constellations along the ego's
             route (``rss.scene.boundaries``).
+        matches: The map matching of ``scene_boxes(ego, objects)`` when already done
+            (e.g. for many frames at once, ``rss.scene.chunked.match_frames``).
     """
     n = len(objects.ids)
-    matches = match_boxes(prep, scene_boxes(ego, objects))
+    if matches is None:
+        matches = match_boxes(prep, scene_boxes(ego, objects))
     ids = tuple(int(v) for v in objects.ids)
     if matches.anchor[0] < 0:
         return Scene((), ids, ego_on_map=False)

@@ -8,19 +8,25 @@ import numpy as np
 
 from rss.batch import stack_constellations
 from rss.conformance import response_record
-from rss.engine import check_frame
+from rss.engine import check_frame, check_frames, select_frame
 from rss.params import ObjectClass, RssParams
 from rss.scene import create_scene, prepare
 from rss.scene.boundaries import LEFT_BOUNDARY_ID, RIGHT_BOUNDARY_ID
+from rss.scene.chunked import match_frames
+from rss.scene.create import scene_boxes
 from workbench.evaluate.pipeline import EngineOutput
 from workbench.evaluate.rss_detail import RssFrameDetail, road_area_outlines
 from workbench.rss_adapter import IdMap, frame_to_scene, lane_graph_from_map
 
 if TYPE_CHECKING:
+    from collections.abc import Sequence
+
     from loaders.maps.model import LaneMap
     from loaders.records import Frame
+    from rss.batch import IntArray
+    from rss.engine import FrameResult
     from rss.memory import RssMemory
-    from rss.scene import PreparedGraph
+    from rss.scene import PreparedGraph, Scene
 
 __all__ = ["RssRunner"]
 
@@ -67,7 +73,6 @@ class RssRunner:
 
     def step(self, frame: Frame) -> EngineOutput:
         """Evaluate one frame."""
-        ego_dyn = self._params.for_class(ObjectClass.EGO)
         if self._prep is None:
             return _safe({"constellations": 0, "invalid_objects": []})
         ego, objects, invalid = frame_to_scene(frame, self._prep, self._params, self._ids)
@@ -78,16 +83,76 @@ class RssRunner:
             self._memory = None
             return _safe({"constellations": 0, "invalid_objects": sorted(invalid)})
         batch = stack_constellations(scene.constellations)
+        ego_dyn = self._params.for_class(ObjectClass.EGO)
         result, self._memory = check_frame(batch, ego_dyn, self._memory)
-        record: dict[str, Any] = response_record(result, batch.other.object_id, 0)
+        return self._output(scene, invalid, batch.other.object_id, batch.constellation_type, result)
+
+    def step_many(self, frames: Sequence[Frame]) -> list[EngineOutput]:
+        """Evaluate consecutive frames at once (as ``step`` on each in turn).
+
+        The boxes of all frames are map-matched in one call, the constellations of all
+        frames stacked once and checked in one ``check_frames`` call with the memory
+        carried through them; a frame without constellations forgets the memory (the
+        engine's runs of consecutive frames break there).
+        """
+        prep = self._prep
+        if prep is None:
+            return [_safe({"constellations": 0, "invalid_objects": []}) for _ in frames]
+        inputs = [frame_to_scene(f, prep, self._params, self._ids) for f in frames]
+        matches = match_frames(prep, [scene_boxes(ego, objects) for ego, objects, _ in inputs])
+        scenes = [
+            create_scene(
+                prep,
+                ego,
+                objects,
+                self._params.scene,
+                road_boundaries=self._road_boundaries,
+                matches=m,
+            )
+            for (ego, objects, _), m in zip(inputs, matches, strict=True)
+        ]
+        counts = [len(s.constellations) for s in scenes]
+        if not any(counts):
+            self._memory = None
+            return [
+                _safe({"constellations": 0, "invalid_objects": sorted(invalid)})
+                for _, _, invalid in inputs
+            ]
+        batch = stack_constellations([c for s in scenes for c in s.constellations])
+        frame_of = np.repeat(np.arange(len(frames)), counts)
+        ego_dyn = self._params.for_class(ObjectClass.EGO)
+        result, memory = check_frames(batch, frame_of, len(frames), ego_dyn, self._memory)
+        self._memory = memory if counts[-1] else None
+        outputs = []
+        offsets = np.concatenate([[0], np.cumsum(counts)]).tolist()
+        for k, (scene, (_, _, invalid)) in enumerate(zip(scenes, inputs, strict=True)):
+            if not counts[k]:
+                outputs.append(_safe({"constellations": 0, "invalid_objects": sorted(invalid)}))
+                continue
+            rows = slice(offsets[k], offsets[k + 1])
+            ids, kinds = batch.other.object_id[rows], batch.constellation_type[rows]
+            outputs.append(self._output(scene, invalid, ids, kinds, select_frame(result, k)))
+        return outputs
+
+    def _output(
+        self,
+        scene: Scene,
+        invalid: tuple[str, ...],
+        object_id: IntArray,
+        constellation_type: IntArray,
+        result: FrameResult,
+    ) -> EngineOutput:
+        """One frame's output: its scene, ``(C,)`` other ids and types, result (``F = 1``)."""
+        record: dict[str, Any] = response_record(result, object_id, 0)
         for key in _DROPPED_KEYS:
             record.pop(key, None)
         dangerous = sorted({_label(self._ids, int(x)) for x in record["dangerous_objects"]})
         record["dangerous_objects"] = dangerous
-        record["constellations"] = batch.size
-        bad = batch.other.object_id[np.asarray(result.invalid) != 0]
+        record["constellations"] = len(object_id)
+        bad = object_id[np.asarray(result.invalid) != 0]
         record["invalid_objects"] = sorted({*invalid, *(self._ids.to_str(int(x)) for x in bad)})
         is_safe = bool(record["is_safe"])
+        prep = self._prep
         return EngineOutput(
             record=record,
             is_safe=is_safe,
@@ -95,11 +160,11 @@ class RssRunner:
             label="" if is_safe else f"RSS {record['longitudinal_response']}",
             margin=0.0 if not is_safe else float("inf"),
             detail=RssFrameDetail(
-                labels=tuple(_label(self._ids, int(x)) for x in batch.other.object_id),
-                constellation_type=batch.constellation_type,
+                labels=tuple(_label(self._ids, int(x)) for x in object_id),
+                constellation_type=constellation_type,
                 result=result,
-                road_areas=road_area_outlines(self._prep.graph, scene.road_areas)
-                if self._outlines
+                road_areas=road_area_outlines(prep.graph, scene.road_areas)
+                if self._outlines and prep is not None
                 else (),
             ),
         )
