@@ -17,6 +17,7 @@ regulation the ego yields (ad-map's behaviour for intersections of unknown type)
 from __future__ import annotations
 
 import enum
+import math
 import weakref
 from typing import TYPE_CHECKING, cast
 
@@ -33,8 +34,10 @@ if TYPE_CHECKING:
     from rss.scene.routes import Step
 
 __all__ = [
+    "Arm",
     "Relation",
     "conflict",
+    "intersection_arms",
     "intersection_plans",
     "intersection_type",
     "junctions_on",
@@ -48,12 +51,22 @@ _MEMO: dict[int, tuple[weakref.ref[PreparedGraph], dict[object, object]]] = {}
 _JUNCTIONS: dict[int, tuple[weakref.ref[PreparedGraph], IntArray, list[int]]] = {}
 
 
+class Arm(enum.Enum):
+    """ad-map's turn directions, used to name the arms of an intersection."""
+
+    UNKNOWN = "unknown"
+    RIGHT = "right"
+    STRAIGHT = "straight"
+    LEFT = "left"
+    UTURN = "u-turn"
+
+
 class Relation(enum.Enum):
     """How another route meets an intersection on a route (ad-map ``Intersection``)."""
 
     NONE = "does not enter the intersection"
     SAME_ARM = "enters from the route's incoming arm"
-    OPPOSITE = "passes: from the route's outgoing arm back to its incoming arm, or no crossing"
+    OPPOSITE = "passes: from the route's outgoing arm to its U-turn arm, or no crossing"
     CROSSING = "crosses the route's lanes inside the intersection"
 
 
@@ -146,6 +159,77 @@ def _entries(prep: PreparedGraph, lane: int) -> set[int]:
     return {*g.predecessors[lane], *g.successors[lane]}
 
 
+def _exits(prep: PreparedGraph, lane: int) -> set[int]:
+    """Lanes the traffic of ``lane`` leads into."""
+    g = prep.graph
+    code = prep.scalars.direction[lane]
+    if code == LaneDrivingDirection.Positive:
+        return set(g.successors[lane])
+    if code == LaneDrivingDirection.Negative:
+        return set(g.predecessors[lane])
+    return {*g.predecessors[lane], *g.successors[lane]}
+
+
+def _inside_successors(prep: PreparedGraph, jid: list[int], j: int, lane: int) -> set[int]:
+    """Lanes of junction ``j`` reachable from ``lane`` in driving direction inside ``j``."""
+    found: set[int] = set()
+    todo = [b for b in _exits(prep, lane) if jid[b] == j]
+    while todo:
+        b = todo.pop()
+        if b not in found:
+            found.add(b)
+            todo.extend(c for c in _exits(prep, b) if jid[c] == j)
+    return found
+
+
+def _lane_angle(prep: PreparedGraph, lane: int) -> float:
+    """Direction [rad] of the chord from a lane's start to its end, in driving direction."""
+    c = prep.scalars.centre_xy_m[lane]
+    (x0, y0), (x1, y1) = c[0], c[-1]
+    if prep.scalars.direction[lane] == LaneDrivingDirection.Negative:
+        (x0, y0), (x1, y1) = (x1, y1), (x0, y0)
+    return math.atan2(y1 - y0, x1 - x0)
+
+
+def _bucket(angle: float) -> Arm:
+    """ad-map's turn direction of a relative arm angle (0 = back where the route came from)."""
+    deg = math.degrees(angle % (2.0 * math.pi))
+    if deg > 315.0 or deg < 45.0:  # noqa: PLR2004 - ad-map's 90-degree sectors
+        return Arm.UTURN
+    if deg > 225.0:  # noqa: PLR2004
+        return Arm.LEFT
+    if deg > 135.0:  # noqa: PLR2004
+        return Arm.STRAIGHT
+    if deg > 45.0:  # noqa: PLR2004
+        return Arm.RIGHT
+    return Arm.UNKNOWN
+
+
+def intersection_arms(prep: PreparedGraph, j: int, incoming: int) -> dict[int, Arm]:
+    """The arm of every lane entering or leaving junction ``j``, seen from ``incoming``.
+
+    As ad-map orders intersection arms: an entry lane's chord direction (start to end, in
+    driving direction) relative to the chord direction of the route's incoming lane, an
+    exit lane's relative to the opposite direction, each put into a 90-degree sector (the
+    route's own arm is the U-turn arm). Deviation: ad-map 5.0 gets these angles wrong on
+    maps geo-referenced at latitude/longitude 0 such as CARLA's (docs/rss_scene.md); the
+    geometric angles are used here.
+
+    Args:
+        prep: The prepared lane graph.
+        j: Junction index (:func:`junction_ids`).
+        incoming: The lane through which the route enters the junction.
+    """
+    jid = junction_list(prep)
+    members = [lane for lane, k in enumerate(jid) if k == j]
+    entries = {e for lane in members for e in _entries(prep, lane) if jid[e] != j}
+    exits = {x for lane in members for x in _exits(prep, lane) if jid[x] != j}
+    ref = _lane_angle(prep, incoming)
+    arms = {lane: _bucket(_lane_angle(prep, lane) - ref) for lane in entries}
+    arms.update({lane: _bucket(_lane_angle(prep, lane) - ref - math.pi) for lane in exits})
+    return arms
+
+
 def _same_arm(
     prep: PreparedGraph, jid: list[int], j: int, incoming: set[int], other: list[int]
 ) -> bool:
@@ -164,11 +248,17 @@ def _same_arm(
 def _opposite(
     prep: PreparedGraph, jid: list[int], j: int, arms: tuple[set[int], set[int]], other: list[int]
 ) -> bool:
-    in_arm, out_arm = arms
+    """ad-map: ``other`` passes the route's outgoing arm, then reaches its U-turn arm."""
+    out_arm, back_arm = arms
     start = next((k for k, lane in enumerate(other) if lane in out_arm), None)
-    if start is None and other and jid[other[0]] == j and _entries(prep, other[0]) & out_arm:
+    if (
+        start is None
+        and other
+        and jid[other[0]] == j
+        and any(other[0] in _inside_successors(prep, jid, j, lane) for lane in out_arm)
+    ):
         start = 0
-    return start is not None and any(lane in in_arm for lane in other[start:])
+    return start is not None and any(lane in back_arm for lane in other[start:])
 
 
 def _memo(prep: PreparedGraph) -> dict[object, object]:
@@ -212,18 +302,19 @@ def _relation(
     if not any(jid[lane] == j for lane in lanes):
         return Relation.NONE
     before = route[first - 1]
-    in_arm = {lane for lane, _ in cross_section(prep, before)}
     incoming = {lane for lane, fwd in cross_section(prep, before) if fwd == before[1]}
-    out_arm = set()
-    if last + 1 < len(route):
-        out_arm = {lane for lane, _ in cross_section(prep, route[last + 1])}
     if _same_arm(prep, jid, j, incoming, lanes):
         return Relation.SAME_ARM
+    arms = intersection_arms(prep, j, before[0])
+    turn = arms.get(route[last + 1][0], Arm.UNKNOWN) if last + 1 < len(route) else Arm.UNKNOWN
+    out_arm = {lane for lane, arm in arms.items() if arm == turn}
+    back_arm = {lane for lane, arm in arms.items() if arm == Arm.UTURN}
+    own = _inside_successors(prep, jid, j, before[0])
     mine = [lane for lane, _ in route[first : last + 1]]
     crossing = any(
-        jid[lane] == j and lane not in mine and prep.conflicts[mine, lane].any() for lane in lanes
+        jid[lane] == j and lane not in own and prep.conflicts[mine, lane].any() for lane in lanes
     )
-    if _opposite(prep, jid, j, (in_arm, out_arm), lanes) or not crossing:
+    if _opposite(prep, jid, j, (out_arm, back_arm), lanes) or not crossing:
         return Relation.OPPOSITE
     return Relation.CROSSING
 
