@@ -103,14 +103,45 @@ def init_map(content: str) -> None:
     ad.rss.map.setLogLevel("off")
 
 
+#: How far ahead the ego's predicted routes are searched for intersections (m): the
+#: 100 m relevance floor of ad-rss plus the two vehicle lengths.
+_TURN_HORIZON_M = 110.0
+
+
+def _turns(ego: Any) -> list[list[Any]]:
+    """``[incoming lane ids, outgoing lane ids, turn]`` of every intersection on the ego's
+    predicted routes, as ad-map classifies the turn (``Intersection.turnDirection``)."""
+    routes = ad.map.route.predictRoutesOnDistance(
+        ego.match_object,
+        ad.physics.Distance(_TURN_HORIZON_M),
+        ad.map.route.RouteCreationMode.SameDrivingDirection,
+        ad.map.route.FilterDuplicatesMode.SubRoutesPreferLongerOnes,
+    )
+    return [
+        [
+            sorted(str(x) for x in hit.incomingLanesOnRoute),
+            sorted(str(x) for x in hit.outgoingLanesOnRoute),
+            str(hit.turnDirection).split(".")[-1].split("::")[-1],
+        ]
+        for route in routes
+        for hit in ad.map.intersection.Intersection.getIntersectionsForRoute(route)
+    ]
+
+
 def _answer(pair: dict[str, dict[str, float]]) -> dict[str, Any]:
     creation = ad.rss.map.RssWorldModelCreation(1, _dynamics(1.0))
+    ego = _object_data(EGO_ID, ad.rss.world.ObjectType.EgoVehicle, pair["ego"], 4.5, 2.0, 1.0)
     ok = append_structured(
         creation,
-        _object_data(EGO_ID, ad.rss.world.ObjectType.EgoVehicle, pair["ego"], 4.5, 2.0, 1.0),
+        ego,
         _object_data(OTHER_ID, ad.rss.world.ObjectType.OtherVehicle, pair["other"], 4.5, 1.9, 2.0),
     )
-    answer: dict[str, Any] = {"ok": bool(ok), "situations": [], "dangerous": []}
+    answer: dict[str, Any] = {
+        "ok": bool(ok),
+        "situations": [],
+        "dangerous": [],
+        "turns": _turns(ego),
+    }
     snapshot = ad.rss.core.RssSituationSnapshot()
     if not ok or not ad.rss.core.RssSituationExtraction().extractSituation(
         creation.getWorldModel(), snapshot
