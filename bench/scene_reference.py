@@ -103,7 +103,9 @@ def reference_ms_per_frame(frames: list[dict[str, Any]], map_path: Path) -> dict
         all objects), ``append`` (``appendConstellations``, all objects),
         ``world_model`` (``getWorldModel``), ``extraction``, ``checking``, ``resolving``
         (the ad-rss core chain); ``relevant`` counts constellations other than
-        ``NotRelevant``, ``situations`` those after extraction (merged by id).
+        ``NotRelevant``, ``situations`` those left after extraction (which merges a
+        pair's constellations of one type, e.g. ad-rss' two ``OppositeDirection`` ones
+        per intersection route pair).
 
     Raises:
         RuntimeError: The oracle process failed (message: the end of its stderr).

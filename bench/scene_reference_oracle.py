@@ -52,6 +52,10 @@ def _object_data(vehicle: dict[str, Any], object_type: Any) -> Any:
     )
 
 
+def _kind(constellation: Any) -> str:
+    return str(constellation.constellation_type).split("::")[-1]
+
+
 def run_frame(frame: dict[str, Any], time_index: int, core: _Core) -> dict[str, Any]:
     """Run one frame through map matching, world creation and the core chain.
 
@@ -88,12 +92,12 @@ def run_frame(frame: dict[str, Any], time_index: int, core: _Core) -> dict[str, 
     s["checking"] = lap()
     ok &= bool(core.resolving.provideProperResponse(states, ad.rss.state.ProperResponse()))
     s["resolving"] = lap()
-    kinds = [str(c.constellation_type).split("::")[-1] for c in world.constellations]
+    kinds = [_kind(c) for c in world.constellations]
     return {
         "s": s,
         "constellations": len(kinds),
         "relevant": sum(k != "NotRelevant" for k in kinds),
-        "situations": len(situations.constellations),
+        "situations": sum(_kind(c) != "NotRelevant" for c in situations.constellations),
         "types": kinds,
         "ok": ok,
     }
