@@ -67,6 +67,7 @@ def _direct(f: FrameContext, box: int, max_m: float) -> tuple[list[Connecting], 
     out: list[Connecting] = []
     found = False
     lengths = prep.scalars.centre_length_m
+    inside = prep.scalars.is_intersection
     for region in m.regions(box):
         lane = region.lane
         if lane not in tree.k:
@@ -94,7 +95,7 @@ def _direct(f: FrameContext, box: int, max_m: float) -> tuple[list[Connecting], 
             kind = Kind.OBJECT_FOLLOWS
         else:
             continue
-        through = bool(prep.graph.is_intersection[tree.path(lane)].any())
+        through = any(inside[x] for x in tree.path(lane))
         out.append(Connecting(kind, lane, gap, through))
     return _drop_longer(f, out), found
 

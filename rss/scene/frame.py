@@ -23,12 +23,12 @@ from rss.scene.routes import predict_routes
 
 if TYPE_CHECKING:
     from rss.dynamics import RssDynamics
-    from rss.model import ConstellationType, RoadSegment
+    from rss.model import ConstellationType, LaneObject, RoadSegment
     from rss.params import SceneSettings
     from rss.scene.inputs import SceneEgo, SceneObjects
     from rss.scene.lanegraph import PreparedGraph
     from rss.scene.matching import Matches
-    from rss.scene.roadarea import SegmentPlan
+    from rss.scene.roadarea import BuiltSegment, PlacedLane, SegmentPlan
     from rss.scene.routes import RouteMemo, RouteTree, Step
 
 __all__ = ["FrameContext", "ego_routes", "lane_headings"]
@@ -68,6 +68,9 @@ class FrameContext:
             by ``id()`` (the constellation is held, so its id cannot be reused within the
             frame; see ``Scene.road_areas``).
         route_memo: Predicted routes of this frame (``rss.scene.routes.predict_routes``).
+        cut_segments: Cut road segments of this frame (``build_road``'s ``cut_memo``).
+        placed_objects: Objects placed in road areas this frame, by box, route heading and
+            the placed lanes the box touches (the same window gives the same object).
     """
 
     prep: PreparedGraph
@@ -82,6 +85,8 @@ class FrameContext:
         default_factory=dict
     )
     route_memo: RouteMemo = field(default_factory=dict)
+    cut_segments: dict[tuple[object, ...], BuiltSegment] = field(default_factory=dict)
+    placed_objects: dict[tuple[object, ...], LaneObject | None] = field(default_factory=dict)
 
     def forward(self, box: int) -> bool:
         """Whether the box heads along its anchor lane's point order."""
@@ -148,33 +153,18 @@ class FrameContext:
         for box, (lane, at) in (ends or {}).items():
             fwd = any(lane == s[0] and s[1] for p in ego_plans for s in p.lanes)
             route_heading[box] = lane_heading(self.prep, lane, at) + (0.0 if fwd else np.pi)
-        ego_road, ego_placed, limit = build_road(self.prep, ego_plans)
+        memo = self.cut_segments
+        ego_road, ego_placed, limit = build_road(self.prep, ego_plans, 0, memo)
         obj_road: tuple[RoadSegment, ...] = ()
         obj_placed = ego_placed
         if obj_plans is not None:
-            obj_road, obj_placed, limit2 = build_road(self.prep, obj_plans, len(self.prep.graph))
+            obj_road, obj_placed, limit2 = build_road(
+                self.prep, obj_plans, len(self.prep.graph), memo
+            )
             limit = limit2 if (math.isnan(limit) or limit2 > limit) else limit
         o = self.objects
-        ego = place_object(
-            self.matches,
-            0,
-            ego_placed,
-            self.ego.object_id,
-            ObjectType.EgoVehicle,
-            self.ego_velocity,
-            self.headings[0],
-            route_heading[0],
-        )
-        other = place_object(
-            self.matches,
-            i + 1,
-            obj_placed,
-            int(o.ids[i]),
-            ObjectType(int(o.object_type[i])),
-            (float(o.vx_mps[i]), float(o.vy_mps[i])),
-            self.headings[i + 1],
-            route_heading[i + 1],
-        )
+        ego = self._place(0, ego_placed, route_heading[0])
+        other = self._place(i + 1, obj_placed, route_heading[i + 1])
         if ego is None or other is None:
             return None
         mode = self.settings.restrict_speed_limit_mode
@@ -194,6 +184,28 @@ class FrameContext:
         )
         self.road_areas[id(built)] = (built, windows)
         return built
+
+    def _place(
+        self, box: int, placed: dict[int, PlacedLane], route_heading_rad: float | None
+    ) -> LaneObject | None:
+        """``place_object`` of a box, once per frame for the same window of its lanes."""
+        key = (box, route_heading_rad, *(placed.get(r.lane) for r in self.matches.regions(box)))
+        if key in self.placed_objects:
+            return self.placed_objects[key]
+        if box == 0:
+            identity = (self.ego.object_id, ObjectType.EgoVehicle, self.ego_velocity)
+        else:
+            o, i = self.objects, box - 1
+            identity = (
+                int(o.ids[i]),
+                ObjectType(int(o.object_type[i])),
+                (float(o.vx_mps[i]), float(o.vy_mps[i])),
+            )
+        out = place_object(
+            self.matches, box, placed, *identity, self.headings[box], route_heading_rad
+        )
+        self.placed_objects[key] = out
+        return out
 
 
 def lane_headings(matches: Matches, n: int) -> dict[int, dict[int, float]]:

@@ -38,6 +38,7 @@ if TYPE_CHECKING:
     from rss.scene.routes import Step
 
 __all__ = [
+    "BuiltSegment",
     "PlacedLane",
     "SegmentPlan",
     "build_road",
@@ -181,10 +182,20 @@ def cut_window(
         last.p1 = min(1.0, max(*hi, last.p0 + 0.001))
 
 
+#: A converted plan: road segment, placed lanes, finite speed limits of its lanes.
+BuiltSegment = tuple[RoadSegment, tuple[tuple[int, PlacedLane], ...], tuple[float, ...]]
+
+
 def build_road(
-    prep: PreparedGraph, plans: list[SegmentPlan], id_offset: int = 0
+    prep: PreparedGraph,
+    plans: list[SegmentPlan],
+    id_offset: int = 0,
+    cut_memo: dict[tuple[object, ...], BuiltSegment] | None = None,
 ) -> tuple[tuple[RoadSegment, ...], dict[int, PlacedLane], float]:
     """Convert segment plans into ``rss.model`` road segments.
+
+    Whole (uncut) plans are converted once per map; cut ones once per ``cut_memo`` (e.g.
+    one frame, where the ego's cut starts many road areas), if given.
 
     Returns:
         ``(road, placed, max_speed_limit_mps)``: the road segments, where every map lane
@@ -195,11 +206,16 @@ def build_road(
     limits: list[float] = []
     whole = prep.lane_segments.whole_roads
     for plan in plans:
+        key = (tuple(plan.lanes), plan.segment_type, plan.before_m, plan.after_m, id_offset)
         if plan.p0 == 0.0 and plan.p1 == 1.0:
-            key = (tuple(plan.lanes), plan.segment_type, plan.before_m, plan.after_m, id_offset)
             built = whole.get(key)
             if built is None:
                 whole[key] = built = _segment(prep, plan, id_offset)
+        elif cut_memo is not None:
+            cut_key = (*key, plan.p0, plan.p1)
+            built = cut_memo.get(cut_key)
+            if built is None:
+                cut_memo[cut_key] = built = _segment(prep, plan, id_offset)
         else:
             built = _segment(prep, plan, id_offset)
         road.append(built[0])
@@ -208,9 +224,7 @@ def build_road(
     return tuple(road), placed, max(limits) if limits else float("nan")
 
 
-def _segment(
-    prep: PreparedGraph, plan: SegmentPlan, id_offset: int
-) -> tuple[RoadSegment, tuple[tuple[int, PlacedLane], ...], tuple[float, ...]]:
+def _segment(prep: PreparedGraph, plan: SegmentPlan, id_offset: int) -> BuiltSegment:
     """One plan as ``(road segment, placed lanes, finite speed limits of its lanes)``."""
     segments = prep.lane_segments
     speed_limits = prep.scalars.speed_limit_mps
