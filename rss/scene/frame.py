@@ -71,6 +71,8 @@ class FrameContext:
         cut_segments: Cut road segments of this frame (``build_road``'s ``cut_memo``).
         placed_objects: Objects placed in road areas this frame, by box, route heading and
             the placed lanes the box touches (the same window gives the same object).
+        limited_dynamics: Dynamics under the speed-limit mode by (``id()`` of the frame's
+            dynamics object, which the frame holds, speed limit).
     """
 
     prep: PreparedGraph
@@ -87,6 +89,7 @@ class FrameContext:
     route_memo: RouteMemo = field(default_factory=dict)
     cut_segments: dict[tuple[object, ...], BuiltSegment] = field(default_factory=dict)
     placed_objects: dict[tuple[object, ...], LaneObject | None] = field(default_factory=dict)
+    limited_dynamics: dict[tuple[int, float], RssDynamics] = field(default_factory=dict)
 
     def forward(self, box: int) -> bool:
         """Whether the box heads along its anchor lane's point order."""
@@ -167,13 +170,12 @@ class FrameContext:
         other = self._place(i + 1, obj_placed, route_heading[i + 1])
         if ego is None or other is None:
             return None
-        mode = self.settings.restrict_speed_limit_mode
         built = Constellation(
             constellation_type=kind,
             ego=ego,
             other=other,
-            ego_dynamics=_limited(self.ego.dynamics, float(limit), mode),
-            other_dynamics=_limited(o.dynamics[i], float(limit), mode),
+            ego_dynamics=self._limited(self.ego.dynamics, float(limit)),
+            other_dynamics=self._limited(o.dynamics[i], float(limit)),
             ego_road=ego_road,
             intersecting_road=obj_road,
         )
@@ -184,6 +186,15 @@ class FrameContext:
         )
         self.road_areas[id(built)] = (built, windows)
         return built
+
+    def _limited(self, dyn: RssDynamics, limit: float) -> RssDynamics:
+        """``dyn`` under the speed-limit mode, once per frame for each dynamics object."""
+        key = (id(dyn), limit)
+        out = self.limited_dynamics.get(key)
+        if out is None:
+            mode = self.settings.restrict_speed_limit_mode
+            self.limited_dynamics[key] = out = _limited(dyn, limit, mode)
+        return out
 
     def _place(
         self, box: int, placed: dict[int, PlacedLane], route_heading_rad: float | None

@@ -21,7 +21,7 @@ from __future__ import annotations
 import bisect
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NamedTuple
 
 from rss.model import (
     LaneObject,
@@ -73,8 +73,7 @@ class SegmentPlan:
     p1: float = 1.0
 
 
-@dataclass(frozen=True)
-class PlacedLane:
+class PlacedLane(NamedTuple):
     """Where a map lane sits in one road area.
 
     Attributes:
