@@ -64,11 +64,12 @@ $(MAP_ORACLE_STAMP):
 
 oracle-adrss-map: $(STAMP) $(MAP_ORACLE_STAMP)
 	RSS_MAP_ORACLE_PYTHON=$(abspath $(MAP_ORACLE_VENV))/bin/python \
-		$(BIN)/python -m pytest -q -p no:cacheprovider tests/rss/scene/test_crosscheck_adrss_map.py
+		$(BIN)/python -m pytest -q -p no:cacheprovider tests/rss/scene/test_crosscheck_adrss_map.py \
+		tests/rss/scene/test_scene_reference.py
 
 test: lint typecheck layers pytest oracle-commonroad oracle-adrss-map
 
-bench: $(STAMP)
+bench: $(STAMP) $(MAP_ORACLE_STAMP)
 	$(BIN)/python -m bench.run --out docs/benchmarks.md
 
 samples: $(STAMP)
