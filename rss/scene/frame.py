@@ -73,6 +73,7 @@ class FrameContext:
             the placed lanes the box touches (the same window gives the same object).
         limited_dynamics: Dynamics under the speed-limit mode by (``id()`` of the frame's
             dynamics object, which the frame holds, speed limit).
+        start_lanes: :meth:`starts` by box (do not modify).
     """
 
     prep: PreparedGraph
@@ -90,6 +91,7 @@ class FrameContext:
     cut_segments: dict[tuple[object, ...], BuiltSegment] = field(default_factory=dict)
     placed_objects: dict[tuple[object, ...], LaneObject | None] = field(default_factory=dict)
     limited_dynamics: dict[tuple[int, float], RssDynamics] = field(default_factory=dict)
+    start_lanes: dict[int, list[tuple[int, bool, float]]] = field(default_factory=dict)
 
     def forward(self, box: int) -> bool:
         """Whether the box heads along its anchor lane's point order."""
@@ -100,8 +102,11 @@ class FrameContext:
         """Lanes the box may drive on: ``(lane, forward, length behind its centre)``.
 
         The anchor first, then every other touched lane aligned with the box heading
-        (ad-rss considers every map-matched lane of a vehicle).
+        (ad-rss considers every map-matched lane of a vehicle). Computed once per box.
         """
+        known = self.start_lanes.get(box)
+        if known is not None:
+            return known
         m = self.matches
         yaw = self.ego.yaw_rad if box == 0 else float(self.objects.yaw_rad[box - 1])
         anchor = m.anchors[box]
@@ -121,6 +126,7 @@ class FrameContext:
             behind = lengths[lane] * (p if fwd else 1.0 - p)
             out.append((lane, fwd, behind))
         out.sort(key=lambda item: item[0] != anchor)
+        self.start_lanes[box] = out
         return out
 
     def routes(self, box: int, horizon_m: float) -> list[tuple[Step, ...]]:
