@@ -56,6 +56,8 @@ class LaneSegmentCache:
         self._whole: dict[tuple[int, bool, int], LaneSegment] = {}
         #: Whole (uncut) road segments of ``rss.scene.roadarea.build_road`` by plan
         #: ``(lanes, type, before, after, id offset)``: segment, placed lanes, finite limits.
+        #: Uncut corridor layouts of ``rss.scene.corridor.corridor_plans`` by their inputs.
+        self.corridor_layouts: dict[tuple[object, ...], tuple[tuple[Step, ...], ...]] = {}
         self.whole_roads: dict[
             tuple[object, ...],
             tuple[RoadSegment, tuple[tuple[int, PlacedLane], ...], tuple[float, ...]],

@@ -45,10 +45,41 @@ def corridor_plans(
 ) -> tuple[list[SegmentPlan], dict[int, tuple[int, float]] | None]:
     """Segment plans from the ego's lane to ``target`` for the two ``boxes`` (ego first).
 
-    Also returns where the connecting route touches each box (:func:`cut_between`).
+    Also returns where the connecting route touches each box (:func:`cut_between`). The
+    uncut layout is a function of the tree path, the occupied tree lanes (in set order) and
+    their tree indices; it is memoised per map under exactly those (it repeats from frame
+    to frame), only the cuts are made anew.
     """
     path = tree.path(target)
-    occupied = {r.lane for box in boxes for r in matches.regions(box) if r.lane in tree.k}
+    occupied = tuple({r.lane for box in boxes for r in matches.regions(box) if r.lane in tree.k})
+    k, j, fwd = tree.k, tree.j, tree.forward
+    key = (
+        tuple(path),
+        occupied,
+        tuple((k[lane], j[lane], fwd[lane]) for lane in path),
+        tuple((k[lane], j[lane], fwd[lane]) for lane in occupied),
+    )
+    memo = prep.lane_segments.corridor_layouts
+    layout = memo.get(key)
+    if layout is None:
+        if len(memo) >= _MAX_LAYOUTS:
+            memo.clear()
+        memo[key] = layout = _layout(prep, tree, path, occupied)
+    plans = [SegmentPlan(lanes=list(lanes)) for lanes in layout]
+    ends = cut_between(plans, matches, boxes)
+    if ends is None:
+        cut_window(plans, matches, boxes)
+    return plans, ends
+
+
+#: Corridor layouts kept per map before the memo starts afresh.
+_MAX_LAYOUTS = 20_000
+
+
+def _layout(
+    prep: PreparedGraph, tree: RouteTree, path: list[int], occupied: tuple[int, ...]
+) -> tuple[tuple[Step, ...], ...]:
+    """Lanes of each uncut segment (left to right) along ``path`` (see module docstring)."""
     ks = [tree.k[lane] for lane in path]
     k_lo, k_hi = min(ks) - 1, max(ks) + 1
     extra = [lane for lane in occupied if k_lo <= tree.k[lane] <= k_hi]
@@ -57,7 +88,7 @@ def corridor_plans(
     k_hi = max(tree.k[lane] for lane in members)
     lateral_range = [tree.j[lane] for lane in extra] or [tree.j[lane] for lane in members]
     j_lo, j_hi = min(lateral_range), max(lateral_range)
-    plans: list[SegmentPlan] = []
+    sections: list[list[Step]] = []
     for k in range(k_lo, k_hi + 1):
         bases = [lane for lane in members if tree.k[lane] == k]
         if not bases:
@@ -66,13 +97,12 @@ def corridor_plans(
         lanes = _cross_section(prep, (base, tree.forward[base]), tree.j[base], j_lo, j_hi)
         seen: set[int] = set()
         unique = [s for s in lanes if not (s[0] in seen or seen.add(s[0]))]  # type: ignore[func-returns-value]
-        plans.append(SegmentPlan(lanes=unique or [(base, tree.forward[base])]))
+        sections.append(unique or [(base, tree.forward[base])])
     used: set[int] = set()
-    for plan in plans:
-        plan.lanes = [s for s in plan.lanes if s[0] not in used]
-        used.update(s[0] for s in plan.lanes)
-    plans = [p for p in plans if p.lanes]
-    ends = cut_between(plans, matches, boxes)
-    if ends is None:
-        cut_window(plans, matches, boxes)
-    return plans, ends
+    out: list[tuple[Step, ...]] = []
+    for section in sections:
+        kept = tuple(s for s in section if s[0] not in used)
+        used.update(s[0] for s in kept)
+        if kept:
+            out.append(kept)
+    return tuple(out)
