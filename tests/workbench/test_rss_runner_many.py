@@ -12,10 +12,11 @@ import pytest
 from loaders import open_drive
 from loaders.maps.opendrive import read_opendrive
 from loaders.records import ActorTable, EgoState, Frame, ObjectClass
-from rss.scene import prepare
+from rss.params import RssParams
+from rss.scene import create_scene, prepare
 from tests.equality import assert_same
 from workbench.evaluate.rss_runner import RssRunner
-from workbench.rss_adapter import lane_graph_from_map
+from workbench.rss_adapter import IdMap, frame_to_scene, lane_graph_from_map
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -131,3 +132,22 @@ def test_step_many_equals_step_on_a_moving_town01_scene(town01, chunk):
     counts = [o.record["constellations"] for o in outputs]
     assert counts[9] == counts[10] == counts[40] == 0
     assert sum(c > 10 for c in counts) > 30
+
+
+def test_scene_memos_kept_across_frames_change_nothing(town01):
+    """Scenes from a graph whose per-map memos (corridor layouts, whole segments, routes
+    typing) were filled by earlier frames equal scenes from a fresh graph per frame."""
+    frames = _town01_frames(town01, 12)
+    graph = lane_graph_from_map(town01)
+    warm = prepare(graph)
+    params = RssParams()
+    built = 0
+    for frame in frames:
+        fresh = prepare(graph)
+        scenes = []
+        for prep in (warm, fresh):
+            ego, objects, _ = frame_to_scene(frame, prep, params, IdMap())
+            scenes.append(create_scene(prep, ego, objects, params.scene))
+        assert repr(scenes[0]) == repr(scenes[1])
+        built += len(scenes[0].constellations)
+    assert built > 100
