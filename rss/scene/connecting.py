@@ -26,7 +26,6 @@ from rss.scene.routes import predict_routes
 
 if TYPE_CHECKING:
     from rss.scene.frame import FrameContext
-    from rss.scene.routes import Step
 
 __all__ = ["Connecting", "Kind", "connecting_routes"]
 
@@ -117,24 +116,13 @@ def _drop_longer(f: FrameContext, routes: list[Connecting]) -> list[Connecting]:
     return kept
 
 
-def _reach(route: tuple[Step, ...], lengths: list[float], start_m: float) -> dict[int, float]:
-    """Distance along ``route`` to the start of each of its lanes."""
-    out: dict[int, float] = {}
-    dist = -start_m
-    for (lane, _), length in zip(route, lengths, strict=True):
-        out.setdefault(lane, max(0.0, dist))
-        dist += length
-    return out
-
-
 def _merging(f: FrameContext, box: int, max_m: float) -> Connecting | None:
     """The shortest merge of an ego and an object route within ``max_m``, if any."""
     prep = f.prep
-    lengths = prep.scalars.centre_length_m
     best: tuple[float, Connecting] | None = None
     ego, obj = (
         [
-            (r, _reach(r, [lengths[s[0]] for s in r], behind))
+            (r, f.reach_along(r, behind))
             for lane, fwd, behind in f.starts(b)
             for r in predict_routes(
                 prep, lane, forward=fwd, horizon_m=max_m, travelled_m=behind, memo=f.route_memo

@@ -74,6 +74,9 @@ class FrameContext:
         limited_dynamics: Dynamics under the speed-limit mode by (``id()`` of the frame's
             dynamics object, which the frame holds, speed limit).
         start_lanes: :meth:`starts` by box (do not modify).
+        box_lanes: :meth:`lanes_of` by box.
+        route_reach: :meth:`reach_along` by (``id()`` of the route, start); each entry
+            holds its route, so the id is not reused within the frame.
     """
 
     prep: PreparedGraph
@@ -92,6 +95,10 @@ class FrameContext:
     placed_objects: dict[tuple[object, ...], LaneObject | None] = field(default_factory=dict)
     limited_dynamics: dict[tuple[int, float], RssDynamics] = field(default_factory=dict)
     start_lanes: dict[int, list[tuple[int, bool, float]]] = field(default_factory=dict)
+    box_lanes: dict[int, list[int]] = field(default_factory=dict)
+    route_reach: dict[tuple[int, float], tuple[tuple[Step, ...], dict[int, float]]] = field(
+        default_factory=dict
+    )
 
     def forward(self, box: int) -> bool:
         """Whether the box heads along its anchor lane's point order."""
@@ -193,6 +200,32 @@ class FrameContext:
         self.road_areas[id(built)] = (built, windows)
         return built
 
+    def lanes_of(self, box: int) -> list[int]:
+        """Lanes the box touches, in pair order (computed once per box; do not modify)."""
+        known = self.box_lanes.get(box)
+        if known is None:
+            self.box_lanes[box] = known = [r.lane for r in self.matches.regions(box)]
+        return known
+
+    def reach_along(self, route: tuple[Step, ...], start_m: float) -> dict[int, float]:
+        """Distance along ``route`` to the start of each of its lanes [m].
+
+        ``start_m`` is the part of its first lane already behind; computed once per frame
+        for a route of the route memo (do not modify).
+        """
+        key = (id(route), start_m)
+        entry = self.route_reach.get(key)
+        if entry is not None:
+            return entry[1]
+        lengths = self.prep.scalars.centre_length_m
+        out: dict[int, float] = {}
+        dist = -start_m
+        for lane, _ in route:
+            out.setdefault(lane, max(0.0, dist))
+            dist += lengths[lane]
+        self.route_reach[key] = (route, out)
+        return out
+
     def _limited(self, dyn: RssDynamics, limit: float) -> RssDynamics:
         """``dyn`` under the speed-limit mode, once per frame for each dynamics object."""
         key = (id(dyn), limit)
@@ -206,7 +239,7 @@ class FrameContext:
         self, box: int, placed: dict[int, PlacedLane], route_heading_rad: float | None
     ) -> LaneObject | None:
         """``place_object`` of a box, once per frame for the same window of its lanes."""
-        key = (box, route_heading_rad, *(placed.get(r.lane) for r in self.matches.regions(box)))
+        key = (box, route_heading_rad, *map(placed.get, self.lanes_of(box)))
         if key in self.placed_objects:
             return self.placed_objects[key]
         if box == 0:
