@@ -15,6 +15,7 @@ from loaders.records import ActorTable, EgoState, Frame, ObjectClass
 from rss.params import RssParams
 from rss.scene import create_scene, prepare
 from tests.equality import assert_same
+from tests.workbench.test_rss_runner import SCENARIOS
 from workbench.evaluate.rss_runner import RssRunner
 from workbench.rss_adapter import IdMap, frame_to_scene, lane_graph_from_map
 
@@ -27,18 +28,10 @@ if TYPE_CHECKING:
 ROOT = Path(__file__).resolve().parents[2]
 SAMPLES = ROOT / "sample_logs"
 TOWN01 = ROOT.parent / "shared" / "external" / "maps" / "Town01.xodr"
-MAPPED = [
-    "highway_cut_in",
-    "hard_braking_lead",
-    "wrong_way_oncoming",
-    "urban_intersection",
-    "pedestrian_crossing",
-    "parking_lot",
-]
 CHUNKS = [1, 7, 32]
 
 
-def _compare(lane_map: LaneMap, frames: Sequence[Frame], chunk: int) -> list[EngineOutput]:
+def _compare(lane_map: LaneMap | None, frames: Sequence[Frame], chunk: int) -> list[EngineOutput]:
     """Run both paths with outlines; assert equality incl. memory after every chunk."""
     one, many = RssRunner(lane_map, outlines=True), RssRunner(lane_map, outlines=True)
     out: list[EngineOutput] = []
@@ -53,7 +46,7 @@ def _compare(lane_map: LaneMap, frames: Sequence[Frame], chunk: int) -> list[Eng
 
 
 @pytest.mark.parametrize("chunk", CHUNKS)
-@pytest.mark.parametrize("name", MAPPED)
+@pytest.mark.parametrize("name", SCENARIOS)
 def test_step_many_equals_step_on_the_sample_drives(name, chunk):
     drive = open_drive(SAMPLES / f"{name}.mcap")
     frames = list(drive.frames())
@@ -62,6 +55,16 @@ def test_step_many_equals_step_on_the_sample_drives(name, chunk):
     outputs = _compare(drive.lane_map, frames, chunk)
     assert len(outputs) == len(frames)
     assert any(o.record["constellations"] > 0 for o in outputs)
+
+
+def test_step_many_equals_step_without_a_lane_map():
+    """The racing drive has a track map only: no constellations, every frame safe."""
+    drive = open_drive(SAMPLES / "racing_overtake.saa")
+    frames = list(drive.frames())
+    drive.close()
+    outputs = _compare(drive.lane_map, frames, 7)
+    assert len(outputs) == len(frames)
+    assert all(o.is_safe and o.record["constellations"] == 0 for o in outputs)
 
 
 def _town01_frames(lane_map: LaneMap, n_frames: int) -> list[Frame]:
