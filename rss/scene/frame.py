@@ -260,10 +260,7 @@ class FrameContext:
 
 def lane_headings(matches: Matches, n: int) -> dict[int, dict[int, float]]:
     """Per box, the heading of each touched lane at the box centre."""
-    out: dict[int, dict[int, float]] = {b: {} for b in range(n)}
-    for b, lane, h in zip(matches.box, matches.lane, matches.heading_rad, strict=True):
-        out[int(b)][int(lane)] = float(h)
-    return out
+    return {b: {r.lane: r.heading_rad for r in matches.regions(b)} for b in range(n)}
 
 
 def ego_routes(f: FrameContext, horizon_m: float) -> list[tuple[Step, ...]]:
