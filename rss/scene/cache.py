@@ -121,6 +121,8 @@ class GraphScalars:
         is_intersection: ``(L,)`` lane lies inside an intersection.
         conflict_rows: ``(L, L)`` ``prep.conflicts`` as nested lists.
         cross_sections: Memo of ``rss.scene.routes.cross_section`` by step.
+        merge_points: Memo of where two routes meet (``rss.scene.connecting``), by the
+            (ego route, object route) pair.
     """
 
     def __init__(self, prep: PreparedGraph) -> None:
@@ -143,3 +145,6 @@ class GraphScalars:
         self.is_intersection: list[bool] = np.asarray(g.is_intersection, bool).tolist()
         self.conflict_rows: list[list[bool]] = np.asarray(prep.conflicts, bool).tolist()
         self.cross_sections: dict[Step, tuple[Step, ...]] = {}
+        self.merge_points: dict[
+            tuple[tuple[Step, ...], tuple[Step, ...]], tuple[int, int, bool] | None
+        ] = {}

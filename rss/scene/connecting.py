@@ -26,6 +26,8 @@ from rss.scene.routes import predict_routes
 
 if TYPE_CHECKING:
     from rss.scene.frame import FrameContext
+    from rss.scene.lanegraph import PreparedGraph
+    from rss.scene.routes import Step
 
 __all__ = ["Connecting", "Kind", "connecting_routes"]
 
@@ -116,6 +118,40 @@ def _drop_longer(f: FrameContext, routes: list[Connecting]) -> list[Connecting]:
     return kept
 
 
+#: Route pairs kept per map before the memo of meeting points starts afresh.
+_MAX_MEMO = 50_000
+
+
+def _meet(
+    prep: PreparedGraph, er: tuple[Step, ...], orr: tuple[Step, ...]
+) -> tuple[int, int, bool] | None:
+    """Where an ego route and an object route meet, or ``None``.
+
+    Returns ``(ego lane, object lane, whether the routes up to there pass an
+    intersection)``: a pure function of the two routes (memoised per map).
+    """
+    on_orr = {lane for lane, _ in orr}
+    common = [lane for lane, _ in er if lane in on_orr]
+    if common:
+        lane = lane_o = common[0]
+    else:
+        # our graph has no links between overlapping intersection lanes (ad-map's
+        # OVERLAP contacts): crossing routes meet where their lanes overlap
+        hit = conflict(prep, er, orr)
+        if hit is None:
+            return None
+        lane, lane_o = er[hit[0]][0], orr[hit[1]][0]
+    inter = prep.scalars.is_intersection
+    cut_e = [s[0] for s in er[: [s[0] for s in er].index(lane) + 1]]
+    cut_o = (
+        [s[0] for s in orr[: [s[0] for s in orr].index(lane) + 1]]
+        if any(s[0] == lane for s in orr)
+        else [s[0] for s in orr]
+    )
+    through = any(inter[x] for x in cut_e) or any(inter[x] for x in cut_o)
+    return lane, lane_o, through
+
+
 def _merging(f: FrameContext, box: int, max_m: float) -> Connecting | None:
     """The shortest merge of an ego and an object route within ``max_m``, if any."""
     prep = f.prep
@@ -130,30 +166,22 @@ def _merging(f: FrameContext, box: int, max_m: float) -> Connecting | None:
         ]
         for b in (0, box)
     )
-    inter = prep.scalars.is_intersection
+    memo = prep.scalars.merge_points
     for er, e_at in ego:
         for orr, o_at in obj:
-            common = [lane for lane, _ in er if lane in o_at]
-            if common:
-                lane = common[0]
-                a, b = e_at[lane], o_at[lane]
-            else:
-                # our graph has no links between overlapping intersection lanes (ad-map's
-                # OVERLAP contacts): crossing routes meet where their lanes overlap
-                hit = conflict(prep, er, orr)
-                if hit is None:
-                    continue
-                lane = er[hit[0]][0]
-                a, b = e_at[lane], o_at[orr[hit[1]][0]]
+            key = (er, orr)
+            try:
+                meet = memo[key]
+            except KeyError:
+                if len(memo) >= _MAX_MEMO:
+                    memo.clear()
+                meet = memo[key] = _meet(prep, er, orr)
+            if meet is None:
+                continue
+            lane_e, lane_o, through = meet
+            a, b = e_at[lane_e], o_at[lane_o]
             if max(a, b) > max_m:
                 continue
-            cut_e = [s[0] for s in er[: [s[0] for s in er].index(lane) + 1]]
-            cut_o = (
-                [s[0] for s in orr[: [s[0] for s in orr].index(lane) + 1]]
-                if any(s[0] == lane for s in orr)
-                else [s[0] for s in orr]
-            )
-            through = any(inter[x] for x in cut_e) or any(inter[x] for x in cut_o)
             if best is None or min(a, b) < best[0]:
                 best = (min(a, b), Connecting(Kind.MERGING, -1, max(a, b), through))
     return None if best is None else best[1]
