@@ -33,13 +33,23 @@ if TYPE_CHECKING:
     from rss.batch import BoolArray, FloatArray, IntArray
     from rss.model import LaneDrivingDirection
 
-__all__ = ["SIMPLIFY_M", "WIDTH_STATIONS", "LaneGraph", "PreparedGraph", "prepare"]
+__all__ = [
+    "MATCH_DISTANCE_M",
+    "SIMPLIFY_M",
+    "WIDTH_STATIONS",
+    "LaneGraph",
+    "PreparedGraph",
+    "prepare",
+]
 
 #: Number of parametric stations at which lane widths are sampled.
 WIDTH_STATIONS = 21
 #: Tolerance of the simplified lane polygons and centre lines (densely sampled maps, e.g.
 #: OpenDRIVE, carry many collinear points; linear referencing is linear in the count).
 SIMPLIFY_M = 0.01
+#: Map matching: a point within this distance of a lane counts for it (ad-map's sampling
+#: distance, ``getMapMatchedBoundingBox(..., Distance(0.1))`` in ad-rss map integration).
+MATCH_DISTANCE_M = 0.1
 _MIN_CONFLICT_AREA_M2 = 0.5
 _STATIONS = np.linspace(0.0, 1.0, WIDTH_STATIONS)
 _STATION_LIST: list[float] = _STATIONS.tolist()
@@ -116,6 +126,11 @@ class PreparedGraph:
             the part of its centre line inside ``b`` (scaled to ``a``'s min length).
         width_rows: ``width_m`` as Python lists (fast scalar access).
         centre: ``centre_lines`` as flat arrays (vectorised linear referencing).
+        borders: The (simplified) borders as flat arrays: line ``l`` is the left border of
+            lane ``l``, line ``L + l`` its right border.
+        straight: ``(L,)`` both (simplified) borders are single segments.
+        match_polygons: ``(L,)`` lane polygons grown by ``MATCH_DISTANCE_M`` (prepared).
+        match_tree: STRtree over ``match_polygons``.
     """
 
     graph: LaneGraph
@@ -130,11 +145,28 @@ class PreparedGraph:
     conflict_span_m: dict[tuple[int, int], tuple[float, float]]
     width_rows: list[list[float]]
     centre: Polylines
+    borders: Polylines
+    straight: BoolArray
+    match_polygons: np.ndarray
+    match_tree: shapely.STRtree
 
     @functools.cached_property
     def lane_segments(self) -> LaneSegmentCache:
         """Lane segments of road areas, built once per lane and orientation."""
         return LaneSegmentCache(self)
+
+    @functools.cached_property
+    def border_segments(self) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+        """``borders`` per vertex: ``x``, ``y`` and the step ``dx``, ``dy`` to the next one."""
+        xy = self.borders.xy_m
+        step = np.zeros_like(xy)
+        step[:-1] = xy[1:] - xy[:-1]
+        return (
+            np.ascontiguousarray(xy[:, 0]),
+            np.ascontiguousarray(xy[:, 1]),
+            np.ascontiguousarray(step[:, 0]),
+            np.ascontiguousarray(step[:, 1]),
+        )
 
     @functools.cached_property
     def scalars(self) -> GraphScalars:
@@ -247,6 +279,9 @@ def prepare(graph: LaneGraph) -> PreparedGraph:
     )
     lefts = [shapely.LineString(line) for line in graph.left_m]
     rights = [shapely.LineString(line) for line in graph.right_m]
+    borders = shapely.simplify(np.array([*lefts, *rights], dtype=object), SIMPLIFY_M)
+    match_polygons = shapely.buffer(polygons, MATCH_DISTANCE_M, join_style="mitre")
+    shapely.prepare(match_polygons)
     left_len = np.array([_polyline_length(p) for p in graph.left_m])
     right_len = np.array([_polyline_length(p) for p in graph.right_m])
     widths = np.array([_widths(lefts[i], rights[i]) for i in range(len(graph))]).reshape(
@@ -273,4 +308,11 @@ def prepare(graph: LaneGraph) -> PreparedGraph:
         conflict_span_m=spans,
         width_rows=widths.tolist(),
         centre=polylines(centre),
+        borders=polylines(borders),
+        straight=np.all(
+            shapely.get_num_points(borders).reshape(2, len(graph)) == 2,  # noqa: PLR2004 - one segment
+            axis=0,
+        ),
+        match_polygons=match_polygons,
+        match_tree=shapely.STRtree(match_polygons),
     )

@@ -25,11 +25,19 @@ from typing import TYPE_CHECKING, NamedTuple
 import numpy as np
 import shapely
 
-from rss.scene.lanegraph import WIDTH_STATIONS
+from rss.scene.matching_points import (
+    DISTANCE_TOL_M,
+    RING_POINTS,
+    ad_map_positions,
+    box_ring,
+    edge_extremes,
+    lattice_neighbours,
+    matches_point,
+)
 from rss.scene.polylines import heading_at, interpolate
 
 if TYPE_CHECKING:
-    from rss.batch import FloatArray, IntArray
+    from rss.batch import BoolArray, FloatArray, IntArray
     from rss.scene.lanegraph import PreparedGraph
 
 __all__ = [
@@ -42,8 +50,18 @@ __all__ = [
     "match_route",
 ]
 
-_MIN_AREA_M2 = 1e-3
 _TANGENT_STEP_M = 0.5
+#: Curved borders are searched within this factor times the half diagonal of a box, plus
+#: the margin, of where its centre meets them (nearest points of points in the box lie
+#: no farther along a border than the points are from the centre, give or take).
+_REACH_FACTOR = 1.5
+_REACH_MARGIN_M = 1.5
+#: A footprint vertex this close to a box corner is that corner (a lattice point).
+_CORNER_TOL_M = 1e-7
+#: A point projecting onto a lane end counts as in the lane only this close (ad-map).
+_END_MATCH_M = 0.05 + DISTANCE_TOL_M
+#: ad-physics' tolerance of parametric equality (``ParametricValue::cPrecisionValue``).
+_END_TOL = 1e-6
 #: Anchor choice: a lane across the box heading counts like a centre this far outside.
 _MISALIGNED_M = 2.0
 
@@ -162,64 +180,132 @@ def lane_heading(graph: PreparedGraph, lanes: IntArray, s_m: FloatArray) -> Floa
     return heading_at(graph.centre, lanes, s_m, _TANGENT_STEP_M)
 
 
-def _lateral(
+def _centre_station(
     graph: PreparedGraph, lanes: IntArray, points: FloatArray
-) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """Arc length, parametric lateral position and lane heading of ``points`` ``(P, 2)``."""
+) -> tuple[FloatArray, FloatArray]:
+    """Arc length on the centre line and the centre line's heading there, ``(P,)`` each."""
     n = len(lanes)
     s = shapely.line_locate_point(graph.centre_lines[lanes], shapely.points(points))
     length = graph.centre_length_m[lanes]
-    # One interpolation for the foot point and both ends of the heading chord.
     ends = np.clip(
         np.concatenate([s - _TANGENT_STEP_M, s + _TANGENT_STEP_M]), 0.0, np.tile(length, 2)
     )
-    at = interpolate(graph.centre, np.tile(lanes, 3), np.concatenate([s, ends]))
-    chord = at[2 * n :] - at[n : 2 * n]
-    heading = np.arctan2(chord[:, 1], chord[:, 0])
-    d = points - at[:n]
-    offset_left = np.cos(heading) * d[:, 1] - np.sin(heading) * d[:, 0]
-    p = np.clip(s / np.where(length > 0, length, 1.0), 0.0, 1.0)
-    station = p * (WIDTH_STATIONS - 1)
-    i0 = np.minimum(np.floor(station).astype(np.int64), WIDTH_STATIONS - 2)
-    frac = station - i0
-    w = graph.width_m[lanes, i0] * (1 - frac) + graph.width_m[lanes, i0 + 1] * frac
-    lat = 0.5 - offset_left / np.where(w > 0, w, 1.0)
-    return s, lat, heading
+    at = interpolate(graph.centre, np.tile(lanes, 2), ends)
+    chord = at[n:] - at[:n]
+    return s, np.arctan2(chord[:, 1], chord[:, 0])
+
+
+class _Candidates(NamedTuple):
+    """The points that can hold the extremes of each (box, lane) pair.
+
+    ``points`` ``(Q, 2)`` belong to pairs ``owner`` ``(Q,)``; ``tested`` points still have
+    to match the lane (the others lie inside its grown polygon). The last ``RING_POINTS * C``
+    points are the box rings (``box_ring``) of the pairs ``bent`` (curved lanes).
+    """
+
+    points: FloatArray
+    owner: IntArray
+    tested: BoolArray
+    bent: IntArray
+    cut: BoolArray
+
+
+def _candidates(
+    graph: PreparedGraph, boxes: BoxArrays, polys: np.ndarray, box_idx: IntArray, lane_idx: IntArray
+) -> _Candidates:
+    """Footprint corners, lattice points beside cut vertices, rings on curved lanes."""
+    grown = graph.match_polygons[lane_idx]
+    clipped = polys[box_idx]
+    # A box inside the grown lane is its own footprint; overlay only the others.
+    cut = ~shapely.contains_properly(grown, clipped)
+    clipped[cut] = shapely.intersection(clipped[cut], grown[cut])
+    bent_mask = ~graph.straight[lane_idx]
+    # On curved lanes the rings replace the corners of uncut boxes.
+    clipped[bent_mask & ~cut] = None
+    coords, which = shapely.get_coordinates(clipped, return_index=True)
+    corners = shapely.get_coordinates(polys).reshape(len(polys), 5, 2)[box_idx[which], :4]
+    gap = np.min(np.hypot(*(corners - coords[:, None, :]).transpose(2, 0, 1)), axis=1)
+    inner = gap > _CORNER_TOL_M
+    # Where a box edge leaves the grown lane, the lattice points beside the cut stand in
+    # for it (vertices of the lane outline inside the box lie between such cuts).
+    snapped, on_edge = lattice_neighbours(boxes, box_idx[which[inner]], coords[inner])
+    cut_owner = which[inner][on_edge]
+    bent = np.flatnonzero(bent_mask)
+    ring = box_ring(boxes, box_idx[bent]).reshape(-1, 2)
+    points = np.concatenate([coords[~inner], snapped[on_edge].reshape(-1, 2), ring])
+    owner = np.concatenate([which[~inner], np.repeat(cut_owner, 2), np.repeat(bent, RING_POINTS)])
+    tested = np.ones(len(points), dtype=np.bool_)
+    tested[: int(np.count_nonzero(~inner))] = False
+    return _Candidates(points, owner, tested, bent, cut)
+
+
+def _regions(  # noqa: PLR0917 - the pairs' arrays
+    graph: PreparedGraph,
+    boxes: BoxArrays,
+    polys: np.ndarray,
+    box_idx: IntArray,
+    lane_idx: IntArray,
+    centre_s: FloatArray,
+    c: _Candidates,
+) -> tuple[BoolArray, FloatArray, FloatArray, FloatArray, FloatArray]:
+    """Per pair: whether it has a region, and its lon / lat ranges (ad-map's ``addLaneRegions``).
+
+    A region needs one point inside the lane (lat in [0, 1], not beyond a lane end by
+    5 cm or more); every matching point widens it, lat clamped to the borders.
+    """
+    # Curved borders are searched only near the box centre's station (scaled from the
+    # centre line to each border).
+    length = graph.centre_length_m[lane_idx]
+    fraction = centre_s / np.where(length > 0.0, length, 1.0)
+    borders = np.stack([lane_idx, lane_idx + len(graph.straight)])
+    near = fraction * graph.borders.length_m[borders]
+    half_diagonal = np.max(np.hypot(boxes.length_m, boxes.width_m), initial=0.0) / 2.0
+    reach = _REACH_FACTOR * float(half_diagonal) + _REACH_MARGIN_M
+    lon, lat, dist = ad_map_positions(graph, lane_idx[c.owner], c.points, near[:, c.owner], reach)
+    member = ~c.tested | matches_point(dist)
+    end = (lon <= _END_TOL) | (lon >= 1.0 - _END_TOL)
+    actual = member & (lat >= 0.0) & (lat <= 1.0) & ~(end & (dist >= _END_MATCH_M))
+    p = len(lane_idx)
+    has = np.zeros(p, dtype=np.bool_)
+    has[c.owner[actual]] = True
+    # A lane narrower than the box crossing it holds lattice points between the cuts
+    # (not evaluated): its region exists when the box reaches into the lane itself.
+    unsure = np.flatnonzero(~has & c.cut)
+    has[unsure] = shapely.intersects(polys[box_idx[unsure]], graph.polygons[lane_idx[unsure]])
+    lon_min, lon_max = np.full(p, np.inf), np.full(p, -np.inf)
+    lat_min, lat_max = np.full(p, np.inf), np.full(p, -np.inf)
+    o, lon_m, lat_m = c.owner[member], lon[member], np.clip(lat[member], 0.0, 1.0)
+    np.minimum.at(lon_min, o, lon_m)
+    np.maximum.at(lon_max, o, lon_m)
+    np.minimum.at(lat_min, o, lat_m)
+    np.maximum.at(lat_max, o, lat_m)
+    if c.bent.size:
+        k = RING_POINTS * c.bent.size
+        lo, hi = edge_extremes(
+            lat[-k:].reshape(-1, RING_POINTS), member[-k:].reshape(-1, RING_POINTS)
+        )
+        lat_min[c.bent] = np.minimum(lat_min[c.bent], np.clip(lo, 0.0, 1.0))
+        lat_max[c.bent] = np.maximum(lat_max[c.bent], np.clip(hi, 0.0, 1.0))
+    return has, np.clip(lon_min, 0.0, 1.0), np.clip(lon_max, 0.0, 1.0), lat_min, lat_max
 
 
 def match_boxes(graph: PreparedGraph, boxes: BoxArrays) -> Matches:
     """Occupied regions of every box in every lane it overlaps (see module docstring)."""
     n = len(boxes.x_m)
     polys = box_polygons(boxes)
-    box_idx, lane_idx = graph.tree.query(polys, predicate="intersects")
+    box_idx, lane_idx = graph.match_tree.query(polys, predicate="intersects")
     by_box = np.argsort(box_idx, kind="stable")
     box_idx, lane_idx = box_idx[by_box], lane_idx[by_box]
-    clipped = polys[box_idx]
-    lane_polys = graph.polygons[lane_idx]
-    # A box strictly inside its lane is its own footprint; overlay only the others.
-    cut = ~shapely.contains_properly(lane_polys, clipped)
-    clipped[cut] = shapely.intersection(clipped[cut], lane_polys[cut])
-    keep = shapely.area(clipped) > _MIN_AREA_M2
-    box_idx, lane_idx, clipped = box_idx[keep], lane_idx[keep], clipped[keep]
-    coords, which = shapely.get_coordinates(clipped, return_index=True)
     centres = np.stack([boxes.x_m[box_idx], boxes.y_m[box_idx]], axis=1)
-    m = len(coords)
-    s_all, lat_all, heading_all = _lateral(
-        graph, np.concatenate([lane_idx[which], lane_idx]), np.concatenate([coords, centres])
+    centre_s, pair_heading = _centre_station(graph, lane_idx, centres)
+    candidates = _candidates(graph, boxes, polys, box_idx, lane_idx)
+    has, lon_min, lon_max, lat_min, lat_max = _regions(
+        graph, boxes, polys, box_idx, lane_idx, centre_s, candidates
     )
-    s, lat, centre_s, pair_heading = s_all[:m], lat_all[:m], s_all[m:], heading_all[m:]
-    p = len(box_idx)
+    box_idx, lane_idx, centres = box_idx[has], lane_idx[has], centres[has]
+    centre_s, pair_heading = centre_s[has], pair_heading[has]
     length = graph.centre_length_m[lane_idx]
-    s_min = np.full(p, np.inf)
-    s_max = np.full(p, -np.inf)
-    lat_min = np.full(p, np.inf)
-    lat_max = np.full(p, -np.inf)
-    np.minimum.at(s_min, which, s)
-    np.maximum.at(s_max, which, s)
-    np.minimum.at(lat_min, which, lat)
-    np.maximum.at(lat_max, which, lat)
     safe_len = np.where(length > 0, length, 1.0)
-
     outside = shapely.distance(shapely.points(centres), graph.polygons[lane_idx])
     misaligned = 1.0 - np.abs(np.cos(boxes.yaw_rad[box_idx] - pair_heading))
     score = outside + _MISALIGNED_M * misaligned
@@ -236,10 +322,10 @@ def match_boxes(graph: PreparedGraph, boxes: BoxArrays) -> Matches:
     return Matches(
         box=box_idx.astype(np.int64),
         lane=lane_idx.astype(np.int64),
-        lon_min=np.clip(s_min / safe_len, 0.0, 1.0),
-        lon_max=np.clip(s_max / safe_len, 0.0, 1.0),
-        lat_min=np.clip(lat_min, 0.0, 1.0),
-        lat_max=np.clip(lat_max, 0.0, 1.0),
+        lon_min=lon_min[has],
+        lon_max=lon_max[has],
+        lat_min=lat_min[has],
+        lat_max=lat_max[has],
         anchor=anchor,
         anchor_s=anchor_s,
         anchor_heading_rad=heading,

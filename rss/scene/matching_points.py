@@ -1,0 +1,270 @@
+"""Point-level map matching as ad-map does it (``AdMapMatching``), vectorised.
+
+ad-map matches a box by sampling it on a lattice of about 0.1 m (corners included) and
+matching every lattice point to every lane within ``MATCH_DISTANCE_M``. A point's
+parametric position comes from its nearest points on the two lane borders, not from the
+centre line::
+
+    left border   ──────l──────────▶   t_l = arc(l) / length(left)
+                        │
+                        · point        lat = position along l -> r (0 at l, 1 at r)
+                        │              lon = (1 - n) t_l + n t_r,  n = lat clamped to [0, 1]
+    right border  ─────────r───────▶   t_r = arc(r) / length(right)
+
+On a curved lane the two border fractions of one cross-section differ (a straight piece
+takes a larger share of the inner border than of the outer one), so ``lon`` is not the
+centre-line fraction. ``rss.scene.matching`` evaluates only the lattice points that can
+hold a region's extremes (see there); this module holds the per-point pieces.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from rss.scene.lanegraph import MATCH_DISTANCE_M
+
+if TYPE_CHECKING:
+    from rss.batch import BoolArray, FloatArray, IntArray
+    from rss.scene.lanegraph import PreparedGraph
+    from rss.scene.matching import BoxArrays
+
+__all__ = [
+    "DISTANCE_TOL_M",
+    "RING_POINTS",
+    "ad_map_positions",
+    "border_stations",
+    "box_ring",
+    "edge_extremes",
+    "lattice_neighbours",
+    "matches_point",
+]
+
+#: ad-physics compares distances with this tolerance (``Distance::cPrecisionValue``).
+DISTANCE_TOL_M = 1e-3
+#: ad-map's lattice step never drops below 0.1 m.
+_MIN_STRIDE_M = 0.1
+_INTEGRAL_TOL = 1e-6
+
+
+def _foot(
+    graph: PreparedGraph,
+    which: IntArray,
+    points: FloatArray,
+    near_m: FloatArray | None,
+    reach_m: float,
+) -> tuple[FloatArray, FloatArray]:
+    """Nearest points of ``points`` ``(Q, 2)`` on the borders ``which``: arc lengths, points.
+
+    The segments of each line (only those within ``reach_m`` of arc length ``near_m``
+    when given) are tried at once, rows padded to the longest range. Of segments within
+    1 mm of the nearest, the first counts: ad-map keeps its current segment unless a
+    later one is nearer by more than ad-physics' distance tolerance.
+    """
+    lines = graph.borders
+    first = lines.start[which]
+    last = lines.start[which + 1] - 2  # last segment
+    if near_m is not None:
+        base = lines.offset_m[which]
+        lo = np.searchsorted(lines.global_m, base + near_m - reach_m, side="right") - 1
+        hi = np.searchsorted(lines.global_m, base + near_m + reach_m, side="left")
+        first, last = np.clip(lo, first, last), np.clip(hi, first, last)
+    count = last - first + 1
+    k = np.arange(max(int(count.max()), 1) if len(count) else 1)
+    valid = k[None, :] < count[:, None]
+    idx = np.where(valid, first[:, None] + k[None, :], first[:, None])
+    x, y, step_x, step_y = graph.border_segments
+    ax, ay, dx, dy = x[idx], y[idx], step_x[idx], step_y[idx]
+    rx, ry = points[:, :1] - ax, points[:, 1:] - ay
+    seg = lines.segment_m[idx]
+    t = np.minimum(np.maximum((rx * dx + ry * dy) / np.where(seg > 0.0, seg * seg, 1.0), 0.0), 1.0)
+    ox, oy = rx - dx * t, ry - dy * t
+    dist = np.where(valid, ox * ox + oy * oy, np.inf)
+    near = np.sqrt(dist.min(axis=1, keepdims=True)) + DISTANCE_TOL_M
+    best = np.argmax(dist < near * near, axis=1)
+    rows = np.arange(len(which))
+    seg, tb = idx[rows, best], t[rows, best]
+    foot = np.stack([ax[rows, best] + dx[rows, best] * tb, ay[rows, best] + dy[rows, best] * tb], 1)
+    return lines.s_at_m[seg] + tb * lines.segment_m[seg], foot
+
+
+def border_stations(graph: PreparedGraph, lanes: IntArray, points: FloatArray) -> FloatArray:
+    """``(2, P)`` arc lengths of the nearest points on the left and right borders of ``lanes``."""
+    both = np.concatenate([lanes, lanes + len(graph.straight)])
+    s, _ = _foot(graph, both, np.concatenate([points, points]), None, 0.0)
+    out: FloatArray = s.reshape(2, -1)
+    return out
+
+
+def ad_map_positions(
+    graph: PreparedGraph,
+    lanes: IntArray,
+    points: FloatArray,
+    near_m: FloatArray | None = None,
+    reach_m: float = 0.0,
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """ad-map's parametric position of ``points`` ``(Q, 2)`` in ``lanes`` ``(Q,)``.
+
+    Args:
+        graph: The prepared lane graph.
+        lanes: ``(Q,)`` lane of each point.
+        points: ``(Q, 2)`` points (map frame).
+        near_m: Optional ``(2, Q)`` arc lengths on the left / right border near which the
+            nearest points lie (e.g. ``border_stations`` of a nearby point): only border
+            segments within ``reach_m`` of them are searched.
+        reach_m: See ``near_m``.
+
+    Returns:
+        ``(lon, lat, dist_m)``, each ``(Q,)``: ``lon`` in [0, 1] along the lane's point
+        order, ``lat`` unclamped (< 0 left of the lane, > 1 right of it), ``dist_m`` the
+        distance to the matched point (0 inside the lane).
+    """
+    q = len(lanes)
+    s, feet = np.empty(2 * q), np.empty((2 * q, 2))
+    both = np.concatenate([lanes, lanes + len(graph.straight)])  # left, then right borders
+    twice = np.concatenate([points, points])
+    hint = None if near_m is None else near_m.reshape(-1)
+    straight = np.tile(graph.straight[lanes], 2)
+    for part in (straight, ~straight):  # pad curved borders only among themselves
+        if part.any():
+            s[part], feet[part] = _foot(
+                graph,
+                both[part],
+                twice[part],
+                None if hint is None else hint[part],
+                reach_m,
+            )
+    s_l, s_r, l_xy, r_xy = s[:q], s[q:], feet[:q], feet[q:]
+    d = r_xy - l_xy
+    dd = d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1]
+    rel = points - l_xy
+    lat = (rel[:, 0] * d[:, 0] + rel[:, 1] * d[:, 1]) / np.where(dd > 0.0, dd, 1.0)
+    n = np.clip(lat, 0.0, 1.0)
+    len_l, len_r = graph.borders.length_m[both[:q]], graph.borders.length_m[both[q:]]
+    t_l = s_l / np.where(len_l > 0.0, len_l, 1.0)
+    t_r = s_r / np.where(len_r > 0.0, len_r, 1.0)
+    off = rel - d * n[:, None]
+    return (1.0 - n) * t_l + n * t_r, lat, np.hypot(off[:, 0], off[:, 1])
+
+
+def matches_point(dist_m: FloatArray) -> BoolArray:
+    """Whether points ``dist_m`` from their matched point match the lane (ad-map's test)."""
+    out: BoolArray = dist_m < MATCH_DISTANCE_M + DISTANCE_TOL_M
+    return out
+
+
+def _frame(boxes: BoxArrays, box_idx: IntArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Front-left corners and the unit vectors forward and to the left, ``(P, 2)`` each."""
+    c, s = np.cos(boxes.yaw_rad[box_idx]), np.sin(boxes.yaw_rad[box_idx])
+    along = np.stack([c, s], axis=1)
+    left = np.stack([-s, c], axis=1)
+    centre = np.stack([boxes.x_m[box_idx], boxes.y_m[box_idx]], axis=1)
+    half = np.stack([boxes.length_m[box_idx], boxes.width_m[box_idx]], axis=1) / 2.0
+    front_left: FloatArray = centre + along * half[:, :1] + left * half[:, 1:]
+    return front_left, along, left
+
+
+def lattice_neighbours(
+    boxes: BoxArrays, box_idx: IntArray, points: FloatArray
+) -> tuple[FloatArray, BoolArray]:
+    """The two points of ad-map's box lattice beside each of ``points`` on a box edge.
+
+    ad-map steps from the front-left corner backwards by ``length / ceil(length / 0.1)``
+    and to the right by ``width / ceil(width / 0.1)``, both far edges included.
+
+    Args:
+        boxes: The boxes.
+        box_idx: ``(Q,)`` the box of each point.
+        points: ``(Q, 2)`` points on or inside their boxes.
+
+    Returns:
+        ``(Q, 2, 2)`` the lattice points before and after each point along its edge, and
+        ``(Q,)`` whether the point lies on an edge at all (the others get meaningless
+        neighbours).
+    """
+    front_left, along, left = _frame(boxes, box_idx)
+    length, width = boxes.length_m[box_idx], boxes.width_m[box_idx]
+    n_l, n_w = np.ceil(length / _MIN_STRIDE_M), np.ceil(width / _MIN_STRIDE_M)
+    step_l, step_w = length / n_l, width / n_w
+    rel = front_left - points
+    i = np.clip((rel * along).sum(axis=1) / step_l, 0.0, n_l)
+    j = np.clip((rel * left).sum(axis=1) / step_w, 0.0, n_w)
+    on_i = (np.abs(i) < _INTEGRAL_TOL) | (np.abs(i - n_l) < _INTEGRAL_TOL)
+    on_j = (np.abs(j) < _INTEGRAL_TOL) | (np.abs(j - n_w) < _INTEGRAL_TOL)
+    i = np.where(on_i, np.round(i), i)
+    j = np.where(on_j, np.round(j), j)
+    # along a front / rear edge (i fixed) step in j, along a side edge step in i
+    ii = np.where(on_i[:, None], i[:, None], np.stack([np.floor(i), np.ceil(i)], axis=1))
+    jj = np.where(on_i[:, None], np.stack([np.floor(j), np.ceil(j)], axis=1), j[:, None])
+    out: FloatArray = (
+        front_left[:, None, :]
+        - (ii * step_l[:, None])[..., None] * along[:, None, :]
+        - (jj * step_w[:, None])[..., None] * left[:, None, :]
+    )
+    return out, on_i | on_j
+
+
+#: Ring points of ``box_ring`` along each edge, front (short), right side (long), rear
+#: (short), left side (long): the sides get three inner samples, the ends one.
+_SHORT_EDGES = np.array([[0, 4, 1], [2, 8, 3]])
+_LONG_EDGES = np.array([[1, 5, 6, 7, 2], [3, 9, 10, 11, 0]])
+RING_POINTS = 12
+
+
+def box_ring(boxes: BoxArrays, box_idx: IntArray) -> FloatArray:
+    """``(P, RING_POINTS, 2)`` samples on the outline of each box.
+
+    Points ``0..3`` are the corners front-left, front-right, rear-right, rear-left; ``4``
+    and ``8`` the midpoints of the front and rear edges; ``5..7`` and ``9..11`` the
+    quarter points of the right and left sides (rear-ward and front-ward).
+    """
+    front_left, along, left = _frame(boxes, box_idx)
+    length, width = boxes.length_m[box_idx], boxes.width_m[box_idx]
+    back = np.array([0.0, 0.0, 1.0, 1.0, 0.0, 0.25, 0.5, 0.75, 1.0, 0.75, 0.5, 0.25])
+    right = np.array([0.0, 1.0, 1.0, 0.0, 0.5, 1.0, 1.0, 1.0, 0.5, 0.0, 0.0, 0.0])
+    db = (back[None] * length[:, None])[..., None] * along[:, None, :]
+    dr = (right[None] * width[:, None])[..., None] * left[:, None, :]
+    out: FloatArray = front_left[:, None, :] - db - dr
+    return out
+
+
+def _local_extremes(y: FloatArray, member: BoolArray) -> tuple[FloatArray, FloatArray]:
+    """Extremes of samples ``y`` ``(E, K)`` along straight edges, refined between samples.
+
+    Around the best inner sample, the parabola through it and its two neighbours (all
+    matching) gives the extreme; ``+inf`` / ``-inf`` where the best sample is an end or
+    a neighbour does not match (the ends themselves count as points anyway).
+    """
+    rows = np.arange(len(y))
+    out = []
+    for sign in (1.0, -1.0):
+        v = np.where(member, sign * y, np.inf)
+        k = np.argmin(v, axis=1)
+        inner = (k > 0) & (k < y.shape[1] - 1)
+        k = np.clip(k, 1, y.shape[1] - 2)
+        y0, y1, y2 = v[rows, k - 1], v[rows, k], v[rows, k + 1]
+        ok = inner & np.isfinite(y0) & np.isfinite(y2)
+        y0, y1, y2 = np.where(ok, y0, 0.0), np.where(ok, y1, 0.0), np.where(ok, y2, 0.0)
+        curv = y0 - 2.0 * y1 + y2
+        ok &= curv > 0.0
+        vertex = y1 - (y0 - y2) ** 2 / (8.0 * np.where(ok, curv, 1.0))
+        out.append(np.where(ok, sign * vertex, sign * np.inf))
+    return out[0], out[1]
+
+
+def edge_extremes(lat: FloatArray, member: BoolArray) -> tuple[FloatArray, FloatArray]:
+    """Smallest and largest ``lat`` between the samples of each box ring ``(P, RING_POINTS)``.
+
+    Along a straight edge over a curved lane the lateral position is smooth but not
+    linear: its extreme may lie inside an edge (the middle of a box side on the inner
+    side of a curve). Pairs without an inner extreme give ``+inf`` / ``-inf``.
+    """
+    lo, hi = np.full(len(lat), np.inf), np.full(len(lat), -np.inf)
+    for edges in (_SHORT_EDGES, _LONG_EDGES):
+        e_lo, e_hi = _local_extremes(
+            lat[:, edges].reshape(-1, edges.shape[1]), member[:, edges].reshape(-1, edges.shape[1])
+        )
+        lo = np.minimum(lo, e_lo.reshape(len(lat), -1).min(axis=1))
+        hi = np.maximum(hi, e_hi.reshape(len(lat), -1).max(axis=1))
+    return lo, hi
