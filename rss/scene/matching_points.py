@@ -34,7 +34,6 @@ __all__ = [
     "DISTANCE_TOL_M",
     "RING_POINTS",
     "ad_map_positions",
-    "border_stations",
     "box_ring",
     "edge_extremes",
     "lattice_neighbours",
@@ -46,32 +45,25 @@ DISTANCE_TOL_M = 1e-3
 #: ad-map's lattice step never drops below 0.1 m.
 _MIN_STRIDE_M = 0.1
 _INTEGRAL_TOL = 1e-6
+#: Rows of the nearest-segment search are padded to the first of these widths that fits
+#: them (the last group to its longest row).
+_PAD_WIDTHS = np.array([1, 6, 12])
 
 
-def _foot(
-    graph: PreparedGraph,
-    which: IntArray,
-    points: FloatArray,
-    near_m: FloatArray | None,
-    reach_m: float,
+def _nearest_segments(
+    graph: PreparedGraph, first: IntArray, count: IntArray, points: FloatArray
 ) -> tuple[FloatArray, FloatArray]:
-    """Nearest points of ``points`` ``(Q, 2)`` on the borders ``which``: arc lengths, points.
+    """Nearest points of ``points`` ``(Q, 2)`` on border segments ``first .. first + count``.
 
-    The segments of each line (only those within ``reach_m`` of arc length ``near_m``
-    when given) are tried at once, rows padded to the longest range. Of segments within
-    1 mm of the nearest, the first counts: ad-map keeps its current segment unless a
-    later one is nearer by more than ad-physics' distance tolerance.
+    All candidate segments of a row are tried at once (rows padded to the longest run).
+    Of segments within 1 mm of the nearest, the first counts: ad-map keeps its current
+    segment unless a later one is nearer by more than ad-physics' distance tolerance.
+
+    Returns:
+        ``(s, foot)``: arc lengths ``(Q,)`` on the borders and the points ``(Q, 2)``.
     """
     lines = graph.borders
-    first = lines.start[which]
-    last = lines.start[which + 1] - 2  # last segment
-    if near_m is not None:
-        base = lines.offset_m[which]
-        lo = np.searchsorted(lines.global_m, base + near_m - reach_m, side="right") - 1
-        hi = np.searchsorted(lines.global_m, base + near_m + reach_m, side="left")
-        first, last = np.clip(lo, first, last), np.clip(hi, first, last)
-    count = last - first + 1
-    k = np.arange(max(int(count.max()), 1) if len(count) else 1)
+    k = np.arange(int(count.max()))
     valid = k[None, :] < count[:, None]
     idx = np.where(valid, first[:, None] + k[None, :], first[:, None])
     x, y, step_x, step_y = graph.border_segments
@@ -83,18 +75,39 @@ def _foot(
     dist = np.where(valid, ox * ox + oy * oy, np.inf)
     near = np.sqrt(dist.min(axis=1, keepdims=True)) + DISTANCE_TOL_M
     best = np.argmax(dist < near * near, axis=1)
-    rows = np.arange(len(which))
-    seg, tb = idx[rows, best], t[rows, best]
+    rows = np.arange(len(first))
+    seg_b, tb = idx[rows, best], t[rows, best]
     foot = np.stack([ax[rows, best] + dx[rows, best] * tb, ay[rows, best] + dy[rows, best] * tb], 1)
-    return lines.s_at_m[seg] + tb * lines.segment_m[seg], foot
+    return lines.s_at_m[seg_b] + tb * lines.segment_m[seg_b], foot
 
 
-def border_stations(graph: PreparedGraph, lanes: IntArray, points: FloatArray) -> FloatArray:
-    """``(2, P)`` arc lengths of the nearest points on the left and right borders of ``lanes``."""
-    both = np.concatenate([lanes, lanes + len(graph.straight)])
-    s, _ = _foot(graph, both, np.concatenate([points, points]), None, 0.0)
-    out: FloatArray = s.reshape(2, -1)
-    return out
+def _foot(
+    graph: PreparedGraph,
+    which: IntArray,
+    points: FloatArray,
+    near_m: FloatArray | None,
+    reach_m: float,
+) -> tuple[FloatArray, FloatArray]:
+    """Nearest points of ``points`` ``(Q, 2)`` on the borders ``which``: arc lengths, points.
+
+    Only the segments within ``reach_m`` of arc length ``near_m`` are searched when given.
+    Rows are grouped by their number of segments so that padding stays small.
+    """
+    lines = graph.borders
+    first = lines.start[which]
+    last = lines.start[which + 1] - 2  # last segment
+    if near_m is not None:
+        base = lines.offset_m[which]
+        lo = np.searchsorted(lines.global_m, base + near_m - reach_m, side="right") - 1
+        hi = np.searchsorted(lines.global_m, base + near_m + reach_m, side="left")
+        first, last = np.clip(lo, first, last), np.clip(hi, first, last)
+    count = last - first + 1
+    s, foot = np.empty(len(which)), np.empty((len(which), 2))
+    bucket = np.searchsorted(_PAD_WIDTHS, count)
+    for b in np.unique(bucket).tolist():
+        rows = bucket == b
+        s[rows], foot[rows] = _nearest_segments(graph, first[rows], count[rows], points[rows])
+    return s, foot
 
 
 def ad_map_positions(
@@ -121,20 +134,9 @@ def ad_map_positions(
         distance to the matched point (0 inside the lane).
     """
     q = len(lanes)
-    s, feet = np.empty(2 * q), np.empty((2 * q, 2))
     both = np.concatenate([lanes, lanes + len(graph.straight)])  # left, then right borders
-    twice = np.concatenate([points, points])
     hint = None if near_m is None else near_m.reshape(-1)
-    straight = np.tile(graph.straight[lanes], 2)
-    for part in (straight, ~straight):  # pad curved borders only among themselves
-        if part.any():
-            s[part], feet[part] = _foot(
-                graph,
-                both[part],
-                twice[part],
-                None if hint is None else hint[part],
-                reach_m,
-            )
+    s, feet = _foot(graph, both, np.concatenate([points, points]), hint, reach_m)
     s_l, s_r, l_xy, r_xy = s[:q], s[q:], feet[:q], feet[q:]
     d = r_xy - l_xy
     dd = d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1]
@@ -205,24 +207,24 @@ def lattice_neighbours(
     return out, on_i | on_j
 
 
-#: Ring points of ``box_ring`` along each edge, front (short), right side (long), rear
-#: (short), left side (long): the sides get three inner samples, the ends one.
-_SHORT_EDGES = np.array([[0, 4, 1], [2, 8, 3]])
-_LONG_EDGES = np.array([[1, 5, 6, 7, 2], [3, 9, 10, 11, 0]])
-RING_POINTS = 12
+#: Ring points of ``box_ring`` along the right and the left side of a box (rear-ward and
+#: front-ward), both ends included.
+_SIDES = np.array([[1, 4, 5, 6, 2], [3, 7, 8, 9, 0]])
+RING_POINTS = 10
 
 
 def box_ring(boxes: BoxArrays, box_idx: IntArray) -> FloatArray:
     """``(P, RING_POINTS, 2)`` samples on the outline of each box.
 
-    Points ``0..3`` are the corners front-left, front-right, rear-right, rear-left; ``4``
-    and ``8`` the midpoints of the front and rear edges; ``5..7`` and ``9..11`` the
-    quarter points of the right and left sides (rear-ward and front-ward).
+    Points ``0..3`` are the corners front-left, front-right, rear-right, rear-left;
+    ``4..6`` and ``7..9`` the quarter points of the right and the left side. The ends get
+    no inner samples: a lateral extreme inside them (a box across a curved lane) is left
+    to the corners.
     """
     front_left, along, left = _frame(boxes, box_idx)
     length, width = boxes.length_m[box_idx], boxes.width_m[box_idx]
-    back = np.array([0.0, 0.0, 1.0, 1.0, 0.0, 0.25, 0.5, 0.75, 1.0, 0.75, 0.5, 0.25])
-    right = np.array([0.0, 1.0, 1.0, 0.0, 0.5, 1.0, 1.0, 1.0, 0.5, 0.0, 0.0, 0.0])
+    back = np.array([0.0, 0.0, 1.0, 1.0, 0.25, 0.5, 0.75, 0.75, 0.5, 0.25])
+    right = np.array([0.0, 1.0, 1.0, 0.0, 1.0, 1.0, 1.0, 0.0, 0.0, 0.0])
     db = (back[None] * length[:, None])[..., None] * along[:, None, :]
     dr = (right[None] * width[:, None])[..., None] * left[:, None, :]
     out: FloatArray = front_left[:, None, :] - db - dr
@@ -256,15 +258,9 @@ def _local_extremes(y: FloatArray, member: BoolArray) -> tuple[FloatArray, Float
 def edge_extremes(lat: FloatArray, member: BoolArray) -> tuple[FloatArray, FloatArray]:
     """Smallest and largest ``lat`` between the samples of each box ring ``(P, RING_POINTS)``.
 
-    Along a straight edge over a curved lane the lateral position is smooth but not
-    linear: its extreme may lie inside an edge (the middle of a box side on the inner
-    side of a curve). Pairs without an inner extreme give ``+inf`` / ``-inf``.
+    Along a box side over a curved lane the lateral position is smooth but not linear:
+    its extreme may lie inside the side (the middle of the side facing the inside of a
+    curve). Pairs without an inner extreme give ``+inf`` / ``-inf``.
     """
-    lo, hi = np.full(len(lat), np.inf), np.full(len(lat), -np.inf)
-    for edges in (_SHORT_EDGES, _LONG_EDGES):
-        e_lo, e_hi = _local_extremes(
-            lat[:, edges].reshape(-1, edges.shape[1]), member[:, edges].reshape(-1, edges.shape[1])
-        )
-        lo = np.minimum(lo, e_lo.reshape(len(lat), -1).min(axis=1))
-        hi = np.maximum(hi, e_hi.reshape(len(lat), -1).max(axis=1))
-    return lo, hi
+    lo, hi = _local_extremes(lat[:, _SIDES].reshape(-1, 5), member[:, _SIDES].reshape(-1, 5))
+    return lo.reshape(len(lat), 2).min(axis=1), hi.reshape(len(lat), 2).max(axis=1)
