@@ -56,6 +56,8 @@ _TANGENT_STEP_M = 0.5
 #: no farther along a border than the points are from the centre, give or take).
 _REACH_FACTOR = 1.5
 _REACH_MARGIN_M = 1.5
+#: Box rings are sampled for boxes within 60 degrees of their curved lane's heading.
+_ALONG_COS = 0.5
 #: A footprint vertex this close to a box corner is that corner (a lattice point).
 _CORNER_TOL_M = 1e-7
 #: A point projecting onto a lane end counts as in the lane only this close (ad-map).
@@ -200,7 +202,8 @@ class _Candidates(NamedTuple):
 
     ``points`` ``(Q, 2)`` belong to pairs ``owner`` ``(Q,)``; ``tested`` points still have
     to match the lane (the others lie inside its grown polygon). The last ``RING_POINTS * C``
-    points are the box rings (``box_ring``) of the pairs ``bent`` (curved lanes).
+    points are the box rings (``box_ring``) of the pairs ``bent`` (boxes along curved
+    lanes).
     """
 
     points: FloatArray
@@ -210,16 +213,26 @@ class _Candidates(NamedTuple):
     cut: BoolArray
 
 
-def _candidates(
-    graph: PreparedGraph, boxes: BoxArrays, polys: np.ndarray, box_idx: IntArray, lane_idx: IntArray
+def _candidates(  # noqa: PLR0917 - the pairs' arrays
+    graph: PreparedGraph,
+    boxes: BoxArrays,
+    polys: np.ndarray,
+    box_idx: IntArray,
+    lane_idx: IntArray,
+    heading_rad: FloatArray,
 ) -> _Candidates:
-    """Footprint corners, lattice points beside cut vertices, rings on curved lanes."""
+    """Footprint corners, lattice points beside cut vertices, rings along curved lanes.
+
+    A box side holds a lateral extreme inside only where it runs along the lane: rings
+    are sampled for boxes within 60 degrees of their curved lane's heading.
+    """
     grown = graph.match_polygons[lane_idx]
     clipped = polys[box_idx]
     # A box inside the grown lane is its own footprint; overlay only the others.
     cut = ~shapely.contains_properly(grown, clipped)
     clipped[cut] = shapely.intersection(clipped[cut], grown[cut])
-    bent_mask = ~graph.straight[lane_idx]
+    along = np.abs(np.cos(boxes.yaw_rad[box_idx] - heading_rad)) > _ALONG_COS
+    bent_mask = ~graph.straight[lane_idx] & along
     # On curved lanes the rings replace the corners of uncut boxes.
     clipped[bent_mask & ~cut] = None
     coords, which = shapely.get_coordinates(clipped, return_index=True)
@@ -298,7 +311,7 @@ def match_boxes(graph: PreparedGraph, boxes: BoxArrays) -> Matches:
     box_idx, lane_idx = box_idx[by_box], lane_idx[by_box]
     centres = np.stack([boxes.x_m[box_idx], boxes.y_m[box_idx]], axis=1)
     centre_s, pair_heading = _centre_station(graph, lane_idx, centres)
-    candidates = _candidates(graph, boxes, polys, box_idx, lane_idx)
+    candidates = _candidates(graph, boxes, polys, box_idx, lane_idx, pair_heading)
     has, lon_min, lon_max, lat_min, lat_max = _regions(
         graph, boxes, polys, box_idx, lane_idx, centre_s, candidates
     )

@@ -47,7 +47,7 @@ _MIN_STRIDE_M = 0.1
 _INTEGRAL_TOL = 1e-6
 #: Rows of the nearest-segment search are padded to the first of these widths that fits
 #: them (the last group to its longest row).
-_PAD_WIDTHS = np.array([1, 6, 12])
+_PAD_WIDTHS = np.array([1, 8])
 
 
 def _nearest_segments(
