@@ -131,6 +131,8 @@ class PreparedGraph:
         straight: ``(L,)`` both (simplified) borders are single segments.
         match_polygons: ``(L,)`` lane polygons grown by ``MATCH_DISTANCE_M`` (prepared).
         match_tree: STRtree over ``match_polygons``.
+        match_outlines: Outer rings of ``match_polygons`` as flat arrays (of the largest
+            part where a lane polygon has several).
     """
 
     graph: LaneGraph
@@ -148,6 +150,7 @@ class PreparedGraph:
     borders: Polylines
     straight: BoolArray
     match_polygons: np.ndarray
+    match_outlines: Polylines
     match_tree: shapely.STRtree
 
     @functools.cached_property
@@ -211,6 +214,15 @@ def _polygon(left: FloatArray, right: FloatArray) -> shapely.Geometry:
         if not isinstance(poly, shapely.Polygon | shapely.MultiPolygon):
             poly = shapely.convex_hull(poly)
     return poly
+
+
+def _largest_parts(polygons: np.ndarray) -> np.ndarray:
+    """``(L,)`` the polygons, multi-polygons replaced by their largest part."""
+    out = polygons.copy()
+    for i in np.flatnonzero(shapely.get_num_geometries(polygons) > 1).tolist():
+        parts = shapely.get_parts(polygons[i])
+        out[i] = parts[int(np.argmax(shapely.area(parts)))]
+    return out
 
 
 def _widths(left: shapely.LineString, right: shapely.LineString) -> FloatArray:
@@ -315,4 +327,5 @@ def prepare(graph: LaneGraph) -> PreparedGraph:
         ),
         match_polygons=match_polygons,
         match_tree=shapely.STRtree(match_polygons),
+        match_outlines=polylines(shapely.get_exterior_ring(_largest_parts(match_polygons))),
     )

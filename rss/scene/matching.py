@@ -33,6 +33,7 @@ from rss.scene.matching_points import (
     edge_extremes,
     lattice_neighbours,
     matches_point,
+    outline_crossings,
 )
 from rss.scene.polylines import heading_at, interpolate
 
@@ -221,34 +222,43 @@ def _candidates(  # noqa: PLR0917 - the pairs' arrays
     lane_idx: IntArray,
     heading_rad: FloatArray,
 ) -> _Candidates:
-    """Footprint corners, lattice points beside cut vertices, rings along curved lanes.
+    """Corners, lattice points beside the cuts of box edges, rings along curved lanes.
 
     A box side holds a lateral extreme inside only where it runs along the lane: rings
     are sampled for boxes within 60 degrees of their curved lane's heading.
     """
-    grown = graph.match_polygons[lane_idx]
-    clipped = polys[box_idx]
-    # A box inside the grown lane is its own footprint; overlay only the others.
-    cut = ~shapely.contains_properly(grown, clipped)
-    clipped[cut] = shapely.intersection(clipped[cut], grown[cut])
+    # A box inside the grown lane holds its extremes at its corners (or inside its sides).
+    cut = ~shapely.contains_properly(graph.match_polygons[lane_idx], polys[box_idx])
     along = np.abs(np.cos(boxes.yaw_rad[box_idx] - heading_rad)) > _ALONG_COS
     bent_mask = ~graph.straight[lane_idx] & along
-    # On curved lanes the rings replace the corners of uncut boxes.
-    clipped[bent_mask & ~cut] = None
-    coords, which = shapely.get_coordinates(clipped, return_index=True)
-    corners = shapely.get_coordinates(polys).reshape(len(polys), 5, 2)[box_idx[which], :4]
-    gap = np.min(np.hypot(*(corners - coords[:, None, :]).transpose(2, 0, 1)), axis=1)
-    inner = gap > _CORNER_TOL_M
-    # Where a box edge leaves the grown lane, the lattice points beside the cut stand in
-    # for it (vertices of the lane outline inside the box lie between such cuts).
-    snapped, on_edge = lattice_neighbours(boxes, box_idx[which[inner]], coords[inner])
-    cut_owner = which[inner][on_edge]
+    plain = np.flatnonzero(~cut & ~bent_mask)
+    crossing = np.flatnonzero(cut & ~bent_mask)
     bent = np.flatnonzero(bent_mask)
+    corners = box_ring(boxes, box_idx)[:, :4]
+    # Where a box edge leaves the grown lane, the lattice points beside the cut stand in
+    # for it (the lane outline inside the box lies between such cuts).
+    cuts, cut_row = outline_crossings(graph, corners[cut], lane_idx[cut])
+    cut_owner = np.flatnonzero(cut)[cut_row]
+    snapped, _ = lattice_neighbours(boxes, box_idx[cut_owner], cuts)
     ring = box_ring(boxes, box_idx[bent]).reshape(-1, 2)
-    points = np.concatenate([coords[~inner], snapped[on_edge].reshape(-1, 2), ring])
-    owner = np.concatenate([which[~inner], np.repeat(cut_owner, 2), np.repeat(bent, RING_POINTS)])
+    points = np.concatenate(
+        [
+            corners[plain].reshape(-1, 2),
+            corners[crossing].reshape(-1, 2),
+            snapped.reshape(-1, 2),
+            ring,
+        ]
+    )
+    owner = np.concatenate(
+        [
+            np.repeat(plain, 4),
+            np.repeat(crossing, 4),
+            np.repeat(cut_owner, 2),
+            np.repeat(bent, RING_POINTS),
+        ]
+    )
     tested = np.ones(len(points), dtype=np.bool_)
-    tested[: int(np.count_nonzero(~inner))] = False
+    tested[: 4 * len(plain)] = False
     return _Candidates(points, owner, tested, bent, cut)
 
 

@@ -38,6 +38,7 @@ __all__ = [
     "edge_extremes",
     "lattice_neighbours",
     "matches_point",
+    "outline_crossings",
 ]
 
 #: ad-physics compares distances with this tolerance (``Distance::cPrecisionValue``).
@@ -211,6 +212,51 @@ def lattice_neighbours(
 #: front-ward), both ends included.
 _SIDES = np.array([[1, 4, 5, 6, 2], [3, 7, 8, 9, 0]])
 RING_POINTS = 10
+
+
+def outline_crossings(
+    graph: PreparedGraph, corners: FloatArray, lanes: IntArray
+) -> tuple[FloatArray, IntArray]:
+    """Where the edges of boxes cross the outlines of their grown lanes.
+
+    Args:
+        graph: The prepared lane graph.
+        corners: ``(C, 4, 2)`` box corners in order round each box.
+        lanes: ``(C,)`` the lane of each box.
+
+    Returns:
+        ``(K, 2)`` crossing points and ``(K,)`` the box (row of ``corners``) of each.
+    """
+    rings = graph.match_outlines
+    first = rings.start[lanes]
+    count = rings.start[lanes + 1] - first - 1
+    pts: list[FloatArray] = []
+    rows: list[IntArray] = []
+    bucket = np.searchsorted(_PAD_WIDTHS, count)
+    for b in np.unique(bucket).tolist():
+        sel = np.flatnonzero(bucket == b)
+        k = np.arange(int(count[sel].max()))
+        valid = k[None, :] < count[sel, None]
+        idx = np.where(valid, first[sel, None] + k[None, :], first[sel, None])
+        p, q = rings.xy_m[idx][:, None], rings.xy_m[idx + 1][:, None]  # (S', 1, W, 2)
+        a = corners[sel][:, :, None, :]  # (S', 4, 1, 2)
+        e = np.roll(corners[sel], -1, axis=1)[:, :, None, :] - a
+        f, g = q - p, p - a
+        denom = e[..., 0] * f[..., 1] - e[..., 1] * f[..., 0]
+        safe = np.where(denom != 0.0, denom, 1.0)
+        t = (g[..., 0] * f[..., 1] - g[..., 1] * f[..., 0]) / safe
+        u = (g[..., 0] * e[..., 1] - g[..., 1] * e[..., 0]) / safe
+        hit = valid[:, None, :] & (denom != 0.0) & (t >= 0.0) & (t <= 1.0) & (u >= 0.0) & (u <= 1.0)
+        box, edge, seg = np.nonzero(hit)
+        tt = t[box, edge, seg][:, None]
+        pts.append(
+            corners[sel][box, edge]
+            + tt * (np.roll(corners[sel], -1, axis=1)[box, edge] - corners[sel][box, edge])
+        )
+        rows.append(sel[box])
+    if not pts:
+        return np.zeros((0, 2)), np.zeros(0, dtype=np.int64)
+    return np.concatenate(pts), np.concatenate(rows)
 
 
 def box_ring(boxes: BoxArrays, box_idx: IntArray) -> FloatArray:
