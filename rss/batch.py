@@ -284,55 +284,52 @@ class _ObjectRows:
 
 
 class _RoadRows:
-    """Road areas of ``C`` constellations as flat, validated segment and lane rows."""
+    """Road areas of ``C`` constellations as validated segment rows.
+
+    Each distinct :class:`RoadSegment` object (whole segments are shared by many road
+    areas, a frame's cut ones by several) is validated and read once per stacking; its
+    lanes are spread to every use by a few numpy calls in :meth:`arrays`. A road that
+    fails validation is re-checked lane by lane (:func:`_check_road`) for the exact error.
+    """
 
     def __init__(self) -> None:
         self.count = 0
-        self.segments: list[tuple[int, int, int]] = []  # (row, segment, type)
-        self.lengths: list[tuple[float, float]] = []
-        self.lanes: list[tuple[int, int, int, int, int]] = []  # (row, seg, lane, id, dir)
-        self.metric: list[tuple[float, float, float, float]] = []
+        self.uses: list[tuple[int, int, int]] = []  # (row, segment, distinct segment)
         self.shape = [1, 1]
+        self._known: dict[int, tuple[RoadSegment, int, frozenset[int]]] = {}
+        self._distinct: list[RoadSegment] = []
 
     def add(self, road: tuple[RoadSegment, ...]) -> None:
         row = self.count
         self.count += 1
         self.shape[0] = max(self.shape[0], len(road))
-        seen: set[int] = set()
+        known, uses = self._known, self.uses
+        total = 0
+        ids: set[int] = set()
         for j, segment in enumerate(road):
-            kind = segment.segment_type
-            if not _known(kind, _SEGMENT_CODES):
-                raise RssConstellationError("segment_type", kind, "unknown")
-            if not segment.lanes:
-                raise RssConstellationError("road segment", segment, "has no lanes")
-            self.segments.append((row, j, int(kind)))
-            self.lengths.append(
-                (
-                    segment.min_length_before_intersecting_area_m,
-                    segment.min_length_after_intersecting_area_m,
-                )
-            )
-            self.shape[1] = max(self.shape[1], len(segment.lanes))
-            lanes_append, metric_append = self.lanes.append, self.metric.append
-            for m, lane in enumerate(segment.lanes):
-                l0, l1 = lane.length_min_m, lane.length_max_m
-                w0, w1 = lane.width_min_m, lane.width_max_m
-                lane_id, direction = lane.lane_id, lane.driving_direction
-                try:
-                    ok = (
-                        0.0 <= l0 <= l1 < math.inf
-                        and 0.0 <= w0 <= w1 < math.inf
-                        and direction in _DIRECTION_CODES
-                        and lane_id >= 0
-                        and lane_id not in seen
-                    )
-                except TypeError:
-                    ok = False
-                if not ok:
-                    _raise_lane(lane)
-                seen.add(lane_id)
-                lanes_append((row, j, m, lane_id, direction))
-                metric_append((l0, l1, w0, w1))
+            entry = known.get(id(segment))
+            if entry is None:
+                entry = self._distinct_segment(segment, road)
+            uses.append((row, j, entry[1]))
+            total += len(entry[2])
+            ids |= entry[2]
+        if len(ids) != total:
+            _check_road(road)
+
+    def _distinct_segment(
+        self, segment: RoadSegment, road: tuple[RoadSegment, ...]
+    ) -> tuple[RoadSegment, int, frozenset[int]]:
+        lanes = segment.lanes
+        ok = _known(segment.segment_type, _SEGMENT_CODES) and bool(lanes)
+        ok = ok and all(map(_lane_ok, lanes))
+        ids = frozenset(lane.lane_id for lane in lanes) if ok else frozenset()
+        if not ok or len(ids) != len(lanes):
+            _check_road(road)
+        self.shape[1] = max(self.shape[1], len(lanes))
+        entry = (segment, len(self._distinct), ids)
+        self._distinct.append(segment)
+        self._known[id(segment)] = entry
+        return entry
 
     def arrays(self) -> RoadAreaArrays:
         shape = (self.count, *self.shape)
@@ -341,16 +338,42 @@ class _RoadRows:
         metric = np.zeros((*shape, 4))
         segment_type = np.full(shape[:2], -1, dtype=np.int64)
         lengths = np.zeros((*shape[:2], 2))
-        if self.segments:
-            seg = np.array(self.segments, dtype=np.int64)
-            segment_type[seg[:, 0], seg[:, 1]] = seg[:, 2]
-            lengths[seg[:, 0], seg[:, 1]] = self.lengths
-        if self.lanes:
-            lanes = np.array(self.lanes, dtype=np.int64)
-            at = (lanes[:, 0], lanes[:, 1], lanes[:, 2])
-            lane_id[at] = lanes[:, 3]
-            direction[at] = lanes[:, 4]
-            metric[at] = self.metric
+        if self.uses:
+            distinct = self._distinct
+            kinds = np.array([int(s.segment_type) for s in distinct], dtype=np.int64)
+            before_after = np.array(
+                [
+                    (
+                        s.min_length_before_intersecting_area_m,
+                        s.min_length_after_intersecting_area_m,
+                    )
+                    for s in distinct
+                ],
+                dtype=np.float64,
+            )
+            flat = [lane for s in distinct for lane in s.lanes]
+            codes = np.array(
+                [(lane.lane_id, lane.driving_direction) for lane in flat], dtype=np.int64
+            )
+            values = np.array(
+                [
+                    (lane.length_min_m, lane.length_max_m, lane.width_min_m, lane.width_max_m)
+                    for lane in flat
+                ],
+                dtype=np.float64,
+            )
+            counts = np.array([len(s.lanes) for s in distinct], dtype=np.int64)
+            first = np.cumsum(counts) - counts
+            use = np.array(self.uses, dtype=np.int64)
+            segment_type[use[:, 0], use[:, 1]] = kinds[use[:, 2]]
+            lengths[use[:, 0], use[:, 1]] = before_after[use[:, 2]]
+            n = counts[use[:, 2]]
+            offset = np.arange(int(n.sum())) - np.repeat(np.cumsum(n) - n, n)
+            src = np.repeat(first[use[:, 2]], n) + offset
+            at = (np.repeat(use[:, 0], n), np.repeat(use[:, 1], n), offset)
+            lane_id[at] = codes[src, 0]
+            direction[at] = codes[src, 1]
+            metric[at] = values[src]
         return RoadAreaArrays(
             lane_id=_ints(lane_id),
             driving_direction=_ints(direction),
@@ -362,6 +385,38 @@ class _RoadRows:
             before_intersection_m=_floats(lengths[..., 0]),
             after_intersection_m=_floats(lengths[..., 1]),
         )
+
+
+def _lane_ok(lane: LaneSegment) -> bool:
+    """Whether a lane's lengths, widths, direction and id are valid (not its uniqueness)."""
+    try:
+        return (
+            0.0 <= lane.length_min_m <= lane.length_max_m < math.inf
+            and 0.0 <= lane.width_min_m <= lane.width_max_m < math.inf
+            and lane.driving_direction in _DIRECTION_CODES
+            and lane.lane_id >= 0
+        )
+    except TypeError:
+        return False
+
+
+def _check_road(road: tuple[RoadSegment, ...]) -> None:
+    """Raise the error of the first invalid segment or lane of ``road`` (in road order)."""
+    seen: set[int] = set()
+    for segment in road:
+        kind = segment.segment_type
+        if not _known(kind, _SEGMENT_CODES):
+            raise RssConstellationError("segment_type", kind, "unknown")
+        if not segment.lanes:
+            raise RssConstellationError("road segment", segment, "has no lanes")
+        for lane in segment.lanes:
+            try:
+                ok = _lane_ok(lane) and lane.lane_id not in seen
+            except TypeError:
+                ok = False
+            if not ok:
+                _raise_lane(lane)
+            seen.add(lane.lane_id)
 
 
 def _raise_lane(lane: LaneSegment) -> None:
