@@ -234,13 +234,14 @@ def _candidates(  # noqa: PLR0917 - the pairs' arrays
     plain = np.flatnonzero(~cut & ~bent_mask)
     crossing = np.flatnonzero(cut & ~bent_mask)
     bent = np.flatnonzero(bent_mask)
-    corners = box_ring(boxes, box_idx)[:, :4]
+    rings = box_ring(boxes, box_idx)
+    corners = rings[:, :4]
     # Where a box edge leaves the grown lane, the lattice points beside the cut stand in
     # for it (the lane outline inside the box lies between such cuts).
     cuts, cut_row = outline_crossings(graph, corners[cut], lane_idx[cut])
     cut_owner = np.flatnonzero(cut)[cut_row]
     snapped, _ = lattice_neighbours(boxes, box_idx[cut_owner], cuts)
-    ring = box_ring(boxes, box_idx[bent]).reshape(-1, 2)
+    ring = rings[bent].reshape(-1, 2)
     points = np.concatenate(
         [
             corners[plain].reshape(-1, 2),
