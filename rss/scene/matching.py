@@ -1,19 +1,23 @@
-"""Map matching: bounding boxes -> parametric occupied regions per lane, vectorised.
+"""Map matching: bounding boxes -> parametric occupied regions per lane, as ad-map does it.
 
-Each box is intersected with every lane polygon it touches (STRtree query -> index
-pairs); the vertices of the clipped footprint are projected onto the lane's centre line.
-The longitudinal range is the arc-length range divided by the centre length, the lateral
-range comes from the signed offset and the local width (0 = left border, 1 = right
-border, in the lane's point order)::
+ad-map samples a box on a 0.1 m lattice and matches every lattice point to every lane
+(``rss.scene.matching_points`` holds the point rule: lon from the nearest points on both
+borders, a point within 0.1 m matches). The region of a lane spans the matching points,
+those beside the lane counting at its border. Here only the lattice points that can hold
+a region's extremes are evaluated, for all (box, lane) pairs at once (STRtree query of
+the lanes grown by 0.1 m -> index pairs)::
 
-     left border  ──────────────────────────▶  lat 0
-                        ┌────────┐
-     centre       ──────│  box   │──────────▶  lat 0.5      lon = s / centre length
-                        └────────┘
-     right border ──────────────────────────▶  lat 1
+     left border  ───────────────────────────▶  lat 0
+                        c─────────x──c           c  corner (inside the grown lane)
+     lane         ──────│   box   │  │───────▶   x  lattice points beside the cut where
+                        c─────────x──c              a box edge leaves the grown lane
+     right border ───────────────────────────▶  lat 1
 
-Only the part of a box that lies on the map counts, so a vehicle partly off the map still
-gets regions for the lanes it touches; a box touching no lane gets none.
+On curved lanes the lateral position along a box side is not linear: for boxes along the
+lane, samples on the sides give the extreme inside a side (a parabola through the best
+sample and its neighbours). Only the part of a box that lies on the map counts, so a
+vehicle partly off the map still gets regions for the lanes it touches; a box touching
+no lane gets none.
 """
 
 from __future__ import annotations
