@@ -19,7 +19,7 @@ from __future__ import annotations
 import enum
 import math
 import weakref
-from typing import TYPE_CHECKING, cast
+from typing import TYPE_CHECKING, NamedTuple, cast
 
 import numpy as np
 import shapely
@@ -35,9 +35,11 @@ if TYPE_CHECKING:
 
 __all__ = [
     "Arm",
+    "IntersectionPair",
     "Relation",
     "conflict",
     "intersection_arms",
+    "intersection_pair",
     "intersection_plans",
     "intersection_type",
     "junctions_on",
@@ -435,3 +437,56 @@ def intersection_type(ego_level: int, obj_level: int) -> ConstellationType:
     if ego_level < obj_level:
         return ConstellationType.IntersectionObjectHasPriority
     return ConstellationType.IntersectionSamePriority
+
+
+class IntersectionPair(NamedTuple):
+    """The uncut road areas of an (ego route, object route) pair (see :func:`intersection_pair`).
+
+    Attributes:
+        ego_lane: The ego route's conflict lane.
+        obj_lane: The object route's conflict lane.
+        ego_plans: :func:`intersection_plans` of the ego route (do not modify).
+        obj_plans: :func:`intersection_plans` of the object route (do not modify).
+        priority: :func:`intersection_type` of the two routes' right of way up to the
+            conflict.
+    """
+
+    ego_lane: int
+    obj_lane: int
+    ego_plans: tuple[SegmentPlan, ...]
+    obj_plans: tuple[SegmentPlan, ...]
+    priority: ConstellationType
+
+
+def intersection_pair(
+    prep: PreparedGraph,
+    ego_route: tuple[Step, ...],
+    obj_route: tuple[Step, ...],
+    green: frozenset[int],
+) -> IntersectionPair | None:
+    """Conflict, uncut road areas and priority of two routes; ``None`` without conflict.
+
+    A function of the two routes and the green lights alone, so memoised per prepared
+    graph (route pairs repeat from frame to frame; only the cuts at the vehicles change).
+    """
+    memo = _memo(prep)
+    key = ("pair", ego_route, obj_route, green)
+    if key in memo:
+        return cast("IntersectionPair | None", memo[key])
+    hit = conflict(prep, ego_route, obj_route)
+    out = None
+    if hit is not None:
+        ie, io = hit
+        ego_lane, obj_lane = ego_route[ie][0], obj_route[io][0]
+        out = IntersectionPair(
+            ego_lane,
+            obj_lane,
+            tuple(intersection_plans(prep, ego_route, ie, obj_lane)),
+            tuple(intersection_plans(prep, obj_route, io, ego_lane)),
+            intersection_type(
+                route_priority(prep, ego_route[: ie + 1], green),
+                route_priority(prep, obj_route[: io + 1], green),
+            ),
+        )
+    memo[key] = out
+    return out

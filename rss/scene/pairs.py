@@ -32,13 +32,11 @@ from rss.scene.connecting import Connecting, Kind, connecting_routes
 from rss.scene.corridor import corridor_plans
 from rss.scene.frame import ego_routes
 from rss.scene.intersection import (
+    IntersectionPair,
     Relation,
-    conflict,
-    intersection_plans,
-    intersection_type,
+    intersection_pair,
     junctions_on,
     relation,
-    route_priority,
 )
 from rss.scene.roadarea import SegmentPlan, cut_between, cut_window
 from rss.scene.routes import cross_section, follows_traffic
@@ -57,33 +55,28 @@ _FOLLOWING_COS = float(np.cos(np.pi / 4))
 
 
 def _intersection(
-    f: FrameContext,
-    i: int,
-    routes: tuple[tuple[Step, ...], tuple[Step, ...]],
-    green: frozenset[int],
-    kind: ConstellationType | None = None,
+    f: FrameContext, i: int, pair: IntersectionPair, kind: ConstellationType | None = None
 ) -> Constellation | None:
     """The intersection constellation of one (ego route, object route) pair.
 
     The conflict is the first pair of overlapping / merging intersection lanes (else the
     first shared lane); ``kind`` overrides the priority-derived type (merging routes).
+    The memoised uncut plans are shared: only each first plan is copied and cut.
     """
-    ego_route, obj_route = routes
-    hit = conflict(f.prep, ego_route, obj_route)
-    if hit is None:
-        return None
-    ie, io = hit
-    ego_lane, obj_lane = ego_route[ie][0], obj_route[io][0]
-    ego_plans = intersection_plans(f.prep, ego_route, ie, obj_lane)
-    obj_plans = intersection_plans(f.prep, obj_route, io, ego_lane)
+    ego_plans = _first_copied(pair.ego_plans)
+    obj_plans = _first_copied(pair.obj_plans)
     cut_window(ego_plans, f.matches, (0,), cut_end=False)
     cut_window(obj_plans, f.matches, (i + 1,), cut_end=False)
-    if kind is None:
-        kind = intersection_type(
-            route_priority(f.prep, ego_route[: ie + 1], green),
-            route_priority(f.prep, obj_route[: io + 1], green),
-        )
-    return f.constellation(kind, i, ego_plans, obj_plans)
+    return f.constellation(pair.priority if kind is None else kind, i, ego_plans, obj_plans)
+
+
+def _first_copied(plans: tuple[SegmentPlan, ...]) -> list[SegmentPlan]:
+    """``plans`` as a list whose first plan (the one ``cut_window`` may cut) is a copy."""
+    first, *rest = plans
+    kept = SegmentPlan(
+        first.lanes, first.segment_type, first.before_m, first.after_m, first.p0, first.p1
+    )
+    return [kept, *rest]
 
 
 def _on_routes(f: FrameContext, box: int, routes: list[tuple[Step, ...]]) -> bool:
@@ -179,12 +172,12 @@ class _Pair:
     def add_intersection(
         self, routes: tuple[tuple[Step, ...], tuple[Step, ...]], kind: ConstellationType | None
     ) -> None:
-        hit = conflict(self.f.prep, *routes)
-        if hit is None:
+        pair = intersection_pair(self.f.prep, *routes, self.green)
+        if pair is None:
             return
-        key = (kind, routes[0][hit[0]][0], routes[1][hit[1]][0])
+        key = (kind, pair.ego_lane, pair.obj_lane)
         if key not in self.out:
-            self.out[key] = _intersection(self.f, self.i, routes, self.green, kind)
+            self.out[key] = _intersection(self.f, self.i, pair, kind)
 
 
 def _through(p: _Pair, cr: Connecting) -> None:
