@@ -46,40 +46,13 @@ DISTANCE_TOL_M = 1e-3
 #: ad-map's lattice step never drops below 0.1 m.
 _MIN_STRIDE_M = 0.1
 _INTEGRAL_TOL = 1e-6
-#: Rows of the nearest-segment search are padded to the first of these widths that fits
-#: them (the last group to its longest row).
-_PAD_WIDTHS = np.array([1, 8])
 
 
-def _nearest_segments(
-    graph: PreparedGraph, first: IntArray, count: IntArray, points: FloatArray
-) -> tuple[FloatArray, FloatArray]:
-    """Nearest points of ``points`` ``(Q, 2)`` on border segments ``first .. first + count``.
-
-    All candidate segments of a row are tried at once (rows padded to the longest run).
-    Of segments within 1 mm of the nearest, the first counts: ad-map keeps its current
-    segment unless a later one is nearer by more than ad-physics' distance tolerance.
-
-    Returns:
-        ``(s, foot)``: arc lengths ``(Q,)`` on the borders and the points ``(Q, 2)``.
-    """
-    lines = graph.borders
-    k = np.arange(int(count.max()))
-    valid = k[None, :] < count[:, None]
-    idx = np.where(valid, first[:, None] + k[None, :], first[:, None])
-    x, y, step_x, step_y = graph.border_segments
-    ax, ay, dx, dy = x[idx], y[idx], step_x[idx], step_y[idx]
-    rx, ry = points[:, :1] - ax, points[:, 1:] - ay
-    seg = lines.segment_m[idx]
-    t = np.minimum(np.maximum((rx * dx + ry * dy) / np.where(seg > 0.0, seg * seg, 1.0), 0.0), 1.0)
-    ox, oy = rx - dx * t, ry - dy * t
-    dist = np.where(valid, ox * ox + oy * oy, np.inf)
-    near = np.sqrt(dist.min(axis=1, keepdims=True)) + DISTANCE_TOL_M
-    best = np.argmax(dist < near * near, axis=1)
-    rows = np.arange(len(first))
-    seg_b, tb = idx[rows, best], t[rows, best]
-    foot = np.stack([ax[rows, best] + dx[rows, best] * tb, ay[rows, best] + dy[rows, best] * tb], 1)
-    return lines.s_at_m[seg_b] + tb * lines.segment_m[seg_b], foot
+def _flat_runs(first: IntArray, count: IntArray) -> tuple[IntArray, IntArray]:
+    """``(row, item)`` of all items ``first[r] .. first[r] + count[r] - 1``, row after row."""
+    row = np.repeat(np.arange(len(first)), count)
+    starts = np.cumsum(count) - count
+    return row, first[row] + np.arange(int(count.sum())) - starts[row]
 
 
 def _foot(
@@ -91,8 +64,10 @@ def _foot(
 ) -> tuple[FloatArray, FloatArray]:
     """Nearest points of ``points`` ``(Q, 2)`` on the borders ``which``: arc lengths, points.
 
-    Only the segments within ``reach_m`` of arc length ``near_m`` are searched when given.
-    Rows are grouped by their number of segments so that padding stays small.
+    All candidate segments of all rows are tried at once (one flat run per row; only the
+    segments within ``reach_m`` of arc length ``near_m`` when given). Of segments within
+    1 mm of the nearest, the first counts: ad-map keeps its current segment unless a
+    later one is nearer by more than ad-physics' distance tolerance.
     """
     lines = graph.borders
     first = lines.start[which]
@@ -102,13 +77,23 @@ def _foot(
         lo = np.searchsorted(lines.global_m, base + near_m - reach_m, side="right") - 1
         hi = np.searchsorted(lines.global_m, base + near_m + reach_m, side="left")
         first, last = np.clip(lo, first, last), np.clip(hi, first, last)
-    count = last - first + 1
-    s, foot = np.empty(len(which)), np.empty((len(which), 2))
-    bucket = np.searchsorted(_PAD_WIDTHS, count)
-    for b in np.unique(bucket).tolist():
-        rows = bucket == b
-        s[rows], foot[rows] = _nearest_segments(graph, first[rows], count[rows], points[rows])
-    return s, foot
+    count = np.maximum(last - first + 1, 1)
+    row, seg = _flat_runs(first, count)
+    x, y, step_x, step_y = graph.border_segments
+    ax, ay, dx, dy = x[seg], y[seg], step_x[seg], step_y[seg]
+    rx, ry = points[row, 0] - ax, points[row, 1] - ay
+    length = lines.segment_m[seg]
+    t = (rx * dx + ry * dy) / np.where(length > 0.0, length * length, 1.0)
+    t = np.minimum(np.maximum(t, 0.0), 1.0)
+    ox, oy = rx - dx * t, ry - dy * t
+    dist2 = ox * ox + oy * oy
+    starts = np.cumsum(count) - count
+    limit = np.sqrt(np.minimum.reduceat(dist2, starts)) + DISTANCE_TOL_M
+    candidate = np.where(dist2 < (limit * limit)[row], np.arange(len(seg)), len(seg))
+    best = np.minimum.reduceat(candidate, starts)
+    sb, tb = seg[best], t[best]
+    foot = np.stack([ax[best] + dx[best] * tb, ay[best] + dy[best] * tb], axis=1)
+    return lines.s_at_m[sb] + tb * lines.segment_m[sb], foot
 
 
 def ad_map_positions(
@@ -229,34 +214,21 @@ def outline_crossings(
     """
     rings = graph.match_outlines
     first = rings.start[lanes]
-    count = rings.start[lanes + 1] - first - 1
-    pts: list[FloatArray] = []
-    rows: list[IntArray] = []
-    bucket = np.searchsorted(_PAD_WIDTHS, count)
-    for b in np.unique(bucket).tolist():
-        sel = np.flatnonzero(bucket == b)
-        k = np.arange(int(count[sel].max()))
-        valid = k[None, :] < count[sel, None]
-        idx = np.where(valid, first[sel, None] + k[None, :], first[sel, None])
-        p, q = rings.xy_m[idx][:, None], rings.xy_m[idx + 1][:, None]  # (S', 1, W, 2)
-        a = corners[sel][:, :, None, :]  # (S', 4, 1, 2)
-        e = np.roll(corners[sel], -1, axis=1)[:, :, None, :] - a
-        f, g = q - p, p - a
-        denom = e[..., 0] * f[..., 1] - e[..., 1] * f[..., 0]
-        safe = np.where(denom != 0.0, denom, 1.0)
-        t = (g[..., 0] * f[..., 1] - g[..., 1] * f[..., 0]) / safe
-        u = (g[..., 0] * e[..., 1] - g[..., 1] * e[..., 0]) / safe
-        hit = valid[:, None, :] & (denom != 0.0) & (t >= 0.0) & (t <= 1.0) & (u >= 0.0) & (u <= 1.0)
-        box, edge, seg = np.nonzero(hit)
-        tt = t[box, edge, seg][:, None]
-        pts.append(
-            corners[sel][box, edge]
-            + tt * (np.roll(corners[sel], -1, axis=1)[box, edge] - corners[sel][box, edge])
-        )
-        rows.append(sel[box])
-    if not pts:
-        return np.zeros((0, 2)), np.zeros(0, dtype=np.int64)
-    return np.concatenate(pts), np.concatenate(rows)
+    row, seg = _flat_runs(first, rings.start[lanes + 1] - first - 1)
+    p, q = rings.xy_m[seg], rings.xy_m[seg + 1]
+    lo, hi = corners.min(axis=1)[row], corners.max(axis=1)[row]
+    near = np.all((np.minimum(p, q) <= hi) & (np.maximum(p, q) >= lo), axis=1)
+    row, p, q = row[near], p[near][:, None], q[near][:, None]  # (N, 1, 2)
+    a = corners[row]  # (N, 4, 2)
+    e = np.roll(corners, -1, axis=1)[row] - a
+    f, g = q - p, p - a
+    denom = e[..., 0] * f[..., 1] - e[..., 1] * f[..., 0]
+    safe = np.where(denom != 0.0, denom, 1.0)
+    t = (g[..., 0] * f[..., 1] - g[..., 1] * f[..., 0]) / safe
+    u = (g[..., 0] * e[..., 1] - g[..., 1] * e[..., 0]) / safe
+    hit = (denom != 0.0) & (t >= 0.0) & (t <= 1.0) & (u >= 0.0) & (u <= 1.0)
+    k, edge = np.nonzero(hit)
+    return a[k, edge] + t[k, edge][:, None] * e[k, edge], row[k]
 
 
 def box_ring(boxes: BoxArrays, box_idx: IntArray) -> FloatArray:
