@@ -244,7 +244,7 @@ def _candidates(  # noqa: PLR0917 - the pairs' arrays
     # for it (the lane outline inside the box lies between such cuts).
     cuts, cut_row = outline_crossings(graph, corners[cut], lane_idx[cut])
     cut_owner = np.flatnonzero(cut)[cut_row]
-    snapped, _ = lattice_neighbours(boxes, box_idx[cut_owner], cuts)
+    snapped = lattice_neighbours(boxes, box_idx[cut_owner], cuts)
     ring = rings[bent].reshape(-1, 2)
     points = np.concatenate(
         [

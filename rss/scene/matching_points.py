@@ -153,9 +153,7 @@ def _frame(boxes: BoxArrays, box_idx: IntArray) -> tuple[FloatArray, FloatArray,
     return front_left, along, left
 
 
-def lattice_neighbours(
-    boxes: BoxArrays, box_idx: IntArray, points: FloatArray
-) -> tuple[FloatArray, BoolArray]:
+def lattice_neighbours(boxes: BoxArrays, box_idx: IntArray, points: FloatArray) -> FloatArray:
     """The two points of ad-map's box lattice beside each of ``points`` on a box edge.
 
     ad-map steps from the front-left corner backwards by ``length / ceil(length / 0.1)``
@@ -164,12 +162,10 @@ def lattice_neighbours(
     Args:
         boxes: The boxes.
         box_idx: ``(Q,)`` the box of each point.
-        points: ``(Q, 2)`` points on or inside their boxes.
+        points: ``(Q, 2)`` points on the edges of their boxes.
 
     Returns:
-        ``(Q, 2, 2)`` the lattice points before and after each point along its edge, and
-        ``(Q,)`` whether the point lies on an edge at all (the others get meaningless
-        neighbours).
+        ``(Q, 2, 2)`` the lattice points before and after each point along its edge.
     """
     front_left, along, left = _frame(boxes, box_idx)
     length, width = boxes.length_m[box_idx], boxes.width_m[box_idx]
@@ -179,9 +175,7 @@ def lattice_neighbours(
     i = np.clip((rel * along).sum(axis=1) / step_l, 0.0, n_l)
     j = np.clip((rel * left).sum(axis=1) / step_w, 0.0, n_w)
     on_i = (np.abs(i) < _INTEGRAL_TOL) | (np.abs(i - n_l) < _INTEGRAL_TOL)
-    on_j = (np.abs(j) < _INTEGRAL_TOL) | (np.abs(j - n_w) < _INTEGRAL_TOL)
     i = np.where(on_i, np.round(i), i)
-    j = np.where(on_j, np.round(j), j)
     # along a front / rear edge (i fixed) step in j, along a side edge step in i
     ii = np.where(on_i[:, None], i[:, None], np.stack([np.floor(i), np.ceil(i)], axis=1))
     jj = np.where(on_i[:, None], np.stack([np.floor(j), np.ceil(j)], axis=1), j[:, None])
@@ -190,7 +184,7 @@ def lattice_neighbours(
         - (ii * step_l[:, None])[..., None] * along[:, None, :]
         - (jj * step_w[:, None])[..., None] * left[:, None, :]
     )
-    return out, on_i | on_j
+    return out
 
 
 #: Ring points of ``box_ring`` along the right and the left side of a box (rear-ward and
