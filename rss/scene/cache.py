@@ -27,7 +27,7 @@ from rss.model import LaneDrivingDirection, LaneSegment, RoadSegment
 
 if TYPE_CHECKING:
     from rss.scene.lanegraph import PreparedGraph
-    from rss.scene.roadarea import PlacedLane
+    from rss.scene.roadarea import PlacedLane, SegmentPlan
     from rss.scene.routes import Step
 
 __all__ = ["GraphScalars", "LaneSegmentCache"]
@@ -57,7 +57,11 @@ class LaneSegmentCache:
         #: Whole (uncut) road segments of ``rss.scene.roadarea.build_road`` by plan
         #: ``(lanes, type, before, after, id offset)``: segment, placed lanes, finite limits.
         #: Uncut corridor layouts of ``rss.scene.corridor.corridor_plans`` by their inputs.
-        self.corridor_layouts: dict[tuple[object, ...], tuple[tuple[Step, ...], ...]] = {}
+        #: Each as uncut plans (shared, do not cut) with its lanes' segment index and
+        #: orientation (``roadarea.plan_lanes``).
+        self.corridor_layouts: dict[
+            tuple[object, ...], tuple[tuple[SegmentPlan, ...], dict[int, tuple[int, bool]]]
+        ] = {}
         self.whole_roads: dict[
             tuple[object, ...],
             tuple[RoadSegment, tuple[tuple[int, PlacedLane], ...], tuple[float, ...]],

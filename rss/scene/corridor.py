@@ -15,7 +15,14 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from rss.scene.roadarea import SegmentPlan, cut_between, cut_window
+from rss.scene.roadarea import (
+    SegmentPlan,
+    between,
+    cut_at,
+    cut_window,
+    fresh_ends,
+    plan_lanes,
+)
 from rss.scene.routes import lateral
 
 if TYPE_CHECKING:
@@ -60,16 +67,22 @@ def corridor_plans(
         tuple((k[lane], j[lane], fwd[lane]) for lane in occupied),
     )
     memo = prep.lane_segments.corridor_layouts
-    layout = memo.get(key)
-    if layout is None:
+    known = memo.get(key)
+    if known is None:
         if len(memo) >= _MAX_LAYOUTS:
             memo.clear()
-        memo[key] = layout = _layout(prep, tree, path, occupied)
-    plans = [SegmentPlan(lanes=list(lanes)) for lanes in layout]
-    ends = cut_between(plans, matches, boxes)
-    if ends is None:
+        layout = _layout(prep, tree, path, occupied)
+        uncut = tuple(SegmentPlan(lanes=list(lanes)) for lanes in layout)
+        memo[key] = known = (uncut, plan_lanes(layout))
+    uncut, where = known
+    cut = between(where, matches, boxes)
+    if cut is None:
+        plans = fresh_ends(uncut)
         cut_window(plans, matches, boxes)
-    return plans, ends
+        return plans, None
+    (k0, p0), (k1, p1), rear_box, front_box = cut
+    plans = fresh_ends(uncut[k0 : k1 + 1])
+    return plans, cut_at(plans, matches, ((0, p0), (k1 - k0, p1), rear_box, front_box))
 
 
 #: Corridor layouts kept per map before the memo starts afresh.

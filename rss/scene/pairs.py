@@ -38,7 +38,7 @@ from rss.scene.intersection import (
     junctions_on,
     relation,
 )
-from rss.scene.roadarea import SegmentPlan, cut_between, cut_window
+from rss.scene.roadarea import SegmentPlan, cut_between, cut_window, fresh_ends
 from rss.scene.routes import cross_section, follows_traffic
 
 if TYPE_CHECKING:
@@ -61,22 +61,13 @@ def _intersection(
 
     The conflict is the first pair of overlapping / merging intersection lanes (else the
     first shared lane); ``kind`` overrides the priority-derived type (merging routes).
-    The memoised uncut plans are shared: only each first plan is copied and cut.
+    The memoised uncut plans are shared: only their ends are copied and cut.
     """
-    ego_plans = _first_copied(pair.ego_plans)
-    obj_plans = _first_copied(pair.obj_plans)
+    ego_plans = fresh_ends(pair.ego_plans)
+    obj_plans = fresh_ends(pair.obj_plans)
     cut_window(ego_plans, f.matches, (0,), cut_end=False)
     cut_window(obj_plans, f.matches, (i + 1,), cut_end=False)
     return f.constellation(pair.priority if kind is None else kind, i, ego_plans, obj_plans)
-
-
-def _first_copied(plans: tuple[SegmentPlan, ...]) -> list[SegmentPlan]:
-    """``plans`` as a list whose first plan (the one ``cut_window`` may cut) is a copy."""
-    first, *rest = plans
-    kept = SegmentPlan(
-        first.lanes, first.segment_type, first.before_m, first.after_m, first.p0, first.p1
-    )
-    return [kept, *rest]
 
 
 def _on_routes(f: FrameContext, box: int, routes: list[tuple[Step, ...]]) -> bool:

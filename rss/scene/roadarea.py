@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import bisect
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, NamedTuple
 
 from rss.model import (
@@ -33,20 +33,27 @@ from rss.model import (
 )
 
 if TYPE_CHECKING:
+    from collections.abc import Sequence
+
     from rss.scene.lanegraph import PreparedGraph
     from rss.scene.matching import Matches
     from rss.scene.routes import Step
 
 __all__ = [
+    "Between",
     "BuiltSegment",
     "PlacedLane",
     "SegmentPlan",
+    "between",
     "build_road",
+    "cut_at",
     "cut_between",
     "cut_window",
+    "fresh_ends",
     "lane_heading",
     "lane_window",
     "place_object",
+    "plan_lanes",
 ]
 
 _EPS = 1e-6
@@ -63,6 +70,8 @@ class SegmentPlan:
         after_m: Intersection only: length after it.
         p0: Kept window start (road-area direction, parametric).
         p1: Kept window end.
+        whole: ``(id offset, conversion)`` of the uncut plan, kept by :func:`build_road`
+            (plans shared by memos skip the lookup; only ``p0`` / ``p1`` may change).
     """
 
     lanes: list[Step]
@@ -71,6 +80,19 @@ class SegmentPlan:
     after_m: float = 0.0
     p0: float = 0.0
     p1: float = 1.0
+    whole: tuple[int, BuiltSegment] | None = field(default=None, repr=False, compare=False)
+
+
+def fresh_ends(plans: Sequence[SegmentPlan]) -> list[SegmentPlan]:
+    """``plans`` as a new list whose first and last plans (the ones cuts change) are copies.
+
+    For plans shared by memos: the middle ones are handed out as they are.
+    """
+    out = list(plans)
+    for k in {0, len(out) - 1} if out else ():
+        p = out[k]
+        out[k] = SegmentPlan(p.lanes, p.segment_type, p.before_m, p.after_m, p.p0, p.p1, p.whole)
+    return out
 
 
 class PlacedLane(NamedTuple):
@@ -104,11 +126,15 @@ def lane_window(p0: float, p1: float, *, forward: bool) -> tuple[float, float]:
     return _road_param(p0, p1, forward=forward)
 
 
+def plan_lanes(plans: Sequence[Sequence[Step]]) -> dict[int, tuple[int, bool]]:
+    """Segment index and orientation of each lane of segment plans' lanes, by lane."""
+    return {lane: (k, fwd) for k, lanes in enumerate(plans) for lane, fwd in lanes}
+
+
 def _extent(
-    plans: list[SegmentPlan], matches: Matches, box: int
+    where: dict[int, tuple[int, bool]], matches: Matches, box: int
 ) -> tuple[tuple[int, float], tuple[int, float]] | None:
     """``((segment, param) of the rear, (segment, param) of the front)`` of a box."""
-    where = {lane: (k, fwd) for k, plan in enumerate(plans) for lane, fwd in plan.lanes}
     ends: list[tuple[int, float]] = []
     for region in matches.regions(box):
         hit = where.get(region.lane)
@@ -116,6 +142,26 @@ def _extent(
             lo, hi = _road_param(region.lon_min, region.lon_max, forward=hit[1])
             ends += [(hit[0], lo), (hit[0], hi)]
     return (min(ends), max(ends)) if ends else None
+
+
+#: Where a road area between two boxes is cut: ``((k0, p0), (k1, p1), rear box, front box)``
+#: keeps segments ``k0..k1``, from ``p0`` of the first to ``p1`` of the last.
+Between = tuple[tuple[int, float], tuple[int, float], int, int]
+
+
+def between(
+    where: dict[int, tuple[int, bool]], matches: Matches, boxes: tuple[int, int]
+) -> Between | None:
+    """Where :func:`cut_between` cuts plans with lanes ``where`` (from :func:`plan_lanes`)."""
+    a, b = (_extent(where, matches, box) for box in boxes)
+    if a is None or b is None:
+        return None
+    (rear, front), (rear_box, front_box) = (
+        ((a, b), boxes) if a[1] <= b[0] else ((b, a), boxes[::-1])
+    )
+    if rear[1] >= front[0]:
+        return None
+    return rear[1], front[0], rear_box, front_box
 
 
 def cut_between(
@@ -129,15 +175,15 @@ def cut_between(
     touches as ``(lane, parametric position in its point order)``, or ``None`` (plans
     unchanged) where the boxes overlap longitudinally.
     """
-    a, b = (_extent(plans, matches, box) for box in boxes)
-    if a is None or b is None:
-        return None
-    (rear, front), (rear_box, front_box) = (
-        ((a, b), boxes) if a[1] <= b[0] else ((b, a), boxes[::-1])
-    )
-    if rear[1] >= front[0]:
-        return None
-    (k0, p0), (k1, p1) = rear[1], front[0]
+    cut = between(plan_lanes([plan.lanes for plan in plans]), matches, boxes)
+    return None if cut is None else cut_at(plans, matches, cut)
+
+
+def cut_at(
+    plans: list[SegmentPlan], matches: Matches, cut: Between
+) -> dict[int, tuple[int, float]]:
+    """Cut ``plans`` in place where :func:`between` says; the route ends at each box."""
+    (k0, p0), (k1, p1), rear_box, front_box = cut
     del plans[k1 + 1 :]
     del plans[:k0]
     plans[0].p0 = min(p0, 1.0 - 0.001)
@@ -203,24 +249,42 @@ def build_road(
     road: list[RoadSegment] = []
     placed: dict[int, PlacedLane] = {}
     limits: list[float] = []
-    whole = prep.lane_segments.whole_roads
     for plan in plans:
-        key = (tuple(plan.lanes), plan.segment_type, plan.before_m, plan.after_m, id_offset)
-        if plan.p0 == 0.0 and plan.p1 == 1.0:
-            built = whole.get(key)
-            if built is None:
-                whole[key] = built = _segment(prep, plan, id_offset)
-        elif cut_memo is not None:
-            cut_key = (*key, plan.p0, plan.p1)
-            built = cut_memo.get(cut_key)
-            if built is None:
-                cut_memo[cut_key] = built = _segment(prep, plan, id_offset)
-        else:
-            built = _segment(prep, plan, id_offset)
+        built = _built(prep, plan, id_offset, cut_memo)
         road.append(built[0])
         placed.update(built[1])
         limits.extend(built[2])
     return tuple(road), placed, max(limits) if limits else float("nan")
+
+
+def _built(
+    prep: PreparedGraph,
+    plan: SegmentPlan,
+    id_offset: int,
+    cut_memo: dict[tuple[object, ...], BuiltSegment] | None,
+) -> BuiltSegment:
+    """One plan converted: whole plans once per map (kept on the plan), cut ones per memo."""
+    uncut = plan.p0 == 0.0 and plan.p1 == 1.0
+    if uncut and plan.whole is not None and plan.whole[0] == id_offset:
+        return plan.whole[1]
+    memo = prep.lane_segments.whole_roads if uncut else cut_memo
+    if memo is None:
+        return _segment(prep, plan, id_offset)
+    key: tuple[object, ...] = (
+        tuple(plan.lanes),
+        plan.segment_type,
+        plan.before_m,
+        plan.after_m,
+        id_offset,
+    )
+    if not uncut:
+        key = (*key, plan.p0, plan.p1)
+    built = memo.get(key)
+    if built is None:
+        memo[key] = built = _segment(prep, plan, id_offset)
+    if uncut:
+        plan.whole = (id_offset, built)
+    return built
 
 
 def _segment(prep: PreparedGraph, plan: SegmentPlan, id_offset: int) -> BuiltSegment:
