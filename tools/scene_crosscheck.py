@@ -33,10 +33,12 @@ from rss.scene import PreparedGraph, create_scene, prepare  # noqa: E402
 from tests.rss.scene.test_crosscheck_adrss_map import (  # noqa: E402
     ORACLE,
     SETTINGS,
+    admap_lane_id,
     compare,
     ours,
     pair_inputs,
     placements,
+    turn_defect,
 )
 from workbench.rss_adapter import lane_graph_from_map  # noqa: E402
 
@@ -76,15 +78,10 @@ def oracle_answers(
     return answers
 
 
-def _admap_id(prep: PreparedGraph, lane: int) -> str:
-    road, section, idx = prep.graph.ids[lane].split("_")
-    return str(int(road) * 10000 + (int(section) + 1) * 100 + int(idx) + 50)
-
-
 def explain(prep: PreparedGraph, pair: dict[str, Any]) -> None:
     """Print our side's internals for one pair (lane ids in ad-map's numbering)."""
     ego, objects = pair_inputs(pair)
-    lid = functools.partial(_admap_id, prep)
+    lid = functools.partial(admap_lane_id, prep)
     logging.basicConfig(format="   %(message)s")
     logging.getLogger("rss.scene").setLevel(logging.DEBUG)
     scene = create_scene(prep, ego, objects, SETTINGS)
@@ -131,7 +128,38 @@ def _fmt(side: dict[str, Any]) -> str:
     return " ".join(parts) or "-"
 
 
-def main() -> int:  # noqa: C901 - a flat diagnostic script
+def _classes(
+    mine: dict[int, dict[str, Any]],
+    theirs: list[dict[str, Any]],
+    picked: list[int],
+    defects: dict[int, bool],
+) -> tuple[list[tuple[str, list[int]]], list[tuple[float, int]]]:
+    """Disagreement classes ``(name, pair indices)`` and ``(distance error, pair)`` rows."""
+    classes: dict[str, list[int]] = defaultdict(list)
+    verdict_only: list[int] = []
+    turned: list[int] = []
+    dist: list[tuple[float, int]] = []
+    for k in picked:
+        a, b = mine[k], theirs[k]
+        ta = sorted({s["type"] for s in a["situations"]})
+        tb = sorted({s["type"] for s in b["situations"]} - {"NotRelevant"})
+        if ta != tb:
+            classes[f"{'+'.join(ta) or '-'} -> {'+'.join(tb) or '-'}"].append(k)
+        elif any(a["dangerous"]) != any(b["dangerous"]):
+            verdict_only.append(k)
+            if defects[k]:
+                turned.append(k)
+        if len(a["situations"]) == len(b["situations"]) == 1 and ta == tb:
+            err = abs(a["situations"][0]["lon_d"] - b["situations"][0]["lon_d"])
+            err += abs(a["situations"][0]["lat_d"] - b["situations"][0]["lat_d"])
+            dist.append((err, k))
+    rows = sorted(classes.items(), key=lambda kv: -len(kv[1]))
+    rows.append(("same types, verdict differs", verdict_only))
+    rows.append(("... of which ad-map's turn-direction defect is in play", turned))
+    return rows, dist
+
+
+def main() -> int:
     """Run the comparison and print the disagreement classes."""
     ap = argparse.ArgumentParser()
     ap.add_argument("--n", type=int, default=500)
@@ -153,25 +181,10 @@ def main() -> int:  # noqa: C901 - a flat diagnostic script
     theirs = oracle_answers(pairs, args.oracle, cache, refresh=args.refresh)
     picked = [int(v) for v in args.pairs.split(",") if v] or list(range(len(pairs)))
     mine = {k: ours(prep, pairs[k]) for k in picked}
+    defects = {k: turn_defect(prep, pairs[k], theirs[k]) for k in picked}
     if not args.pairs:
-        print(compare([mine[k] for k in picked], theirs))
-    classes: dict[str, list[int]] = defaultdict(list)
-    verdict_only: list[int] = []
-    dist: list[tuple[float, int]] = []
-    for k in picked:
-        a, b = mine[k], theirs[k]
-        ta = sorted({s["type"] for s in a["situations"]})
-        tb = sorted({s["type"] for s in b["situations"]} - {"NotRelevant"})
-        if ta != tb:
-            classes[f"{'+'.join(ta) or '-'} -> {'+'.join(tb) or '-'}"].append(k)
-        elif any(a["dangerous"]) != any(b["dangerous"]):
-            verdict_only.append(k)
-        if len(a["situations"]) == len(b["situations"]) == 1 and ta == tb:
-            err = abs(a["situations"][0]["lon_d"] - b["situations"][0]["lon_d"])
-            err += abs(a["situations"][0]["lat_d"] - b["situations"][0]["lat_d"])
-            dist.append((err, k))
-    rows = sorted(classes.items(), key=lambda kv: -len(kv[1]))
-    rows.append(("same types, verdict differs", verdict_only))
+        print(compare([mine[k] for k in picked], theirs, [defects[k] for k in picked]))
+    rows, dist = _classes(mine, theirs, picked, defects)
     for name, ks in rows:
         print(f"\n== {name}: {len(ks)}  {ks}")
         for k in ks[: args.show]:
