@@ -233,44 +233,50 @@ def _known(code: object, codes: frozenset[int]) -> bool:
 
 
 class _ObjectRows:
-    """Objects of ``C`` constellations as flat rows (one region per row)."""
+    """Objects of ``C`` constellations.
+
+    Each distinct :class:`LaneObject` (a frame's placed objects are shared by many
+    constellations) is read once; its regions are spread to every use in :meth:`arrays`.
+    """
 
     def __init__(self) -> None:
-        self.ids: list[int] = []
-        self.types: list[int] = []
-        self.speeds: list[tuple[float, float, float, float]] = []
-        self.at: tuple[list[int], list[int]] = ([], [])
-        self.lanes: list[int] = []
-        self.params: list[tuple[float, float, float, float]] = []
-        self.width = 1
+        self.uses: list[int] = []  # distinct object per row
+        self._known: dict[int, int] = {}
+        self._distinct: list[LaneObject] = []
 
     def add(self, obj: LaneObject) -> None:
-        row = len(self.ids)
-        self.ids.append(obj.object_id)
-        self.types.append(int(obj.object_type))
-        s = obj.speed
-        self.speeds.append((s.lon_min_mps, s.lon_max_mps, s.lat_min_mps, s.lat_max_mps))
-        regions = obj.regions
-        self.width = max(self.width, len(regions))
-        rows, ks = self.at
-        for k, r in enumerate(regions):
-            rows.append(row)
-            ks.append(k)
-            self.lanes.append(r.lane_id)
-            self.params.append((r.lon_min, r.lon_max, r.lat_min, r.lat_max))
+        k = self._known.get(id(obj))
+        if k is None:
+            k = self._known[id(obj)] = len(self._distinct)
+            self._distinct.append(obj)
+        self.uses.append(k)
 
     def arrays(self) -> ObjectArrays:
-        count = len(self.ids)
-        lane = np.full((count, self.width), -1, dtype=np.int64)
-        params = np.zeros((count, self.width, 4))
-        if self.lanes:
-            at = (np.array(self.at[0], dtype=np.int64), np.array(self.at[1], dtype=np.int64))
-            lane[at] = self.lanes
-            params[at] = self.params
-        speeds = np.array(self.speeds, dtype=np.float64).reshape(count, 4)
+        distinct = self._distinct
+        use = np.array(self.uses, dtype=np.int64)
+        counts = np.array([len(o.regions) for o in distinct], dtype=np.int64)
+        width = max(1, int(counts.max(initial=0)))
+        lane = np.full((len(use), width), -1, dtype=np.int64)
+        params = np.zeros((len(use), width, 4))
+        regions = [r for o in distinct for r in o.regions]
+        if regions:
+            rows, k, src = _spread(counts, use)
+            lane[rows, k] = np.array([r.lane_id for r in regions], dtype=np.int64)[src]
+            params[rows, k] = np.array(
+                [(r.lon_min, r.lon_max, r.lat_min, r.lat_max) for r in regions], dtype=np.float64
+            )[src]
+        speeds = np.array(
+            [
+                (o.speed.lon_min_mps, o.speed.lon_max_mps, o.speed.lat_min_mps, o.speed.lat_max_mps)
+                for o in distinct
+            ],
+            dtype=np.float64,
+        ).reshape(len(distinct), 4)[use]
         return ObjectArrays(
-            object_id=_ints(self.ids),
-            object_type=_ints(self.types),
+            object_id=_ints(np.array([o.object_id for o in distinct], dtype=np.int64)[use]),
+            object_type=_ints(
+                np.array([int(o.object_type) for o in distinct], dtype=np.int64)[use]
+            ),
             region_lane_id=_ints(lane),
             region_lon_min=_floats(params[:, :, 0]),
             region_lon_max=_floats(params[:, :, 1]),
@@ -281,6 +287,24 @@ class _ObjectRows:
             speed_lat_min_mps=_floats(speeds[:, 2]),
             speed_lat_max_mps=_floats(speeds[:, 3]),
         )
+
+
+def _spread(counts: IntArray, use: IntArray) -> tuple[IntArray, IntArray, IntArray]:
+    """Spread the sub-rows of distinct items to each of their uses.
+
+    Args:
+        counts: ``(D,)`` sub-rows (lanes, regions) of each distinct item, stored one item
+            after the other.
+        use: ``(U,)`` distinct item of each use.
+
+    Returns:
+        Per spread sub-row: the use it belongs to, its position within the item, and the
+        stored sub-row it copies.
+    """
+    n = counts[use]
+    offset = np.arange(int(n.sum())) - np.repeat(np.cumsum(n) - n, n)
+    first = np.cumsum(counts) - counts
+    return np.repeat(np.arange(len(use)), n), offset, np.repeat(first[use], n) + offset
 
 
 class _RoadRows:
@@ -304,16 +328,14 @@ class _RoadRows:
         self.count += 1
         self.shape[0] = max(self.shape[0], len(road))
         known, uses = self._known, self.uses
-        total = 0
-        ids: set[int] = set()
+        ids: list[frozenset[int]] = []
         for j, segment in enumerate(road):
             entry = known.get(id(segment))
             if entry is None:
                 entry = self._distinct_segment(segment, road)
             uses.append((row, j, entry[1]))
-            total += len(entry[2])
-            ids |= entry[2]
-        if len(ids) != total:
+            ids.append(entry[2])
+        if len(ids) > 1 and len(frozenset().union(*ids)) != sum(map(len, ids)):
             _check_road(road)
 
     def _distinct_segment(
@@ -363,14 +385,11 @@ class _RoadRows:
                 dtype=np.float64,
             )
             counts = np.array([len(s.lanes) for s in distinct], dtype=np.int64)
-            first = np.cumsum(counts) - counts
             use = np.array(self.uses, dtype=np.int64)
             segment_type[use[:, 0], use[:, 1]] = kinds[use[:, 2]]
             lengths[use[:, 0], use[:, 1]] = before_after[use[:, 2]]
-            n = counts[use[:, 2]]
-            offset = np.arange(int(n.sum())) - np.repeat(np.cumsum(n) - n, n)
-            src = np.repeat(first[use[:, 2]], n) + offset
-            at = (np.repeat(use[:, 0], n), np.repeat(use[:, 1], n), offset)
+            rows, m, src = _spread(counts, use[:, 2])
+            at = (use[rows, 0], use[rows, 1], m)
             lane_id[at] = codes[src, 0]
             direction[at] = codes[src, 1]
             metric[at] = values[src]
