@@ -125,6 +125,9 @@ class GraphScalars:
         is_intersection: ``(L,)`` lane lies inside an intersection.
         conflict_rows: ``(L, L)`` ``prep.conflicts`` as nested lists.
         cross_sections: Memo of ``rss.scene.routes.cross_section`` by step.
+        route_facts: Memo of the pure route functions of ``rss.scene.intersection``.
+        route_searches: Recent predicted-route searches by start step, with their
+            horizon comparisons (``rss.scene.routes.predict_routes``).
         merge_points: Memo of where two routes meet (``rss.scene.connecting``), by the
             (ego route, object route) pair.
     """
@@ -149,6 +152,10 @@ class GraphScalars:
         self.is_intersection: list[bool] = np.asarray(g.is_intersection, bool).tolist()
         self.conflict_rows: list[list[bool]] = np.asarray(prep.conflicts, bool).tolist()
         self.cross_sections: dict[Step, tuple[Step, ...]] = {}
+        self.route_facts: dict[object, object] = {}
+        self.route_searches: dict[
+            Step, list[tuple[tuple[tuple[Step, ...], ...], tuple[tuple[int, int, bool], ...]]]
+        ] = {}
         self.merge_points: dict[
             tuple[tuple[Step, ...], tuple[Step, ...]], tuple[int, int, bool] | None
         ] = {}

@@ -181,6 +181,13 @@ def follows_traffic(prep: PreparedGraph, lane: int, *, forward: bool) -> bool:
 #: Per frame: ``(start, forward, travelled) -> [(lo, hi, routes)]`` (:func:`predict_routes`).
 RouteMemo = dict[tuple[int, bool, float], list[tuple[float, float, tuple[tuple[Step, ...], ...]]]]
 
+#: The horizon comparisons of one search, in order: ``(check it continues, its last lane,
+#: came out beyond the horizon)``; -1 = the search's start.
+Checks = tuple[tuple[int, int, bool], ...]
+
+#: Recent searches kept per start for :func:`predict_routes` (newest first).
+_KEPT_SEARCHES = 4
+
 
 def predict_routes(
     prep: PreparedGraph,
@@ -200,38 +207,75 @@ def predict_routes(
     With ``memo``, a search also records the horizon interval ``[lo, hi)`` in which every
     horizon comparison it made comes out the same; a later call from the same start with
     a horizon inside it returns the stored routes (the search would run identically).
+    Across frames, the last searches from each start are kept per map with their
+    comparisons; one whose comparisons all come out the same again (recomputed with the
+    same arithmetic) is reused: the search would run identically.
     """
     key = (start, forward, travelled_m)
     if memo is not None:
         for lo, hi, found in memo.get(key, ()):
             if lo <= horizon_m < hi:
                 return list(found)
-    routes, lo, hi = _search(prep, (start, forward), horizon_m, travelled_m)
+    lengths = prep.scalars.centre_length_m
+    recent = prep.scalars.route_searches.setdefault((start, forward), [])
+    for k, (stored, checks) in enumerate(recent):
+        span = _replay(lengths, checks, horizon_m, travelled_m)
+        if span is not None:
+            routes, (lo, hi) = list(stored), span
+            if k:
+                recent.insert(0, recent.pop(k))
+            break
+    else:
+        routes, lo, hi, checks = _search(prep, (start, forward), horizon_m, travelled_m)
+        recent.insert(0, (tuple(routes), checks))
+        del recent[_KEPT_SEARCHES:]
     if memo is not None:
         memo.setdefault(key, []).append((lo, hi, tuple(routes)))
     return routes
 
 
+def _replay(
+    lengths: list[float], checks: Checks, horizon_m: float, travelled_m: float
+) -> tuple[float, float] | None:
+    """``(lo, hi)`` of :func:`_search` if its ``checks`` all come out the same, else None."""
+    dists: list[float] = []
+    lo, hi = -math.inf, math.inf
+    for parent, lane, beyond in checks:
+        dist = (-travelled_m if parent < 0 else dists[parent]) + lengths[lane]
+        if (dist > horizon_m) != beyond:
+            return None
+        if beyond:
+            hi = min(hi, dist)
+        else:
+            lo = max(lo, dist)
+        dists.append(dist)
+    return lo, hi
+
+
 def _search(
     prep: PreparedGraph, first: Step, horizon_m: float, travelled_m: float
-) -> tuple[list[tuple[Step, ...]], float, float]:
-    """Depth-first route search; also the horizon interval with the same comparisons."""
+) -> tuple[list[tuple[Step, ...]], float, float, Checks]:
+    """Depth-first route search, the horizon interval with the same comparisons, and them."""
     routes: list[tuple[Step, ...]] = []
-    stack: list[tuple[tuple[Step, ...], float]] = [((first,), -travelled_m)]
+    stack: list[tuple[tuple[Step, ...], float, int]] = [((first,), -travelled_m, -1)]
+    checks: list[tuple[int, int, bool]] = []
     lengths = prep.scalars.centre_length_m
     lo, hi = -math.inf, math.inf
     while stack and len(routes) < _MAX_ROUTES:
-        route, dist = stack.pop()
+        route, dist, parent = stack.pop()
         lane, fwd = route[-1]
         nxt = [s for s in longitudinal(prep, lane, forward=fwd, ahead=True) if s not in route]
         dist += lengths[lane]
         if not nxt:
             routes.append(route)
             continue
-        if dist > horizon_m:
+        beyond = dist > horizon_m
+        checks.append((parent, lane, beyond))
+        if beyond:
             hi = min(hi, dist)
             routes.append(route)
             continue
         lo = max(lo, dist)
-        stack.extend(((*route, s), dist) for s in nxt)
-    return routes, lo, hi
+        at = len(checks) - 1
+        stack.extend(((*route, s), dist, at) for s in nxt)
+    return routes, lo, hi, tuple(checks)
