@@ -166,9 +166,11 @@ class FrameContext:
         its speeds are then resolved along the road-area direction there, as ad-rss does.
         """
         route_heading: dict[int, float | None] = {0: None, i + 1: None}
-        for box, (lane, at) in (ends or {}).items():
-            fwd = any(lane == s[0] and s[1] for p in ego_plans for s in p.lanes)
-            route_heading[box] = lane_heading(self.prep, lane, at) + (0.0 if fwd else np.pi)
+        if ends:
+            along = {s[0] for p in ego_plans for s in p.lanes if s[1]}
+            for box, (lane, at) in ends.items():
+                turn = 0.0 if lane in along else np.pi
+                route_heading[box] = lane_heading(self.prep, lane, at) + turn
         memo = self.cut_segments
         ego_road, ego_placed, limit = build_road(self.prep, ego_plans, 0, memo)
         obj_road: tuple[RoadSegment, ...] = ()

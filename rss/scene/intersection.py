@@ -49,7 +49,6 @@ __all__ = [
 
 #: Memoised route relations kept per prepared graph before the memo is emptied.
 _MEMO_SIZE = 100_000
-_MEMO: dict[int, tuple[weakref.ref[PreparedGraph], dict[object, object]]] = {}
 _JUNCTIONS: dict[int, tuple[weakref.ref[PreparedGraph], IntArray, list[int]]] = {}
 
 
@@ -265,13 +264,10 @@ def _opposite(
 
 def _memo(prep: PreparedGraph) -> dict[object, object]:
     """Results of the pure route functions below, per prepared graph (bounded)."""
-    cached = _MEMO.get(id(prep))
-    if cached is None or cached[0]() is not prep:
-        cached = (weakref.ref(prep), {})
-        _MEMO[id(prep)] = cached
-    if len(cached[1]) > _MEMO_SIZE:
-        cached[1].clear()
-    return cached[1]
+    memo = prep.scalars.route_facts
+    if len(memo) > _MEMO_SIZE:
+        memo.clear()
+    return memo
 
 
 def relation(

@@ -63,8 +63,8 @@ def _intersection(
     first shared lane); ``kind`` overrides the priority-derived type (merging routes).
     The memoised uncut plans are shared: only their ends are copied and cut.
     """
-    ego_plans = fresh_ends(pair.ego_plans)
-    obj_plans = fresh_ends(pair.obj_plans)
+    ego_plans = fresh_ends(pair.ego_plans, last=False)
+    obj_plans = fresh_ends(pair.obj_plans, last=False)
     cut_window(ego_plans, f.matches, (0,), cut_end=False)
     cut_window(obj_plans, f.matches, (i + 1,), cut_end=False)
     return f.constellation(pair.priority if kind is None else kind, i, ego_plans, obj_plans)

@@ -83,13 +83,14 @@ class SegmentPlan:
     whole: tuple[int, BuiltSegment] | None = field(default=None, repr=False, compare=False)
 
 
-def fresh_ends(plans: Sequence[SegmentPlan]) -> list[SegmentPlan]:
+def fresh_ends(plans: Sequence[SegmentPlan], *, last: bool = True) -> list[SegmentPlan]:
     """``plans`` as a new list whose first and last plans (the ones cuts change) are copies.
 
-    For plans shared by memos: the middle ones are handed out as they are.
+    For plans shared by memos: the others are handed out as they are (so is the last one
+    without ``last``, for cuts that keep the end).
     """
     out = list(plans)
-    for k in {0, len(out) - 1} if out else ():
+    for k in {0, len(out) - 1 if last else 0} if out else ():
         p = out[k]
         out[k] = SegmentPlan(p.lanes, p.segment_type, p.before_m, p.after_m, p.p0, p.p1, p.whole)
     return out

@@ -63,6 +63,10 @@ def test_fresh_ends_copies_only_the_ends() -> None:
     plans[0].p0, plans[2].p1 = 0.3, 0.4
     assert (shared[0].p0, shared[2].p1) == (0.0, 1.0)
     assert fresh_ends(()) == []
+    kept_end = fresh_ends(shared, last=False)
+    assert kept_end[0] is not shared[0]
+    assert kept_end[1:] == list(shared[1:])
+    assert all(a is b for a, b in zip(kept_end[1:], shared[1:], strict=True))
     (one,) = fresh_ends(shared[:1])
     assert one == shared[0]
     assert one is not shared[0]
