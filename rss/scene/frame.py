@@ -75,6 +75,7 @@ class FrameContext:
             dynamics object, which the frame holds, speed limit).
         start_lanes: :meth:`starts` by box (do not modify).
         box_lanes: :meth:`lanes_of` by box.
+        box_forward: :meth:`forward` by box.
         route_reach: :meth:`reach_along` by (``id()`` of the route, start); each entry
             holds its route, so the id is not reused within the frame.
     """
@@ -96,14 +97,19 @@ class FrameContext:
     limited_dynamics: dict[tuple[int, float], RssDynamics] = field(default_factory=dict)
     start_lanes: dict[int, list[tuple[int, bool, float]]] = field(default_factory=dict)
     box_lanes: dict[int, list[int]] = field(default_factory=dict)
+    box_forward: dict[int, bool] = field(default_factory=dict)
     route_reach: dict[tuple[int, float], tuple[tuple[Step, ...], dict[int, float]]] = field(
         default_factory=dict
     )
 
     def forward(self, box: int) -> bool:
-        """Whether the box heads along its anchor lane's point order."""
-        yaw = self.ego.yaw_rad if box == 0 else float(self.objects.yaw_rad[box - 1])
-        return bool(np.cos(yaw - self.matches.anchor_heading_rad[box]) >= 0.0)
+        """Whether the box heads along its anchor lane's point order (once per box)."""
+        known = self.box_forward.get(box)
+        if known is None:
+            yaw = self.ego.yaw_rad if box == 0 else float(self.objects.yaw_rad[box - 1])
+            known = bool(np.cos(yaw - self.matches.anchor_heading_rad[box]) >= 0.0)
+            self.box_forward[box] = known
+        return known
 
     def starts(self, box: int) -> list[tuple[int, bool, float]]:
         """Lanes the box may drive on: ``(lane, forward, length behind its centre)``.
