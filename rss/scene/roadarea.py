@@ -56,8 +56,6 @@ __all__ = [
     "plan_lanes",
 ]
 
-_EPS = 1e-6
-
 
 @dataclass
 class SegmentPlan:
@@ -343,9 +341,10 @@ def place_object(  # noqa: PLR0917 - one object: identity, matches, velocity
         lo, hi = _road_param(lon_min, lon_max, forward=fwd)
         la, lb = _road_param(lat_min, lat_max, forward=fwd)
         span = where.p1 - p0
+        # A part beyond the window (the road area is cut at the other end of the vehicle
+        # in another of its lanes) stays as a zero-length region at the window's end:
+        # ad-rss cuts every lane of a road segment at the vehicle's region in that lane.
         lo, hi = (lo - p0) / span, (hi - p0) / span
-        if hi < -_EPS or lo > 1.0 + _EPS:
-            continue
         regions.append(OccupiedRegion(where.lane_id, _unit(lo), _unit(hi), _unit(la), _unit(lb)))
         if heading is None or lane == anchor:
             heading = headings[lane] + (0.0 if fwd else math.pi)

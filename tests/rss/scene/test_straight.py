@@ -98,3 +98,22 @@ def test_lateral_speed_sign_positive_to_the_right():
     obj = objects((70.0, WIDTH, -0.1, 10.0))  # heading slightly right (clockwise)
     (c,) = create_scene(prep, ego(50.0, 0.0), obj, SETTINGS).constellations
     assert c.other.speed.lat_min_mps == pytest.approx(10.0 * np.sin(0.1), abs=1e-6)
+
+
+def test_vehicle_straddling_lanes_keeps_every_region_at_the_cut():
+    # Yawed across the border of lanes 0 and 1, the object starts further back in one
+    # lane than in the other; the road area ends at its rearmost point, and its part in
+    # the other lane is kept as a zero-length region at the end (as ad-rss cuts every lane
+    # at the vehicle's region in that lane), not dropped.
+    prep = prepare(straight_road())
+    scene = create_scene(prep, ego(50.0, 0.0), objects((80.0, WIDTH / 2, 0.4, 5.0)), SETTINGS)
+    assert scene.constellations  # one per connecting route (lanes 0 and 1), merged later
+    for c in scene.constellations:
+        assert c.constellation_type == ConstellationType.SameDirection
+        assert len(c.other.regions) == 2
+        assert {r.lane_id for r in c.other.regions} == {
+            lane.lane_id for lane in c.ego_road[-1].lanes
+        }
+        for region in c.other.regions:
+            assert region.lon_min == pytest.approx(1.0)
+            assert region.lon_max == pytest.approx(1.0)
