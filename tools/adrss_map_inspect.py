@@ -98,14 +98,7 @@ def inspect(pair: dict[str, Any]) -> None:
         for r in preds:
             print(f"{name} predicted:", _route_lanes(r))
     creation = ad.rss.map.RssWorldModelCreation(1, oracle._dynamics(1.0))  # noqa: SLF001
-    creation.appendConstellations(
-        ego,
-        ad.map.route.FullRoute(),
-        other,
-        getattr(ad.rss.map.RssRestrictSpeedLimitMode, "None"),
-        ad.map.landmark.LandmarkIdSet(),
-        ad.rss.map.RssConstellationCreationMode.Structured,
-    )
+    oracle.append_structured(creation, ego, other)
     model = creation.getWorldModel()
     for c in model.constellations:
         print("constellation", str(c.constellation_type).split("::")[-1])
@@ -131,15 +124,12 @@ def main() -> None:
     """Inspect every pair read from stdin."""
     content = Path(sys.argv[1]).read_text()
     pairs = json.load(sys.stdin)
-    unknown = ad.map.intersection.IntersectionType.Unknown
-    light = ad.map.landmark.TrafficLightType.UNKNOWN
     real = os.dup(1)
     os.dup2(os.open(os.devnull, os.O_WRONLY), 1)
-    ok = ad.map.access.initFromOpenDriveContent(content, 0.2, unknown, light)
-    ad.rss.map.setLogLevel("off")
-    os.dup2(real, 1)
-    if not ok:
-        raise SystemExit("ad-map cannot read the map")
+    try:
+        oracle.init_map(content)
+    finally:
+        os.dup2(real, 1)
     for k, pair in pairs:
         print(f"===== pair {k}")
         inspect(pair)

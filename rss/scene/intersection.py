@@ -149,26 +149,25 @@ def _junctions_on(prep: PreparedGraph, route: tuple[Step, ...]) -> list[tuple[in
     return out
 
 
-def _entries(prep: PreparedGraph, lane: int) -> set[int]:
-    """Lanes whose traffic leads into ``lane``."""
+def _linked(prep: PreparedGraph, lane: int, *, ahead: bool) -> set[int]:
+    """Lanes the traffic of ``lane`` leads into (``ahead``) or comes from."""
     g = prep.graph
     code = prep.scalars.direction[lane]
     if code == LaneDrivingDirection.Positive:
-        return set(g.predecessors[lane])
+        return set(g.successors[lane] if ahead else g.predecessors[lane])
     if code == LaneDrivingDirection.Negative:
-        return set(g.successors[lane])
+        return set(g.predecessors[lane] if ahead else g.successors[lane])
     return {*g.predecessors[lane], *g.successors[lane]}
+
+
+def _entries(prep: PreparedGraph, lane: int) -> set[int]:
+    """Lanes whose traffic leads into ``lane``."""
+    return _linked(prep, lane, ahead=False)
 
 
 def _exits(prep: PreparedGraph, lane: int) -> set[int]:
     """Lanes the traffic of ``lane`` leads into."""
-    g = prep.graph
-    code = prep.scalars.direction[lane]
-    if code == LaneDrivingDirection.Positive:
-        return set(g.successors[lane])
-    if code == LaneDrivingDirection.Negative:
-        return set(g.predecessors[lane])
-    return {*g.predecessors[lane], *g.successors[lane]}
+    return _linked(prep, lane, ahead=True)
 
 
 def _inside_successors(prep: PreparedGraph, jid: list[int], j: int, lane: int) -> set[int]:
