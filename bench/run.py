@@ -66,7 +66,8 @@ def main(argv: list[str] | None = None) -> int:
         f"Measured by `make bench` on {today}, commit `{_commit()}`.\n\n"
         f"Machine: {_machine()}.\n\n"
         "Every number below comes from that one run; engines and their reference "
-        "implementations ran side by side in the same process where a reference exists.\n\n"
+        "implementations ran side by side in the same run where a reference exists (in the "
+        "same process, or for ad-rss-map-integration in its own interpreter).\n\n"
     )
     args.out.parent.mkdir(parents=True, exist_ok=True)
     args.out.write_text(header + "\n".join(sections))
