@@ -19,7 +19,7 @@ from __future__ import annotations
 import enum
 import math
 import weakref
-from typing import TYPE_CHECKING, NamedTuple, cast
+from typing import TYPE_CHECKING, NamedTuple, TypeVar, cast
 
 import numpy as np
 import shapely
@@ -29,9 +29,13 @@ from rss.scene.roadarea import SegmentPlan
 from rss.scene.routes import cross_section
 
 if TYPE_CHECKING:
+    from collections.abc import Callable
+
     from rss.batch import IntArray
     from rss.scene.lanegraph import PreparedGraph
     from rss.scene.routes import Step
+
+_T = TypeVar("_T")
 
 __all__ = [
     "Arm",
@@ -127,12 +131,7 @@ def junctions_on(prep: PreparedGraph, route: tuple[Step, ...]) -> list[tuple[int
     A junction the route starts in is not listed (ad-rss analyses only intersections
     ahead). Memoised like :func:`relation` (do not modify the result).
     """
-    memo = _memo(prep)
-    key = ("junctions_on", route)
-    found = memo.get(key)
-    if found is None:
-        memo[key] = found = _junctions_on(prep, route)
-    return cast("list[tuple[int, int, int]]", found)
+    return _memoised(prep, ("junctions_on", route), lambda: _junctions_on(prep, route))
 
 
 def _junctions_on(prep: PreparedGraph, route: tuple[Step, ...]) -> list[tuple[int, int, int]]:
@@ -269,6 +268,15 @@ def _memo(prep: PreparedGraph) -> dict[object, object]:
     return memo
 
 
+def _memoised(prep: PreparedGraph, key: tuple[object, ...], compute: Callable[[], _T]) -> _T:
+    """``compute()``, or its earlier result under ``key`` in the graph's memo."""
+    memo = _memo(prep)
+    if key in memo:
+        return cast("_T", memo[key])
+    found = memo[key] = compute()
+    return found
+
+
 def relation(
     prep: PreparedGraph,
     route: tuple[Step, ...],
@@ -279,12 +287,9 @@ def relation(
 
     Memoised per prepared graph (routes repeat from frame to frame).
     """
-    memo = _memo(prep)
-    key = ("relation", route, span, other)
-    found = memo.get(key)
-    if found is None:
-        memo[key] = found = _relation(prep, route, span, other)
-    return cast("Relation", found)
+    return _memoised(
+        prep, ("relation", route, span, other), lambda: _relation(prep, route, span, other)
+    )
 
 
 def _relation(
@@ -324,11 +329,9 @@ def conflict(
     Conflicting: overlapping or merging intersection lanes, else the first lane both
     routes share (routes from one arm, merging routes). Memoised like :func:`relation`.
     """
-    memo = _memo(prep)
-    key = ("conflict", ego_route, obj_route)
-    if key not in memo:
-        memo[key] = _conflict(prep, ego_route, obj_route)
-    return cast("tuple[int, int] | None", memo[key])
+    return _memoised(
+        prep, ("conflict", ego_route, obj_route), lambda: _conflict(prep, ego_route, obj_route)
+    )
 
 
 def _conflict(
@@ -464,24 +467,31 @@ def intersection_pair(
     A function of the two routes and the green lights alone, so memoised per prepared
     graph (route pairs repeat from frame to frame; only the cuts at the vehicles change).
     """
-    memo = _memo(prep)
-    key = ("pair", ego_route, obj_route, green)
-    if key in memo:
-        return cast("IntersectionPair | None", memo[key])
+    return _memoised(
+        prep,
+        ("pair", ego_route, obj_route, green),
+        lambda: _intersection_pair(prep, ego_route, obj_route, green),
+    )
+
+
+def _intersection_pair(
+    prep: PreparedGraph,
+    ego_route: tuple[Step, ...],
+    obj_route: tuple[Step, ...],
+    green: frozenset[int],
+) -> IntersectionPair | None:
     hit = conflict(prep, ego_route, obj_route)
-    out = None
-    if hit is not None:
-        ie, io = hit
-        ego_lane, obj_lane = ego_route[ie][0], obj_route[io][0]
-        out = IntersectionPair(
-            ego_lane,
-            obj_lane,
-            tuple(intersection_plans(prep, ego_route, ie, obj_lane)),
-            tuple(intersection_plans(prep, obj_route, io, ego_lane)),
-            intersection_type(
-                route_priority(prep, ego_route[: ie + 1], green),
-                route_priority(prep, obj_route[: io + 1], green),
-            ),
-        )
-    memo[key] = out
-    return out
+    if hit is None:
+        return None
+    ie, io = hit
+    ego_lane, obj_lane = ego_route[ie][0], obj_route[io][0]
+    return IntersectionPair(
+        ego_lane,
+        obj_lane,
+        tuple(intersection_plans(prep, ego_route, ie, obj_lane)),
+        tuple(intersection_plans(prep, obj_route, io, ego_lane)),
+        intersection_type(
+            route_priority(prep, ego_route[: ie + 1], green),
+            route_priority(prep, obj_route[: io + 1], green),
+        ),
+    )
