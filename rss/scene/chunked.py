@@ -13,6 +13,7 @@ alone (box indices renumbered from 0).
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 from typing import TYPE_CHECKING
 
@@ -72,9 +73,7 @@ def match_frames(prep: PreparedGraph, boxes: Sequence[BoxArrays]) -> list[Matche
     """
     if not boxes:
         return []
-    joined = BoxArrays(*(np.concatenate([getattr(b, name) for b in boxes]) for name in _BOX_FIELDS))
+    names = [f.name for f in dataclasses.fields(BoxArrays)]
+    joined = BoxArrays(*(np.concatenate([getattr(b, name) for b in boxes]) for name in names))
     box_starts = np.concatenate([[0], np.cumsum([len(b.x_m) for b in boxes])]).tolist()
     return split_matches(match_boxes(prep, joined), box_starts)
-
-
-_BOX_FIELDS = ("x_m", "y_m", "yaw_rad", "length_m", "width_m")

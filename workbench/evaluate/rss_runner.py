@@ -8,7 +8,7 @@ import numpy as np
 
 from rss.batch import stack_constellations
 from rss.conformance import response_record
-from rss.engine import check_frame, check_frames, select_frame
+from rss.engine import check_frames, select_frame
 from rss.params import ObjectClass, RssParams
 from rss.scene import create_scene, prepare
 from rss.scene.boundaries import LEFT_BOUNDARY_ID, RIGHT_BOUNDARY_ID
@@ -73,19 +73,7 @@ class RssRunner:
 
     def step(self, frame: Frame) -> EngineOutput:
         """Evaluate one frame."""
-        if self._prep is None:
-            return _safe({"constellations": 0, "invalid_objects": []})
-        ego, objects, invalid = frame_to_scene(frame, self._prep, self._params, self._ids)
-        scene = create_scene(
-            self._prep, ego, objects, self._params.scene, road_boundaries=self._road_boundaries
-        )
-        if not scene.constellations:
-            self._memory = None
-            return _safe({"constellations": 0, "invalid_objects": sorted(invalid)})
-        batch = stack_constellations(scene.constellations)
-        ego_dyn = self._params.for_class(ObjectClass.EGO)
-        result, self._memory = check_frame(batch, ego_dyn, self._memory)
-        return self._output(scene, invalid, batch.other.object_id, batch.constellation_type, result)
+        return self.step_many([frame])[0]
 
     def step_many(self, frames: Sequence[Frame]) -> list[EngineOutput]:
         """Evaluate consecutive frames at once (as ``step`` on each in turn).
