@@ -1,8 +1,9 @@
 """OpenDRIVE (``.xodr``) reader: reference lines, lane sections and links -> ``LaneMap``.
 
-Plan-view geometry (``line``, ``arc``, ``spiral``, ``poly3``, ``paramPoly3``) is sampled
-densely, lane borders are offsets of the reference line by ``laneOffset`` plus the
-cumulative lane-width polynomials of each lane section::
+Lane borders are offsets of the reference line by ``laneOffset`` plus the cumulative
+lane-width polynomials of each lane section, with their vertices where ad-map's OpenDRIVE
+reader puts them (``opendrive_refline``: plan view and stations, ``opendrive_borders``:
+per-lane refinement; Town01's borders agree with ad-map's vertex for vertex)::
 
         t ▲   lane  2   (left lanes, id > 0: driven against s in right-hand traffic)
           │   lane  1
@@ -20,13 +21,14 @@ driving, biking, sidewalk, parking. Lane ids are ``"<road>_<section>_<lane>"``.
 
 from __future__ import annotations
 
-import math
 from typing import TYPE_CHECKING
 
 import numpy as np
 
 from loaders.errors import MapError
 from loaders.maps.model import Lane, LaneKind, LaneMap
+from loaders.maps.opendrive_borders import SectionLane, section_lanes
+from loaders.maps.opendrive_refline import ReferenceLine
 from loaders.maps.xmlsource import read_xml_root
 
 if TYPE_CHECKING:
@@ -37,13 +39,11 @@ if TYPE_CHECKING:
 
 __all__ = ["read_opendrive"]
 
-_STEP_M = 0.5
 #: Borders of two junction lanes with common end points (within ``_SHARED_END_M``) and
 #: closer than this everywhere are shared (neighbours): connecting roads of one junction
 #: built from different curves (arc / spiral) deviate by up to ~0.2 m in between.
 _SHARED_BORDER_M = 0.3
 _SHARED_END_M = 0.05
-_EPS_M = 1e-9
 _KINDS = {
     "driving": LaneKind.ROAD,
     "biking": LaneKind.BICYCLE,
@@ -60,71 +60,6 @@ def _f(elem: ET.Element, key: str, default: float = 0.0) -> float:
     return default if value is None else float(value)
 
 
-def _local_points(geo: ET.Element, length: float) -> tuple[NDArray[np.float64], ...]:
-    """``(s, u, v)`` samples of one geometry record in its local frame."""
-    n = max(2, math.ceil(length / _STEP_M) + 1)
-    s = np.linspace(0.0, length, n)
-    kind = geo[0] if len(geo) else None
-    tag = kind.tag if kind is not None else "line"
-    if tag == "line" or kind is None:
-        return s, s, np.zeros(n)
-    if tag in {"arc", "spiral"}:
-        k0 = _f(kind, "curvature") if tag == "arc" else _f(kind, "curvStart")
-        k1 = k0 if tag == "arc" else _f(kind, "curvEnd")
-        fine = np.linspace(0.0, length, max(2, 8 * n))
-        heading = k0 * fine + (k1 - k0) * fine**2 / (2 * length if length > 0 else 1.0)
-        du, dv = np.cos(heading), np.sin(heading)
-        steps = np.diff(fine)
-        u = np.concatenate([[0.0], np.cumsum((du[1:] + du[:-1]) / 2 * steps)])
-        v = np.concatenate([[0.0], np.cumsum((dv[1:] + dv[:-1]) / 2 * steps)])
-        return s, np.interp(s, fine, u), np.interp(s, fine, v)
-    p = np.linspace(0.0, 1.0, 8 * n)
-    if tag == "poly3":
-        a, b, c, d = (_f(kind, k) for k in "abcd")
-        u = p * length * 1.5
-        v = a + b * u + c * u**2 + d * u**3
-    elif tag == "paramPoly3":
-        scale = length if kind.get("pRange") == "arcLength" else 1.0
-        q = p * scale
-        u = np.polyval([_f(kind, f"{k}U") for k in "dcba"], q)
-        v = np.polyval([_f(kind, f"{k}V") for k in "dcba"], q)
-    else:
-        raise MapError("<xodr>", f"unsupported geometry {tag!r}")
-    arc = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(u), np.diff(v)))])
-    return s, np.interp(s, arc, u), np.interp(s, arc, v)
-
-
-def _reference_line(road: ET.Element) -> NDArray[np.float64]:
-    """``(K, 4)`` samples ``s, x, y, heading`` of a road's reference line."""
-    rows = []
-    for geo in road.findall("planView/geometry"):
-        s0, x0, y0, h0 = (_f(geo, k) for k in ("s", "x", "y", "hdg"))
-        s, u, v = _local_points(geo, _f(geo, "length"))
-        c, sn = math.cos(h0), math.sin(h0)
-        x, y = x0 + c * u - sn * v, y0 + sn * u + c * v
-        heading = np.unwrap(np.arctan2(np.gradient(y), np.gradient(x))) if len(s) > 1 else [h0]
-        rows.append(np.stack([s0 + s, x, y, heading], axis=1))
-    if not rows:
-        raise MapError("<xodr>", f"road {road.get('id')} has no plan view")
-    ref = np.concatenate(rows)
-    ref[:, 3] = np.unwrap(ref[:, 3])
-    keep = np.concatenate([[True], np.diff(ref[:, 0]) > _EPS_M])
-    out: NDArray[np.float64] = ref[keep]
-    return out
-
-
-def _poly(entries: list[ET.Element], ds: NDArray[np.float64], key: str) -> NDArray[np.float64]:
-    """Evaluate piecewise cubic records (``a b c d`` from offset ``key``) at ``ds``."""
-    out = np.zeros_like(ds)
-    starts = [_f(e, key) for e in entries]
-    for i, e in enumerate(entries):
-        hi = starts[i + 1] if i + 1 < len(entries) else np.inf
-        sel = (ds >= starts[i] - 1e-9) & (ds < hi)
-        d = ds[sel] - starts[i]
-        out[sel] = _f(e, "a") + _f(e, "b") * d + _f(e, "c") * d**2 + _f(e, "d") * d**3
-    return out
-
-
 def _speed(road: ET.Element) -> float:
     speed = road.find("type/speed")
     if speed is None or speed.get("max") in {None, "no limit", "undefined"}:
@@ -139,44 +74,20 @@ class _Builder:
         self.links: list[tuple[_End, _End]] = []
         self.sections: dict[str, int] = {}
         self.junction_lanes: dict[str, list[str]] = {}
+        self.stations: dict[str, NDArray[np.float64]] = {}
         self.roads = root.findall("road")
 
-    def _section(self, rid: str, road: ET.Element, ref: NDArray[np.float64], idx: int) -> None:
+    def _section(self, rid: str, road: ET.Element, ref: ReferenceLine, idx: int) -> None:
         sections = road.findall("lanes/laneSection")
         s0 = _f(sections[idx], "s")
-        s1 = _f(sections[idx + 1], "s") if idx + 1 < len(sections) else float(ref[-1, 0])
-        s = np.unique(np.concatenate([np.arange(s0, s1, _STEP_M), [s1]]))
-        s = s[s >= s0 - 1e-9]
-        x, y = np.interp(s, ref[:, 0], ref[:, 1]), np.interp(s, ref[:, 0], ref[:, 2])
-        h = np.interp(s, ref[:, 0], ref[:, 3])
-        normal = np.stack([-np.sin(h), np.cos(h)], axis=1)
-        base = np.stack([x, y], axis=1)
-        offset = _poly(road.findall("lanes/laneOffset"), s, "s")
+        s1 = _f(sections[idx + 1], "s") if idx + 1 < len(sections) else ref.length_m
         junction = road.get("junction", "-1")
         speed = _speed(road)
-        for side, sign in (("left", 1.0), ("right", -1.0)):
-            lanes = sections[idx].findall(f"{side}/lane")
-            lanes.sort(key=lambda e: abs(int(e.get("id", "0"))))
-            inner = offset.copy()
-            for lane in lanes:
-                lid = int(lane.get("id", "0"))
-                width = _poly(lane.findall("width"), s - s0, "sOffset")
-                outer = inner + sign * width
-                self._add(rid, idx, lid, lane, base, normal, (inner, outer), junction, speed)
-                inner = outer
+        for lane in section_lanes(ref, self.stations[rid], sections[idx], s0, s1):
+            self._add(rid, idx, lane, junction, speed)
 
-    def _add(  # noqa: PLR0917 - one lane's pieces
-        self,
-        rid: str,
-        idx: int,
-        lid: int,
-        elem: ET.Element,
-        base: NDArray[np.float64],
-        normal: NDArray[np.float64],
-        borders: tuple[NDArray[np.float64], NDArray[np.float64]],
-        junction: str,
-        speed: float,
-    ) -> None:
+    def _add(self, rid: str, idx: int, lane: SectionLane, junction: str, speed: float) -> None:
+        lid, elem = lane.lane_id, lane.element
         kind = _KINDS.get(elem.get("type", ""))
         for tag, end, other_idx in (
             ("predecessor", "start", idx - 1),
@@ -189,13 +100,9 @@ class _Builder:
                 self.links.append((((rid, idx, lid), end), (key, other_end)))
         if kind is None:
             return
-        inner = base + normal * borders[0][:, None]
-        outer = base + normal * borders[1][:, None]
-        left, right = (outer, inner) if lid > 0 else (inner, outer)
+        left, right, centre = lane.left_m, lane.right_m, lane.centre_m
         if lid > 0:  # driven against s: store in driving direction
-            left, right = right[::-1], left[::-1]
-        if len(left) < 2:  # noqa: PLR2004
-            return
+            left, right, centre = right[::-1], left[::-1], centre[::-1]
         lane_id = f"{rid}_{idx}_{lid}"
         if junction != "-1" and kind == LaneKind.ROAD:
             kind = LaneKind.INTERSECTION
@@ -204,7 +111,7 @@ class _Builder:
             id=lane_id,
             left_m=left,
             right_m=right,
-            centre_m=(left + right) / 2,
+            centre_m=centre,
             kind=kind,
             speed_limit_mps=speed,
         )
@@ -234,7 +141,8 @@ class _Builder:
             self.sections[road.get("id", "")] = len(road.findall("lanes/laneSection"))
         for road in self.roads:
             rid = road.get("id", "")
-            ref = _reference_line(road)
+            ref = ReferenceLine(road)
+            self.stations[rid] = ref.stations()
             for idx in range(self.sections[rid]):
                 self._section(rid, road, ref, idx)
             self._road_links(rid, road)
