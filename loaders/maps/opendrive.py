@@ -28,7 +28,7 @@ import numpy as np
 from loaders.errors import MapError
 from loaders.maps.model import Lane, LaneKind, LaneMap
 from loaders.maps.opendrive_borders import SectionLane, section_lanes
-from loaders.maps.opendrive_refline import ReferenceLine
+from loaders.maps.opendrive_refline import ReferenceLine, float_attr
 from loaders.maps.xmlsource import read_xml_root
 
 if TYPE_CHECKING:
@@ -55,11 +55,6 @@ _Key = tuple[str, int, int]  # road, section index, lane id
 _End = tuple[_Key, str]  # lane and "start" / "end" along s
 
 
-def _f(elem: ET.Element, key: str, default: float = 0.0) -> float:
-    value = elem.get(key)
-    return default if value is None else float(value)
-
-
 def _speed(road: ET.Element) -> float:
     speed = road.find("type/speed")
     if speed is None or speed.get("max") in {None, "no limit", "undefined"}:
@@ -79,8 +74,8 @@ class _Builder:
 
     def _section(self, rid: str, road: ET.Element, ref: ReferenceLine, idx: int) -> None:
         sections = road.findall("lanes/laneSection")
-        s0 = _f(sections[idx], "s")
-        s1 = _f(sections[idx + 1], "s") if idx + 1 < len(sections) else ref.length_m
+        s0 = float_attr(sections[idx], "s")
+        s1 = float_attr(sections[idx + 1], "s") if idx + 1 < len(sections) else ref.length_m
         junction = road.get("junction", "-1")
         speed = _speed(road)
         for lane in section_lanes(ref, self.stations[rid], sections[idx], s0, s1):

@@ -35,7 +35,13 @@ if TYPE_CHECKING:
 
     _F = NDArray[np.float64]
 
-__all__ = ["MAX_SAMPLING_ERROR_M", "ReferenceLine", "bisect_stations", "piecewise_cubic"]
+__all__ = [
+    "MAX_SAMPLING_ERROR_M",
+    "ReferenceLine",
+    "bisect_stations",
+    "float_attr",
+    "piecewise_cubic",
+]
 
 #: ad-map's sampling tolerance: chord sagitta and shortest refined interval (m).
 MAX_SAMPLING_ERROR_M = 0.05
@@ -50,7 +56,8 @@ _PANEL_M = 2.0
 _POLY_TABLE = 4001
 
 
-def _f(elem: ET.Element, key: str, default: float = 0.0) -> float:
+def float_attr(elem: ET.Element, key: str, default: float = 0.0) -> float:
+    """A numeric XML attribute, ``default`` when absent."""
     value = elem.get(key)
     return default if value is None else float(value)
 
@@ -82,8 +89,8 @@ def piecewise_cubic(starts: _F, coeffs: _F, at: _F) -> _F:
 
 
 def _records(elems: list[ET.Element], key: str) -> tuple[_F, _F]:
-    starts = np.array([_f(e, key) for e in elems], dtype=np.float64)
-    coeffs = np.array([[_f(e, k) for k in "abcd"] for e in elems], dtype=np.float64)
+    starts = np.array([float_attr(e, key) for e in elems], dtype=np.float64)
+    coeffs = np.array([[float_attr(e, k) for k in "abcd"] for e in elems], dtype=np.float64)
     order = np.argsort(starts, kind="stable")
     return starts[order], coeffs[order].reshape(-1, 4)
 
@@ -113,11 +120,11 @@ def _cubic(kind: ET.Element, length: float, d: _F) -> tuple[_F, _F, _F]:
     """Local ``(u, v, heading)`` of a ``poly3`` / ``paramPoly3`` at arc length ``d``."""
     if kind.tag == "poly3":
         cu = np.array([0.0, 1.0, 0.0, 0.0])
-        cv = np.array([_f(kind, k) for k in "abcd"])
+        cv = np.array([float_attr(kind, k) for k in "abcd"])
         p_max = 1.5 * length  # u never exceeds the arc length; the table is cut there
     else:
-        cu = np.array([_f(kind, f"{k}U") for k in "abcd"])
-        cv = np.array([_f(kind, f"{k}V") for k in "abcd"])
+        cu = np.array([float_attr(kind, f"{k}U") for k in "abcd"])
+        cv = np.array([float_attr(kind, f"{k}V") for k in "abcd"])
         p_max = length if kind.get("pRange") == "arcLength" else 1.0
     table = np.linspace(0.0, p_max, _POLY_TABLE)
     du = np.polynomial.polynomial.polyval(table, np.polynomial.polynomial.polyder(cu))
@@ -150,12 +157,12 @@ class ReferenceLine:
         if not self._geos:
             raise MapError("<xodr>", f"road {road.get('id')} has no plan view")
         rows = np.array(
-            [[_f(g, k) for k in ("s", "x", "y", "hdg", "length")] for g in self._geos],
+            [[float_attr(g, k) for k in ("s", "x", "y", "hdg", "length")] for g in self._geos],
             dtype=np.float64,
         )
         self.starts_m = rows[:, 0]
         self._x0, self._y0, self._h0, self._len = rows[:, 1], rows[:, 2], rows[:, 3], rows[:, 4]
-        self.length_m = _f(road, "length", float(self.starts_m[-1] + self._len[-1]))
+        self.length_m = float_attr(road, "length", float(self.starts_m[-1] + self._len[-1]))
         self._offset = _records(road.findall("lanes/laneOffset"), "s")
         self._elevation = _records(road.findall("elevationProfile/elevation"), "s")
         self._tags = [g[0].tag if len(g) else "line" for g in self._geos]
@@ -164,7 +171,7 @@ class ReferenceLine:
                 raise MapError("<xodr>", f"unsupported geometry {tag!r}")
         self._curv = np.array(
             [
-                _f(g[0], "curvature") if tag == "arc" else 0.0
+                float_attr(g[0], "curvature") if tag == "arc" else 0.0
                 for g, tag in zip(self._geos, self._tags, strict=True)
             ]
         )
@@ -201,7 +208,9 @@ class ReferenceLine:
     def _local(self, g: int, d: _F) -> tuple[_F, _F, _F]:
         kind = self._geos[g][0]
         if kind.tag == "spiral":
-            return _spiral(_f(kind, "curvStart"), _f(kind, "curvEnd"), float(self._len[g]), d)
+            return _spiral(
+                float_attr(kind, "curvStart"), float_attr(kind, "curvEnd"), float(self._len[g]), d
+            )
         return _cubic(kind, float(self._len[g]), d)
 
     def frame(self, s_m: _F) -> tuple[_F, _F, _F]:
