@@ -18,7 +18,7 @@ import numpy as np
 
 from rss.model import Constellation, ObjectType
 from rss.params import RestrictSpeedLimitMode
-from rss.scene.roadarea import build_road, lane_heading, lane_window, place_object
+from rss.scene.roadarea import build_road, lane_heading, place_object
 from rss.scene.routes import predict_routes
 
 if TYPE_CHECKING:
@@ -178,12 +178,13 @@ class FrameContext:
                 turn = 0.0 if lane in along else np.pi
                 route_heading[box] = lane_heading(self.prep, lane, at) + turn
         memo = self.cut_segments
-        ego_road, ego_placed, limit = build_road(self.prep, ego_plans, 0, memo)
+        windows: list[tuple[int, float, float]] = []
+        ego_road, ego_placed, limit = build_road(self.prep, ego_plans, 0, memo, windows)
         obj_road: tuple[RoadSegment, ...] = ()
         obj_placed = ego_placed
         if obj_plans is not None:
             obj_road, obj_placed, limit2 = build_road(
-                self.prep, obj_plans, len(self.prep.graph), memo
+                self.prep, obj_plans, len(self.prep.graph), memo, windows
             )
             limit = limit2 if (math.isnan(limit) or limit2 > limit) else limit
         o = self.objects
@@ -200,12 +201,7 @@ class FrameContext:
             ego_road=ego_road,
             intersecting_road=obj_road,
         )
-        placed = (*ego_placed.items(), *(obj_placed.items() if obj_plans is not None else ()))
-        windows = tuple(
-            (lane, *lane_window(where.p0, where.p1, forward=where.forward))
-            for lane, where in placed
-        )
-        self.road_areas[id(built)] = (built, windows)
+        self.road_areas[id(built)] = (built, tuple(windows))
         return built
 
     def lanes_of(self, box: int) -> list[int]:

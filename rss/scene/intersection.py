@@ -53,6 +53,7 @@ __all__ = [
 
 #: Memoised route relations kept per prepared graph before the memo is emptied.
 _MEMO_SIZE = 100_000
+_MISSING = object()
 _JUNCTIONS: dict[int, tuple[weakref.ref[PreparedGraph], IntArray, list[int]]] = {}
 
 
@@ -131,7 +132,7 @@ def junctions_on(prep: PreparedGraph, route: tuple[Step, ...]) -> list[tuple[int
     A junction the route starts in is not listed (ad-rss analyses only intersections
     ahead). Memoised like :func:`relation` (do not modify the result).
     """
-    return _memoised(prep, ("junctions_on", route), lambda: _junctions_on(prep, route))
+    return _memoised(prep, _junctions_on, route)
 
 
 def _junctions_on(prep: PreparedGraph, route: tuple[Step, ...]) -> list[tuple[int, int, int]]:
@@ -260,21 +261,19 @@ def _opposite(
     return start is not None and any(lane in back_arm for lane in other[start:])
 
 
-def _memo(prep: PreparedGraph) -> dict[object, object]:
-    """Results of the pure route functions below, per prepared graph (bounded)."""
+def _memoised(prep: PreparedGraph, compute: Callable[..., _T], *args: object) -> _T:
+    """``compute(prep, *args)``, or its earlier result in the graph's memo (bounded).
+
+    The results of the pure route functions below are kept per prepared graph.
+    """
     memo = prep.scalars.route_facts
-    if len(memo) > _MEMO_SIZE:
-        memo.clear()
-    return memo
-
-
-def _memoised(prep: PreparedGraph, key: tuple[object, ...], compute: Callable[[], _T]) -> _T:
-    """``compute()``, or its earlier result under ``key`` in the graph's memo."""
-    memo = _memo(prep)
-    if key in memo:
-        return cast("_T", memo[key])
-    found = memo[key] = compute()
-    return found
+    key = (compute, *args)
+    found = memo.get(key, _MISSING)
+    if found is _MISSING:
+        if len(memo) > _MEMO_SIZE:
+            memo.clear()
+        found = memo[key] = compute(prep, *args)
+    return cast("_T", found)
 
 
 def relation(
@@ -287,9 +286,7 @@ def relation(
 
     Memoised per prepared graph (routes repeat from frame to frame).
     """
-    return _memoised(
-        prep, ("relation", route, span, other), lambda: _relation(prep, route, span, other)
-    )
+    return _memoised(prep, _relation, route, span, other)
 
 
 def _relation(
@@ -329,9 +326,7 @@ def conflict(
     Conflicting: overlapping or merging intersection lanes, else the first lane both
     routes share (routes from one arm, merging routes). Memoised like :func:`relation`.
     """
-    return _memoised(
-        prep, ("conflict", ego_route, obj_route), lambda: _conflict(prep, ego_route, obj_route)
-    )
+    return _memoised(prep, _conflict, ego_route, obj_route)
 
 
 def _conflict(
@@ -467,11 +462,7 @@ def intersection_pair(
     A function of the two routes and the green lights alone, so memoised per prepared
     graph (route pairs repeat from frame to frame; only the cuts at the vehicles change).
     """
-    return _memoised(
-        prep,
-        ("pair", ego_route, obj_route, green),
-        lambda: _intersection_pair(prep, ego_route, obj_route, green),
-    )
+    return _memoised(prep, _intersection_pair, ego_route, obj_route, green)
 
 
 def _intersection_pair(

@@ -116,10 +116,6 @@ def _road_param(
     return (lo, hi) if forward else (1.0 - hi, 1.0 - lo)
 
 
-def _unit(v: float) -> float:
-    return min(1.0, max(0.0, v))
-
-
 def lane_window(p0: float, p1: float, *, forward: bool) -> tuple[float, float]:
     """A road-area window ``[p0, p1]`` of a lane as a window along its point order."""
     return _road_param(p0, p1, forward=forward)
@@ -211,23 +207,36 @@ def cut_window(
     if not plans:
         return
     first, last = plans[0], plans[-1]
-    lo: list[float] = []
-    hi: list[float] = []
-    for region in (r for box in boxes for r in matches.regions(box)):
-        lane = region.lane
-        for plan, out, pick in ((first, lo, 0), (last, hi, 1)):
-            for lane_k, fwd in plan.lanes:
-                if lane_k == lane:
-                    rng = _road_param(region.lon_min, region.lon_max, forward=fwd)
-                    out.append(rng[pick])
-    if first.segment_type == RoadSegmentType.Normal and lo:
-        first.p0 = max(0.0, min(*lo, 1.0 - 0.001))
-    if cut_end and last.segment_type == RoadSegmentType.Normal and hi:
-        last.p1 = min(1.0, max(*hi, last.p0 + 0.001))
+    normal = RoadSegmentType.Normal
+    start = dict(first.lanes) if first.segment_type == normal else {}
+    end = dict(last.lanes) if cut_end and last.segment_type == normal else {}
+    if not (start or end):
+        return
+    lo = hi = math.nan
+    for box in boxes:
+        for region in matches.regions(box):
+            fwd = start.get(region.lane)
+            if fwd is not None:
+                v = region.lon_min if fwd else 1.0 - region.lon_max
+                lo = v if not v >= lo else lo  # NaN-aware minimum
+            fwd = end.get(region.lane)
+            if fwd is not None:
+                v = region.lon_max if fwd else 1.0 - region.lon_min
+                hi = v if not v <= hi else hi
+    if not math.isnan(lo):
+        first.p0 = max(0.0, min(lo, 1.0 - 0.001))
+    if not math.isnan(hi):
+        last.p1 = min(1.0, max(hi, last.p0 + 0.001))
 
 
-#: A converted plan: road segment, placed lanes, finite speed limits of its lanes.
-BuiltSegment = tuple[RoadSegment, tuple[tuple[int, PlacedLane], ...], tuple[float, ...]]
+#: A converted plan: road segment, placed lanes, finite speed limits of its lanes, and
+#: each lane's window along its point order ``(lane, start, end)``.
+BuiltSegment = tuple[
+    RoadSegment,
+    tuple[tuple[int, PlacedLane], ...],
+    tuple[float, ...],
+    tuple[tuple[int, float, float], ...],
+]
 
 
 def build_road(
@@ -235,11 +244,13 @@ def build_road(
     plans: list[SegmentPlan],
     id_offset: int = 0,
     cut_memo: dict[tuple[object, ...], BuiltSegment] | None = None,
+    windows: list[tuple[int, float, float]] | None = None,
 ) -> tuple[tuple[RoadSegment, ...], dict[int, PlacedLane], float]:
     """Convert segment plans into ``rss.model`` road segments.
 
     Whole (uncut) plans are converted once per map; cut ones once per ``cut_memo`` (e.g.
-    one frame, where the ego's cut starts many road areas), if given.
+    one frame, where the ego's cut starts many road areas), if given. ``windows``, if
+    given, receives each lane's kept window along its point order ``(lane, start, end)``.
 
     Returns:
         ``(road, placed, max_speed_limit_mps)``: the road segments, where every map lane
@@ -253,6 +264,8 @@ def build_road(
         road.append(built[0])
         placed.update(built[1])
         limits.extend(built[2])
+        if windows is not None:
+            windows.extend(built[3])
     return tuple(road), placed, max(limits) if limits else float("nan")
 
 
@@ -304,7 +317,8 @@ def _segment(prep: PreparedGraph, plan: SegmentPlan, id_offset: int) -> BuiltSeg
         min_length_after_intersecting_area_m=plan.after_m,
     )
     finite = tuple(v for lane, _ in plan.lanes if math.isfinite(v := speed_limits[lane]))
-    return segment, tuple(placed), finite
+    windows = tuple((lane, *lane_window(plan.p0, plan.p1, forward=fwd)) for lane, fwd in plan.lanes)
+    return segment, tuple(placed), finite, windows
 
 
 def place_object(  # noqa: PLR0917 - one object: identity, matches, velocity
@@ -337,15 +351,25 @@ def place_object(  # noqa: PLR0917 - one object: identity, matches, velocity
         where = placed.get(lane)
         if where is None:
             continue
-        fwd, p0 = where.forward, where.p0
-        lo, hi = _road_param(lon_min, lon_max, forward=fwd)
-        la, lb = _road_param(lat_min, lat_max, forward=fwd)
-        span = where.p1 - p0
+        lane_id, fwd, p0, p1 = where
+        if fwd:
+            lo, hi, la, lb = lon_min, lon_max, lat_min, lat_max
+        else:  # as _road_param, inlined (hot path)
+            lo, hi, la, lb = 1.0 - lon_max, 1.0 - lon_min, 1.0 - lat_max, 1.0 - lat_min
+        span = p1 - p0
         # A part beyond the window (the road area is cut at the other end of the vehicle
         # in another of its lanes) stays as a zero-length region at the window's end:
         # ad-rss cuts every lane of a road segment at the vehicle's region in that lane.
         lo, hi = (lo - p0) / span, (hi - p0) / span
-        regions.append(OccupiedRegion(where.lane_id, _unit(lo), _unit(hi), _unit(la), _unit(lb)))
+        regions.append(
+            OccupiedRegion(
+                lane_id,
+                min(1.0, max(0.0, lo)),
+                min(1.0, max(0.0, hi)),
+                min(1.0, max(0.0, la)),
+                min(1.0, max(0.0, lb)),
+            )
+        )
         if heading is None or lane == anchor:
             heading = headings[lane] + (0.0 if fwd else math.pi)
     if not regions or heading is None:
