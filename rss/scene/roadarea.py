@@ -186,7 +186,11 @@ def cut_at(
     ends = {}
     for box, plan, at in ((rear_box, plans[0], plans[0].p0), (front_box, plans[-1], plans[-1].p1)):
         lanes = {region.lane for region in matches.regions(box)}
-        lane, fwd = next((s for s in plan.lanes if s[0] in lanes), plan.lanes[0])
+        lane, fwd = plan.lanes[0]
+        for step in plan.lanes:
+            if step[0] in lanes:
+                lane, fwd = step
+                break
         ends[box] = (lane, at if fwd else 1.0 - at)
     return ends
 
@@ -260,7 +264,11 @@ def build_road(
     placed: dict[int, PlacedLane] = {}
     limits: list[float] = []
     for plan in plans:
-        built = _built(prep, plan, id_offset, cut_memo)
+        whole = plan.whole
+        if whole is not None and whole[0] == id_offset and plan.p0 == 0.0 and plan.p1 == 1.0:
+            built = whole[1]  # _built's first case, inlined (hot path)
+        else:
+            built = _built(prep, plan, id_offset, cut_memo)
         road.append(built[0])
         placed.update(built[1])
         limits.extend(built[2])
