@@ -119,6 +119,7 @@ class PreparedGraph:
         centre_length_m: ``(L,)`` centre-line lengths.
         length_min_m: ``(L,)`` shorter border length (inner side of a curve).
         length_max_m: ``(L,)`` longer border length.
+        border_length_m: ``(2, L)`` left and right border lengths (as given, unsimplified).
         width_m: ``(L, WIDTH_STATIONS)`` widths at evenly spaced parametric stations.
         conflicts: ``(L, L)`` intersection lanes whose areas overlap or that merge into
             one successor (a lane never conflicts with itself).
@@ -142,6 +143,7 @@ class PreparedGraph:
     centre_length_m: FloatArray
     length_min_m: FloatArray
     length_max_m: FloatArray
+    border_length_m: FloatArray
     width_m: FloatArray
     conflicts: BoolArray
     conflict_span_m: dict[tuple[int, int], tuple[float, float]]
@@ -315,6 +317,7 @@ def prepare(graph: LaneGraph) -> PreparedGraph:
         centre_length_m=length,
         length_min_m=length_min,
         length_max_m=np.maximum(left_len, right_len),
+        border_length_m=np.stack([left_len, right_len]),
         width_m=widths,
         conflicts=conflicts,
         conflict_span_m=spans,
