@@ -7,6 +7,8 @@ iterating on our side takes seconds::
     .venv/bin/python tools/scene_crosscheck.py [--n 500] [--seed 1] [--show 20]
         [--oracle .venv-oracle-adrss-map/bin/python] [--refresh] [--pairs 3,17]
 
+(the cache is renewed by itself when the pairs change, e.g. after a map-reader change).
+
 Prints the summary rates, then the disagreeing pairs grouped by class
 (``ours types -> theirs types``), with the pair index, distances and verdicts.
 """
@@ -48,10 +50,16 @@ TOWN = (ROOT / ".." / "shared" / "external" / "maps" / "Town01.xodr").resolve()
 def oracle_answers(
     pairs: list[dict[str, Any]], python: str, cache: Path, *, refresh: bool
 ) -> list[dict[str, Any]]:
-    """The oracle's answers, from ``cache`` unless missing or ``refresh``."""
+    """The oracle's answers, from ``cache`` unless missing, made for other pairs, or ``refresh``.
+
+    The pairs follow our lane centre lines, so a change of the map reader moves them: the
+    cache keeps the pairs it answers and is refreshed when they differ.
+    """
     if cache.exists() and not refresh:
-        answers: list[dict[str, Any]] = json.loads(cache.read_text())
-        return answers
+        cached = json.loads(cache.read_text())
+        if isinstance(cached, dict) and cached.get("pairs") == pairs:
+            answers: list[dict[str, Any]] = cached["answers"]
+            return answers
     half = len(pairs) // 2
     chunks = [pairs[:half], pairs[half:]]
     procs = [
@@ -74,7 +82,7 @@ def oracle_answers(
             raise SystemExit(err[-2000:])
         answers += json.loads(out.strip().splitlines()[-1])
     cache.parent.mkdir(exist_ok=True)
-    cache.write_text(json.dumps(answers))
+    cache.write_text(json.dumps({"pairs": pairs, "answers": answers}))
     return answers
 
 

@@ -3,7 +3,10 @@
 Runs under a separate interpreter that has ``ad-rss-map-integration`` 5.0 with the
 packaging work-around of the reference notes (§8.4: the vendored ``libad_map_access`` and
 ``libad_rss`` of ``ad_rss_map_integration.libs`` replaced by symlinks to the base wheels'
-copies). Usage: ``python adrss_map_oracle.py MAP.xodr < pairs.json > answers.json``.
+copies). Usage: ``python adrss_map_oracle.py MAP.xodr < pairs.json > answers.json``, or
+``python adrss_map_oracle.py MAP.xodr --borders > borders.json`` for ad-map's lane border
+vertices (``{lane id: {"left": [[x, y], ...], "right": ...}}``, ENU metres, full
+precision, as ad-map orders them).
 Dynamics: the unit-test values (ego response time 1 s, others 2 s), no speed-limit mode,
 no ego route (routes predicted), no green lights. The library logs to the C-level stdout,
 so file descriptor 1 is redirected while it runs.
@@ -169,17 +172,34 @@ def _answer(pair: dict[str, dict[str, float]]) -> dict[str, Any]:
     return answer
 
 
+def borders() -> dict[str, dict[str, list[list[float]]]]:
+    """ad-map's left and right border vertices of every lane (ENU x, y in metres)."""
+
+    def points(edge: Any) -> list[list[float]]:
+        return [
+            [p.x.mENUCoordinate, p.y.mENUCoordinate]
+            for p in ad.map.point.getCachedENUPointList(edge)
+        ]
+
+    out = {}
+    for lane_id in ad.map.lane.getLanes():
+        lane = ad.map.lane.getLane(lane_id)
+        out[str(lane_id)] = {"left": points(lane.edge_left), "right": points(lane.edge_right)}
+    return out
+
+
 def main() -> None:
     content = open(sys.argv[1]).read()  # noqa: PTH123, SIM115
-    pairs = json.load(sys.stdin)
+    want_borders = sys.argv[2:] == ["--borders"]
+    pairs = [] if want_borders else json.load(sys.stdin)
     real_stdout = os.dup(1)
     os.dup2(os.open(os.devnull, os.O_WRONLY), 1)
     try:
         init_map(content)
-        answers = [_answer(p) for p in pairs]
+        result: Any = borders() if want_borders else [_answer(p) for p in pairs]
     finally:
         os.dup2(real_stdout, 1)
-    sys.stdout.write(json.dumps(answers) + "\n")
+    sys.stdout.write(json.dumps(result) + "\n")
 
 
 if __name__ == "__main__":
