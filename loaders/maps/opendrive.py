@@ -78,12 +78,13 @@ class _Builder:
         s1 = float_attr(sections[idx + 1], "s") if idx + 1 < len(sections) else ref.length_m
         junction = road.get("junction", "-1")
         speed = _speed(road)
-        for lane in section_lanes(ref, self.stations[rid], sections[idx], s0, s1):
+        lanes = section_lanes(ref, self.stations[rid], sections[idx], s0, s1, _KINDS)
+        for lane in lanes:
             self._add(rid, idx, lane, junction, speed)
 
     def _add(self, rid: str, idx: int, lane: SectionLane, junction: str, speed: float) -> None:
         lid, elem = lane.lane_id, lane.element
-        kind = _KINDS.get(elem.get("type", ""))
+        kind = _KINDS[elem.get("type", "")]
         for tag, end, other_idx in (
             ("predecessor", "start", idx - 1),
             ("successor", "end", idx + 1),
@@ -93,8 +94,6 @@ class _Builder:
                 other_end = "end" if tag == "predecessor" else "start"
                 key = (rid, other_idx, int(link.get("id", "0")))
                 self.links.append((((rid, idx, lid), end), (key, other_end)))
-        if kind is None:
-            return
         left, right, centre = lane.left_m, lane.right_m, lane.centre_m
         if lid > 0:  # driven against s: store in driving direction
             left, right, centre = right[::-1], left[::-1], centre[::-1]

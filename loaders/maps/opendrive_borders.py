@@ -29,6 +29,7 @@ from loaders.maps.opendrive_refline import bisect_stations
 
 if TYPE_CHECKING:
     import xml.etree.ElementTree as ET
+    from collections.abc import Collection
 
     from numpy.typing import NDArray
 
@@ -119,10 +120,18 @@ def _width_records(lanes: list[ET.Element]) -> tuple[_F, _F]:
     return starts, coeffs
 
 
-def section_lanes(
-    ref: ReferenceLine, stations_m: _F, section: ET.Element, s0_m: float, s1_m: float
+def section_lanes(  # noqa: PLR0917 - one section's pieces
+    ref: ReferenceLine,
+    stations_m: _F,
+    section: ET.Element,
+    s0_m: float,
+    s1_m: float,
+    types: Collection[str],
 ) -> list[SectionLane]:
-    """Borders of every lane of one section (all lane types; widths of all lanes add up).
+    """Borders of the lanes of one section whose ``type`` is in ``types``.
+
+    The widths of all lanes add up; the other lanes are not sampled (each lane's vertices
+    depend only on its own borders).
 
     Args:
         ref: The road's reference line.
@@ -130,6 +139,7 @@ def section_lanes(
         section: The ``<laneSection>`` element.
         s0_m: Section start along the road (m).
         s1_m: Section end: the next section's start or the road length (m).
+        types: Lane types to sample (``driving``, ``sidewalk``, ...).
 
     Returns:
         The lanes, left ones (id ascending by magnitude) first.
@@ -145,6 +155,9 @@ def section_lanes(
         return []
     width_starts, width_coeffs = _width_records([e for e, _ in lanes])
     signs = np.array([sign for _, sign in lanes])
+    kept = [k for k, (e, _) in enumerate(lanes) if e.get("type", "") in types]
+    if not kept:
+        return []
 
     def points(s: _F) -> _F:
         centre, normal, _ = ref.frame(s)
@@ -161,7 +174,7 @@ def section_lanes(
         # (N, L, 2 borders: left then right, 3)
         left_t = np.where(signs > 0, outer, inner)
         right_t = np.where(signs > 0, inner, outer)
-        t = np.stack([left_t, right_t], axis=2)
+        t = np.stack([left_t[:, kept], right_t[:, kept]], axis=2)
         xy = centre[:, None, None, :2] + t[..., None] * normal[:, None, None, :]
         z = np.broadcast_to(centre[:, None, None, 2:], (*t.shape, 1))
         out: _F = np.concatenate([xy, z], axis=3)
@@ -169,7 +182,8 @@ def section_lanes(
 
     extra, owner, extra_points, at_base = bisect_stations(base, points, strict=False)
     result = []
-    for k, (elem, _) in enumerate(lanes):
+    for k, lane in enumerate(kept):
+        elem = lanes[lane][0]
         mine = owner == k
         order = np.argsort(np.concatenate([base, extra[mine]]), kind="stable")
         at = np.concatenate([at_base[:, k], extra_points[mine]])[order]
