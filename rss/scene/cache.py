@@ -35,7 +35,7 @@ per-object code of scene creation (scalar access to numpy arrays costs ≈ 100 n
 
 from __future__ import annotations
 
-import bisect
+from bisect import bisect_right
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -87,6 +87,7 @@ class LaneSegmentCache:
         self._length_min = prep.length_min_m.tolist()
         self._length_max = prep.length_max_m.tolist()
         self._stations, self._left_m, self._right_m = projected_stations(prep)
+        self._width_range = prep.width_range
         self._whole: dict[tuple[int, bool, int], LaneSegment] = {}
         #: Whole (uncut) road segments of ``rss.scene.roadarea.build_road`` by plan
         #: ``(lanes, type, before, after, id offset)``: segment, placed lanes, finite limits.
@@ -132,7 +133,7 @@ class LaneSegmentCache:
                 )
             return cached
         lo, hi = (p0, p1) if forward else (1.0 - p1, 1.0 - p0)
-        w_min, w_max = self._prep.width_range(lane, lo, hi)
+        w_min, w_max = self._width_range(lane, lo, hi)
         # Inlined table lookups and a positional constructor: a hot path (~50 cuts a frame).
         t = self._stations[lane]
         left = self._left_m[lane]
@@ -140,14 +141,14 @@ class LaneSegmentCache:
         if lo <= 0.0:
             left_lo, right_lo = left[0], right[0]
         else:  # stations run from exactly 0 to exactly 1, and lo < hi <= 1
-            j = bisect.bisect_right(t, lo) - 1
+            j = bisect_right(t, lo) - 1
             w = (lo - t[j]) / (t[j + 1] - t[j])
             left_lo = left[j] + (left[j + 1] - left[j]) * w
             right_lo = right[j] + (right[j + 1] - right[j]) * w
         if hi >= 1.0:
             left_m, right_m = left[-1] - left_lo, right[-1] - right_lo
         else:
-            k = bisect.bisect_right(t, hi) - 1
+            k = bisect_right(t, hi) - 1
             w = (hi - t[k]) / (t[k + 1] - t[k])
             left_m = left[k] + (left[k + 1] - left[k]) * w - left_lo
             right_m = right[k] + (right[k + 1] - right[k]) * w - right_lo
