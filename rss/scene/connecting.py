@@ -41,7 +41,7 @@ class Kind(enum.Enum):
     MERGING = "the predicted routes meet"
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)
 class Connecting:
     """One connecting route.
 

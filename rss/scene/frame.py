@@ -51,7 +51,7 @@ def _limited(dyn: RssDynamics, limit: float, mode: RestrictSpeedLimitMode) -> Rs
     return dataclasses.replace(dyn, max_speed_on_acceleration_mps=limit * factor)
 
 
-@dataclass
+@dataclass(slots=True)
 class FrameContext:
     """What the constellations of one frame share.
 

@@ -133,7 +133,7 @@ def _corridor(
     return f.constellation(kind, i, plans, None, ends)
 
 
-@dataclass
+@dataclass(slots=True)
 class _Pair:
     """The routes of one ego/object pair and the constellations found so far."""
 

@@ -57,7 +57,7 @@ __all__ = [
 ]
 
 
-@dataclass
+@dataclass(slots=True)
 class SegmentPlan:
     """One road segment before conversion.
 
