@@ -14,7 +14,11 @@ ORACLE_STAMP := $(ORACLE_VENV)/.installed
 MAP_ORACLE_VENV ?= .venv-oracle-adrss-map
 MAP_ORACLE_STAMP := $(MAP_ORACLE_VENV)/.installed
 
-.PHONY: all setup demo test lint typecheck layers pytest oracle-commonroad oracle-adrss-map bench samples screenshot clean
+# mypyc-compiled twins of the scene-creation modules (rss/compiled.py): rebuilt whenever a
+# source changes; skipped with a message where no C compiler exists (pure Python then).
+COMPILED := build/compiled/manifest.json
+
+.PHONY: all setup compiled demo test lint typecheck layers pytest oracle-commonroad oracle-adrss-map bench samples screenshot clean
 
 all: test
 
@@ -27,7 +31,12 @@ $(STAMP): pyproject.toml
 
 setup: $(STAMP)
 
-demo: $(STAMP)
+$(COMPILED): $(STAMP) $(wildcard rss/scene/*.py) rss/compiled.py tools/build_compiled.py
+	$(BIN)/python tools/build_compiled.py
+
+compiled: $(COMPILED)
+
+demo: $(STAMP) $(COMPILED)
 	$(BIN)/workbench demo sample_logs --out $(OUT)/demo
 
 lint: $(STAMP)
@@ -40,7 +49,7 @@ typecheck: $(STAMP)
 layers: $(STAMP)
 	$(BIN)/lint-imports
 
-pytest: $(STAMP)
+pytest: $(STAMP) $(COMPILED)
 	$(BIN)/python -m pytest -n 2 --dist loadfile $(PYTEST_ARGS)
 
 $(ORACLE_STAMP): $(STAMP)
@@ -62,17 +71,17 @@ $(MAP_ORACLE_STAMP):
 	$(MAP_ORACLE_VENV)/bin/python tools/link_adrss_map_libs.py
 	@touch $(MAP_ORACLE_STAMP)
 
-oracle-adrss-map: $(STAMP) $(MAP_ORACLE_STAMP)
+oracle-adrss-map: $(STAMP) $(COMPILED) $(MAP_ORACLE_STAMP)
 	RSS_MAP_ORACLE_PYTHON=$(abspath $(MAP_ORACLE_VENV))/bin/python \
 		$(BIN)/python -m pytest -q -p no:cacheprovider tests/rss/scene/test_crosscheck_adrss_map.py \
 		tests/rss/scene/test_scene_reference.py
 
 test: lint typecheck layers pytest oracle-commonroad oracle-adrss-map
 
-bench: $(STAMP) $(MAP_ORACLE_STAMP)
+bench: $(STAMP) $(COMPILED) $(MAP_ORACLE_STAMP)
 	$(BIN)/python -m bench.run --out docs/benchmarks.md
 
-samples: $(STAMP)
+samples: $(STAMP) $(COMPILED)
 	$(BIN)/workbench samples sample_logs
 
 # Re-render the README screenshot from the demo recording (needs mesa-vulkan-drivers).
@@ -80,4 +89,4 @@ screenshot: demo
 	bash tools/screenshot.sh $(OUT)/demo/highway_cut_in.rrd docs/replay_reach_highway_cut_in.png 120
 
 clean:
-	rm -rf $(VENV) $(ORACLE_VENV) $(MAP_ORACLE_VENV) $(OUT) .mypy_cache .ruff_cache .pytest_cache
+	rm -rf $(VENV) $(ORACLE_VENV) $(MAP_ORACLE_VENV) $(OUT) .mypy_cache .ruff_cache .pytest_cache build

@@ -53,15 +53,19 @@ RADIUS_M = 120.0
 
 
 def _poses(prep: PreparedGraph, rng: np.random.Generator, n: int) -> FloatArray:
+    """``(n, 3)`` poses ``x, y, yaw`` uniform along the centre lines of non-junction lanes."""
     g = prep.graph
     lanes = np.flatnonzero(~g.is_intersection)
     rows: list[tuple[float, float, float]] = []
     while len(rows) < n:
-        lane = int(rng.choice(lanes))
-        c = g.centre_m[lane]
-        k = int(rng.integers(0, len(c) - 1))
+        c = g.centre_m[int(rng.choice(lanes))]
+        steps = np.hypot(*np.diff(c, axis=0).T)
+        s = float(rng.uniform(0.0, steps.sum()))
+        k = min(int(np.searchsorted(np.cumsum(steps), s)), len(steps) - 1)
         d = c[k + 1] - c[k]
-        rows.append((float(c[k, 0]), float(c[k, 1]), float(np.arctan2(d[1], d[0]))))
+        t = (s - float(steps[:k].sum())) / max(float(steps[k]), 1e-9)
+        x, y = c[k] + t * d
+        rows.append((float(x), float(y), float(np.arctan2(d[1], d[0]))))
     return np.array(rows, dtype=np.float64)
 
 

@@ -16,20 +16,18 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from rss.model import Constellation, ObjectType
-from rss.params import RestrictSpeedLimitMode
-from rss.scene.roadarea import build_road, lane_heading, place_object
-from rss.scene.routes import predict_routes
+from rss.dynamics import RssDynamics  # noqa: TC001 - dataclass field types, read at run time when compiled (mypyc)
+from rss.model import Constellation, LaneObject, ObjectType
+from rss.params import RestrictSpeedLimitMode, SceneSettings
+from rss.scene.inputs import SceneEgo, SceneObjects  # noqa: TC001 - dataclass field types, read at run time when compiled (mypyc)
+from rss.scene.lanegraph import PreparedGraph  # noqa: TC001 - dataclass field types, read at run time when compiled (mypyc)
+from rss.scene.matching import Matches  # noqa: TC001 - dataclass field types, read at run time when compiled (mypyc)
+from rss.scene.roadarea import BuiltSegment, build_road, lane_heading, place_object
+from rss.scene.routes import RouteMemo, RouteTree, Step, predict_routes
 
 if TYPE_CHECKING:
-    from rss.dynamics import RssDynamics
-    from rss.model import ConstellationType, LaneObject, RoadSegment
-    from rss.params import SceneSettings
-    from rss.scene.inputs import SceneEgo, SceneObjects
-    from rss.scene.lanegraph import PreparedGraph
-    from rss.scene.matching import Matches
-    from rss.scene.roadarea import BuiltSegment, PlacedLane, SegmentPlan
-    from rss.scene.routes import RouteMemo, RouteTree, Step
+    from rss.model import ConstellationType, RoadSegment
+    from rss.scene.roadarea import PlacedLane, SegmentPlan
 
 __all__ = ["FrameContext", "ego_routes", "lane_headings"]
 

@@ -23,14 +23,13 @@ import dataclasses
 import logging
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 import numpy as np
 
-from rss.model import ConstellationType
+from rss.model import Constellation, ConstellationType
 from rss.scene.connecting import Connecting, Kind, connecting_routes
 from rss.scene.corridor import corridor_plans
-from rss.scene.frame import ego_routes
+from rss.scene.frame import FrameContext, ego_routes
 from rss.scene.intersection import (
     IntersectionPair,
     Relation,
@@ -39,12 +38,7 @@ from rss.scene.intersection import (
     relation,
 )
 from rss.scene.roadarea import SegmentPlan, cut_between, cut_window, fresh_ends
-from rss.scene.routes import cross_section, follows_traffic
-
-if TYPE_CHECKING:
-    from rss.model import Constellation
-    from rss.scene.frame import FrameContext
-    from rss.scene.routes import Step
+from rss.scene.routes import Step, cross_section, follows_traffic
 
 __all__ = ["object_constellations"]
 

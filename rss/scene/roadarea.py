@@ -31,13 +31,13 @@ from rss.model import (
     RoadSegmentType,
     SpeedInterval,
 )
+from rss.scene.routes import Step  # noqa: TC001 - dataclass field types, read at run time when compiled (mypyc)
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
 
     from rss.scene.lanegraph import PreparedGraph
     from rss.scene.matching import Matches
-    from rss.scene.routes import Step
 
 __all__ = [
     "Between",

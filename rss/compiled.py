@@ -1,0 +1,138 @@
+"""Compiled twins of the per-object Python of scene creation (mypyc), used when fresh.
+
+Scene creation (``rss.scene``) is plain Python over dicts, tuples and small records: about
+0.1 ms per object and frame. mypyc (the compiler that ships with mypy, which type-checks
+this code strictly anyway) turns the listed modules into C extensions that compute the
+same floats in the same order, about 1.7x faster. They are optional:
+
+* ``make`` builds them with ``tools/build_compiled.py`` into ``build/compiled/`` (outside
+  the source tree, git-ignored), with a manifest of each source's sha256, the interpreter's
+  extension suffix and the module list.
+* On import, ``rss.scene`` calls :func:`activate`: only if every listed source still has
+  the hash it was compiled from (and the interpreter matches) is the compiled directory
+  put in front of the package's ``__path__``, so the extensions shadow their sources.
+  Otherwise, or with ``RSS_WORKBENCH_PURE_PYTHON=1``, everything runs from the sources;
+  a stale build is logged once (``make`` rebuilds it). All modules or none: compiled
+  modules call each other natively, so a mix could run stale code.
+
+``tests/rss/scene/test_compiled.py`` checks that both ways give bit-identical scenes.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import importlib.machinery
+import importlib.util
+import json
+import logging
+import os
+import sys
+import sysconfig
+from pathlib import Path
+from typing import Any
+
+__all__ = [
+    "BUILD_DIR",
+    "GROUP",
+    "MODULES",
+    "PURE_ENV",
+    "activate",
+    "source_digests",
+    "stale_reason",
+    "status",
+]
+
+_LOG = logging.getLogger(__name__)
+
+#: The compiled modules (the per-object Python of scene creation).
+MODULES = (
+    "rss.scene.cache",
+    "rss.scene.connecting",
+    "rss.scene.corridor",
+    "rss.scene.create",
+    "rss.scene.frame",
+    "rss.scene.intersection",
+    "rss.scene.pairs",
+    "rss.scene.roadarea",
+    "rss.scene.routes",
+)
+#: Name of mypyc's shared library of the group (``<GROUP>__mypyc``).
+GROUP = "rss_workbench_compiled"
+#: Set (non-empty) to run everything from the sources.
+PURE_ENV = "RSS_WORKBENCH_PURE_PYTHON"
+_ROOT = Path(__file__).resolve().parents[1]
+BUILD_DIR = _ROOT / "build" / "compiled"
+
+_STATE: dict[str, str | bool] = {"active": False, "reason": "not requested"}
+
+
+def source_digests(root: Path = _ROOT) -> dict[str, str]:
+    """sha256 of each source of :data:`MODULES` under ``root`` (empty string if missing)."""
+    out = {}
+    for module in MODULES:
+        path = root / (module.replace(".", "/") + ".py")
+        out[module] = hashlib.sha256(path.read_bytes()).hexdigest() if path.is_file() else ""
+    return out
+
+
+def _read_manifest(build_dir: Path) -> tuple[dict[str, Any], str | None]:
+    try:
+        return json.loads((build_dir / "manifest.json").read_text()), None
+    except FileNotFoundError:
+        return {}, "not built (make builds it with tools/build_compiled.py)"
+    except (OSError, ValueError) as exc:
+        return {}, f"unreadable manifest: {exc}"
+
+
+def stale_reason(build_dir: Path = BUILD_DIR, root: Path = _ROOT) -> str | None:
+    """Why the build in ``build_dir`` cannot be used (``None``: it can)."""
+    if os.environ.get(PURE_ENV):
+        return f"{PURE_ENV} is set"
+    manifest, reason = _read_manifest(build_dir)
+    if reason is None and manifest.get("ext_suffix") != sysconfig.get_config_var("EXT_SUFFIX"):
+        reason = f"built for another interpreter ({manifest.get('ext_suffix')})"
+    if reason is None and tuple(manifest.get("modules", ())) != MODULES:
+        reason = "built for another module list"
+    if reason is None:
+        built = manifest.get("sha256", {})
+        changed = sorted(m for m, d in source_digests(root).items() if built.get(m) != d)
+        if changed:
+            reason = f"sources changed since the build: {', '.join(changed)}"
+    return reason
+
+
+def activate(package: str, path: list[str], build_dir: Path = BUILD_DIR) -> bool:
+    """Let ``package`` (``__name__``, ``__path__``) import the compiled modules if fresh."""
+    if _STATE["active"]:
+        _add_path(package, path, build_dir)
+        return True
+    reason = stale_reason(build_dir)
+    if reason is not None:
+        if _STATE["reason"] == "not requested" and (build_dir / "manifest.json").exists():
+            _LOG.warning("compiled scene modules not used (%s); running from the sources", reason)
+        _STATE["reason"] = reason
+        return False
+    suffix = sysconfig.get_config_var("EXT_SUFFIX")
+    name = f"{GROUP}__mypyc"
+    if name not in sys.modules:
+        lib = str(build_dir / f"{name}{suffix}")
+        loader = importlib.machinery.ExtensionFileLoader(name, lib)
+        spec = importlib.util.spec_from_file_location(name, lib, loader=loader)
+        if spec is None:  # pragma: no cover - a file path always gives a spec
+            _STATE["reason"] = f"cannot load {lib}"
+            return False
+        sys.modules[name] = importlib.util.module_from_spec(spec)
+    _STATE.update(active=True, reason="")
+    _add_path(package, path, build_dir)
+    return True
+
+
+def _add_path(package: str, path: list[str], build_dir: Path) -> None:
+    where = str(build_dir / package.replace(".", "/"))
+    if where not in path:
+        path.insert(0, where)
+
+
+def status() -> tuple[bool, str]:
+    """``(whether the compiled modules are in use, why not)``."""
+    return bool(_STATE["active"]), str(_STATE["reason"])
