@@ -16,6 +16,10 @@ machine still slow it through shared caches), two ways over the same frames:
 
 from __future__ import annotations
 
+import json
+import os
+import subprocess
+import sys
 import time
 from pathlib import Path
 
@@ -24,6 +28,7 @@ import numpy as np
 from bench.scene_reference import reference_ms_per_frame, reference_unavailable, scene_frame
 from loaders.maps.lanelet2 import read_lanelet2
 from loaders.maps.opendrive import read_opendrive
+from rss import compiled
 from rss.batch import FloatArray, stack_constellations
 from rss.engine import check_frame, check_frames
 from rss.params import DEFAULT_EGO_DYNAMICS, DEFAULT_VEHICLE_DYNAMICS, SceneSettings
@@ -173,7 +178,8 @@ def _batched(prep: PreparedGraph, drives: Drives, settings: SceneSettings) -> Ph
     return t
 
 
-def run(quick: bool) -> str:  # noqa: FBT001 - bench interface
+def _setup(quick: bool) -> tuple[str, PreparedGraph, float, Drives]:  # noqa: FBT001
+    """Map name, prepared graph, its preparation time (ms) and the seeded drives."""
     if TOWN01.is_file():
         name, lane_map = "Town01.xodr", read_opendrive(TOWN01)
     else:
@@ -181,8 +187,34 @@ def run(quick: bool) -> str:  # noqa: FBT001 - bench interface
     t0 = time.process_time()
     prep = prepare(lane_graph_from_map(lane_map))
     prep_ms = (time.process_time() - t0) * 1e3
+    return name, prep, prep_ms, _drives(prep, *((3, 10) if quick else (10, 40)))
+
+
+def pure_phases(quick: bool) -> Phases:  # noqa: FBT001 - bench interface
+    """Batched phases per frame [ms] of this interpreter (run with the pure-Python sources)."""
+    _, prep, _, drives = _setup(quick)
+    n = sum(len(d) for d in drives)
+    _batched(prep, drives, SceneSettings())  # warm the per-map memos, as in :func:`run`
+    return {k: v / n * 1e3 for k, v in _batched(prep, drives, SceneSettings()).items()}
+
+
+def _pure_phases(quick: bool) -> Phases:  # noqa: FBT001
+    """:func:`pure_phases` in a fresh interpreter with the compiled modules switched off."""
+    env = {**os.environ, compiled.PURE_ENV: "1"}
+    code = (
+        "import json; from bench.bench_scene import pure_phases; "
+        f"print(json.dumps(pure_phases({quick})))"
+    )
+    out = subprocess.run(  # noqa: S603 - this interpreter, our own code
+        [sys.executable, "-c", code], cwd=ROOT, env=env, capture_output=True, text=True, check=True
+    )
+    phases: Phases = json.loads(out.stdout.strip().splitlines()[-1])
+    return phases
+
+
+def run(quick: bool) -> str:  # noqa: FBT001 - bench interface
+    name, prep, prep_ms, drives = _setup(quick)
     settings = SceneSettings()
-    drives = _drives(prep, *((3, 10) if quick else (10, 40)))
     n = sum(len(d) for d in drives)
     constellations = sum(
         len(create_scene(prep, ego, objects, settings).constellations)
@@ -191,6 +223,8 @@ def run(quick: bool) -> str:  # noqa: FBT001 - bench interface
     )
     one = _per_frame(prep, drives, settings)
     many = _batched(prep, drives, settings)
+    fast, why = compiled.status()
+    pure = _pure_phases(quick) if fast else None
     map_path = TOWN01 if TOWN01.is_file() else HIGHWAY
     ref = reference_ms_per_frame(
         [scene_frame(e, o, k) for k, d in enumerate(drives) for e, o in d[:REF_FRAMES]], map_path
@@ -221,23 +255,36 @@ def run(quick: bool) -> str:  # noqa: FBT001 - bench interface
     def total(t: Phases) -> str:
         return f"{(t['scene'] + t['stack'] + t['check']) / n * 1e3:.2f}"
 
+    def pure_ms(*keys: str) -> str:
+        return "n/a" if pure is None else f"{sum(pure[k] for k in keys):.2f}"
+
+    mode = (
+        "compiled (mypyc, `rss/compiled.py`, as `make` builds it)"
+        if fast
+        else f"pure Python (compiled modules not used: {why})"
+    )
     return (
         "## Scene creation + structured RSS (`bench/bench_scene.py`)\n\n"
         f"Map {name} ({len(prep.graph)} drivable lanes, prepared once in {prep_ms:.0f} ms); "
         f"{N_OBJECTS} vehicles within {RADIUS_M:.0f} m of the ego; {len(drives)} drives, "
         f"{n} frames. Batched: chunks of {CHUNK_FRAMES} frames as the pipeline hands them to "
-        "`RssRunner.step_many` (one map matching, stacking and engine call per chunk).\n\n"
+        "`RssRunner.step_many` (one map matching, stacking and engine call per chunk). "
+        f"In-process runs: {mode}; the pure-Python column ran the same frames in a fresh "
+        f"interpreter with `{compiled.PURE_ENV}=1` (bit-identical results, "
+        "`tests/rss/scene/test_compiled.py`).\n\n"
         f"| step | CPU ms per frame, batched {CHUNK_FRAMES} frames (as the pipeline runs) "
-        "| one call per frame | ad-rss-map-integration 5.0 |\n|---|---|---|---|\n"
+        "| batched, pure Python | one call per frame | ad-rss-map-integration 5.0 |\n"
+        "|---|---|---|---|---|\n"
         f"| scene creation (matching, routes, constellations) | {ms(many, 'scene')} "
-        f"| {ms(one, 'scene')} | {ref_ms('matching', 'append')} |\n"
+        f"| {pure_ms('scene')} | {ms(one, 'scene')} | {ref_ms('matching', 'append')} |\n"
         f"| ↳ of which map matching (`match_boxes`) | {ms(many, 'match')} "
-        f"| {ms(one, 'match')} (timed apart) | {ref_ms('matching')} |\n"
-        f"| `stack_constellations` | {ms(many, 'stack')} | {ms(one, 'stack')} "
-        f"| {ref_ms('world_model')} (`getWorldModel`) |\n"
-        f"| `check_frames` / `check_frame` | {ms(many, 'check')} | {ms(one, 'check')} "
-        f"| {ref_ms('extraction', 'checking', 'resolving')} |\n"
-        f"| total | **{total(many)}** | {total(one)} | {ref_ms()} |\n\n"
+        f"| {pure_ms('match')} | {ms(one, 'match')} (timed apart) | {ref_ms('matching')} |\n"
+        f"| `stack_constellations` | {ms(many, 'stack')} | {pure_ms('stack')} "
+        f"| {ms(one, 'stack')} | {ref_ms('world_model')} (`getWorldModel`) |\n"
+        f"| `check_frames` / `check_frame` | {ms(many, 'check')} | {pure_ms('check')} "
+        f"| {ms(one, 'check')} | {ref_ms('extraction', 'checking', 'resolving')} |\n"
+        f"| total | **{total(many)}** | {pure_ms('scene', 'stack', 'check')} | {total(one)} "
+        f"| {ref_ms()} |\n\n"
         f"{ref_note}\n\n"
         f"Constellations per frame: {constellations / n:.1f}.\n"
     )

@@ -8,15 +8,19 @@ Unstructured (trajectory-set) RSS: :func:`check_unstructured` on :class:`Unstruc
 the ad-rss binding, once imported, overwrites the attribute ``rss.unstructured``).
 """
 
-from rss.batch import ConstellationBatch, stack_constellations
-from rss.dynamics import RssDynamics
-from rss.engine import FrameResult, check_frame, check_frames
-from rss.errors import RssCaseError, RssConstellationError, RssError, RssParameterError
-from rss.memory import RssMemory
-from rss.params import RssParams, parse_rss_params
-from rss.unstructured.agents import UnstructuredAgents
-from rss.unstructured.engine import UnstructuredResult, check_unstructured
-from rss.unstructured.memory import UnstructuredMemory
+from rss.compiled import activate
+
+activate(__name__, __path__)  # before any submodule import: rss.batch may run compiled
+
+from rss.batch import ConstellationBatch, stack_constellations  # noqa: E402
+from rss.dynamics import RssDynamics  # noqa: E402
+from rss.engine import FrameResult, check_frame, check_frames  # noqa: E402
+from rss.errors import RssCaseError, RssConstellationError, RssError, RssParameterError  # noqa: E402
+from rss.memory import RssMemory  # noqa: E402
+from rss.params import RssParams, parse_rss_params  # noqa: E402
+from rss.unstructured.agents import UnstructuredAgents  # noqa: E402
+from rss.unstructured.engine import UnstructuredResult, check_unstructured  # noqa: E402
+from rss.unstructured.memory import UnstructuredMemory  # noqa: E402
 
 __all__ = [
     "ConstellationBatch",
