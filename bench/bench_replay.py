@@ -13,8 +13,6 @@ Workload: a 10 Hz drive with 30 actors and a 16-point plan per frame on a three-
 
 from __future__ import annotations
 
-import json
-import subprocess
 import sys
 import tempfile
 import time
@@ -22,6 +20,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from bench.child import run_json
 from tests.workbench.fakes import DT_NS, T0_NS, FakeDrive, synthetic_frame
 from workbench.replay.run import replay_drive
 
@@ -86,15 +85,7 @@ print(json.dumps({"peak_mib": peak, "rss_first_mib": marks[0], "rss_last_mib": m
 
 
 def _memory(n_frames: int, out: Path) -> dict[str, float]:
-    root = Path(__file__).resolve().parent.parent
-    done = subprocess.run(  # noqa: S603 - our own interpreter running our own snippet
-        [sys.executable, "-c", _CHILD, str(n_frames), str(out)],
-        capture_output=True,
-        text=True,
-        check=True,
-        cwd=root,
-    )
-    result: dict[str, float] = json.loads(done.stdout.strip().splitlines()[-1])
+    result: dict[str, float] = run_json(_CHILD, str(n_frames), str(out))
     return result
 
 

@@ -16,15 +16,13 @@ machine still slow it through shared caches), two ways over the same frames:
 
 from __future__ import annotations
 
-import json
 import os
-import subprocess
-import sys
 import time
 from pathlib import Path
 
 import numpy as np
 
+from bench.child import run_json
 from bench.scene_reference import reference_ms_per_frame, reference_unavailable, scene_frame
 from loaders.maps.lanelet2 import read_lanelet2
 from loaders.maps.opendrive import read_opendrive
@@ -205,10 +203,7 @@ def _pure_phases(quick: bool) -> Phases:  # noqa: FBT001
         "import json; from bench.bench_scene import pure_phases; "
         f"print(json.dumps(pure_phases({quick})))"
     )
-    out = subprocess.run(  # noqa: S603 - this interpreter, our own code
-        [sys.executable, "-c", code], cwd=ROOT, env=env, capture_output=True, text=True, check=True
-    )
-    phases: Phases = json.loads(out.stdout.strip().splitlines()[-1])
+    phases: Phases = run_json(code, env=env)
     return phases
 
 

@@ -11,13 +11,12 @@ from __future__ import annotations
 
 import json
 import os
-import subprocess
-import sys
 import sysconfig
 from pathlib import Path
 
 import pytest
 
+from bench.child import run_json
 from rss import compiled
 from tests.conftest import running_in_ci
 
@@ -28,6 +27,7 @@ import hashlib, json
 from pathlib import Path
 from bench.bench_scene import _drives
 from loaders.maps.lanelet2 import read_lanelet2
+from bench.child import run_json
 from rss import compiled
 from rss.params import SceneSettings
 from rss.scene import create_scene, prepare
@@ -55,15 +55,7 @@ def _run(*, pure: bool) -> dict[str, object]:
     env.pop(compiled.PURE_ENV, None)
     if pure:
         env[compiled.PURE_ENV] = "1"
-    out = subprocess.run(  # noqa: S603 - this interpreter, our own script
-        [sys.executable, "-c", _SCRIPT],
-        cwd=ROOT,
-        env=env,
-        capture_output=True,
-        text=True,
-        check=True,
-    )
-    result: dict[str, object] = json.loads(out.stdout.strip().splitlines()[-1])
+    result: dict[str, object] = run_json(_SCRIPT, env=env)
     return result
 
 
