@@ -23,7 +23,7 @@ from rss.scene.inputs import SceneEgo, SceneObjects  # noqa: TC001 - dataclass f
 from rss.scene.lanegraph import PreparedGraph  # noqa: TC001 - dataclass field types, read at run time when compiled (mypyc)
 from rss.scene.matching import Matches  # noqa: TC001 - dataclass field types, read at run time when compiled (mypyc)
 from rss.scene.roadarea import BuiltSegment, build_road, lane_heading, place_object
-from rss.scene.routes import RouteMemo, RouteTree, Step, predict_routes
+from rss.scene.routes import RouteMemo, RouteTree, Step, follows_traffic, predict_routes
 
 if TYPE_CHECKING:
     from rss.model import ConstellationType, RoadSegment
@@ -31,8 +31,11 @@ if TYPE_CHECKING:
 
 __all__ = ["FrameContext", "ego_routes", "lane_headings"]
 
-#: Lanes across the heading (beyond 45 degrees) are no start of a vehicle's routes.
-_FOLLOWING_COS = float(np.cos(np.pi / 4))
+#: A touched lane is a start of a vehicle's routes when the vehicle heads along its traffic
+#: direction, as ad-map predicts from every occupied region (within 90 degrees); a lane
+#: at right angles to the heading (cosine within this tolerance of 0) is none: its
+#: direction there would hinge on rounding.
+_ACROSS_COS = 1e-6
 _SPEED_FACTOR = {
     RestrictSpeedLimitMode.NONE: None,
     RestrictSpeedLimitMode.EXACT_SPEED_LIMIT: 1.0,
@@ -112,8 +115,13 @@ class FrameContext:
     def starts(self, box: int) -> list[tuple[int, bool, float]]:
         """Lanes the box may drive on: ``(lane, forward, length behind its centre)``.
 
-        The anchor first, then every other touched lane aligned with the box heading
-        (ad-rss considers every map-matched lane of a vehicle). Computed once per box.
+        The anchor first (either way along it), then every other touched lane whose
+        traffic direction lies within 90 degrees of the box heading at its region: ad-map
+        predicts a vehicle's routes from every occupied region, in the lane's direction
+        when the heading is within 90 degrees of it, else against it, which gives no
+        route on a one-way lane (``predictRoutes`` of a bounding box; no route there on
+        Town01, measured with the oracle). Lanes at right
+        angles to the heading are left out. Computed once per box.
         """
         known = self.start_lanes.get(box)
         if known is not None:
@@ -126,9 +134,11 @@ class FrameContext:
         for region in m.regions(box):
             lane = region.lane
             cos = math.cos(yaw - region.heading_rad)
-            if lane != anchor and abs(cos) < _FOLLOWING_COS:
-                continue
             fwd = cos >= 0.0
+            if lane != anchor and (
+                abs(cos) < _ACROSS_COS or not follows_traffic(self.prep, lane, forward=fwd)
+            ):
+                continue
             p = (
                 float(m.anchor_s[box])
                 if lane == anchor
