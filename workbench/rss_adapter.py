@@ -105,6 +105,7 @@ def lane_graph_from_map(lane_map: LaneMap) -> LaneGraph:
         priority=priority,
         traffic_light=light,
         light_ids=tuple(tl.id for tl in lane_map.traffic_lights),
+        admap_reversed=np.array([ln.admap_reversed for ln in lanes], dtype=np.bool_),
     )
 
 

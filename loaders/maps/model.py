@@ -77,6 +77,9 @@ class Lane:
             direction (its border order is reversed), e.g. the oncoming lane.
         right_neighbour_opposite: The right neighbour runs against this lane's reference
             direction.
+        admap_reversed: ad-map's reader (the reference implementation of RSS scene
+            creation) holds this lane's points in the opposite order (OpenDRIVE only;
+            its nearest-segment tie rule scans a border in its own point order).
     """
 
     id: str
@@ -94,6 +97,7 @@ class Lane:
     right_line: LineType = LineType.UNKNOWN
     left_neighbour_opposite: bool = False
     right_neighbour_opposite: bool = False
+    admap_reversed: bool = False
 
     def __post_init__(self) -> None:
         """Freeze the border arrays."""

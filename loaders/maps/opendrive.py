@@ -28,6 +28,7 @@ import numpy as np
 from loaders.errors import MapError
 from loaders.maps.model import Lane, LaneKind, LaneMap
 from loaders.maps.opendrive_borders import SectionLane, section_lanes
+from loaders.maps.opendrive_junctions import JunctionLane, admap_reversed_along_s
 from loaders.maps.opendrive_refline import ReferenceLine, float_attr
 from loaders.maps.xmlsource import read_xml_root
 
@@ -69,6 +70,8 @@ class _Builder:
         self.links: list[tuple[_End, _End]] = []
         self.sections: dict[str, int] = {}
         self.junction_lanes: dict[str, list[str]] = {}
+        #: Every lane of each junction's roads in ad-map's reading order (all lane types).
+        self.junction_order: dict[str, list[JunctionLane]] = {}
         self.stations: dict[str, NDArray[np.float64]] = {}
         self.roads = root.findall("road")
 
@@ -78,9 +81,25 @@ class _Builder:
         s1 = float_attr(sections[idx + 1], "s") if idx + 1 < len(sections) else ref.length_m
         junction = road.get("junction", "-1")
         speed = _speed(road)
-        lanes = section_lanes(ref, self.stations[rid], sections[idx], s0, s1, _KINDS)
+        if junction == "-1":
+            lanes = section_lanes(ref, self.stations[rid], sections[idx], s0, s1, _KINDS)
+        else:  # ad-map's junction neighbours and point order need the ends of every lane
+            section = sections[idx]
+            every = section.findall("left/lane") + section.findall("right/lane")
+            lanes = section_lanes(
+                ref, self.stations[rid], section, s0, s1, {e.get("type", "") for e in every}
+            )
+            by_id = {lane.lane_id: lane for lane in lanes}
+            self.junction_order.setdefault(junction, []).extend(
+                JunctionLane(
+                    (rid, idx, lid), by_id[lid].left_m[[0, -1]], by_id[lid].right_m[[0, -1]]
+                )
+                for lid in (int(e.get("id", "0")) for e in every)
+                if lid in by_id
+            )
         for lane in lanes:
-            self._add(rid, idx, lane, junction, speed)
+            if lane.element.get("type", "") in _KINDS:
+                self._add(rid, idx, lane, junction, speed)
 
     def _add(self, rid: str, idx: int, lane: SectionLane, junction: str, speed: float) -> None:
         lid, elem = lane.lane_id, lane.element
@@ -157,6 +176,7 @@ class _Builder:
         for a, targets in succ.items():
             for b in targets:
                 pred[b].add(a)
+        turned = admap_reversed_along_s(self.junction_order.values())
         out: dict[str, Lane] = {}
         for key, lane in self.lanes.items():
             rid, idx, lid = key
@@ -171,6 +191,7 @@ class _Builder:
                 left_neighbour=self.lanes[left].id if left in self.lanes else None,
                 right_neighbour=self.lanes[right].id if right in self.lanes else None,
                 left_neighbour_opposite=abs(lid) == 1 and left in self.lanes,
+                admap_reversed=(lid > 0) != (key in turned),
             )
         groups = tuple(tuple(ids) for _, ids in sorted(self.junction_lanes.items()))
         for ids in groups:

@@ -128,8 +128,8 @@ class LaneSegmentCache:
                     driving_direction=self.direction(lane, forward=forward),
                     length_min_m=self._length_min[lane],
                     length_max_m=self._length_max[lane],
-                    width_min_m=min(self._prep.width_rows[lane]),
-                    width_max_m=max(self._prep.width_rows[lane]),
+                    width_min_m=self._prep.width_whole[lane][0],
+                    width_max_m=self._prep.width_whole[lane][1],
                 )
             return cached
         lo, hi = (p0, p1) if forward else (1.0 - p1, 1.0 - p0)

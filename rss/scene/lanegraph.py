@@ -10,15 +10,14 @@ flows relative to that order::
       right border  o----o----o----o          lat param 1 = right border
 
 :func:`prepare` builds the derived geometry once per map (prepared polygons, an STRtree,
-centre lines also as flat arrays, border lengths, widths at stations, intersection
-conflicts).
+centre lines also as flat arrays, border lengths, ad-map's lane widths
+(``rss.scene.admap_nearest``), intersection conflicts).
 """
 
 from __future__ import annotations
 
 import bisect
 import functools
-import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -26,6 +25,7 @@ import numpy as np
 import shapely
 
 from rss.errors import RssConstellationError
+from rss.scene.admap_nearest import DISTANCE_TOL_M, lane_widths, range_of, segments
 from rss.scene.cache import GraphScalars, LaneSegmentCache
 from rss.scene.polylines import Polylines, polylines
 
@@ -36,14 +36,11 @@ if TYPE_CHECKING:
 __all__ = [
     "MATCH_DISTANCE_M",
     "SIMPLIFY_M",
-    "WIDTH_STATIONS",
     "LaneGraph",
     "PreparedGraph",
     "prepare",
 ]
 
-#: Number of parametric stations at which lane widths are sampled.
-WIDTH_STATIONS = 21
 #: Tolerance of the simplified lane polygons and centre lines (densely sampled maps, e.g.
 #: OpenDRIVE, carry many collinear points; linear referencing is linear in the count).
 SIMPLIFY_M = 0.01
@@ -51,8 +48,9 @@ SIMPLIFY_M = 0.01
 #: distance, ``getMapMatchedBoundingBox(..., Distance(0.1))`` in ad-rss map integration).
 MATCH_DISTANCE_M = 0.1
 _MIN_CONFLICT_AREA_M2 = 0.5
-_STATIONS = np.linspace(0.0, 1.0, WIDTH_STATIONS)
-_STATION_LIST: list[float] = _STATIONS.tolist()
+#: ad-map keeps a lane's whole width range for every interval of a lane whose widths vary
+#: by at most this [m] (``route::getMetricRanges``).
+_STEADY_WIDTH_M = 0.1
 
 
 @dataclass(frozen=True)
@@ -77,6 +75,8 @@ class LaneGraph:
         priority: ``(L,)`` right of way: +1 has way, 0 unregulated, -1 must yield.
         traffic_light: ``(L,)`` index into ``light_ids`` of the controlling light, -1 none.
         light_ids: Traffic-light ids.
+        admap_reversed: ``(L,)`` ad-map holds the lane's points in the opposite order
+            (``None``: nowhere); its nearest-point tie rule and width stations follow it.
     """
 
     ids: tuple[str, ...]
@@ -95,6 +95,7 @@ class LaneGraph:
     priority: IntArray
     traffic_light: IntArray
     light_ids: tuple[str, ...] = ()
+    admap_reversed: BoolArray | None = None
 
     def __len__(self) -> int:
         """Number of lanes."""
@@ -120,12 +121,19 @@ class PreparedGraph:
         length_min_m: ``(L,)`` shorter border length (inner side of a curve).
         length_max_m: ``(L,)`` longer border length.
         border_length_m: ``(2, L)`` left and right border lengths (as given, unsimplified).
-        width_m: ``(L, WIDTH_STATIONS)`` widths at evenly spaced parametric stations.
+        width_m: ``L`` arrays ``(W,)``: ad-map's widths at its stations ``width_t``.
         conflicts: ``(L, L)`` intersection lanes whose areas overlap or that merge into
             one successor (a lane never conflicts with itself).
         conflict_span_m: For every conflicting ``(a, b)``: lengths of ``a`` before and after
             the part of its centre line inside ``b`` (scaled to ``a``'s min length).
         width_rows: ``width_m`` as Python lists (fast scalar access).
+        width_t: Per lane, the parametric stations of ``width_rows`` (0 to 1, our order).
+        width_whole: Per lane, ad-map's range of ``width_rows`` (``range_of``: up to 1 mm
+            inside the min and max); ad-map keeps it for every interval of a lane whose
+            range spans at most 0.1 m (``width_steady``).
+        width_steady: Per lane, see ``width_whole``.
+        line_backwards: ``(2 L,)`` per line of ``borders``: ad-map's point order runs
+            against ours.
         centre: ``centre_lines`` as flat arrays (vectorised linear referencing).
         borders: The (simplified) borders as flat arrays: line ``l`` is the left border of
             lane ``l``, line ``L + l`` its right border.
@@ -144,10 +152,14 @@ class PreparedGraph:
     length_min_m: FloatArray
     length_max_m: FloatArray
     border_length_m: FloatArray
-    width_m: FloatArray
+    width_m: tuple[FloatArray, ...]
     conflicts: BoolArray
     conflict_span_m: dict[tuple[int, int], tuple[float, float]]
     width_rows: list[list[float]]
+    width_t: list[list[float]]
+    width_whole: list[tuple[float, float]]
+    width_steady: list[bool]
+    line_backwards: BoolArray
     centre: Polylines
     borders: Polylines
     straight: BoolArray
@@ -163,15 +175,7 @@ class PreparedGraph:
     @functools.cached_property
     def border_segments(self) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
         """``borders`` per vertex: ``x``, ``y`` and the step ``dx``, ``dy`` to the next one."""
-        xy = self.borders.xy_m
-        step = np.zeros_like(xy)
-        step[:-1] = xy[1:] - xy[:-1]
-        return (
-            np.ascontiguousarray(xy[:, 0]),
-            np.ascontiguousarray(xy[:, 1]),
-            np.ascontiguousarray(step[:, 0]),
-            np.ascontiguousarray(step[:, 1]),
-        )
+        return segments(self.borders)
 
     @functools.cached_property
     def scalars(self) -> GraphScalars:
@@ -179,27 +183,31 @@ class PreparedGraph:
         return GraphScalars(self)
 
     def width_range(self, lane: int, p0: float, p1: float) -> tuple[float, float]:
-        """Min and max width of ``lane`` between parametric positions ``p0 <= p1``."""
-        row: list[float] = self.width_rows[lane]
-        if p0 <= 0.0 and p1 >= 1.0:
-            return min(row), max(row)
-        step = WIDTH_STATIONS - 1
-        values = [_interp(p0, row), _interp(p1, row)]
-        values += row[math.floor(p0 * step) + 1 : math.ceil(p1 * step)]
-        return min(values), max(values)
+        """Min and max width of ``lane`` between parametric positions ``p0 <= p1``.
+
+        As ad-map: the whole lane's range where it spans at most 0.1 m; else the range of
+        the widths at the stations inside the interval and, interpolated, at its ends
+        (ad-map evaluates its rule on the interval's projected borders).
+        """
+        if self.width_steady[lane] or (p0 <= 0.0 and p1 >= 1.0):
+            return self.width_whole[lane]
+        row = self.width_rows[lane]
+        at = self.width_t[lane]
+        inner = row[bisect.bisect_right(at, p0) : bisect.bisect_left(at, p1)]
+        return range_of([_interp(p0, at, row), *inner, _interp(p1, at, row)])
 
 
-def _interp(x: float, row: list[float]) -> float:
-    """``numpy.interp(x, stations, row)`` for one scalar, in plain Python (same arithmetic)."""
-    if x <= _STATION_LIST[0]:
+def _interp(x: float, at: list[float], row: list[float]) -> float:
+    """``numpy.interp(x, at, row)`` for one scalar, in plain Python (same arithmetic)."""
+    if x <= at[0]:
         return row[0]
-    if x >= _STATION_LIST[-1]:
+    if x >= at[-1]:
         return row[-1]
-    j = bisect.bisect_right(_STATION_LIST, x) - 1
-    x0 = _STATION_LIST[j]
+    j = bisect.bisect_right(at, x) - 1
+    x0 = at[j]
     if x == x0:
         return row[j]
-    slope = (row[j + 1] - row[j]) / (_STATION_LIST[j + 1] - x0)
+    slope = (row[j + 1] - row[j]) / (at[j + 1] - x0)
     return slope * (x - x0) + row[j]
 
 
@@ -224,14 +232,6 @@ def _largest_parts(polygons: np.ndarray) -> np.ndarray:
     for i in np.flatnonzero(shapely.get_num_geometries(polygons) > 1).tolist():
         parts = shapely.get_parts(polygons[i])
         out[i] = parts[int(np.argmax(shapely.area(parts)))]
-    return out
-
-
-def _widths(left: shapely.LineString, right: shapely.LineString) -> FloatArray:
-    stations = np.linspace(0.0, 1.0, WIDTH_STATIONS)
-    lp = shapely.line_interpolate_point(left, stations, normalized=True)
-    rp = shapely.line_interpolate_point(right, stations, normalized=True)
-    out: FloatArray = shapely.distance(lp, rp)
     return out
 
 
@@ -298,9 +298,16 @@ def prepare(graph: LaneGraph) -> PreparedGraph:
     shapely.prepare(match_polygons)
     left_len = np.array([_polyline_length(p) for p in graph.left_m])
     right_len = np.array([_polyline_length(p) for p in graph.right_m])
-    widths = np.array([_widths(lefts[i], rights[i]) for i in range(len(graph))]).reshape(
-        len(graph), WIDTH_STATIONS
+    backwards = (
+        np.zeros(len(graph), dtype=np.bool_)
+        if graph.admap_reversed is None
+        else np.asarray(graph.admap_reversed, dtype=np.bool_)
     )
+    width_t, widths = lane_widths(graph.left_m, graph.right_m, backwards)
+    whole = [
+        range_of((w[::-1] if back else w).tolist())
+        for w, back in zip(widths, backwards.tolist(), strict=True)
+    ]
     shapely.prepare(polygons)
     conflicts = _conflicts(graph, polygons)
     length = np.asarray(shapely.length(centre), dtype=np.float64).reshape(-1)
@@ -318,10 +325,14 @@ def prepare(graph: LaneGraph) -> PreparedGraph:
         length_min_m=length_min,
         length_max_m=np.maximum(left_len, right_len),
         border_length_m=np.stack([left_len, right_len]),
-        width_m=widths,
+        width_m=tuple(widths),
         conflicts=conflicts,
         conflict_span_m=spans,
-        width_rows=widths.tolist(),
+        width_rows=[w.tolist() for w in widths],
+        width_t=[t.tolist() for t in width_t],
+        width_whole=whole,
+        width_steady=[hi - lo < _STEADY_WIDTH_M + DISTANCE_TOL_M for lo, hi in whole],
+        line_backwards=np.concatenate([backwards, backwards]),
         centre=polylines(centre),
         borders=polylines(borders),
         straight=np.all(

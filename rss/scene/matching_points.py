@@ -23,6 +23,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from rss.scene.admap_nearest import DISTANCE_TOL_M, flat_runs, nearest_on_lines
 from rss.scene.lanegraph import MATCH_DISTANCE_M
 
 if TYPE_CHECKING:
@@ -41,18 +42,9 @@ __all__ = [
     "outline_crossings",
 ]
 
-#: ad-physics compares distances with this tolerance (``Distance::cPrecisionValue``).
-DISTANCE_TOL_M = 1e-3
 #: ad-map's lattice step never drops below 0.1 m.
 _MIN_STRIDE_M = 0.1
 _INTEGRAL_TOL = 1e-6
-
-
-def _flat_runs(first: IntArray, count: IntArray) -> tuple[IntArray, IntArray]:
-    """``(row, item)`` of all items ``first[r] .. first[r] + count[r] - 1``, row after row."""
-    row = np.repeat(np.arange(len(first)), count)
-    starts = np.cumsum(count) - count
-    return row, first[row] + np.arange(int(count.sum())) - starts[row]
 
 
 def _foot(
@@ -64,36 +56,18 @@ def _foot(
 ) -> tuple[FloatArray, FloatArray]:
     """Nearest points of ``points`` ``(Q, 2)`` on the borders ``which``: arc lengths, points.
 
-    All candidate segments of all rows are tried at once (one flat run per row; only the
-    segments within ``reach_m`` of arc length ``near_m`` when given). Of segments within
-    1 mm of the nearest, the first counts: ad-map keeps its current segment unless a
-    later one is nearer by more than ad-physics' distance tolerance.
+    ad-map's tie rule in ad-map's point order (``admap_nearest.nearest_on_lines``); only
+    the segments within ``reach_m`` of arc length ``near_m`` when given.
     """
-    lines = graph.borders
-    first = lines.start[which]
-    last = lines.start[which + 1] - 2  # last segment
-    if near_m is not None:
-        base = lines.offset_m[which]
-        lo = np.searchsorted(lines.global_m, base + near_m - reach_m, side="right") - 1
-        hi = np.searchsorted(lines.global_m, base + near_m + reach_m, side="left")
-        first, last = np.clip(lo, first, last), np.clip(hi, first, last)
-    count = np.maximum(last - first + 1, 1)
-    row, seg = _flat_runs(first, count)
-    x, y, step_x, step_y = graph.border_segments
-    ax, ay, dx, dy = x[seg], y[seg], step_x[seg], step_y[seg]
-    rx, ry = points[row, 0] - ax, points[row, 1] - ay
-    length = lines.segment_m[seg]
-    t = (rx * dx + ry * dy) / np.where(length > 0.0, length * length, 1.0)
-    t = np.minimum(np.maximum(t, 0.0), 1.0)
-    ox, oy = rx - dx * t, ry - dy * t
-    dist2 = ox * ox + oy * oy
-    starts = np.cumsum(count) - count
-    limit = np.sqrt(np.minimum.reduceat(dist2, starts)) + DISTANCE_TOL_M
-    candidate = np.where(dist2 < (limit * limit)[row], np.arange(len(seg)), len(seg))
-    best = np.minimum.reduceat(candidate, starts)
-    sb, tb = seg[best], t[best]
-    foot = np.stack([ax[best] + dx[best] * tb, ay[best] + dy[best] * tb], axis=1)
-    return lines.s_at_m[sb] + tb * lines.segment_m[sb], foot
+    return nearest_on_lines(
+        graph.borders,
+        graph.border_segments,
+        which,
+        points,
+        graph.line_backwards[which],
+        near_m,
+        reach_m,
+    )
 
 
 def ad_map_positions(
@@ -208,7 +182,7 @@ def outline_crossings(
     """
     rings = graph.match_outlines
     first = rings.start[lanes]
-    row, seg = _flat_runs(first, rings.start[lanes + 1] - first - 1)
+    row, seg = flat_runs(first, rings.start[lanes + 1] - first - 1)
     p, q = rings.xy_m[seg], rings.xy_m[seg + 1]
     lo, hi = corners.min(axis=1)[row], corners.max(axis=1)[row]
     near = np.all((np.minimum(p, q) <= hi) & (np.maximum(p, q) >= lo), axis=1)

@@ -46,6 +46,14 @@ def _border(prep: PreparedGraph, line: int) -> list[tuple[float, float]]:
     return [tuple(v) for v in b.xy_m[b.start[line] : b.start[line + 1]].tolist()]
 
 
+def _nearest_on(prep: PreparedGraph, line: int, x: float, y: float) -> tuple[float, float, float]:
+    """``_nearest`` scanning the border in ad-map's point order (fraction in ours)."""
+    if not prep.line_backwards[line]:
+        return _nearest(_border(prep, line), x, y)
+    t, fx, fy = _nearest(_border(prep, line)[::-1], x, y)
+    return 1.0 - t, fx, fy
+
+
 def _nearest(border: list[tuple[float, float]], x: float, y: float) -> tuple[float, float, float]:
     """ad-map's nearest point on a border: (fraction, x, y); a later segment wins only when
     nearer by more than 1 mm."""
@@ -65,8 +73,8 @@ def _nearest(border: list[tuple[float, float]], x: float, y: float) -> tuple[flo
 
 def _position(prep: PreparedGraph, lane: int, x: float, y: float) -> tuple[float, float, float]:
     """(lon, lat, dist) of one point in one lane, as ad-map's ``findNearestPointOnLane``."""
-    tl, lx, ly = _nearest(_border(prep, lane), x, y)
-    tr, rx, ry = _nearest(_border(prep, lane + len(prep.graph)), x, y)
+    tl, lx, ly = _nearest_on(prep, lane, x, y)
+    tr, rx, ry = _nearest_on(prep, lane + len(prep.graph), x, y)
     dx, dy = rx - lx, ry - ly
     lat = ((x - lx) * dx + (y - ly) * dy) / (dx * dx + dy * dy)
     n = min(max(lat, 0.0), 1.0)
