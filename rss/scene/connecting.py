@@ -12,6 +12,9 @@ behind) and which way the object heads on the road area::
 
 Only without any route between the two (within the distance) the predicted routes are
 searched for a lane both reach: ``MERGING`` (ad-map ``checkForMergingConnectingRoute``).
+
+Of several direct routes, those a vehicle would have to drive almost across are dropped
+(ad-rss' heading feasibility below 0.1, :func:`feasibility`).
 """
 
 from __future__ import annotations
@@ -22,6 +25,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from rss.scene.intersection import conflict
+from rss.scene.roadarea import lane_heading
 from rss.scene.routes import predict_routes
 
 if TYPE_CHECKING:
@@ -29,7 +33,14 @@ if TYPE_CHECKING:
     from rss.scene.lanegraph import PreparedGraph
     from rss.scene.routes import Step
 
-__all__ = ["Connecting", "Kind", "connecting_routes"]
+__all__ = [
+    "MIN_FEASIBILITY",
+    "Connecting",
+    "Kind",
+    "connecting_routes",
+    "feasibility",
+    "heading_rating",
+]
 
 
 class Kind(enum.Enum):
@@ -50,12 +61,50 @@ class Connecting:
         target: The object's lane at the end of the tree path (-1 for ``MERGING``).
         length_m: Route length between the two boxes (approximate).
         through_intersection: A lane of the route lies in an intersection.
+        feasibility: ad-map's heading feasibility of the route (:func:`feasibility`;
+            1.0 for ``MERGING``, which is never filtered).
     """
 
     kind: Kind
     target: int
     length_m: float
     through_intersection: bool
+    feasibility: float = 1.0
+
+
+#: ad-rss drops connecting routes below this heading feasibility while others remain.
+MIN_FEASIBILITY = 0.1
+
+
+def heading_rating(yaw_rad: float, road_rad: float) -> float:
+    """ad-map's rating of a heading along a road axis: 1 along it, 0 across (linear).
+
+    ``1 - 2 d / pi`` with ``d`` the angle [rad] between the heading and the nearer
+    direction of the axis (ad-map ``createHeadingRating`` of the direction the route type
+    takes for the vehicle, always the nearer one).
+    """
+    d = math.acos(min(1.0, abs(math.cos(yaw_rad - road_rad))))
+    return 1.0 - 2.0 * d / math.pi
+
+
+def feasibility(f: FrameContext, box: int, target: int, *, first: int, last: int) -> float:
+    """Heading feasibility of the tree route to ``target`` (ad-map ``getHeadingFeasibility``).
+
+    The product of the two vehicles' :func:`heading_rating` against the lane heading
+    where the route leaves the ego's region (its anchor lane) and where it enters the
+    object's region in ``target``; ``first`` / ``last`` are the route's first and last
+    longitudinal moves (+1 ahead along the ego's direction, -1 behind).
+    """
+    m, prep = f.matches, f.prep
+    ego_lane = m.anchors[0]
+    reg = next(r for r in m.regions(0) if r.lane == ego_lane)
+    ahead = (first > 0) == f.forward(0)
+    ego_road = lane_heading(prep, ego_lane, reg.lon_max if ahead else reg.lon_min)
+    reg = next(r for r in m.regions(box) if r.lane == target)
+    along = (last > 0) == f.tree.forward[target]
+    obj_road = lane_heading(prep, target, reg.lon_min if along else reg.lon_max)
+    yaw = float(f.objects.yaw_rad[box - 1])
+    return heading_rating(f.ego.yaw_rad, ego_road) * heading_rating(yaw, obj_road)
 
 
 def _direct(f: FrameContext, box: int, max_m: float) -> tuple[list[Connecting], bool]:
@@ -97,8 +146,24 @@ def _direct(f: FrameContext, box: int, max_m: float) -> tuple[list[Connecting], 
         else:
             continue
         through = any(inside[x] for x in tree.path(lane))
-        out.append(Connecting(kind, lane, gap, through))
-    return _drop_longer(f, out), found
+        feas = feasibility(f, box, lane, first=first, last=last)
+        out.append(Connecting(kind, lane, gap, through, feas))
+    return _drop_infeasible(_drop_longer(f, out)), found
+
+
+def _drop_infeasible(routes: list[Connecting]) -> list[Connecting]:
+    """Drop routes below :data:`MIN_FEASIBILITY` while another remains (as ad-rss does).
+
+    ad-rss goes through the routes by descending feasibility and drops an infeasible one
+    only while more than one is left.
+    """
+    if len(routes) < 2:  # noqa: PLR2004 - one route is always kept
+        return routes
+    kept = sorted(routes, key=lambda c: -c.feasibility)
+    for cr in list(kept):
+        if len(kept) > 1 and cr.feasibility < MIN_FEASIBILITY:
+            kept.remove(cr)
+    return [cr for cr in routes if cr in kept]
 
 
 def _drop_longer(f: FrameContext, routes: list[Connecting]) -> list[Connecting]:
