@@ -1,11 +1,13 @@
 """Same- and opposite-direction road areas along a connecting route.
 
 The connecting route (a path in the :class:`~rss.scene.routes.RouteTree`) gives the
-longitudinal range ``k`` of the road area; every segment is the cross-section of lanes
-side by side at that ``k``, restricted to the lateral range ``j`` that the route and the
-two vehicles' lanes span ("restricted road area")::
+longitudinal range ``k`` of the road area (widened to the vehicles' lanes); every segment
+is the cross-section of lanes side by side at that ``k``, restricted to the lateral range
+``j`` between the route's start (the ego's lane) and its end (the object's lane), as
+ad-rss' ``createNonIntersectionRoadArea`` keeps the lanes with a route lane offset between
+0 and the destination offset ("restricted road area")::
 
-        j = -1   ░░░░░░░░░░░░░░░░░░░░░░░░░   dropped (neither vehicle nor route)
+        j = -1   ░░░░░░░░░░░░░░░░░░░░░░░░░   dropped (beside the route's ends)
         j =  0   ──ego──▶ ── route ──┐
         j = +1   ───────── ──────── ─┴ object ─▶
                  k = 0      k = 1      k = 2
@@ -99,8 +101,7 @@ def _layout(
     members = path + [lane for lane in extra if lane not in path]
     k_lo = min(tree.k[lane] for lane in members)
     k_hi = max(tree.k[lane] for lane in members)
-    lateral_range = [tree.j[lane] for lane in extra] or [tree.j[lane] for lane in members]
-    j_lo, j_hi = min(lateral_range), max(lateral_range)
+    j_lo, j_hi = sorted((tree.j[path[0]], tree.j[path[-1]]))
     sections: list[list[Step]] = []
     for k in range(k_lo, k_hi + 1):
         bases = [lane for lane in members if tree.k[lane] == k]
