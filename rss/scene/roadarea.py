@@ -19,7 +19,9 @@ the min / max over the window.
 from __future__ import annotations
 
 import bisect
+import itertools
 import math
+import weakref
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, NamedTuple
 
@@ -195,13 +197,61 @@ def cut_at(
     return ends
 
 
+#: ad-map measures a lane's heading over this stretch [m] around the position.
+_HEADING_SPAN_M = 0.1
+_BORDERS: dict[int, tuple[weakref.ref[PreparedGraph], dict[int, _Borders]]] = {}
+_Borders = tuple[list[list[float]], list[float], list[list[float]], list[float]]
+
+
+def _borders(prep: PreparedGraph, lane: int) -> _Borders:
+    """A lane's left and right border points with their cumulative arc lengths (cached)."""
+    cached = _BORDERS.get(id(prep))
+    if cached is None or cached[0]() is not prep:
+        cached = (weakref.ref(prep), {})
+        _BORDERS[id(prep)] = cached
+    known = cached[1].get(lane)
+    if known is None:
+        sides = []
+        for line in (prep.graph.left_m[lane], prep.graph.right_m[lane]):
+            pts: list[list[float]] = line.tolist()
+            arc = [0.0]
+            for a, b in itertools.pairwise(pts):
+                arc.append(arc[-1] + math.hypot(b[0] - a[0], b[1] - a[1]))
+            sides.append((pts, arc))
+        known = cached[1][lane] = (sides[0][0], sides[0][1], sides[1][0], sides[1][1])
+    return known
+
+
+def _at_fraction(pts: list[list[float]], arc: list[float], t: float) -> tuple[float, float]:
+    """The point at arc-length fraction ``t`` of a polyline."""
+    s = t * arc[-1]
+    k = min(max(bisect.bisect_right(arc, s) - 1, 0), len(arc) - 2)
+    step = arc[k + 1] - arc[k]
+    u = (s - arc[k]) / step if step > 0.0 else 0.0
+    a, b = pts[k], pts[k + 1]
+    return a[0] + u * (b[0] - a[0]), a[1] + u * (b[1] - a[1])
+
+
 def lane_heading(prep: PreparedGraph, lane: int, param: float) -> float:
-    """Heading [rad] of ``lane``'s point order at parametric position ``param`` (centre line)."""
-    lists = prep.scalars
-    s = lists.centre_arc_m[lane]
-    c = lists.centre_xy_m[lane]
-    k = min(max(bisect.bisect_right(s, param * s[-1]) - 1, 0), len(s) - 2)
-    return math.atan2(c[k + 1][1] - c[k][1], c[k + 1][0] - c[k][0])
+    """Heading [rad] of ``lane``'s point order at parametric position ``param``.
+
+    As ad-map (``getLaneECEFDirection``): the direction between the lane's middle points
+    ``param -+ 5 cm`` (of the mean border length; at the ends the 10 cm next to them),
+    a middle point being the mean of the two border points at that fraction of each
+    border's length. On a curve these differ from the centre line's points, whose
+    fraction is taken along the centre line.
+    """
+    left, left_arc, right, right_arc = _borders(prep, lane)
+    length = 0.5 * (left_arc[-1] + right_arc[-1])
+    if length < _HEADING_SPAN_M:
+        t0, t1 = 0.0, 1.0
+    else:
+        delta = _HEADING_SPAN_M / length
+        t0 = min(max(param - 0.5 * delta, 0.0), 1.0 - delta)
+        t1 = t0 + delta
+    (lx0, ly0), (rx0, ry0) = _at_fraction(left, left_arc, t0), _at_fraction(right, right_arc, t0)
+    (lx1, ly1), (rx1, ry1) = _at_fraction(left, left_arc, t1), _at_fraction(right, right_arc, t1)
+    return math.atan2(0.5 * (ly1 + ry1 - ly0 - ry0), 0.5 * (lx1 + rx1 - lx0 - rx0))
 
 
 def cut_window(
