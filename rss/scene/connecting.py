@@ -19,6 +19,7 @@ Of several direct routes, those a vehicle would have to drive almost across are 
 
 from __future__ import annotations
 
+import dataclasses
 import enum
 import math
 from dataclasses import dataclass
@@ -61,8 +62,9 @@ class Connecting:
         target: The object's lane at the end of the tree path (-1 for ``MERGING``).
         length_m: Route length between the two boxes (approximate).
         through_intersection: A lane of the route lies in an intersection.
-        feasibility: ad-map's heading feasibility of the route (:func:`feasibility`;
-            1.0 for ``MERGING``, which is never filtered).
+        feasibility: ad-map's heading feasibility of the route (:func:`feasibility`),
+            rated only where there are several direct routes (1.0 otherwise: a single
+            route, and ``MERGING``, is never filtered).
     """
 
     kind: Kind
@@ -115,6 +117,7 @@ def _direct(f: FrameContext, box: int, max_m: float) -> tuple[list[Connecting], 
     s0 = float(m.anchor_s[0])
     pos0 = s0 if f.forward(0) else 1.0 - s0
     out: list[Connecting] = []
+    moves: dict[int, tuple[int, int]] = {}
     found = False
     lengths = prep.scalars.centre_length_m
     inside = prep.scalars.is_intersection
@@ -146,9 +149,21 @@ def _direct(f: FrameContext, box: int, max_m: float) -> tuple[list[Connecting], 
         else:
             continue
         through = any(inside[x] for x in tree.path(lane))
-        feas = feasibility(f, box, lane, first=first, last=last)
-        out.append(Connecting(kind, lane, gap, through, feas))
-    return _drop_infeasible(_drop_longer(f, out)), found
+        out.append(Connecting(kind, lane, gap, through))
+        moves[lane] = (first, last)
+    kept = _drop_longer(f, out)
+    if len(kept) < 2:  # noqa: PLR2004 - a single route is kept whatever its feasibility
+        return kept, found
+    rated = [
+        dataclasses.replace(
+            cr,
+            feasibility=feasibility(
+                f, box, cr.target, first=moves[cr.target][0], last=moves[cr.target][1]
+            ),
+        )
+        for cr in kept
+    ]
+    return _drop_infeasible(rated), found
 
 
 def _drop_infeasible(routes: list[Connecting]) -> list[Connecting]:

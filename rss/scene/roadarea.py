@@ -19,11 +19,12 @@ the min / max over the window.
 from __future__ import annotations
 
 import bisect
-import itertools
 import math
 import weakref
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, NamedTuple
+
+import numpy as np
 
 from rss.model import (
     LaneObject,
@@ -38,6 +39,7 @@ from rss.scene.routes import Step  # noqa: TC001 - dataclass field types, read a
 if TYPE_CHECKING:
     from collections.abc import Sequence
 
+    from rss.batch import FloatArray
     from rss.scene.lanegraph import PreparedGraph
     from rss.scene.matching import Matches
 
@@ -199,37 +201,38 @@ def cut_at(
 
 #: ad-map measures a lane's heading over this stretch [m] around the position.
 _HEADING_SPAN_M = 0.1
-_BORDERS: dict[int, tuple[weakref.ref[PreparedGraph], dict[int, _Borders]]] = {}
-_Borders = tuple[list[list[float]], list[float], list[list[float]], list[float]]
+_Middle = tuple[list[float], list[float], list[float], float]
+_MIDDLES: dict[int, tuple[weakref.ref[PreparedGraph], dict[int, _Middle]]] = {}
 
 
-def _borders(prep: PreparedGraph, lane: int) -> _Borders:
-    """A lane's left and right border points with their cumulative arc lengths (cached)."""
-    cached = _BORDERS.get(id(prep))
+def _fractions(line: FloatArray) -> tuple[list[float], float]:
+    """Arc-length fraction of each vertex of a polyline, and its length [m]."""
+    arc = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(line, axis=0).T))])
+    return (arc / arc[-1] if arc[-1] > 0.0 else arc).tolist(), float(arc[-1])
+
+
+def _middle(prep: PreparedGraph, lane: int) -> _Middle:
+    """ad-map's middle line of a lane by border fraction (cached per prepared graph).
+
+    The mean of the left and right border points at the same fraction of each border's
+    length is linear in the fraction between the vertices of either border, so it is the
+    polyline through its values at the union of both borders' vertex fractions: returns
+    those fractions, the x and y of the middle points there, and the mean border length.
+    """
+    cached = _MIDDLES.get(id(prep))
     if cached is None or cached[0]() is not prep:
         cached = (weakref.ref(prep), {})
-        _BORDERS[id(prep)] = cached
+        _MIDDLES[id(prep)] = cached
     known = cached[1].get(lane)
     if known is None:
-        sides = []
-        for line in (prep.graph.left_m[lane], prep.graph.right_m[lane]):
-            pts: list[list[float]] = line.tolist()
-            arc = [0.0]
-            for a, b in itertools.pairwise(pts):
-                arc.append(arc[-1] + math.hypot(b[0] - a[0], b[1] - a[1]))
-            sides.append((pts, arc))
-        known = cached[1][lane] = (sides[0][0], sides[0][1], sides[1][0], sides[1][1])
+        left, right = prep.graph.left_m[lane], prep.graph.right_m[lane]
+        (tl, len_l), (tr, len_r) = _fractions(left), _fractions(right)
+        ts = np.union1d(tl, tr)
+        xs = 0.5 * (np.interp(ts, tl, left[:, 0]) + np.interp(ts, tr, right[:, 0]))
+        ys = 0.5 * (np.interp(ts, tl, left[:, 1]) + np.interp(ts, tr, right[:, 1]))
+        known = (ts.tolist(), xs.tolist(), ys.tolist(), 0.5 * (len_l + len_r))
+        cached[1][lane] = known
     return known
-
-
-def _at_fraction(pts: list[list[float]], arc: list[float], t: float) -> tuple[float, float]:
-    """The point at arc-length fraction ``t`` of a polyline."""
-    s = t * arc[-1]
-    k = min(max(bisect.bisect_right(arc, s) - 1, 0), len(arc) - 2)
-    step = arc[k + 1] - arc[k]
-    u = (s - arc[k]) / step if step > 0.0 else 0.0
-    a, b = pts[k], pts[k + 1]
-    return a[0] + u * (b[0] - a[0]), a[1] + u * (b[1] - a[1])
 
 
 def lane_heading(prep: PreparedGraph, lane: int, param: float) -> float:
@@ -238,20 +241,26 @@ def lane_heading(prep: PreparedGraph, lane: int, param: float) -> float:
     As ad-map (``getLaneECEFDirection``): the direction between the lane's middle points
     ``param -+ 5 cm`` (of the mean border length; at the ends the 10 cm next to them),
     a middle point being the mean of the two border points at that fraction of each
-    border's length. On a curve these differ from the centre line's points, whose
-    fraction is taken along the centre line.
+    border's length (:func:`_middle`). On a curve these differ from the centre line's
+    points, whose fraction is taken along the centre line.
     """
-    left, left_arc, right, right_arc = _borders(prep, lane)
-    length = 0.5 * (left_arc[-1] + right_arc[-1])
+    ts, xs, ys, length = _middle(prep, lane)
     if length < _HEADING_SPAN_M:
         t0, t1 = 0.0, 1.0
     else:
         delta = _HEADING_SPAN_M / length
         t0 = min(max(param - 0.5 * delta, 0.0), 1.0 - delta)
         t1 = t0 + delta
-    (lx0, ly0), (rx0, ry0) = _at_fraction(left, left_arc, t0), _at_fraction(right, right_arc, t0)
-    (lx1, ly1), (rx1, ry1) = _at_fraction(left, left_arc, t1), _at_fraction(right, right_arc, t1)
-    return math.atan2(0.5 * (ly1 + ry1 - ly0 - ry0), 0.5 * (lx1 + rx1 - lx0 - rx0))
+    last = len(ts) - 2
+    k0 = min(max(bisect.bisect_right(ts, t0) - 1, 0), last)
+    k1 = min(max(bisect.bisect_right(ts, t1) - 1, 0), last)
+    if k0 == k1:
+        return math.atan2(ys[k0 + 1] - ys[k0], xs[k0 + 1] - xs[k0])
+    u0 = (t0 - ts[k0]) / (ts[k0 + 1] - ts[k0])
+    u1 = (t1 - ts[k1]) / (ts[k1 + 1] - ts[k1])
+    x0, y0 = xs[k0] + u0 * (xs[k0 + 1] - xs[k0]), ys[k0] + u0 * (ys[k0 + 1] - ys[k0])
+    x1, y1 = xs[k1] + u1 * (xs[k1 + 1] - xs[k1]), ys[k1] + u1 * (ys[k1 + 1] - ys[k1])
+    return math.atan2(y1 - y0, x1 - x0)
 
 
 def cut_window(
