@@ -120,8 +120,8 @@ class FrameContext:
         predicts a vehicle's routes from every occupied region, in the lane's direction
         when the heading is within 90 degrees of it, else against it, which gives no
         route on a one-way lane (``predictRoutes`` of a bounding box; no route there on
-        Town01, measured with the oracle). Lanes at right
-        angles to the heading are left out. Computed once per box.
+        Town01, measured with the oracle). Lanes at right angles to the heading are left
+        out. Computed once per box.
         """
         known = self.start_lanes.get(box)
         if known is not None:
