@@ -12,8 +12,8 @@ uncertainty outside the two vehicles stretches them ("restricted road area")::
       │ └──┘                                     └──┘ │
 
 Regions are mapped from the lane's point order to the road-area direction (reversed lanes
-flip lon and lat) and then into the window. Lane lengths scale with the window; widths are
-the min / max over the window.
+flip lon and lat) and then into the window. A cut lane's lengths are those of its projected
+border pieces and its widths ad-map's width range (``rss.scene.cache.LaneSegmentCache``).
 """
 
 from __future__ import annotations
