@@ -109,7 +109,9 @@ def activate(package: str, path: list[str], build_dir: Path = BUILD_DIR) -> bool
         return True
     reason = stale_reason(build_dir)
     if reason is not None:
-        if _STATE["reason"] == "not requested" and (build_dir / "manifest.json").exists():
+        built = (build_dir / "manifest.json").exists()
+        first = _STATE["reason"] == "not requested"
+        if built and first and not os.environ.get(PURE_ENV):
             _LOG.warning("compiled scene modules not used (%s); running from the sources", reason)
         _STATE["reason"] = reason
         return False
