@@ -181,8 +181,6 @@ def nearest_arcs(
         ``(Q,)`` arc lengths [m] along the simplified border of the nearest points (with
         ad-map's tie rule) of the centre points ``c(t)``.
     """
-    from rss.scene.matching_points import _foot  # noqa: PLC0415 - matching imports lanegraph
-
     borders = prep.borders
     n = len(prep.straight)
     lane = lines % n
@@ -190,7 +188,7 @@ def nearest_arcs(
     ends = interpolate(borders, both, np.concatenate([t, t]) * borders.length_m[both])
     q = len(lines)
     centre = 0.5 * (ends[:q] + ends[q:])
-    s, _ = _foot(prep, lines, centre, near_m, reach_m)
+    s, _ = prep.nearest_on_borders(lines, centre, near_m, reach_m)
     return s
 
 

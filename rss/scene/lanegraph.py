@@ -25,7 +25,13 @@ import numpy as np
 import shapely
 
 from rss.errors import RssConstellationError
-from rss.scene.admap_nearest import DISTANCE_TOL_M, lane_widths, range_of, segments
+from rss.scene.admap_nearest import (
+    DISTANCE_TOL_M,
+    lane_widths,
+    nearest_on_lines,
+    range_of,
+    segments,
+)
 from rss.scene.cache import GraphScalars, LaneSegmentCache
 from rss.scene.polylines import Polylines, polylines
 
@@ -176,6 +182,29 @@ class PreparedGraph:
     def border_segments(self) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
         """``borders`` per vertex: ``x``, ``y`` and the step ``dx``, ``dy`` to the next one."""
         return segments(self.borders)
+
+    def nearest_on_borders(
+        self,
+        which: IntArray,
+        points: FloatArray,
+        near_m: FloatArray | None = None,
+        reach_m: float = 0.0,
+    ) -> tuple[FloatArray, FloatArray]:
+        """Nearest points of ``points`` ``(Q, 2)`` on the borders ``which``: arc lengths, points.
+
+        ``which`` indexes ``borders`` (lane ``l``: left ``l``, right ``L + l``). ad-map's
+        tie rule in ad-map's point order (``admap_nearest.nearest_on_lines``); only the
+        segments within ``reach_m`` of arc length ``near_m`` when given.
+        """
+        return nearest_on_lines(
+            self.borders,
+            self.border_segments,
+            which,
+            points,
+            self.line_backwards[which],
+            near_m,
+            reach_m,
+        )
 
     @functools.cached_property
     def scalars(self) -> GraphScalars:

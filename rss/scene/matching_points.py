@@ -23,7 +23,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from rss.scene.admap_nearest import DISTANCE_TOL_M, flat_runs, nearest_on_lines
+from rss.scene.admap_nearest import DISTANCE_TOL_M, flat_runs
 from rss.scene.lanegraph import MATCH_DISTANCE_M
 
 if TYPE_CHECKING:
@@ -45,29 +45,6 @@ __all__ = [
 #: ad-map's lattice step never drops below 0.1 m.
 _MIN_STRIDE_M = 0.1
 _INTEGRAL_TOL = 1e-6
-
-
-def _foot(
-    graph: PreparedGraph,
-    which: IntArray,
-    points: FloatArray,
-    near_m: FloatArray | None,
-    reach_m: float,
-) -> tuple[FloatArray, FloatArray]:
-    """Nearest points of ``points`` ``(Q, 2)`` on the borders ``which``: arc lengths, points.
-
-    ad-map's tie rule in ad-map's point order (``admap_nearest.nearest_on_lines``); only
-    the segments within ``reach_m`` of arc length ``near_m`` when given.
-    """
-    return nearest_on_lines(
-        graph.borders,
-        graph.border_segments,
-        which,
-        points,
-        graph.line_backwards[which],
-        near_m,
-        reach_m,
-    )
 
 
 def ad_map_positions(
@@ -96,7 +73,7 @@ def ad_map_positions(
     q = len(lanes)
     both = np.concatenate([lanes, lanes + len(graph.straight)])  # left, then right borders
     hint = None if near_m is None else near_m.reshape(-1)
-    s, feet = _foot(graph, both, np.concatenate([points, points]), hint, reach_m)
+    s, feet = graph.nearest_on_borders(both, np.concatenate([points, points]), hint, reach_m)
     s_l, s_r, l_xy, r_xy = s[:q], s[q:], feet[:q], feet[q:]
     d = r_xy - l_xy
     dd = d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1]
