@@ -49,7 +49,11 @@ if TYPE_CHECKING:
     from rss.scene.roadarea import BuiltSegment, SegmentPlan
     from rss.scene.routes import Step
 
-__all__ = ["GraphScalars", "LaneSegmentCache", "nearest_arcs", "projected_stations"]
+__all__ = ["GraphScalars", "LaneMiddle", "LaneSegmentCache", "nearest_arcs", "projected_stations"]
+
+#: ad-map's middle line of a lane (``rss.scene.roadarea``): border-length fractions of its
+#: points, their x and y [m], and the mean border length [m].
+LaneMiddle = tuple[list[float], list[float], list[float], float]
 
 _FLIPPED = {
     LaneDrivingDirection.Positive: LaneDrivingDirection.Negative,
@@ -351,6 +355,7 @@ class GraphScalars:
             horizon comparisons (``rss.scene.routes.predict_routes``).
         merge_points: Memo of where two routes meet (``rss.scene.connecting``), by the
             (ego route, object route) pair.
+        lane_middles: Memo of ad-map's middle line per lane (``rss.scene.roadarea``).
     """
 
     def __init__(self, prep: PreparedGraph) -> None:
@@ -380,3 +385,4 @@ class GraphScalars:
         self.merge_points: dict[
             tuple[tuple[Step, ...], tuple[Step, ...]], tuple[int, int, bool] | None
         ] = {}
+        self.lane_middles: dict[int, LaneMiddle] = {}

@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import bisect
 import math
-import weakref
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, NamedTuple
 
@@ -40,6 +39,7 @@ if TYPE_CHECKING:
     from collections.abc import Sequence
 
     from rss.batch import FloatArray
+    from rss.scene.cache import LaneMiddle
     from rss.scene.lanegraph import PreparedGraph
     from rss.scene.matching import Matches
 
@@ -201,8 +201,6 @@ def cut_at(
 
 #: ad-map measures a lane's heading over this stretch [m] around the position.
 _HEADING_SPAN_M = 0.1
-_Middle = tuple[list[float], list[float], list[float], float]
-_MIDDLES: dict[int, tuple[weakref.ref[PreparedGraph], dict[int, _Middle]]] = {}
 
 
 def _fractions(line: FloatArray) -> tuple[list[float], float]:
@@ -211,7 +209,7 @@ def _fractions(line: FloatArray) -> tuple[list[float], float]:
     return (arc / arc[-1] if arc[-1] > 0.0 else arc).tolist(), float(arc[-1])
 
 
-def _middle(prep: PreparedGraph, lane: int) -> _Middle:
+def _middle(prep: PreparedGraph, lane: int) -> LaneMiddle:
     """ad-map's middle line of a lane by border fraction (cached per prepared graph).
 
     The mean of the left and right border points at the same fraction of each border's
@@ -219,11 +217,8 @@ def _middle(prep: PreparedGraph, lane: int) -> _Middle:
     polyline through its values at the union of both borders' vertex fractions: returns
     those fractions, the x and y of the middle points there, and the mean border length.
     """
-    cached = _MIDDLES.get(id(prep))
-    if cached is None or cached[0]() is not prep:
-        cached = (weakref.ref(prep), {})
-        _MIDDLES[id(prep)] = cached
-    known = cached[1].get(lane)
+    middles = prep.scalars.lane_middles
+    known = middles.get(lane)
     if known is None:
         left, right = prep.graph.left_m[lane], prep.graph.right_m[lane]
         (tl, len_l), (tr, len_r) = _fractions(left), _fractions(right)
@@ -231,7 +226,7 @@ def _middle(prep: PreparedGraph, lane: int) -> _Middle:
         xs = 0.5 * (np.interp(ts, tl, left[:, 0]) + np.interp(ts, tr, right[:, 0]))
         ys = 0.5 * (np.interp(ts, tl, left[:, 1]) + np.interp(ts, tr, right[:, 1]))
         known = (ts.tolist(), xs.tolist(), ys.tolist(), 0.5 * (len_l + len_r))
-        cached[1][lane] = known
+        middles[lane] = known
     return known
 
 
@@ -325,7 +320,7 @@ def build_road(
     for plan in plans:
         whole = plan.whole
         if whole is not None and whole[0] == id_offset and plan.p0 == 0.0 and plan.p1 == 1.0:
-            built = whole[1]  # _built's first case, inlined (hot path)
+            built = whole[1]  # converted before (hot path)
         else:
             built = _built(prep, plan, id_offset, cut_memo)
         road.append(built[0])
@@ -342,10 +337,12 @@ def _built(
     id_offset: int,
     cut_memo: dict[tuple[object, ...], BuiltSegment] | None,
 ) -> BuiltSegment:
-    """One plan converted: whole plans once per map (kept on the plan), cut ones per memo."""
+    """One plan converted: whole plans once per map, cut ones once per memo.
+
+    A whole plan keeps its conversion (``plan.whole``); :func:`build_road` takes it from
+    there, so this function only sees plans converted for the first time or cut.
+    """
     uncut = plan.p0 == 0.0 and plan.p1 == 1.0
-    if uncut and plan.whole is not None and plan.whole[0] == id_offset:
-        return plan.whole[1]
     memo = prep.lane_segments.whole_roads if uncut else cut_memo
     if memo is None:
         return _segment(prep, plan, id_offset)
