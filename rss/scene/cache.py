@@ -350,11 +350,9 @@ class GraphScalars:
         is_intersection: ``(L,)`` lane lies inside an intersection.
         conflict_rows: ``(L, L)`` ``prep.conflicts`` as nested lists.
         cross_sections: Memo of ``rss.scene.routes.cross_section`` by step.
-        route_facts: Memo of the pure route functions of ``rss.scene.intersection``.
+        route_facts: Memo of pure route functions (``rss.scene.intersection.memoised``).
         route_searches: Recent predicted-route searches by start step, with their
             horizon comparisons (``rss.scene.routes.predict_routes``).
-        merge_points: Memo of where two routes meet (``rss.scene.connecting``), by the
-            (ego route, object route) pair.
         lane_middles: Memo of ad-map's middle line per lane (``rss.scene.roadarea``).
     """
 
@@ -381,8 +379,5 @@ class GraphScalars:
         self.route_facts: dict[object, object] = {}
         self.route_searches: dict[
             Step, list[tuple[tuple[tuple[Step, ...], ...], tuple[tuple[int, int, bool], ...]]]
-        ] = {}
-        self.merge_points: dict[
-            tuple[tuple[Step, ...], tuple[Step, ...]], tuple[int, int, bool] | None
         ] = {}
         self.lane_middles: dict[int, LaneMiddle] = {}

@@ -25,7 +25,7 @@ import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from rss.scene.intersection import conflict
+from rss.scene.intersection import conflict, memoised
 from rss.scene.roadarea import lane_heading
 from rss.scene.routes import predict_routes
 
@@ -198,10 +198,6 @@ def _drop_longer(f: FrameContext, routes: list[Connecting]) -> list[Connecting]:
     return kept
 
 
-#: Route pairs kept per map before the memo of meeting points starts afresh.
-_MAX_MEMO = 50_000
-
-
 def _meet(
     prep: PreparedGraph, er: tuple[Step, ...], orr: tuple[Step, ...]
 ) -> tuple[int, int, bool] | None:
@@ -246,16 +242,9 @@ def _merging(f: FrameContext, box: int, max_m: float) -> Connecting | None:
         ]
         for b in (0, box)
     )
-    memo = prep.scalars.merge_points
     for er, e_at in ego:
         for orr, o_at in obj:
-            key = (er, orr)
-            try:
-                meet = memo[key]
-            except KeyError:
-                if len(memo) >= _MAX_MEMO:
-                    memo.clear()
-                meet = memo[key] = _meet(prep, er, orr)
+            meet = memoised(prep, _meet, er, orr)
             if meet is None:
                 continue
             lane_e, lane_o, through = meet

@@ -47,6 +47,7 @@ __all__ = [
     "intersection_plans",
     "intersection_type",
     "junctions_on",
+    "memoised",
     "relation",
     "route_priority",
 ]
@@ -132,7 +133,7 @@ def junctions_on(prep: PreparedGraph, route: tuple[Step, ...]) -> list[tuple[int
     A junction the route starts in is not listed (ad-rss analyses only intersections
     ahead). Memoised like :func:`relation` (do not modify the result).
     """
-    return _memoised(prep, _junctions_on, route)
+    return memoised(prep, _junctions_on, route)
 
 
 def _junctions_on(prep: PreparedGraph, route: tuple[Step, ...]) -> list[tuple[int, int, int]]:
@@ -261,10 +262,12 @@ def _opposite(
     return start is not None and any(lane in back_arm for lane in other[start:])
 
 
-def _memoised(prep: PreparedGraph, compute: Callable[..., _T], *args: object) -> _T:
+def memoised(prep: PreparedGraph, compute: Callable[..., _T], *args: object) -> _T:
     """``compute(prep, *args)``, or its earlier result in the graph's memo (bounded).
 
-    The results of the pure route functions below are kept per prepared graph.
+    For pure functions of routes (here and in ``rss.scene.connecting``): their results
+    are kept per prepared graph (``GraphScalars.route_facts``), keyed by the function and
+    its arguments.
     """
     memo = prep.scalars.route_facts
     key = (compute, *args)
@@ -286,7 +289,7 @@ def relation(
 
     Memoised per prepared graph (routes repeat from frame to frame).
     """
-    return _memoised(prep, _relation, route, span, other)
+    return memoised(prep, _relation, route, span, other)
 
 
 def _relation(
@@ -326,7 +329,7 @@ def conflict(
     Conflicting: overlapping or merging intersection lanes, else the first lane both
     routes share (routes from one arm, merging routes). Memoised like :func:`relation`.
     """
-    return _memoised(prep, _conflict, ego_route, obj_route)
+    return memoised(prep, _conflict, ego_route, obj_route)
 
 
 def _conflict(
@@ -462,7 +465,7 @@ def intersection_pair(
     A function of the two routes and the green lights alone, so memoised per prepared
     graph (route pairs repeat from frame to frame; only the cuts at the vehicles change).
     """
-    return _memoised(prep, _intersection_pair, ego_route, obj_route, green)
+    return memoised(prep, _intersection_pair, ego_route, obj_route, green)
 
 
 def _intersection_pair(
