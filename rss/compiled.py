@@ -103,15 +103,18 @@ def stale_reason(build_dir: Path = BUILD_DIR, root: Path = _ROOT) -> str | None:
 
 
 def activate(package: str, path: list[str], build_dir: Path = BUILD_DIR) -> bool:
-    """Let ``package`` (``__name__``, ``__path__``) import the compiled modules if fresh."""
+    """Let ``package`` (``__name__``, ``__path__``) import the compiled modules if fresh.
+
+    Decided once per process, by the first package that asks (``rss``, then ``rss.scene``).
+    """
     if _STATE["active"]:
         _add_path(package, path, build_dir)
         return True
+    if _STATE["reason"] != "not requested":
+        return False
     reason = stale_reason(build_dir)
     if reason is not None:
-        built = (build_dir / "manifest.json").exists()
-        first = _STATE["reason"] == "not requested"
-        if built and first and not os.environ.get(PURE_ENV):
+        if (build_dir / "manifest.json").exists() and not os.environ.get(PURE_ENV):
             _LOG.warning("compiled scene modules not used (%s); running from the sources", reason)
         _STATE["reason"] = reason
         return False

@@ -115,3 +115,6 @@ def test_a_stale_build_leaves_the_package_path_alone(
     assert not compiled.activate("rss.scene", path, tmp_path)
     assert path == ["src"]
     assert compiled.status() == (False, "sources changed since the build: rss.scene.routes")
+    _manifest(tmp_path)  # fresh now, but the process has decided (rss, then rss.scene)
+    assert not compiled.activate("rss.scene", path, tmp_path)
+    assert path == ["src"]
