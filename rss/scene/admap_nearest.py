@@ -40,8 +40,10 @@ __all__ = [
     "DISTANCE_TOL_M",
     "flat_runs",
     "lane_widths",
+    "nearest_in_windows",
     "nearest_on_lines",
     "range_of",
+    "segment_window",
     "segments",
 ]
 
@@ -73,6 +75,24 @@ def segments(lines: Polylines) -> tuple[FloatArray, FloatArray, FloatArray, Floa
     )
 
 
+def segment_window(
+    lines: Polylines, which: IntArray, near_m: FloatArray | None = None, reach_m: float = 0.0
+) -> tuple[IntArray, IntArray]:
+    """First and last segment ``(Q,)`` each of lines ``which`` to search.
+
+    All segments of each line, or those within ``reach_m`` of arc lengths ``near_m``
+    ``(Q,)`` when given. Segments are named by their start vertex in ``lines``.
+    """
+    first = lines.start[which]
+    last = lines.start[which + 1] - 2  # last segment
+    if near_m is not None:
+        base = lines.offset_m[which]
+        lo = np.searchsorted(lines.global_m, base + near_m - reach_m, side="right") - 1
+        hi = np.searchsorted(lines.global_m, base + near_m + reach_m, side="left")
+        first, last = np.clip(lo, first, last), np.clip(hi, first, last)
+    return first, last
+
+
 def nearest_on_lines(  # noqa: PLR0917 - the kernel's inputs, all arrays
     lines: Polylines,
     steps: tuple[FloatArray, FloatArray, FloatArray, FloatArray],
@@ -84,10 +104,7 @@ def nearest_on_lines(  # noqa: PLR0917 - the kernel's inputs, all arrays
 ) -> tuple[FloatArray, FloatArray]:
     """Nearest points of ``points`` ``(Q, 2)`` on ``lines`` ``which`` ``(Q,)``, ad-map's tie rule.
 
-    All candidate segments of all rows are tried at once (one flat run per row; only the
-    segments within ``reach_m`` of arc length ``near_m`` when given). Of segments within
-    1 mm of the nearest, the first in ad-map's order counts: our first, or our last on
-    rows whose line ad-map holds ``backwards``.
+    :func:`nearest_in_windows` on the :func:`segment_window` of each row.
 
     Args:
         lines: The polylines.
@@ -102,13 +119,37 @@ def nearest_on_lines(  # noqa: PLR0917 - the kernel's inputs, all arrays
     Returns:
         ``(Q,)`` arc lengths [m] of the nearest points and the ``(Q, 2)`` points.
     """
-    first = lines.start[which]
-    last = lines.start[which + 1] - 2  # last segment
-    if near_m is not None:
-        base = lines.offset_m[which]
-        lo = np.searchsorted(lines.global_m, base + near_m - reach_m, side="right") - 1
-        hi = np.searchsorted(lines.global_m, base + near_m + reach_m, side="left")
-        first, last = np.clip(lo, first, last), np.clip(hi, first, last)
+    first, last = segment_window(lines, which, near_m, reach_m)
+    return nearest_in_windows(lines, steps, points, backwards, first, last)
+
+
+def nearest_in_windows(  # noqa: PLR0917 - the kernel's inputs, all arrays
+    lines: Polylines,
+    steps: tuple[FloatArray, FloatArray, FloatArray, FloatArray],
+    points: FloatArray,
+    backwards: BoolArray | None,
+    first: IntArray,
+    last: IntArray,
+) -> tuple[FloatArray, FloatArray]:
+    """Nearest points of ``points`` ``(Q, 2)`` among segments ``first..last`` ``(Q,)``.
+
+    All candidate segments of all rows are tried at once (one flat run per row; an empty
+    window counts as its first segment). Of segments within 1 mm of the nearest, the
+    first in ad-map's order counts: our first, or our last on rows whose line ad-map holds
+    ``backwards``.
+
+    Args:
+        lines: The polylines.
+        steps: ``segments(lines)``.
+        points: ``(Q, 2)`` points.
+        backwards: ``(Q,)`` ad-map's point order of the row's line runs against ours
+            (``None``: never).
+        first: ``(Q,)`` first segment of each row (its start vertex in ``lines``).
+        last: ``(Q,)`` last segment of each row.
+
+    Returns:
+        ``(Q,)`` arc lengths [m] of the nearest points and the ``(Q, 2)`` points.
+    """
     count = np.maximum(last - first + 1, 1)
     row, seg = flat_runs(first, count)
     x, y, step_x, step_y = steps

@@ -28,12 +28,14 @@ from rss.errors import RssConstellationError
 from rss.scene.admap_nearest import (
     DISTANCE_TOL_M,
     lane_widths,
-    nearest_on_lines,
+    nearest_in_windows,
     range_of,
+    segment_window,
     segments,
 )
 from rss.scene.cache import GraphScalars, LaneSegmentCache
 from rss.scene.polylines import Polylines, polylines
+from rss.scene.segment_cells import SegmentCells, narrowed, segment_cells
 
 if TYPE_CHECKING:
     from rss.batch import BoolArray, FloatArray, IntArray
@@ -183,6 +185,11 @@ class PreparedGraph:
         """``borders`` per vertex: ``x``, ``y`` and the step ``dx``, ``dy`` to the next one."""
         return segments(self.borders)
 
+    @functools.cached_property
+    def border_cells(self) -> SegmentCells:
+        """Candidate segments of ``borders`` per grid cell (built on first use)."""
+        return segment_cells(self.borders)
+
     def nearest_on_borders(
         self,
         which: IntArray,
@@ -193,17 +200,19 @@ class PreparedGraph:
         """Nearest points of ``points`` ``(Q, 2)`` on the borders ``which``: arc lengths, points.
 
         ``which`` indexes ``borders`` (lane ``l``: left ``l``, right ``L + l``). ad-map's
-        tie rule in ad-map's point order (``admap_nearest.nearest_on_lines``); only the
-        segments within ``reach_m`` of arc length ``near_m`` when given.
+        tie rule in ad-map's point order (``admap_nearest.nearest_in_windows``); only the
+        segments within ``reach_m`` of arc length ``near_m`` when given, and of those only
+        the ones that can be nearest (``border_cells``; same result).
         """
-        return nearest_on_lines(
+        first, last = segment_window(self.borders, which, near_m, reach_m)
+        first, last = narrowed(self.border_cells, which, points, first, last)
+        return nearest_in_windows(
             self.borders,
             self.border_segments,
-            which,
             points,
             self.line_backwards[which],
-            near_m,
-            reach_m,
+            first,
+            last,
         )
 
     @functools.cached_property
