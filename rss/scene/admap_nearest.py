@@ -57,22 +57,31 @@ _SHORT_LANE_M = 1.0
 
 def flat_runs(first: IntArray, count: IntArray) -> tuple[IntArray, IntArray]:
     """``(row, item)`` of all items ``first[r] .. first[r] + count[r] - 1``, row after row."""
-    row = np.repeat(np.arange(len(first)), count)
     starts = np.cumsum(count) - count
-    return row, first[row] + np.arange(int(count.sum())) - starts[row]
+    item = np.arange(int(count.sum())) + np.repeat(first - starts, count)
+    return np.repeat(np.arange(len(first)), count), item
 
 
-def segments(lines: Polylines) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
-    """``lines`` per vertex: ``x``, ``y`` and the step ``dx``, ``dy`` to the next one."""
+#: Rows of the table of :func:`segments`.
+_X, _Y, _DX, _DY, _DD, _S_AT, _SEG_LEN = range(7)
+
+
+def segments(lines: Polylines) -> FloatArray:
+    """``(7, V)`` table of ``lines`` per vertex, the segment starting there.
+
+    Rows: ``x``, ``y``, the step ``dx``, ``dy`` to the next vertex, the squared segment
+    length (1 where it is 0), the arc length at the vertex and the segment length (0 at a
+    line's last vertex, as ``Polylines.segment_m``).
+    """
     xy = lines.xy_m
-    step = np.zeros_like(xy)
-    step[:-1] = xy[1:] - xy[:-1]
-    return (
-        np.ascontiguousarray(xy[:, 0]),
-        np.ascontiguousarray(xy[:, 1]),
-        np.ascontiguousarray(step[:, 0]),
-        np.ascontiguousarray(step[:, 1]),
-    )
+    out = np.zeros((7, len(xy)))
+    out[_X], out[_Y] = xy[:, 0], xy[:, 1]
+    out[_DX, :-1] = xy[1:, 0] - xy[:-1, 0]
+    out[_DY, :-1] = xy[1:, 1] - xy[:-1, 1]
+    length = lines.segment_m
+    out[_DD] = np.where(length > 0.0, length * length, 1.0)
+    out[_S_AT], out[_SEG_LEN] = lines.s_at_m, length
+    return out
 
 
 def segment_window(
@@ -95,7 +104,7 @@ def segment_window(
 
 def nearest_on_lines(  # noqa: PLR0917 - the kernel's inputs, all arrays
     lines: Polylines,
-    steps: tuple[FloatArray, FloatArray, FloatArray, FloatArray],
+    steps: FloatArray,
     which: IntArray,
     points: FloatArray,
     backwards: BoolArray | None,
@@ -120,12 +129,11 @@ def nearest_on_lines(  # noqa: PLR0917 - the kernel's inputs, all arrays
         ``(Q,)`` arc lengths [m] of the nearest points and the ``(Q, 2)`` points.
     """
     first, last = segment_window(lines, which, near_m, reach_m)
-    return nearest_in_windows(lines, steps, points, backwards, first, last)
+    return nearest_in_windows(steps, points, backwards, first, last)
 
 
-def nearest_in_windows(  # noqa: PLR0917 - the kernel's inputs, all arrays
-    lines: Polylines,
-    steps: tuple[FloatArray, FloatArray, FloatArray, FloatArray],
+def nearest_in_windows(
+    steps: FloatArray,
     points: FloatArray,
     backwards: BoolArray | None,
     first: IntArray,
@@ -139,7 +147,6 @@ def nearest_in_windows(  # noqa: PLR0917 - the kernel's inputs, all arrays
     ``backwards``.
 
     Args:
-        lines: The polylines.
         steps: ``segments(lines)``.
         points: ``(Q, 2)`` points.
         backwards: ``(Q,)`` ad-map's point order of the row's line runs against ours
@@ -151,25 +158,27 @@ def nearest_in_windows(  # noqa: PLR0917 - the kernel's inputs, all arrays
         ``(Q,)`` arc lengths [m] of the nearest points and the ``(Q, 2)`` points.
     """
     count = np.maximum(last - first + 1, 1)
-    row, seg = flat_runs(first, count)
-    x, y, step_x, step_y = steps
-    ax, ay, dx, dy = x[seg], y[seg], step_x[seg], step_y[seg]
-    rx, ry = points[row, 0] - ax, points[row, 1] - ay
-    length = lines.segment_m[seg]
-    t = (rx * dx + ry * dy) / np.where(length > 0.0, length * length, 1.0)
+    starts = np.cumsum(count) - count
+    n = int(count.sum())
+    row = np.repeat(np.arange(len(first)), count)
+    seg = np.arange(n) + np.repeat(first - starts, count)
+    ax, ay, dx, dy, dd = steps[:5, seg]
+    px, py = points.T[:, row]
+    rx, ry = px - ax, py - ay
+    t = (rx * dx + ry * dy) / dd
     t = np.minimum(np.maximum(t, 0.0), 1.0)
     ox, oy = rx - dx * t, ry - dy * t
     dist2 = ox * ox + oy * oy
-    starts = np.cumsum(count) - count
     limit = np.sqrt(np.minimum.reduceat(dist2, starts)) + DISTANCE_TOL_M
-    index = np.arange(len(seg))
+    index = np.arange(n)
     if backwards is not None:  # the smallest negated index is the last one
         index = np.where(backwards[row], -index, index)
-    candidate = np.where(dist2 < (limit * limit)[row], index, len(seg))
+    candidate = np.where(dist2 < (limit * limit)[row], index, n)
     best = np.abs(np.minimum.reduceat(candidate, starts))
-    sb, tb = seg[best], t[best]
-    foot = np.stack([ax[best] + dx[best] * tb, ay[best] + dy[best] * tb], axis=1)
-    return lines.s_at_m[sb] + tb * lines.segment_m[sb], foot
+    tb = t[best]
+    bx, by, bdx, bdy, _, s_at, length = steps[:, seg[best]]
+    foot = np.stack([bx + bdx * tb, by + bdy * tb], axis=1)
+    return s_at + tb * length, foot
 
 
 def range_of(values: list[float]) -> tuple[float, float]:

@@ -181,8 +181,8 @@ class PreparedGraph:
         return LaneSegmentCache(self)
 
     @functools.cached_property
-    def border_segments(self) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
-        """``borders`` per vertex: ``x``, ``y`` and the step ``dx``, ``dy`` to the next one."""
+    def border_segments(self) -> FloatArray:
+        """``borders`` per vertex: ``admap_nearest.segments``."""
         return segments(self.borders)
 
     @functools.cached_property
@@ -207,7 +207,6 @@ class PreparedGraph:
         first, last = segment_window(self.borders, which, near_m, reach_m)
         first, last = narrowed(self.border_cells, which, points, first, last)
         return nearest_in_windows(
-            self.borders,
             self.border_segments,
             points,
             self.line_backwards[which],

@@ -44,6 +44,8 @@ CELL_M = 0.5
 BAND_M = 6.0
 #: Margin on every distance bound [m] (rounding of the kernel's float arithmetic).
 _SLACK_M = 1e-6
+#: Cell coordinates are clamped to this before the cast to integers.
+_FAR = float(1 << 40)
 #: Pairs of (segment, cell) evaluated at once while building.
 _BLOCK_PAIRS = 1 << 20
 
@@ -52,24 +54,36 @@ _BLOCK_PAIRS = 1 << 20
 class SegmentCells:
     """Candidate segment ranges of the grid cells near lines of several segments.
 
-    Cell ``(ix, iy)`` spans ``origin_m + (ix, iy) * cell_m`` to ``+ cell_m``; the stored
-    cell ``k`` of line ``l`` has ``key[k] = (l * ny + iy) * nx + ix``.
+    Cell ``(ix, iy)`` spans ``origin_m + (ix, iy) * cell_m`` to ``+ cell_m``. The cells of
+    line ``l`` lie in its rows ``iy = y_first[l] .. y_first[l] + rows[l] - 1``, stored as
+    rows ``row_base[l] + iy - y_first[l]``; row ``r`` holds the cells
+    ``ix = x_first[r] .. x_first[r] + width[r] - 1`` at ``offset[r] + ix - x_first[r]``
+    (direct look-ups, no search)::
+
+        line l:  iy ─▶ row ─▶ ix ─▶ cell ─▶ first..last
 
     Attributes:
         origin_m: ``(2,)`` lower-left corner of cell ``(0, 0)``.
         cell_m: Cell side.
-        nx: Cells along x.
-        ny: Cells along y.
-        key: ``(K,)`` sorted keys of the stored cells.
-        first: ``(K,)`` first candidate segment (its start vertex in the ``Polylines``).
-        last: ``(K,)`` last candidate segment.
+        y_first: ``(L,)`` first row ``iy`` of each line.
+        rows: ``(L,)`` rows of each line (0: no cells).
+        row_base: ``(L,)`` index of each line's first row.
+        x_first: ``(R,)`` first cell ``ix`` of each row.
+        width: ``(R,)`` cells of each row.
+        offset: ``(R,)`` index of each row's first cell.
+        first: ``(C,)`` first candidate segment of each cell (its start vertex in the
+            ``Polylines``); -1 for cells beyond the band.
+        last: ``(C,)`` last candidate segment.
     """
 
     origin_m: FloatArray
     cell_m: float
-    nx: int
-    ny: int
-    key: IntArray
+    y_first: IntArray
+    rows: IntArray
+    row_base: IntArray
+    x_first: IntArray
+    width: IntArray
+    offset: IntArray
     first: IntArray
     last: IntArray
 
@@ -125,6 +139,42 @@ def _cells_of_lines(  # noqa: PLR0917 - the grid and one block of segments
     return key[starts][keep], first[keep], last[keep]
 
 
+def _rows(
+    origin: FloatArray,
+    cell_m: float,
+    shape: tuple[int, int],
+    n_lines: int,
+    cells: tuple[IntArray, ...],
+) -> SegmentCells:
+    """Lay out the cells ``(key, first, last)`` (sorted by key) in rows (see SegmentCells)."""
+    nx, ny = shape
+    key, first, last = cells
+    line, iy, ix = key // (nx * ny), key // nx % ny, key % nx
+    new_line = np.concatenate([[True], line[1:] != line[:-1]])
+    at = np.flatnonzero(new_line)
+    y_first = np.zeros(n_lines, dtype=np.int64)
+    rows = np.zeros(n_lines, dtype=np.int64)
+    if len(at):
+        y_first[line[at]] = np.minimum.reduceat(iy, at)
+        rows[line[at]] = np.maximum.reduceat(iy, at) - y_first[line[at]] + 1
+    row_base = np.cumsum(rows) - rows
+    row = row_base[line] + iy - y_first[line]
+    n_rows = int(rows.sum())
+    x_first = np.zeros(n_rows, dtype=np.int64)
+    width = np.zeros(n_rows, dtype=np.int64)
+    at = np.flatnonzero(np.concatenate([[True], row[1:] != row[:-1]]) if len(row) else row)
+    x_first[row[at]] = np.minimum.reduceat(ix, at) if len(at) else 0
+    width[row[at]] = np.maximum.reduceat(ix, at) - x_first[row[at]] + 1 if len(at) else 0
+    offset = np.cumsum(width) - width
+    out_first = np.full(int(width.sum()), -1, dtype=np.int64)
+    out_last = np.full(int(width.sum()), -1, dtype=np.int64)
+    where = offset[row] + ix - x_first[row]
+    out_first[where], out_last[where] = first, last
+    return SegmentCells(
+        origin, cell_m, y_first, rows, row_base, x_first, width, offset, out_first, out_last
+    )
+
+
 def segment_cells(lines: Polylines, cell_m: float = CELL_M, band_m: float = BAND_M) -> SegmentCells:
     """Build the cells of ``lines`` (see module docstring); once per map.
 
@@ -147,28 +197,15 @@ def segment_cells(lines: Polylines, cell_m: float = CELL_M, band_m: float = BAND
     ).reshape(-1)
     weight = extent / (cell_m * cell_m) * count[multi]
     block = np.floor(np.cumsum(weight) / _BLOCK_PAIRS).astype(np.int64)
-    keys, firsts, lasts = [], [], []
+    parts: list[tuple[IntArray, IntArray, IntArray]] = [(np.zeros(0, dtype=np.int64),) * 3]
     for b in np.unique(block).tolist():
         some = multi[block == b]
         which, seg = flat_runs(lines.start[some], count[some])
-        k, f, la = _cells_of_lines(
-            lines, seg, some[which], origin, cell_m, (int(nx), int(ny)), band_m
+        parts.append(
+            _cells_of_lines(lines, seg, some[which], origin, cell_m, (int(nx), int(ny)), band_m)
         )
-        keys.append(k)
-        firsts.append(f)
-        lasts.append(la)
-    if not keys:
-        empty = np.zeros(0, dtype=np.int64)
-        return SegmentCells(origin, cell_m, int(nx), int(ny), empty, empty, empty)
-    return SegmentCells(
-        origin_m=origin,
-        cell_m=cell_m,
-        nx=int(nx),
-        ny=int(ny),
-        key=np.concatenate(keys),
-        first=np.concatenate(firsts),
-        last=np.concatenate(lasts),
-    )
+    cells = tuple(np.concatenate(column) for column in zip(*parts, strict=True))
+    return _rows(origin, cell_m, (int(nx), int(ny)), len(count), cells)
 
 
 def narrowed(
@@ -186,15 +223,17 @@ def narrowed(
         first: ``(Q,)`` first segment of each row's window.
         last: ``(Q,)`` last segment.
     """
-    if not len(cells.key):
+    if not len(cells.first):
         return first, last
-    fx = (points[:, 0] - cells.origin_m[0]) / cells.cell_m
-    fy = (points[:, 1] - cells.origin_m[1]) / cells.cell_m
-    inside = (fx >= 0.0) & (fx < cells.nx) & (fy >= 0.0) & (fy < cells.ny)
-    ix = np.where(inside, fx, 0.0).astype(np.int64)
-    iy = np.where(inside, fy, 0.0).astype(np.int64)
-    key = (which * cells.ny + iy) * cells.nx + ix
-    pos = np.minimum(np.searchsorted(cells.key, key), len(cells.key) - 1)
-    lo, hi = cells.first[pos], cells.last[pos]
-    ok = inside & (cells.key[pos] == key) & (lo >= first) & (hi <= last)
+    # floor of the cell coordinates; NaN and far points land beyond every row
+    f = np.fmax(np.fmin((points - cells.origin_m) / cells.cell_m, _FAR), -1.0)
+    ix, iy = np.floor(f, out=f).astype(np.int64).T
+    r = iy - cells.y_first[which]
+    ok = (r >= 0) & (r < cells.rows[which])
+    row = np.where(ok, cells.row_base[which] + r, 0)
+    c = ix - cells.x_first[row]
+    ok &= (c >= 0) & (c < cells.width[row])
+    k = np.where(ok, cells.offset[row] + c, 0)
+    lo, hi = cells.first[k], cells.last[k]
+    ok &= (lo >= first) & (hi <= last)
     return np.where(ok, lo, first), np.where(ok, hi, last)

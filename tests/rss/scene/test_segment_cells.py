@@ -70,8 +70,8 @@ def test_narrowed_windows_give_bit_identical_nearest_points(seed: int) -> None:
         first, last = segment_window(lines, which, None if reach is None else near, reach or 0.0)
         lo, hi = narrowed(cells, which, points, first, last)
         assert np.all((lo >= first) & (hi <= last) & (lo <= hi))
-        s, feet = nearest_in_windows(lines, steps, points, backwards, first, last)
-        s_n, feet_n = nearest_in_windows(lines, steps, points, backwards, lo, hi)
+        s, feet = nearest_in_windows(steps, points, backwards, first, last)
+        s_n, feet_n = nearest_in_windows(steps, points, backwards, lo, hi)
         np.testing.assert_array_equal(s_n, s)
         np.testing.assert_array_equal(feet_n, feet)
     # the windows shrink: most rows of lines of several segments keep one or two segments
@@ -91,7 +91,7 @@ def test_ties_keep_admaps_first_segment() -> None:
     lo, hi = narrowed(cells, which, points, first, last)
     np.testing.assert_array_equal(lo, first)
     np.testing.assert_array_equal(hi, last)
-    s, _ = nearest_in_windows(lines, segments(lines), points, np.array([False, True]), lo, hi)
+    s, _ = nearest_in_windows(segments(lines), points, np.array([False, True]), lo, hi)
     assert s[0] < lines.segment_m[0]  # ours: the first chord
     assert s[1] > lines.length_m[0] - lines.segment_m[0]  # reversed: the last chord
 
@@ -108,8 +108,8 @@ def test_tie_tolerance_survives_cells_finer_than_a_millimetre() -> None:
     lo, hi = narrowed(cells, which, points, first, last)
     np.testing.assert_array_equal(hi - lo + 1, [2, 2, 2, 1, 1, 2])
     for backwards in (np.zeros(len(dx), dtype=np.bool_), np.ones(len(dx), dtype=np.bool_)):
-        ref = nearest_in_windows(lines, segments(lines), points, backwards, first, last)
-        got = nearest_in_windows(lines, segments(lines), points, backwards, lo, hi)
+        ref = nearest_in_windows(segments(lines), points, backwards, first, last)
+        got = nearest_in_windows(segments(lines), points, backwards, lo, hi)
         np.testing.assert_array_equal(got[0], ref[0])
         np.testing.assert_array_equal(got[1], ref[1])
 
