@@ -129,14 +129,21 @@ def _cells_of_lines(  # noqa: PLR0917 - the grid and one block of segments
     key = (line[row] * ny + iy) * nx + ix
     order = np.argsort(key, kind="stable")
     key, d, s = key[order], d[order], seg[row[order]]
-    starts = np.flatnonzero(np.concatenate([[True], key[1:] != key[:-1]]))
-    group = np.cumsum(np.concatenate([[True], key[1:] != key[:-1]])) - 1
+    starts = _run_starts(key)
+    group = np.repeat(np.arange(len(starts)), np.diff(np.append(starts, len(key))))
     nearest = np.minimum.reduceat(d, starts)
     candidate = d < nearest[group] + slack
     first = np.minimum.reduceat(np.where(candidate, s, np.iinfo(np.int64).max), starts)
     last = np.maximum.reduceat(np.where(candidate, s, -1), starts)
     keep = nearest <= band_m
     return key[starts][keep], first[keep], last[keep]
+
+
+def _run_starts(values: IntArray) -> IntArray:
+    """Indices where runs of equal ``values`` ``(K,)`` start (empty for ``K = 0``)."""
+    if not len(values):
+        return np.zeros(0, dtype=np.int64)
+    return np.flatnonzero(np.concatenate([[True], values[1:] != values[:-1]]))
 
 
 def _rows(
@@ -150,21 +157,20 @@ def _rows(
     nx, ny = shape
     key, first, last = cells
     line, iy, ix = key // (nx * ny), key // nx % ny, key % nx
-    new_line = np.concatenate([[True], line[1:] != line[:-1]])
-    at = np.flatnonzero(new_line)
     y_first = np.zeros(n_lines, dtype=np.int64)
     rows = np.zeros(n_lines, dtype=np.int64)
+    at = _run_starts(line)
     if len(at):
         y_first[line[at]] = np.minimum.reduceat(iy, at)
         rows[line[at]] = np.maximum.reduceat(iy, at) - y_first[line[at]] + 1
     row_base = np.cumsum(rows) - rows
     row = row_base[line] + iy - y_first[line]
-    n_rows = int(rows.sum())
-    x_first = np.zeros(n_rows, dtype=np.int64)
-    width = np.zeros(n_rows, dtype=np.int64)
-    at = np.flatnonzero(np.concatenate([[True], row[1:] != row[:-1]]) if len(row) else row)
-    x_first[row[at]] = np.minimum.reduceat(ix, at) if len(at) else 0
-    width[row[at]] = np.maximum.reduceat(ix, at) - x_first[row[at]] + 1 if len(at) else 0
+    x_first = np.zeros(int(rows.sum()), dtype=np.int64)
+    width = np.zeros(int(rows.sum()), dtype=np.int64)
+    at = _run_starts(row)
+    if len(at):
+        x_first[row[at]] = np.minimum.reduceat(ix, at)
+        width[row[at]] = np.maximum.reduceat(ix, at) - x_first[row[at]] + 1
     offset = np.cumsum(width) - width
     out_first = np.full(int(width.sum()), -1, dtype=np.int64)
     out_last = np.full(int(width.sum()), -1, dtype=np.int64)

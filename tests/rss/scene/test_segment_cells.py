@@ -123,3 +123,14 @@ def test_points_off_the_grid_keep_their_window() -> None:
     lo, hi = narrowed(cells, which, points, first, last)
     np.testing.assert_array_equal(lo, first)
     np.testing.assert_array_equal(hi, last)
+
+
+def test_single_segment_lines_get_no_cells() -> None:
+    lines = polylines(np.array([shapely.LineString([(0, 0), (5, 0)])], dtype=object))
+    cells = segment_cells(lines)
+    assert len(cells.first) == 0
+    which, points = np.zeros(1, dtype=np.int64), np.array([[1.0, 1.0]])
+    first, last = segment_window(lines, which)
+    lo, hi = narrowed(cells, which, points, first, last)
+    np.testing.assert_array_equal(lo, first)
+    np.testing.assert_array_equal(hi, last)
