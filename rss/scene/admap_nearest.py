@@ -62,25 +62,26 @@ def flat_runs(first: IntArray, count: IntArray) -> tuple[IntArray, IntArray]:
     return np.repeat(np.arange(len(first)), count), item
 
 
-#: Rows of the table of :func:`segments`.
+#: Columns of the table of :func:`segments`.
 _X, _Y, _DX, _DY, _DD, _S_AT, _SEG_LEN = range(7)
 
 
 def segments(lines: Polylines) -> FloatArray:
-    """``(7, V)`` table of ``lines`` per vertex, the segment starting there.
+    """``(V, 7)`` table of ``lines``: per vertex, the segment starting there.
 
-    Rows: ``x``, ``y``, the step ``dx``, ``dy`` to the next vertex, the squared segment
+    Columns: ``x``, ``y``, the step ``dx``, ``dy`` to the next vertex, the squared segment
     length (1 where it is 0), the arc length at the vertex and the segment length (0 at a
-    line's last vertex, as ``Polylines.segment_m``).
+    line's last vertex, as ``Polylines.segment_m``). One row per segment, so that a search
+    gathers each segment at once.
     """
     xy = lines.xy_m
-    out = np.zeros((7, len(xy)))
-    out[_X], out[_Y] = xy[:, 0], xy[:, 1]
-    out[_DX, :-1] = xy[1:, 0] - xy[:-1, 0]
-    out[_DY, :-1] = xy[1:, 1] - xy[:-1, 1]
+    out = np.zeros((len(xy), 7))
+    out[:, _X], out[:, _Y] = xy[:, 0], xy[:, 1]
+    out[:-1, _DX] = xy[1:, 0] - xy[:-1, 0]
+    out[:-1, _DY] = xy[1:, 1] - xy[:-1, 1]
     length = lines.segment_m
-    out[_DD] = np.where(length > 0.0, length * length, 1.0)
-    out[_S_AT], out[_SEG_LEN] = lines.s_at_m, length
+    out[:, _DD] = np.where(length > 0.0, length * length, 1.0)
+    out[:, _S_AT], out[:, _SEG_LEN] = lines.s_at_m, length
     return out
 
 
@@ -160,25 +161,25 @@ def nearest_in_windows(
     count = np.maximum(last - first + 1, 1)
     starts = np.cumsum(count) - count
     n = int(count.sum())
-    row = np.repeat(np.arange(len(first)), count)
     seg = np.arange(n) + np.repeat(first - starts, count)
-    ax, ay, dx, dy, dd = steps[:5, seg]
-    px, py = points.T[:, row]
-    rx, ry = px - ax, py - ay
-    t = (rx * dx + ry * dy) / dd
+    g = steps[seg]
+    ax, ay, dx, dy = g[:, _X], g[:, _Y], g[:, _DX], g[:, _DY]
+    p = np.repeat(points, count, axis=0)
+    rx, ry = p[:, 0] - ax, p[:, 1] - ay
+    t = (rx * dx + ry * dy) / g[:, _DD]
     t = np.minimum(np.maximum(t, 0.0), 1.0)
     ox, oy = rx - dx * t, ry - dy * t
     dist2 = ox * ox + oy * oy
     limit = np.sqrt(np.minimum.reduceat(dist2, starts)) + DISTANCE_TOL_M
     index = np.arange(n)
     if backwards is not None:  # the smallest negated index is the last one
-        index = np.where(backwards[row], -index, index)
-    candidate = np.where(dist2 < (limit * limit)[row], index, n)
+        index = np.where(np.repeat(backwards, count), -index, index)
+    candidate = np.where(dist2 < np.repeat(limit * limit, count), index, n)
     best = np.abs(np.minimum.reduceat(candidate, starts))
     tb = t[best]
-    bx, by, bdx, bdy, _, s_at, length = steps[:, seg[best]]
-    foot = np.stack([bx + bdx * tb, by + bdy * tb], axis=1)
-    return s_at + tb * length, foot
+    b = steps[seg[best]]
+    foot = np.stack([b[:, _X] + b[:, _DX] * tb, b[:, _Y] + b[:, _DY] * tb], axis=1)
+    return b[:, _S_AT] + tb * b[:, _SEG_LEN], foot
 
 
 def range_of(values: list[float]) -> tuple[float, float]:

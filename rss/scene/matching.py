@@ -321,7 +321,11 @@ def match_boxes(graph: PreparedGraph, boxes: BoxArrays) -> Matches:
     """Occupied regions of every box in every lane it overlaps (see module docstring)."""
     n = len(boxes.x_m)
     polys = box_polygons(boxes)
-    box_idx, lane_idx = graph.match_tree.query(polys, predicate="intersects")
+    # envelopes from the tree, then the prepared lane polygons decide (faster than the
+    # tree's predicate, which prepares each box instead)
+    box_idx, lane_idx = graph.match_tree.query(polys)
+    touch = shapely.intersects(graph.match_polygons[lane_idx], polys[box_idx])
+    box_idx, lane_idx = box_idx[touch], lane_idx[touch]
     by_box = np.argsort(box_idx, kind="stable")
     box_idx, lane_idx = box_idx[by_box], lane_idx[by_box]
     centres = np.stack([boxes.x_m[box_idx], boxes.y_m[box_idx]], axis=1)
