@@ -186,6 +186,16 @@ class PreparedGraph:
         return segments(self.borders)
 
     @functools.cached_property
+    def match_outline_bounds(self) -> FloatArray:
+        """``(V, 4)`` envelopes of the ``match_outlines`` segments, per start vertex.
+
+        Columns min x, min y, max x, max y (meaningless at a line's last vertex).
+        """
+        xy = self.match_outlines.xy_m
+        after = np.concatenate([xy[1:], xy[-1:]])
+        return np.concatenate([np.minimum(xy, after), np.maximum(xy, after)], axis=1)
+
+    @functools.cached_property
     def border_cells(self) -> SegmentCells:
         """Candidate segments of ``borders`` per grid cell (built on first use)."""
         return segment_cells(self.borders)

@@ -338,7 +338,12 @@ def match_boxes(graph: PreparedGraph, boxes: BoxArrays) -> Matches:
     centre_s, pair_heading = centre_s[has], pair_heading[has]
     length = graph.centre_length_m[lane_idx]
     safe_len = np.where(length > 0, length, 1.0)
-    outside = shapely.distance(shapely.points(centres), graph.polygons[lane_idx])
+    # only a box on several lanes chooses among them (by the centre's distance to each)
+    shared = np.flatnonzero(np.bincount(box_idx, minlength=n)[box_idx] > 1)
+    outside = np.zeros(len(box_idx))
+    outside[shared] = shapely.distance(
+        shapely.points(centres[shared]), graph.polygons[lane_idx[shared]]
+    )
     misaligned = 1.0 - np.abs(np.cos(boxes.yaw_rad[box_idx] - pair_heading))
     score = outside + _MISALIGNED_M * misaligned
     anchor = np.full(n, -1, dtype=np.int64)

@@ -159,11 +159,15 @@ def outline_crossings(
     """
     rings = graph.match_outlines
     first = rings.start[lanes]
-    row, seg = flat_runs(first, rings.start[lanes + 1] - first - 1)
-    p, q = rings.xy_m[seg], rings.xy_m[seg + 1]
-    lo, hi = corners.min(axis=1)[row], corners.max(axis=1)[row]
-    near = np.all((np.minimum(p, q) <= hi) & (np.maximum(p, q) >= lo), axis=1)
-    row, p, q = row[near], p[near][:, None], q[near][:, None]  # (N, 1, 2)
+    count = rings.start[lanes + 1] - first - 1
+    row, seg = flat_runs(first, count)
+    # envelopes of the outline segments against the boxes' envelopes
+    bounds = graph.match_outline_bounds[seg]  # (K, 4) min x, min y, max x, max y
+    lo = np.repeat(corners.min(axis=1), count, axis=0)
+    hi = np.repeat(corners.max(axis=1), count, axis=0)
+    near = np.all((bounds[:, :2] <= hi) & (bounds[:, 2:] >= lo), axis=1)
+    row, seg = row[near], seg[near]
+    p, q = rings.xy_m[seg][:, None], rings.xy_m[seg + 1][:, None]  # (N, 1, 2)
     a = corners[row]  # (N, 4, 2)
     e = np.roll(corners, -1, axis=1)[row] - a
     f, g = q - p, p - a
