@@ -29,6 +29,7 @@ from typing import TYPE_CHECKING, NamedTuple
 import numpy as np
 import shapely
 
+from rss.scene.admap_nearest import columns
 from rss.scene.matching_points import (
     DISTANCE_TOL_M,
     RING_POINTS,
@@ -178,7 +179,7 @@ def box_polygons(boxes: BoxArrays) -> np.ndarray:
     corners_w = np.array([1.0, -1.0, -1.0, 1.0])[None, :] * hw[:, None]
     xs = boxes.x_m[:, None] + corners_l * c[:, None] - corners_w * s[:, None]
     ys = boxes.y_m[:, None] + corners_l * s[:, None] + corners_w * c[:, None]
-    out: np.ndarray = shapely.polygons(np.stack([xs, ys], axis=-1))
+    out: np.ndarray = shapely.polygons(columns(xs, ys))
     return out
 
 
@@ -238,7 +239,7 @@ def _candidates(  # noqa: PLR0917 - the pairs' arrays
     plain = np.flatnonzero(~cut & ~bent_mask)
     crossing = np.flatnonzero(cut & ~bent_mask)
     bent = np.flatnonzero(bent_mask)
-    rings = box_ring(boxes, box_idx)
+    rings = box_ring(boxes, np.arange(len(boxes.x_m)))[box_idx]  # once per box
     corners = rings[:, :4]
     # Where a box edge leaves the grown lane, the lattice points beside the cut stand in
     # for it (the lane outline inside the box lies between such cuts).
@@ -328,7 +329,7 @@ def match_boxes(graph: PreparedGraph, boxes: BoxArrays) -> Matches:
     box_idx, lane_idx = box_idx[touch], lane_idx[touch]
     by_box = np.argsort(box_idx, kind="stable")
     box_idx, lane_idx = box_idx[by_box], lane_idx[by_box]
-    centres = np.stack([boxes.x_m[box_idx], boxes.y_m[box_idx]], axis=1)
+    centres = columns(boxes.x_m[box_idx], boxes.y_m[box_idx])
     centre_s, pair_heading = _centre_station(graph, lane_idx, centres)
     candidates = _candidates(graph, boxes, polys, box_idx, lane_idx, pair_heading)
     has, lon_min, lon_max, lat_min, lat_max = _regions(

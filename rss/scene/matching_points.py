@@ -23,7 +23,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from rss.scene.admap_nearest import DISTANCE_TOL_M, flat_runs
+from rss.scene.admap_nearest import DISTANCE_TOL_M, columns, flat_runs
 from rss.scene.lanegraph import MATCH_DISTANCE_M
 
 if TYPE_CHECKING:
@@ -96,10 +96,10 @@ def matches_point(dist_m: FloatArray) -> BoolArray:
 def _frame(boxes: BoxArrays, box_idx: IntArray) -> tuple[FloatArray, FloatArray, FloatArray]:
     """Front-left corners and the unit vectors forward and to the left, ``(P, 2)`` each."""
     c, s = np.cos(boxes.yaw_rad[box_idx]), np.sin(boxes.yaw_rad[box_idx])
-    along = np.stack([c, s], axis=1)
-    left = np.stack([-s, c], axis=1)
-    centre = np.stack([boxes.x_m[box_idx], boxes.y_m[box_idx]], axis=1)
-    half = np.stack([boxes.length_m[box_idx], boxes.width_m[box_idx]], axis=1) / 2.0
+    along = columns(c, s)
+    left = columns(-s, c)
+    centre = columns(boxes.x_m[box_idx], boxes.y_m[box_idx])
+    half = columns(boxes.length_m[box_idx], boxes.width_m[box_idx]) / 2.0
     front_left: FloatArray = centre + along * half[:, :1] + left * half[:, 1:]
     return front_left, along, left
 
@@ -128,8 +128,8 @@ def lattice_neighbours(boxes: BoxArrays, box_idx: IntArray, points: FloatArray) 
     on_i = (np.abs(i) < _INTEGRAL_TOL) | (np.abs(i - n_l) < _INTEGRAL_TOL)
     i = np.where(on_i, np.round(i), i)
     # along a front / rear edge (i fixed) step in j, along a side edge step in i
-    ii = np.where(on_i[:, None], i[:, None], np.stack([np.floor(i), np.ceil(i)], axis=1))
-    jj = np.where(on_i[:, None], np.stack([np.floor(j), np.ceil(j)], axis=1), j[:, None])
+    ii = np.where(on_i[:, None], i[:, None], columns(np.floor(i), np.ceil(i)))
+    jj = np.where(on_i[:, None], columns(np.floor(j), np.ceil(j)), j[:, None])
     out: FloatArray = (
         front_left[:, None, :]
         - (ii * step_l[:, None])[..., None] * along[:, None, :]
@@ -211,7 +211,7 @@ def _local_extremes(y: FloatArray, member: BoolArray) -> tuple[FloatArray, Float
         v = np.where(member, sign * y, np.inf)
         k = np.argmin(v, axis=1)
         inner = (k > 0) & (k < y.shape[1] - 1)
-        k = np.clip(k, 1, y.shape[1] - 2)
+        k = np.minimum(np.maximum(k, 1), y.shape[1] - 2)
         y0, y1, y2 = v[rows, k - 1], v[rows, k], v[rows, k + 1]
         ok = inner & np.isfinite(y0) & np.isfinite(y2)
         y0, y1, y2 = np.where(ok, y0, 0.0), np.where(ok, y1, 0.0), np.where(ok, y2, 0.0)
