@@ -189,11 +189,14 @@ def lane_heading(graph: PreparedGraph, lanes: IntArray, s_m: FloatArray) -> Floa
 
 
 def _centre_station(
-    graph: PreparedGraph, lanes: IntArray, points: FloatArray
+    graph: PreparedGraph, lanes: IntArray, points: np.ndarray
 ) -> tuple[FloatArray, FloatArray]:
-    """Arc length on the centre line and the centre line's heading there, ``(P,)`` each."""
+    """Arc length on the centre line and the centre line's heading there, ``(P,)`` each.
+
+    ``points`` are ``(P,)`` point geometries.
+    """
     n = len(lanes)
-    s = shapely.line_locate_point(graph.centre_lines[lanes], shapely.points(points))
+    s = shapely.line_locate_point(graph.centre_lines[lanes], points)
     length = graph.centre_length_m[lanes]
     ends = np.clip(
         np.concatenate([s - _TANGENT_STEP_M, s + _TANGENT_STEP_M]), 0.0, np.tile(length, 2)
@@ -329,22 +332,20 @@ def match_boxes(graph: PreparedGraph, boxes: BoxArrays) -> Matches:
     box_idx, lane_idx = box_idx[touch], lane_idx[touch]
     by_box = np.argsort(box_idx, kind="stable")
     box_idx, lane_idx = box_idx[by_box], lane_idx[by_box]
-    centres = columns(boxes.x_m[box_idx], boxes.y_m[box_idx])
-    centre_s, pair_heading = _centre_station(graph, lane_idx, centres)
+    centres = shapely.points(boxes.x_m, boxes.y_m)  # once per box
+    centre_s, pair_heading = _centre_station(graph, lane_idx, centres[box_idx])
     candidates = _candidates(graph, boxes, polys, box_idx, lane_idx, pair_heading)
     has, lon_min, lon_max, lat_min, lat_max = _regions(
         graph, boxes, polys, box_idx, lane_idx, centre_s, candidates
     )
-    box_idx, lane_idx, centres = box_idx[has], lane_idx[has], centres[has]
+    box_idx, lane_idx = box_idx[has], lane_idx[has]
     centre_s, pair_heading = centre_s[has], pair_heading[has]
     length = graph.centre_length_m[lane_idx]
     safe_len = np.where(length > 0, length, 1.0)
     # only a box on several lanes chooses among them (by the centre's distance to each)
     shared = np.flatnonzero(np.bincount(box_idx, minlength=n)[box_idx] > 1)
     outside = np.zeros(len(box_idx))
-    outside[shared] = shapely.distance(
-        shapely.points(centres[shared]), graph.polygons[lane_idx[shared]]
-    )
+    outside[shared] = shapely.distance(centres[box_idx[shared]], graph.polygons[lane_idx[shared]])
     misaligned = 1.0 - np.abs(np.cos(boxes.yaw_rad[box_idx] - pair_heading))
     score = outside + _MISALIGNED_M * misaligned
     anchor = np.full(n, -1, dtype=np.int64)
