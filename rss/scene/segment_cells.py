@@ -32,6 +32,8 @@ import numpy as np
 from rss.scene.admap_nearest import DISTANCE_TOL_M, flat_runs
 
 if TYPE_CHECKING:
+    import numpy.typing as npt
+
     from rss.batch import FloatArray, IntArray
     from rss.scene.polylines import Polylines
 
@@ -84,8 +86,8 @@ class SegmentCells:
     x_first: IntArray
     width: IntArray
     offset: IntArray
-    first: IntArray
-    last: IntArray
+    first: npt.NDArray[np.int32]
+    last: npt.NDArray[np.int32]
 
 
 def _distance(p: FloatArray, a: FloatArray, b: FloatArray) -> FloatArray:
@@ -172,8 +174,8 @@ def _rows(
         x_first[row[at]] = np.minimum.reduceat(ix, at)
         width[row[at]] = np.maximum.reduceat(ix, at) - x_first[row[at]] + 1
     offset = np.cumsum(width) - width
-    out_first = np.full(int(width.sum()), -1, dtype=np.int64)
-    out_last = np.full(int(width.sum()), -1, dtype=np.int64)
+    out_first = np.full(int(width.sum()), -1, dtype=np.int32)  # segment indices
+    out_last = np.full(int(width.sum()), -1, dtype=np.int32)
     where = offset[row] + ix - x_first[row]
     out_first[where], out_last[where] = first, last
     return SegmentCells(
