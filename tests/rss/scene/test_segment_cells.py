@@ -2,13 +2,18 @@
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 import shapely
 
+from loaders.maps.opendrive import read_opendrive
+from rss.scene import BoxArrays, lanegraph, match_boxes, prepare
 from rss.scene.admap_nearest import nearest_in_windows, segment_window, segments
 from rss.scene.polylines import Polylines, polylines
 from rss.scene.segment_cells import narrowed, segment_cells
+from workbench.rss_adapter import lane_graph_from_map
 
 
 def _arc(centre: tuple[float, float], radius: float, step_deg: float) -> np.ndarray:
@@ -134,3 +139,31 @@ def test_single_segment_lines_get_no_cells() -> None:
     lo, hi = narrowed(cells, which, points, first, last)
     np.testing.assert_array_equal(lo, first)
     np.testing.assert_array_equal(hi, last)
+
+
+@pytest.mark.external
+def test_town01_matching_is_the_same_without_cells(external_dir, monkeypatch) -> None:
+    """Random boxes (size, heading, off the lanes) on Town01: cells change no bit."""
+    prep = prepare(lane_graph_from_map(read_opendrive(external_dir / "maps" / "Town01.xodr")))
+    rng = np.random.default_rng(5)
+    n = 600
+    lanes = rng.integers(0, len(prep.graph), n)
+    centre = np.array(
+        [prep.graph.centre_m[k][rng.integers(len(prep.graph.centre_m[k]))] for k in lanes]
+    )
+    centre += rng.normal(0.0, 2.0, (n, 2))
+    boxes = BoxArrays(
+        x_m=centre[:, 0],
+        y_m=centre[:, 1],
+        yaw_rad=rng.uniform(-np.pi, np.pi, n),
+        length_m=rng.uniform(0.3, 12.0, n),
+        width_m=rng.uniform(0.3, 3.0, n),
+    )
+    ours = match_boxes(prep, boxes)
+    assert len(prep.border_cells.first) > 0
+    monkeypatch.setattr(lanegraph, "narrowed", lambda _cells, _which, _points, *window: window)
+    reference = match_boxes(prep, boxes)
+    assert len(ours.box) > n  # boxes do touch lanes, some several
+    for field in dataclasses.fields(ours):
+        a, b = getattr(ours, field.name), getattr(reference, field.name)
+        np.testing.assert_array_equal(np.asarray(a), np.asarray(b), err_msg=field.name)
