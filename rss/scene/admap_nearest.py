@@ -58,9 +58,9 @@ _SHORT_LANE_M = 1.0
 
 def flat_runs(first: IntArray, count: IntArray) -> tuple[IntArray, IntArray]:
     """``(row, item)`` of all items ``first[r] .. first[r] + count[r] - 1``, row after row."""
-    starts = np.cumsum(count) - count
-    item = np.arange(int(count.sum())) + np.repeat(first - starts, count)
-    return np.repeat(np.arange(len(first)), count), item
+    starts = count.cumsum() - count
+    item = np.arange(int(count.sum())) + (first - starts).repeat(count)
+    return np.arange(len(first)).repeat(count), item
 
 
 def columns(*arrays: FloatArray) -> FloatArray:
@@ -110,8 +110,8 @@ def segment_window(
     last = lines.start[which + 1] - 2  # last segment
     if near_m is not None:
         base = lines.offset_m[which]
-        lo = np.searchsorted(lines.global_m, base + near_m - reach_m, side="right") - 1
-        hi = np.searchsorted(lines.global_m, base + near_m + reach_m, side="left")
+        lo = lines.global_m.searchsorted(base + near_m - reach_m, side="right") - 1
+        hi = lines.global_m.searchsorted(base + near_m + reach_m, side="left")
         first, last = (
             np.minimum(np.maximum(lo, first), last),
             np.minimum(np.maximum(hi, first), last),
@@ -175,12 +175,12 @@ def nearest_in_windows(
         ``(Q,)`` arc lengths [m] of the nearest points and the ``(Q, 2)`` points.
     """
     count = np.maximum(last - first + 1, 1)
-    starts = np.cumsum(count) - count
+    starts = count.cumsum() - count
     n = int(count.sum())
-    seg = np.arange(n) + np.repeat(first - starts, count)
+    seg = np.arange(n) + (first - starts).repeat(count)
     g = steps[seg]
     ax, ay, dx, dy = g[:, _X], g[:, _Y], g[:, _DX], g[:, _DY]
-    p = np.repeat(points, count, axis=0)
+    p = points.repeat(count, axis=0)
     rx, ry = p[:, 0] - ax, p[:, 1] - ay
     t = (rx * dx + ry * dy) / g[:, _DD]
     t = np.minimum(np.maximum(t, 0.0), 1.0)
@@ -189,8 +189,8 @@ def nearest_in_windows(
     limit = np.sqrt(np.minimum.reduceat(dist2, starts)) + DISTANCE_TOL_M
     index = np.arange(n)
     if backwards is not None:  # the smallest negated index is the last one
-        index = np.where(np.repeat(backwards, count), -index, index)
-    candidate = np.where(dist2 < np.repeat(limit * limit, count), index, n)
+        index = np.where(backwards.repeat(count), -index, index)
+    candidate = np.where(dist2 < (limit * limit).repeat(count), index, n)
     best = np.abs(np.minimum.reduceat(candidate, starts))
     tb = t[best]
     b = steps[seg[best]]

@@ -199,9 +199,11 @@ def _centre_station(
     s = shapely.line_locate_point(graph.centre_lines[lanes], points)
     length = graph.centre_length_m[lanes]
     ends = np.clip(
-        np.concatenate([s - _TANGENT_STEP_M, s + _TANGENT_STEP_M]), 0.0, np.tile(length, 2)
+        np.concatenate([s - _TANGENT_STEP_M, s + _TANGENT_STEP_M]),
+        0.0,
+        np.concatenate([length, length]),
     )
-    at = interpolate(graph.centre, np.tile(lanes, 2), ends)
+    at = interpolate(graph.centre, np.concatenate([lanes, lanes]), ends)
     chord = at[n:] - at[:n]
     return s, np.arctan2(chord[:, 1], chord[:, 0])
 
@@ -239,15 +241,15 @@ def _candidates(  # noqa: PLR0917 - the pairs' arrays
     cut = ~shapely.contains_properly(graph.match_polygons[lane_idx], polys[box_idx])
     along = np.abs(np.cos(boxes.yaw_rad[box_idx] - heading_rad)) > _ALONG_COS
     bent_mask = ~graph.straight[lane_idx] & along
-    plain = np.flatnonzero(~cut & ~bent_mask)
-    crossing = np.flatnonzero(cut & ~bent_mask)
-    bent = np.flatnonzero(bent_mask)
+    plain = (~cut & ~bent_mask).nonzero()[0]
+    crossing = (cut & ~bent_mask).nonzero()[0]
+    bent = bent_mask.nonzero()[0]
     rings = box_ring(boxes, np.arange(len(boxes.x_m)))[box_idx]  # once per box
     corners = rings[:, :4]
     # Where a box edge leaves the grown lane, the lattice points beside the cut stand in
     # for it (the lane outline inside the box lies between such cuts).
     cuts, cut_row = outline_crossings(graph, corners[cut], lane_idx[cut])
-    cut_owner = np.flatnonzero(cut)[cut_row]
+    cut_owner = cut.nonzero()[0][cut_row]
     snapped = lattice_neighbours(boxes, box_idx[cut_owner], cuts)
     ring = rings[bent].reshape(-1, 2)
     points = np.concatenate(
@@ -260,10 +262,10 @@ def _candidates(  # noqa: PLR0917 - the pairs' arrays
     )
     owner = np.concatenate(
         [
-            np.repeat(plain, 4),
-            np.repeat(crossing, 4),
-            np.repeat(cut_owner, 2),
-            np.repeat(bent, RING_POINTS),
+            plain.repeat(4),
+            crossing.repeat(4),
+            cut_owner.repeat(2),
+            bent.repeat(RING_POINTS),
         ]
     )
     tested = np.ones(len(points), dtype=np.bool_)
@@ -302,7 +304,7 @@ def _regions(  # noqa: PLR0917 - the pairs' arrays
     has[c.owner[actual]] = True
     # A lane narrower than the box crossing it holds lattice points between the cuts
     # (not evaluated): its region exists when the box reaches into the lane itself.
-    unsure = np.flatnonzero(~has & c.cut)
+    unsure = (~has & c.cut).nonzero()[0]
     has[unsure] = shapely.intersects(polys[box_idx[unsure]], graph.polygons[lane_idx[unsure]])
     lon_min, lon_max = np.full(p, np.inf), np.full(p, -np.inf)
     lat_min, lat_max = np.full(p, np.inf), np.full(p, -np.inf)
@@ -343,7 +345,7 @@ def match_boxes(graph: PreparedGraph, boxes: BoxArrays) -> Matches:
     length = graph.centre_length_m[lane_idx]
     safe_len = np.where(length > 0, length, 1.0)
     # only a box on several lanes chooses among them (by the centre's distance to each)
-    shared = np.flatnonzero(np.bincount(box_idx, minlength=n)[box_idx] > 1)
+    shared = (np.bincount(box_idx, minlength=n)[box_idx] > 1).nonzero()[0]
     outside = np.zeros(len(box_idx))
     outside[shared] = shapely.distance(centres[box_idx[shared]], graph.polygons[lane_idx[shared]])
     misaligned = 1.0 - np.abs(np.cos(boxes.yaw_rad[box_idx] - pair_heading))
@@ -369,7 +371,7 @@ def match_boxes(graph: PreparedGraph, boxes: BoxArrays) -> Matches:
         anchor_s=anchor_s,
         anchor_heading_rad=heading,
         heading_rad=pair_heading,
-        starts=np.searchsorted(box_idx, np.arange(n + 1)).tolist(),
+        starts=box_idx.searchsorted(np.arange(n + 1)).tolist(),
     )
 
 

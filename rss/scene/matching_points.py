@@ -138,6 +138,8 @@ def lattice_neighbours(boxes: BoxArrays, box_idx: IntArray, points: FloatArray) 
     return out
 
 
+#: The corner after each corner round a box.
+_NEXT_CORNER = np.array([1, 2, 3, 0])
 #: Ring points of ``box_ring`` along the right and the left side of a box (rear-ward and
 #: front-ward), both ends included.
 _SIDES = np.array([[1, 4, 5, 6, 2], [3, 7, 8, 9, 0]])
@@ -163,20 +165,20 @@ def outline_crossings(
     row, seg = flat_runs(first, count)
     # envelopes of the outline segments against the boxes' envelopes
     bounds = graph.match_outline_bounds[seg]  # (K, 4) min x, min y, max x, max y
-    lo = np.repeat(corners.min(axis=1), count, axis=0)
-    hi = np.repeat(corners.max(axis=1), count, axis=0)
-    near = np.all((bounds[:, :2] <= hi) & (bounds[:, 2:] >= lo), axis=1)
+    lo = corners.min(axis=1).repeat(count, axis=0)
+    hi = corners.max(axis=1).repeat(count, axis=0)
+    near = ((bounds[:, :2] <= hi) & (bounds[:, 2:] >= lo)).all(axis=1)
     row, seg = row[near], seg[near]
     p, q = rings.xy_m[seg][:, None], rings.xy_m[seg + 1][:, None]  # (N, 1, 2)
     a = corners[row]  # (N, 4, 2)
-    e = np.roll(corners, -1, axis=1)[row] - a
+    e = a[:, _NEXT_CORNER] - a
     f, g = q - p, p - a
     denom = e[..., 0] * f[..., 1] - e[..., 1] * f[..., 0]
     safe = np.where(denom != 0.0, denom, 1.0)
     t = (g[..., 0] * f[..., 1] - g[..., 1] * f[..., 0]) / safe
     u = (g[..., 0] * e[..., 1] - g[..., 1] * e[..., 0]) / safe
     hit = (denom != 0.0) & (t >= 0.0) & (t <= 1.0) & (u >= 0.0) & (u <= 1.0)
-    k, edge = np.nonzero(hit)
+    k, edge = hit.nonzero()
     return a[k, edge] + t[k, edge][:, None] * e[k, edge], row[k]
 
 

@@ -89,7 +89,7 @@ def interpolate(lines: Polylines, which: IntArray, s_m: FloatArray) -> FloatArra
     first = lines.start[which]
     last = lines.start[which + 1] - 1
     s = np.minimum(np.maximum(s_m, 0.0), lines.length_m[which])
-    k = np.searchsorted(lines.global_m, lines.offset_m[which] + s, side="right") - 1
+    k = lines.global_m.searchsorted(lines.offset_m[which] + s, side="right") - 1
     k = np.clip(k, first, last - 1)
     # GEOS walks forward to the first segment whose end lies beyond s (the shifted search
     # may land one segment off when s is within rounding of a vertex).
