@@ -120,11 +120,16 @@ def _following(
 
 
 def _corridor(
-    f: FrameContext, i: int, target: int, kind: ConstellationType
+    f: FrameContext, i: int, cr: Connecting, kind: ConstellationType
 ) -> Constellation | None:
-    """A same/opposite-direction constellation along the connecting route to ``target``."""
-    plans, ends = corridor_plans(f.prep, f.tree, target, f.matches, (0, i + 1))
-    return f.constellation(kind, i, plans, None, ends)
+    """A same/opposite-direction constellation along the connecting route ``cr``.
+
+    ad-rss 5.0 swaps the two vehicles' route headings on a route of an object following
+    the ego; reproduced under ``[scene] reproduce_adrss_5_0_defects``.
+    """
+    plans, ends = corridor_plans(f.prep, f.tree, cr.target, f.matches, (0, i + 1))
+    swap = cr.kind == Kind.OBJECT_FOLLOWS and f.settings.reproduce_adrss_5_0_defects
+    return f.constellation(kind, i, plans, None, ends, swap_headings=swap)
 
 
 @dataclass(slots=True)
@@ -147,7 +152,7 @@ class _Pair:
         key = (kind, cr.target)
         if key in self.out:
             return
-        c = _corridor(self.f, self.i, cr.target, kind)
+        c = _corridor(self.f, self.i, cr, kind)
         if c is None and kind == ConstellationType.SameDirection:
             if not self.obj_routes:
                 self.obj_routes = self.f.routes(self.i + 1, self.reach_m)
@@ -198,7 +203,13 @@ def _route_pair(
             return
         base, other = other, base
     for span in spans:
-        rel = relation(p.f.prep, base, span, other)
+        rel = relation(
+            p.f.prep,
+            base,
+            span,
+            other,
+            admap_defects=p.f.settings.reproduce_adrss_5_0_defects,
+        )
         if rel == Relation.NONE:
             continue
         if rel == Relation.CROSSING or cr.kind == Kind.MERGING:

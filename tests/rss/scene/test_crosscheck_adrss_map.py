@@ -38,6 +38,11 @@ from workbench.rss_adapter import lane_graph_from_map
 ORACLE = Path(__file__).with_name("adrss_map_oracle.py")
 N_PAIRS = 500
 SETTINGS = SceneSettings(restrict_speed_limit_mode=RestrictSpeedLimitMode.NONE)
+#: The same settings with ad-rss 5.0's defects reproduced (``[scene]
+#: reproduce_adrss_5_0_defects``).
+COMPAT_SETTINGS = SceneSettings(
+    restrict_speed_limit_mode=RestrictSpeedLimitMode.NONE, reproduce_adrss_5_0_defects=True
+)
 
 
 def _pose(prep: PreparedGraph, rng: np.random.Generator, lane: int) -> dict[str, float]:
@@ -92,9 +97,12 @@ def pair_inputs(pair: dict[str, Any]) -> tuple[SceneEgo, SceneObjects]:
     return ego, objects
 
 
-def ours(prep: PreparedGraph, pair: dict[str, Any]) -> dict[str, Any]:
+def ours(
+    prep: PreparedGraph, pair: dict[str, Any], settings: SceneSettings = SETTINGS
+) -> dict[str, Any]:
+    """Our situations of one pair in the oracle's answer format (types, distances, speeds)."""
     ego, objects = pair_inputs(pair)
-    scene = create_scene(prep, ego, objects, SETTINGS)
+    scene = create_scene(prep, ego, objects, settings)
     out: dict[str, Any] = {"situations": [], "dangerous": []}
     if scene.constellations:
         result, _ = check_frame(stack_constellations(scene.constellations), DEFAULT_EGO_DYNAMICS)
