@@ -110,10 +110,11 @@ class SceneSettings:
         ego_width_m: Ego width, > 0.
         ego_height_m: Ego height, > 0.
         reproduce_adrss_5_0_defects: Reproduce two documented defects of ad-rss 5.0 /
-            ad-map 5.0 in scene creation (docs/rss_scene.md, deviations): the swapped route
-            headings of an object following the ego, and ad-map's intersection turn
-            directions from its defective ENU headings. Off by default; for reproducing
-            what an onboard ad-rss 5.0 reported.
+            ad-map 5.0 in scene creation (docs/rss_scene.md, compatibility mode): the
+            swapped route headings of an object following the ego, and ad-map's
+            intersection turn directions from its defective ENU headings (with the ad-map /
+            ad-rss rules that only matter together with them). Off by default; for
+            reproducing what an onboard ad-rss 5.0 reported.
     """
 
     restrict_speed_limit_mode: RestrictSpeedLimitMode = (

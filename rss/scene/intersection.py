@@ -23,10 +23,12 @@ from typing import TYPE_CHECKING, NamedTuple, TypeVar, cast
 
 import numpy as np
 import shapely
+import shapely.ops
 
 from rss.model import ConstellationType, LaneDrivingDirection, RoadSegmentType
 from rss.scene.admap_heading import lane_chord_heading
-from rss.scene.roadarea import SegmentPlan
+from rss.scene.matching_points import ad_map_positions
+from rss.scene.roadarea import SegmentPlan, lane_window
 from rss.scene.routes import cross_section
 
 if TYPE_CHECKING:
@@ -43,6 +45,7 @@ __all__ = [
     "IntersectionPair",
     "Relation",
     "conflict",
+    "cut_area_spans",
     "intersection_arms",
     "intersection_pair",
     "intersection_plans",
@@ -486,6 +489,67 @@ def area_span(prep: PreparedGraph, lane: int, other: int) -> tuple[float, float]
             )
             spans[key] = (float(np.min(s)) * length, (1.0 - float(np.max(s))) * length)
     return spans[key]
+
+
+def _window_polygon(prep: PreparedGraph, lane: int, w0: float, w1: float) -> shapely.Geometry:
+    """The area of ``lane`` between fractions ``w0 < w1`` of its borders (point order).
+
+    From the borders as given (not the simplified ``prep.polygons``), as ad-map builds a
+    lane interval's polygon: lanes side by side then only touch.
+    """
+    g = prep.graph
+    left, right = (
+        shapely.get_coordinates(
+            shapely.ops.substring(shapely.LineString(border), w0, w1, normalized=True)
+        )
+        for border in (g.left_m[lane], g.right_m[lane])
+    )
+    return shapely.Polygon(np.concatenate([left, right[::-1]]))
+
+
+def cut_area_spans(prep: PreparedGraph, a: SegmentPlan, b: SegmentPlan) -> None:
+    """ad-rss 5.0: the intersecting area of two conflict plans within their cut windows.
+
+    Where a vehicle's road area is cut on its conflict lane (``cut_window`` with
+    ``cut_intersection``), ad-rss takes each conflict lane's region inside the *other*
+    lane's kept window (``extractInnerRegions``: the polygons common to the two windows,
+    their vertices matched to the lane as ad-map matches points) and the lengths before
+    and after it within the lane's own window (``getMetricRanges``: the shorter projected
+    border piece). Sets ``before_m`` / ``after_m`` of ``a`` and ``b`` (single-lane plans)
+    in place; plans without any cut keep :func:`area_span`'s values, and so does a lane
+    without common area.
+    """
+    windows = [
+        (plan, *plan.lanes[0], lane_window(plan.p0, plan.p1, forward=plan.lanes[0][1]))
+        for plan in (a, b)
+    ]
+    if all(w == (0.0, 1.0) for *_, w in windows):
+        return
+    for (plan, lane, forward, (w0, w1)), (_, other, _, other_window) in (
+        (windows[0], windows[1]),
+        (windows[1], windows[0]),
+    ):
+        shared = shapely.intersection(
+            _window_polygon(prep, lane, w0, w1), _window_polygon(prep, other, *other_window)
+        )
+        parts = shapely.get_parts(shared)
+        areas = parts[shapely.area(parts) > 0.0]
+        if not len(areas):
+            continue
+        points = shapely.get_coordinates(areas)
+        lon, _, _ = ad_map_positions(prep, np.full(len(points), lane), points)
+        lo, hi = max(float(np.min(lon)), w0), min(float(np.max(lon)), w1)
+        if lo > hi:
+            continue
+        pieces = prep.lane_segments
+        before = (
+            pieces.lane_segment(lane, forward=True, p0=w0, p1=lo).length_min_m if lo > w0 else 0.0
+        )
+        after = (
+            pieces.lane_segment(lane, forward=True, p0=hi, p1=w1).length_min_m if w1 > hi else 0.0
+        )
+        plan.before_m, plan.after_m = (before, after) if forward else (after, before)
+        plan.whole = None
 
 
 def intersection_plans(

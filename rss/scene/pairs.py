@@ -33,6 +33,7 @@ from rss.scene.frame import FrameContext, ego_routes
 from rss.scene.intersection import (
     IntersectionPair,
     Relation,
+    cut_area_spans,
     intersection_pair,
     junctions_on,
     relation,
@@ -57,10 +58,13 @@ def _intersection(
     first shared lane); ``kind`` overrides the priority-derived type (merging routes).
     The memoised uncut plans are shared: only their ends are copied and cut.
     """
-    ego_plans = fresh_ends(pair.ego_plans, last=False)
-    obj_plans = fresh_ends(pair.obj_plans, last=False)
-    cut_window(ego_plans, f.matches, (0,), cut_end=False)
-    cut_window(obj_plans, f.matches, (i + 1,), cut_end=False)
+    compat = f.settings.reproduce_adrss_5_0_defects
+    ego_plans = fresh_ends(pair.ego_plans, last=compat)
+    obj_plans = fresh_ends(pair.obj_plans, last=compat)
+    cut_window(ego_plans, f.matches, (0,), cut_end=False, cut_intersection=compat)
+    cut_window(obj_plans, f.matches, (i + 1,), cut_end=False, cut_intersection=compat)
+    if compat:
+        cut_area_spans(f.prep, ego_plans[-1], obj_plans[-1])
     return f.constellation(pair.priority if kind is None else kind, i, ego_plans, obj_plans)
 
 

@@ -18,7 +18,7 @@ import math
 import numpy as np
 import pytest
 
-from rss.model import ConstellationType, LaneDrivingDirection
+from rss.model import ConstellationType, LaneDrivingDirection, RoadSegmentType
 from rss.params import RestrictSpeedLimitMode, SceneSettings
 from rss.scene import LaneGraph, create_scene, prepare
 from rss.scene.admap_heading import defective_enu_heading, lane_chord_heading
@@ -26,12 +26,14 @@ from rss.scene.intersection import (
     Arm,
     _bucket,
     _bucket_wrapped_once,
+    cut_area_spans,
     intersection_arms,
     junction_list,
 )
+from rss.scene.roadarea import SegmentPlan
 
 from .synthetic import ego, objects
-from .test_intersection import _lane
+from .test_intersection import _lane, crossing
 
 DEFAULT = SceneSettings(restrict_speed_limit_mode=RestrictSpeedLimitMode.NONE)
 COMPAT = SceneSettings(
@@ -177,3 +179,42 @@ def test_following_object_gets_the_ego_heading_and_vice_versa() -> None:
         assert speeds[0].lat_min_mps == pytest.approx(ego_lat, abs=1e-9)
         assert speeds[1].lon_min_mps == pytest.approx(obj_lon, abs=1e-9)
         assert speeds[1].lat_min_mps == pytest.approx(obj_lat, abs=1e-9)
+
+
+def test_intersecting_area_is_measured_within_the_cut_windows() -> None:
+    """ad-rss 5.0 cuts a vehicle's intersection road area at its rear on its conflict lane.
+
+    Crossing of ``test_intersection``: junction lane 1 runs north along x = 0 (y from -5
+    to 5), lane 4 east along y = 0 (x from -5 to 5), both 10 m long and 3.5 m wide, so
+    each lies inside the other for 3.5 m in the middle (|x|, |y| <= 1.75): 3.25 m before
+    and after it on both (``area_span``, the uncut values).
+
+    The object on lane 4 has its rear at x = 0.5 (fraction 0.55): of the common part
+    x in [-1.75, 1.75] only [0.5, 1.75] is left in its window, so nothing before it and
+    5 - 1.75 = 3.25 m after it. Lane 1 keeps 3.25 / 3.25: the window of lane 4 still
+    spans all of lane 1's width (y in [-1.75, 1.75]). With the ego's rear also inside, at
+    y = -0.5 (fraction 0.45), lane 1 has nothing before it either.
+    """
+    prep = prepare(crossing(0, 0))
+
+    def plans(ego_p0: float) -> tuple[SegmentPlan, SegmentPlan]:
+        kind = RoadSegmentType.Intersection
+        return (
+            SegmentPlan([(1, True)], kind, before_m=3.25, after_m=3.25, p0=ego_p0),
+            SegmentPlan([(4, True)], kind, before_m=3.25, after_m=3.25, p0=0.55),
+        )
+
+    ego_plan, obj_plan = plans(0.0)
+    cut_area_spans(prep, ego_plan, obj_plan)
+    assert (ego_plan.before_m, ego_plan.after_m) == pytest.approx((3.25, 3.25), abs=1e-6)
+    assert (obj_plan.before_m, obj_plan.after_m) == pytest.approx((0.0, 3.25), abs=1e-6)
+    ego_plan, obj_plan = plans(0.45)
+    cut_area_spans(prep, ego_plan, obj_plan)
+    assert (ego_plan.before_m, ego_plan.after_m) == pytest.approx((0.0, 3.25), abs=1e-6)
+    assert (obj_plan.before_m, obj_plan.after_m) == pytest.approx((0.0, 3.25), abs=1e-6)
+    # lane 1 run against its point order (south, from y = 5) and kept down to y = -0.5:
+    # 5 - 1.75 = 3.25 m before the common part, which reaches the window's end
+    ego_plan = SegmentPlan([(1, False)], RoadSegmentType.Intersection, p0=0.0, p1=0.55)
+    obj_plan = SegmentPlan([(4, True)], RoadSegmentType.Intersection, p0=0.55)
+    cut_area_spans(prep, ego_plan, obj_plan)
+    assert (ego_plan.before_m, ego_plan.after_m) == pytest.approx((3.25, 0.0), abs=1e-6)
