@@ -20,7 +20,7 @@ import pytest
 
 from rss.model import ConstellationType, LaneDrivingDirection, RoadSegmentType
 from rss.params import RestrictSpeedLimitMode, SceneSettings
-from rss.scene import LaneGraph, create_scene, prepare
+from rss.scene import create_scene, prepare
 from rss.scene.admap_heading import defective_enu_heading, lane_chord_heading
 from rss.scene.intersection import (
     Arm,
@@ -32,8 +32,8 @@ from rss.scene.intersection import (
 )
 from rss.scene.roadarea import SegmentPlan
 
-from .synthetic import ego, objects
-from .test_intersection import _lane, crossing
+from .synthetic import ego, objects, straight_lanes
+from .test_intersection import crossing
 
 DEFAULT = SceneSettings(restrict_speed_limit_mode=RestrictSpeedLimitMode.NONE)
 COMPAT = SceneSettings(
@@ -41,34 +41,6 @@ COMPAT = SceneSettings(
 )
 #: The Earth-curvature part of the model moves these cases by < 1e-7 rad.
 TOL = 1e-6
-
-
-def _graph(
-    pts: list[tuple[tuple[float, float], tuple[float, float]]],
-    successors: tuple[tuple[int, ...], ...],
-    junction: tuple[int, ...] = (),
-) -> LaneGraph:
-    """Straight lanes ``start -> end`` (driven that way), linked by ``successors``."""
-    lanes = [_lane(a, b) for a, b in pts]
-    n = len(lanes)
-    predecessors = tuple(tuple(a for a in range(n) if b in successors[a]) for b in range(n))
-    return LaneGraph(
-        ids=tuple(str(i) for i in range(n)),
-        left_m=tuple(ln[0] for ln in lanes),
-        right_m=tuple(ln[1] for ln in lanes),
-        centre_m=tuple(ln[2] for ln in lanes),
-        direction=np.ones(n, dtype=np.int64),
-        speed_limit_mps=np.full(n, 14.0),
-        successors=successors,
-        predecessors=predecessors,
-        left_neighbour=np.full(n, -1, dtype=np.int64),
-        right_neighbour=np.full(n, -1, dtype=np.int64),
-        left_opposite=np.zeros(n, dtype=bool),
-        right_opposite=np.zeros(n, dtype=bool),
-        is_intersection=np.array([i in junction for i in range(n)]),
-        priority=np.zeros(n, dtype=np.int64),
-        traffic_light=np.full(n, -1, dtype=np.int64),
-    )
 
 
 def test_defect_vanishes_at_the_map_origin() -> None:
@@ -92,8 +64,8 @@ def test_lane_chord_runs_from_the_end_to_the_start_in_driving_direction() -> Non
     # Driven north from (-99, 90) to b = (-99, 100): the chord end -> start points south
     # (-90 degrees), plus atan2(100, 1 + 99) = 45 degrees: -45 degrees; the same lane
     # stored the other way round and driven against its point order reads the same.
-    along = _graph([((-99.0, 90.0), (-99.0, 100.0))], ((),))
-    against = _graph([((-99.0, 100.0), (-99.0, 90.0))], ((),))
+    along = straight_lanes([((-99.0, 90.0), (-99.0, 100.0))], ((),))
+    against = straight_lanes([((-99.0, 100.0), (-99.0, 90.0))], ((),))
     against = dataclasses.replace(
         against, direction=np.array([LaneDrivingDirection.Negative], dtype=np.int64)
     )
@@ -125,7 +97,7 @@ def test_left_turn_far_from_the_origin_becomes_a_u_turn() -> None:
     * E (lane 6) drives east to (200, -300): 180 + atan2(-300, -199) = 180 - 123.56 =
       56.44; 56.44 - 342.02 + 360 = 74.42: right.
     """
-    graph = _graph(
+    graph = straight_lanes(
         [
             ((100.0, -400.0), (100.0, -305.0)),
             ((100.0, -305.0), (95.0, -300.0)),
@@ -164,7 +136,7 @@ def test_following_object_gets_the_ego_heading_and_vice_versa() -> None:
     (0, -1) = -10 (moving left); the object gets north: lon 0, lat (5, 0) . right-of-north
     (1, 0) = +5.
     """
-    graph = _graph(
+    graph = straight_lanes(
         [((0.0, 0.0), (40.0, 0.0)), ((40.0, 0.0), (50.0, 10.0)), ((50.0, 10.0), (50.0, 60.0))],
         ((1,), (2,), ()),
     )
