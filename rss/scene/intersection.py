@@ -23,7 +23,6 @@ from typing import TYPE_CHECKING, NamedTuple, TypeVar, cast
 
 import numpy as np
 import shapely
-import shapely.ops
 
 from rss.model import ConstellationType, LaneDrivingDirection, RoadSegmentType
 from rss.scene.admap_heading import lane_chord_heading
@@ -34,7 +33,7 @@ from rss.scene.routes import cross_section
 if TYPE_CHECKING:
     from collections.abc import Callable
 
-    from rss.batch import IntArray
+    from rss.batch import FloatArray, IntArray
     from rss.scene.lanegraph import PreparedGraph
     from rss.scene.routes import Step
 
@@ -491,6 +490,16 @@ def area_span(prep: PreparedGraph, lane: int, other: int) -> tuple[float, float]
     return spans[key]
 
 
+def _border_fractions(prep: PreparedGraph, lane: int) -> tuple[FloatArray, FloatArray]:
+    """Arc-length fraction of every vertex of the left and right border of ``lane``."""
+    g = prep.graph
+    out = []
+    for border in (g.left_m[lane], g.right_m[lane]):
+        arc = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(border, axis=0).T))])
+        out.append(arc / arc[-1] if arc[-1] > 0.0 else arc)
+    return out[0], out[1]
+
+
 def _window_polygon(prep: PreparedGraph, lane: int, w0: float, w1: float) -> shapely.Geometry:
     """The area of ``lane`` between fractions ``w0 < w1`` of its borders (point order).
 
@@ -498,13 +507,54 @@ def _window_polygon(prep: PreparedGraph, lane: int, w0: float, w1: float) -> sha
     lane interval's polygon: lanes side by side then only touch.
     """
     g = prep.graph
-    left, right = (
-        shapely.get_coordinates(
-            shapely.ops.substring(shapely.LineString(border), w0, w1, normalized=True)
-        )
-        for border in (g.left_m[lane], g.right_m[lane])
+    rings = []
+    fractions = memoised(prep, _border_fractions, lane)
+    for border, f in zip((g.left_m[lane], g.right_m[lane]), fractions, strict=True):
+        inner = border[(f > w0) & (f < w1)]
+        ends = [[np.interp(w, f, border[:, 0]), np.interp(w, f, border[:, 1])] for w in (w0, w1)]
+        rings.append(np.concatenate([[ends[0]], inner, [ends[1]]]))
+    return shapely.Polygon(np.concatenate([rings[0], rings[1][::-1]]))
+
+
+def _window_span(
+    prep: PreparedGraph, lane: int, window: tuple[float, float], points: FloatArray
+) -> tuple[float, float] | None:
+    """Lengths [m] of ``lane``'s window before and after the region of ``points`` (``(Q, 2)``).
+
+    The region is ad-map's: the points matched to the lane with its point rule, clipped to
+    the window; the lengths those of the shorter projected border piece
+    (``getMetricRanges``), in the lane's point order. ``None`` if the region misses it.
+    """
+    w0, w1 = window
+    lon, _, _ = ad_map_positions(prep, np.full(len(points), lane), points)
+    lo, hi = max(float(np.min(lon)), w0), min(float(np.max(lon)), w1)
+    if lo > hi:
+        return None
+    pieces = prep.lane_segments
+    before = pieces.lane_segment(lane, forward=True, p0=w0, p1=lo).length_min_m if lo > w0 else 0.0
+    after = pieces.lane_segment(lane, forward=True, p0=hi, p1=w1).length_min_m if w1 > hi else 0.0
+    return before, after
+
+
+def _cut_spans(
+    prep: PreparedGraph,
+    lane_a: int,
+    window_a: tuple[float, float],
+    lane_b: int,
+    window_b: tuple[float, float],
+) -> tuple[tuple[float, float] | None, tuple[float, float] | None]:
+    """:func:`_window_span` of both lanes for the area common to their two windows."""
+    shared = shapely.intersection(
+        _window_polygon(prep, lane_a, *window_a), _window_polygon(prep, lane_b, *window_b)
     )
-    return shapely.Polygon(np.concatenate([left, right[::-1]]))
+    parts = shapely.get_parts(shared)
+    areas = parts[shapely.area(parts) > 0.0]
+    if not len(areas):
+        return None, None
+    points = shapely.get_coordinates(areas)
+    return _window_span(prep, lane_a, window_a, points), _window_span(
+        prep, lane_b, window_b, points
+    )
 
 
 def cut_area_spans(prep: PreparedGraph, a: SegmentPlan, b: SegmentPlan) -> None:
@@ -517,39 +567,18 @@ def cut_area_spans(prep: PreparedGraph, a: SegmentPlan, b: SegmentPlan) -> None:
     and after it within the lane's own window (``getMetricRanges``: the shorter projected
     border piece). Sets ``before_m`` / ``after_m`` of ``a`` and ``b`` (single-lane plans)
     in place; plans without any cut keep :func:`area_span`'s values, and so does a lane
-    without common area.
+    without common area. Memoised per prepared graph by the two windows.
     """
-    windows = [
-        (plan, *plan.lanes[0], lane_window(plan.p0, plan.p1, forward=plan.lanes[0][1]))
-        for plan in (a, b)
-    ]
-    if all(w == (0.0, 1.0) for *_, w in windows):
+    (lane_a, fwd_a), (lane_b, fwd_b) = a.lanes[0], b.lanes[0]
+    window_a = lane_window(a.p0, a.p1, forward=fwd_a)
+    window_b = lane_window(b.p0, b.p1, forward=fwd_b)
+    if window_a == window_b == (0.0, 1.0):
         return
-    for (plan, lane, forward, (w0, w1)), (_, other, _, other_window) in (
-        (windows[0], windows[1]),
-        (windows[1], windows[0]),
-    ):
-        shared = shapely.intersection(
-            _window_polygon(prep, lane, w0, w1), _window_polygon(prep, other, *other_window)
-        )
-        parts = shapely.get_parts(shared)
-        areas = parts[shapely.area(parts) > 0.0]
-        if not len(areas):
-            continue
-        points = shapely.get_coordinates(areas)
-        lon, _, _ = ad_map_positions(prep, np.full(len(points), lane), points)
-        lo, hi = max(float(np.min(lon)), w0), min(float(np.max(lon)), w1)
-        if lo > hi:
-            continue
-        pieces = prep.lane_segments
-        before = (
-            pieces.lane_segment(lane, forward=True, p0=w0, p1=lo).length_min_m if lo > w0 else 0.0
-        )
-        after = (
-            pieces.lane_segment(lane, forward=True, p0=hi, p1=w1).length_min_m if w1 > hi else 0.0
-        )
-        plan.before_m, plan.after_m = (before, after) if forward else (after, before)
-        plan.whole = None
+    spans = memoised(prep, _cut_spans, lane_a, window_a, lane_b, window_b)
+    for plan, forward, span in ((a, fwd_a, spans[0]), (b, fwd_b, spans[1])):
+        if span is not None:
+            plan.before_m, plan.after_m = span if forward else span[::-1]
+            plan.whole = None
 
 
 def intersection_plans(
