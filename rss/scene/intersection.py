@@ -557,7 +557,7 @@ def _cut_spans(
     )
 
 
-def cut_area_spans(prep: PreparedGraph, a: SegmentPlan, b: SegmentPlan) -> None:
+def cut_area_spans(prep: PreparedGraph, a: SegmentPlan, b: SegmentPlan) -> bool:
     """ad-rss 5.0: the intersecting area of two conflict plans within their cut windows.
 
     Where a vehicle's road area is cut on its conflict lane (``cut_window`` with
@@ -566,19 +566,25 @@ def cut_area_spans(prep: PreparedGraph, a: SegmentPlan, b: SegmentPlan) -> None:
     their vertices matched to the lane as ad-map matches points) and the lengths before
     and after it within the lane's own window (``getMetricRanges``: the shorter projected
     border piece). Sets ``before_m`` / ``after_m`` of ``a`` and ``b`` (single-lane plans)
-    in place; plans without any cut keep :func:`area_span`'s values, and so does a lane
-    without common area. Memoised per prepared graph by the two windows.
+    in place; plans without any cut keep :func:`area_span`'s values. Memoised per
+    prepared graph by the two windows.
+
+    Returns:
+        Whether the two windows still intersect; where they do not, ad-rss appends a
+        ``NotRelevant`` constellation instead of the intersection one.
     """
     (lane_a, fwd_a), (lane_b, fwd_b) = a.lanes[0], b.lanes[0]
     window_a = lane_window(a.p0, a.p1, forward=fwd_a)
     window_b = lane_window(b.p0, b.p1, forward=fwd_b)
     if window_a == window_b == (0.0, 1.0):
-        return
+        return True
     spans = memoised(prep, _cut_spans, lane_a, window_a, lane_b, window_b)
     for plan, forward, span in ((a, fwd_a, spans[0]), (b, fwd_b, spans[1])):
-        if span is not None:
-            plan.before_m, plan.after_m = span if forward else span[::-1]
-            plan.whole = None
+        if span is None:
+            return False
+        plan.before_m, plan.after_m = span if forward else span[::-1]
+        plan.whole = None
+    return True
 
 
 def intersection_plans(

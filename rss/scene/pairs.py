@@ -63,8 +63,8 @@ def _intersection(
     obj_plans = fresh_ends(pair.obj_plans, last=compat)
     cut_window(ego_plans, f.matches, (0,), cut_end=False, cut_intersection=compat)
     cut_window(obj_plans, f.matches, (i + 1,), cut_end=False, cut_intersection=compat)
-    if compat:
-        cut_area_spans(f.prep, ego_plans[-1], obj_plans[-1])
+    if compat and not cut_area_spans(f.prep, ego_plans[-1], obj_plans[-1]):
+        return None
     return f.constellation(pair.priority if kind is None else kind, i, ego_plans, obj_plans)
 
 

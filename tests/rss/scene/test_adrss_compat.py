@@ -177,7 +177,7 @@ def test_intersecting_area_is_measured_within_the_cut_windows() -> None:
         )
 
     ego_plan, obj_plan = plans(0.0)
-    cut_area_spans(prep, ego_plan, obj_plan)
+    assert cut_area_spans(prep, ego_plan, obj_plan)
     assert (ego_plan.before_m, ego_plan.after_m) == pytest.approx((3.25, 3.25), abs=1e-6)
     assert (obj_plan.before_m, obj_plan.after_m) == pytest.approx((0.0, 3.25), abs=1e-6)
     ego_plan, obj_plan = plans(0.45)
@@ -190,3 +190,8 @@ def test_intersecting_area_is_measured_within_the_cut_windows() -> None:
     obj_plan = SegmentPlan([(4, True)], RoadSegmentType.Intersection, p0=0.55)
     cut_area_spans(prep, ego_plan, obj_plan)
     assert (ego_plan.before_m, ego_plan.after_m) == pytest.approx((3.25, 0.0), abs=1e-6)
+    # the object's rear at x = 2 (fraction 0.7), past lane 1 (|x| <= 1.75): the windows no
+    # longer intersect, and ad-rss gives the pair no intersection constellation
+    ego_plan, obj_plan = plans(0.0)
+    obj_plan.p0 = 0.7
+    assert not cut_area_spans(prep, ego_plan, obj_plan)
