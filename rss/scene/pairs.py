@@ -29,11 +29,11 @@ import numpy as np
 from rss.model import Constellation, ConstellationType
 from rss.scene.connecting import Connecting, Kind, connecting_routes
 from rss.scene.corridor import corridor_plans
+from rss.scene.cut_areas import cut_area_spans
 from rss.scene.frame import FrameContext, ego_routes
 from rss.scene.intersection import (
     IntersectionPair,
     Relation,
-    cut_area_spans,
     intersection_pair,
     junctions_on,
     relation,

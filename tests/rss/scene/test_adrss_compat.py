@@ -22,11 +22,11 @@ from rss.model import ConstellationType, LaneDrivingDirection, RoadSegmentType
 from rss.params import RestrictSpeedLimitMode, SceneSettings
 from rss.scene import create_scene, prepare
 from rss.scene.admap_heading import defective_enu_heading, lane_chord_heading
+from rss.scene.cut_areas import cut_area_spans
 from rss.scene.intersection import (
     Arm,
     _bucket,
     _bucket_wrapped_once,
-    cut_area_spans,
     intersection_arms,
     junction_list,
 )
