@@ -7,7 +7,7 @@ TOML layout (``--rss-params``, see ``conformance/rss_params_example.toml``)::
     [car] [truck] [bus] [motorcycle] [bicycle]   ... refined per class
     [pedestrian]  RssDynamics keys of pedestrians
     [scene]       restrict_speed_limit_mode, constellation_creation_mode,
-                  ego_length, ego_width, ego_height
+                  ego_length, ego_width, ego_height, reproduce_adrss_5_0_defects
 
 Keys not given keep the documented defaults: ad-rss-lib's unit-test dynamics for the ego
 (rho = 1 s) and for vehicles (rho = 2 s), CARLA's pedestrian dynamics for pedestrians.
@@ -109,6 +109,12 @@ class SceneSettings:
         ego_length_m: Ego length, > 0.
         ego_width_m: Ego width, > 0.
         ego_height_m: Ego height, > 0.
+        reproduce_adrss_5_0_defects: Reproduce two documented defects of ad-rss 5.0 /
+            ad-map 5.0 in scene creation (docs/rss_scene.md, compatibility mode): the
+            swapped route headings of an object following the ego, and ad-map's
+            intersection turn directions from its defective ENU headings (with the ad-map /
+            ad-rss rules that only matter together with them). Off by default; for
+            reproducing what an onboard ad-rss 5.0 reported.
     """
 
     restrict_speed_limit_mode: RestrictSpeedLimitMode = (
@@ -118,6 +124,7 @@ class SceneSettings:
     ego_length_m: float = 4.5
     ego_width_m: float = 2.0
     ego_height_m: float = 1.5
+    reproduce_adrss_5_0_defects: bool = False
 
 
 def _default_classes() -> dict[ObjectClass, RssDynamics]:
@@ -208,6 +215,10 @@ def _scene(table: Mapping[str, object]) -> SceneSettings:
             if not ok or not math.isfinite(float(value)) or float(value) <= 0.0:  # type: ignore[arg-type]
                 raise RssParameterError(name, value, "must be a finite number > 0 m")
             values[f"{key}_m"] = float(value)  # type: ignore[arg-type]
+        elif key == "reproduce_adrss_5_0_defects":
+            if not isinstance(value, bool):
+                raise RssParameterError(name, value, "must be true or false")
+            values[key] = value
         else:
             raise RssParameterError(name, value, "unknown [scene] key")
     return SceneSettings(**values)  # type: ignore[arg-type]

@@ -9,8 +9,11 @@ iterating on our side takes seconds::
 
 (the cache is renewed by itself when the pairs change, e.g. after a map-reader change).
 
-Prints the summary rates, then the disagreeing pairs grouped by class
-(``ours types -> theirs types``), with the pair index, distances and verdicts.
+Prints, for each mode, the summary rates, then the disagreeing pairs grouped by class
+(``ours types -> theirs types``), with the pair index, distances and verdicts. The modes:
+``default`` (ad-rss' two documented defects not reproduced; the pairs where they are in
+play counted apart) and ``compat`` (``[scene] reproduce_adrss_5_0_defects``: raw
+agreement); ``--mode`` picks one (``--explain`` shows our internals in that mode).
 """
 
 from __future__ import annotations
@@ -24,7 +27,7 @@ import sys
 from collections import defaultdict
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
@@ -33,6 +36,7 @@ sys.path.insert(0, str(ROOT))
 from loaders.maps.opendrive import read_opendrive  # noqa: E402
 from rss.scene import PreparedGraph, create_scene, prepare  # noqa: E402
 from tests.rss.scene.test_crosscheck_adrss_map import (  # noqa: E402
+    COMPAT_SETTINGS,
     ORACLE,
     SETTINGS,
     admap_lane_id,
@@ -43,6 +47,9 @@ from tests.rss.scene.test_crosscheck_adrss_map import (  # noqa: E402
     turn_defect,
 )
 from workbench.rss_adapter import lane_graph_from_map  # noqa: E402
+
+if TYPE_CHECKING:
+    from rss.params import SceneSettings
 
 TOWN = (ROOT / ".." / "shared" / "external" / "maps" / "Town01.xodr").resolve()
 
@@ -86,13 +93,13 @@ def oracle_answers(
     return answers
 
 
-def explain(prep: PreparedGraph, pair: dict[str, Any]) -> None:
+def explain(prep: PreparedGraph, pair: dict[str, Any], settings: SceneSettings) -> None:
     """Print our side's internals for one pair (lane ids in ad-map's numbering)."""
     ego, objects = pair_inputs(pair)
     lid = functools.partial(admap_lane_id, prep)
     logging.basicConfig(format="   %(message)s")
     logging.getLogger("rss.scene").setLevel(logging.DEBUG)
-    scene = create_scene(prep, ego, objects, SETTINGS)
+    scene = create_scene(prep, ego, objects, settings)
     logging.getLogger("rss.scene").setLevel(logging.WARNING)
     for c in scene.constellations:
         print("   ", c.constellation_type.name)
@@ -140,9 +147,13 @@ def _classes(
     mine: dict[int, dict[str, Any]],
     theirs: list[dict[str, Any]],
     picked: list[int],
-    defects: dict[int, bool],
+    defects: dict[int, bool] | None,
 ) -> tuple[list[tuple[str, list[int]]], list[tuple[float, int]]]:
-    """Disagreement classes ``(name, pair indices)`` and ``(distance error, pair)`` rows."""
+    """Disagreement classes ``(name, pair indices)`` and ``(distance error, pair)`` rows.
+
+    ``defects``: the pairs where ad-map's turn-direction defect is in play (default mode),
+    listed apart among the verdict disagreements; ``None`` in compat mode.
+    """
     classes: dict[str, list[int]] = defaultdict(list)
     verdict_only: list[int] = []
     turned: list[int] = []
@@ -155,7 +166,7 @@ def _classes(
             classes[f"{'+'.join(ta) or '-'} -> {'+'.join(tb) or '-'}"].append(k)
         elif any(a["dangerous"]) != any(b["dangerous"]):
             verdict_only.append(k)
-            if defects[k]:
+            if defects is not None and defects[k]:
                 turned.append(k)
         if len(a["situations"]) == len(b["situations"]) == 1 and ta == tb:
             err = abs(a["situations"][0]["lon_d"] - b["situations"][0]["lon_d"])
@@ -163,12 +174,53 @@ def _classes(
             dist.append((err, k))
     rows = sorted(classes.items(), key=lambda kv: -len(kv[1]))
     rows.append(("same types, verdict differs", verdict_only))
-    rows.append(("... of which ad-map's turn-direction defect is in play", turned))
+    if defects is not None:
+        rows.append(("... of which ad-map's turn-direction defect is in play", turned))
     return rows, dist
 
 
+#: The two modes: name -> scene settings, and whether ad-rss' defects are counted apart.
+MODES: dict[str, tuple[SceneSettings, bool]] = {
+    "default": (SETTINGS, True),
+    "compat": (COMPAT_SETTINGS, False),
+}
+
+
+def report(
+    prep: PreparedGraph,
+    pairs: list[dict[str, Any]],
+    theirs: list[dict[str, Any]],
+    picked: list[int],
+    *,
+    mode: str,
+    args: argparse.Namespace,
+) -> None:
+    """Print one mode's summary (all pairs only), disagreement classes and extras."""
+    settings, apart = MODES[mode]
+    print(f"\n######## {mode} mode")
+    mine = {k: ours(prep, pairs[k], settings) for k in picked}
+    defects = {k: turn_defect(prep, pairs[k], theirs[k]) for k in picked} if apart else None
+    if not args.pairs:
+        flags = [defects[k] if defects is not None else False for k in picked]
+        print(compare([mine[k] for k in picked], theirs, flags))
+    rows, dist = _classes(mine, theirs, picked, defects)
+    for name, ks in rows:
+        print(f"\n== {name}: {len(ks)}  {ks}")
+        for k in ks[: args.show]:
+            print(f"  {k:4d} ours:   {_fmt(mine[k])}")
+            print(f"       theirs: {_fmt(theirs[k])}   pair={json.dumps(pairs[k])}")
+    if args.explain:
+        for k in picked:
+            print(f"\n===== pair {k}\n  ours:   {_fmt(mine[k])}\n  theirs: {_fmt(theirs[k])}")
+            explain(prep, pairs[k], settings)
+    if args.dist:
+        print("\n== largest distance errors (lon+lat)")
+        for err, k in sorted(dist, reverse=True)[: args.show]:
+            print(f"  {k:4d} err={err:.3f} ours: {_fmt(mine[k])}  theirs: {_fmt(theirs[k])}")
+
+
 def main() -> int:
-    """Run the comparison and print the disagreement classes."""
+    """Run the comparison and print the disagreement classes of each mode."""
     ap = argparse.ArgumentParser()
     ap.add_argument("--n", type=int, default=500)
     ap.add_argument("--seed", type=int, default=1)
@@ -176,6 +228,7 @@ def main() -> int:
     ap.add_argument("--oracle", default=str(ROOT / ".venv-oracle-adrss-map" / "bin" / "python"))
     ap.add_argument("--refresh", action="store_true")
     ap.add_argument("--pairs", default="")
+    ap.add_argument("--mode", choices=[*MODES, "both"], default="both")
     ap.add_argument("--dist", action="store_true", help="list distance disagreements too")
     ap.add_argument("--dump", action="store_true", help="print [[k, pair], ...] of --pairs")
     ap.add_argument("--explain", action="store_true", help="our internals for --pairs")
@@ -188,25 +241,8 @@ def main() -> int:
     cache = ROOT / "out" / f"adrss_map_oracle_s{args.seed}_n{args.n}.json"
     theirs = oracle_answers(pairs, args.oracle, cache, refresh=args.refresh)
     picked = [int(v) for v in args.pairs.split(",") if v] or list(range(len(pairs)))
-    mine = {k: ours(prep, pairs[k]) for k in picked}
-    defects = {k: turn_defect(prep, pairs[k], theirs[k]) for k in picked}
-    if not args.pairs:
-        print(compare([mine[k] for k in picked], theirs, [defects[k] for k in picked]))
-    rows, dist = _classes(mine, theirs, picked, defects)
-    for name, ks in rows:
-        print(f"\n== {name}: {len(ks)}  {ks}")
-        for k in ks[: args.show]:
-            print(f"  {k:4d} ours:   {_fmt(mine[k])}")
-            print(f"       theirs: {_fmt(theirs[k])}   pair={json.dumps(pairs[k])}")
-
-    if args.explain:
-        for k in picked:
-            print(f"\n===== pair {k}\n  ours:   {_fmt(mine[k])}\n  theirs: {_fmt(theirs[k])}")
-            explain(prep, pairs[k])
-    if args.dist:
-        print("\n== largest distance errors (lon+lat)")
-        for err, k in sorted(dist, reverse=True)[: args.show]:
-            print(f"  {k:4d} err={err:.3f} ours: {_fmt(mine[k])}  theirs: {_fmt(theirs[k])}")
+    for mode in MODES if args.mode == "both" else [args.mode]:
+        report(prep, pairs, theirs, picked, mode=mode, args=args)
     return 0
 
 

@@ -173,11 +173,17 @@ class FrameContext:
         ego_plans: list[SegmentPlan],
         obj_plans: list[SegmentPlan] | None,
         ends: dict[int, tuple[int, float]] | None = None,
+        *,
+        swap_headings: bool = False,
     ) -> Constellation | None:
         """Build one constellation of object ``i`` (``obj_plans`` only for intersections).
 
         ``ends`` (from :func:`cut_between`): where the connecting route touches each box;
         its speeds are then resolved along the road-area direction there, as ad-rss does.
+        ``swap_headings``: each vehicle takes the road direction at the *other* vehicle's
+        end instead, as ad-rss 5.0 does for an object following the ego (its
+        ``createRoadArea`` gives the ego ``route_heading_start`` of a route that starts at
+        the object; ``[scene] reproduce_adrss_5_0_defects``).
         """
         route_heading: dict[int, float | None] = {0: None, i + 1: None}
         if ends:
@@ -185,6 +191,8 @@ class FrameContext:
             for box, (lane, at) in ends.items():
                 turn = 0.0 if lane in along else np.pi
                 route_heading[box] = lane_heading(self.prep, lane, at) + turn
+            if swap_headings:
+                route_heading[0], route_heading[i + 1] = route_heading[i + 1], route_heading[0]
         memo = self.cut_segments
         windows: list[tuple[int, float, float]] = []
         ego_road, ego_placed, limit = build_road(self.prep, ego_plans, 0, memo, windows)

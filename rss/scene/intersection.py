@@ -25,6 +25,7 @@ import numpy as np
 import shapely
 
 from rss.model import ConstellationType, LaneDrivingDirection, RoadSegmentType
+from rss.scene.admap_heading import lane_chord_heading
 from rss.scene.roadarea import SegmentPlan
 from rss.scene.routes import cross_section
 
@@ -206,7 +207,35 @@ def _bucket(angle: float) -> Arm:
     return Arm.UNKNOWN
 
 
-def intersection_arms(prep: PreparedGraph, j: int, incoming: int) -> dict[int, Arm]:
+#: ad-map's sector bounds [rad] (``turnDirectionForAngle``: degrees times pi / 180).
+_SECTOR_45 = 45.0 * math.pi / 180.0
+_SECTOR_135 = 135.0 * math.pi / 180.0
+_SECTOR_225 = 225.0 * math.pi / 180.0
+_SECTOR_315 = 315.0 * math.pi / 180.0
+
+
+def _bucket_wrapped_once(angle: float) -> Arm:
+    """ad-map 5.0's sector of a relative angle [rad] that is wrapped once only.
+
+    A negative angle gets one turn added (``directionOfLanes``); one below ``-2 pi`` stays
+    negative and, being below 45 degrees, falls into the U-turn sector.
+    """
+    if angle < 0.0:
+        angle += 2.0 * math.pi
+    if angle > _SECTOR_315 or angle < _SECTOR_45:
+        return Arm.UTURN
+    if angle > _SECTOR_225:
+        return Arm.LEFT
+    if angle > _SECTOR_135:
+        return Arm.STRAIGHT
+    if angle > _SECTOR_45:
+        return Arm.RIGHT
+    return Arm.UNKNOWN
+
+
+def intersection_arms(
+    prep: PreparedGraph, j: int, incoming: int, *, admap_defects: bool = False
+) -> dict[int, Arm]:
     """The arm of every lane entering or leaving junction ``j``, seen from ``incoming``.
 
     As ad-map orders intersection arms: an entry lane's chord direction (start to end, in
@@ -214,17 +243,35 @@ def intersection_arms(prep: PreparedGraph, j: int, incoming: int) -> dict[int, A
     exit lane's relative to the opposite direction, each put into a 90-degree sector (the
     route's own arm is the U-turn arm). Deviation: ad-map 5.0 gets these angles wrong on
     maps geo-referenced at latitude/longitude 0 such as CARLA's (docs/rss_scene.md); the
-    geometric angles are used here.
+    geometric angles are used here unless ``admap_defects``.
 
     Args:
         prep: The prepared lane graph.
         j: Junction index (:func:`junction_ids`).
         incoming: The lane through which the route enters the junction.
+        admap_defects: Reproduce ad-map 5.0 (``[scene] reproduce_adrss_5_0_defects``): its
+            defective chord headings (:func:`rss.scene.admap_heading.lane_chord_heading`)
+            and relative angles wrapped once only.
     """
     jid = junction_list(prep)
     members = [lane for lane, k in enumerate(jid) if k == j]
     entries = {e for lane in members for e in _entries(prep, lane) if jid[e] != j}
     exits = {x for lane in members for x in _exits(prep, lane) if jid[x] != j}
+    if admap_defects:
+        ref = memoised(prep, lane_chord_heading, incoming)
+        arms = {
+            lane: _bucket_wrapped_once(memoised(prep, lane_chord_heading, lane) - ref)
+            for lane in entries
+        }
+        arms.update(
+            {
+                lane: _bucket_wrapped_once(
+                    memoised(prep, lane_chord_heading, lane) - (ref + math.pi)
+                )
+                for lane in exits
+            }
+        )
+        return arms
     ref = _lane_angle(prep, incoming)
     arms = {lane: _bucket(_lane_angle(prep, lane) - ref) for lane in entries}
     arms.update({lane: _bucket(_lane_angle(prep, lane) - ref - math.pi) for lane in exits})
@@ -247,19 +294,68 @@ def _same_arm(
 
 
 def _opposite(
-    prep: PreparedGraph, jid: list[int], j: int, arms: tuple[set[int], set[int]], other: list[int]
+    prep: PreparedGraph,
+    jid: list[int],
+    j: int,
+    arms: tuple[set[int], set[int]],
+    other: tuple[Step, ...],
+    *,
+    admap_defects: bool = False,
 ) -> bool:
-    """ad-map: ``other`` passes the route's outgoing arm, then reaches its U-turn arm."""
+    """ad-map: ``other`` passes the route's outgoing arm, then reaches its U-turn arm.
+
+    ``admap_defects``: as ad-map 5.0's ``findWaypoint`` of a lane, which on a lane the
+    route runs against ad-map's point order points at the lane's *end*: the search for
+    the U-turn arm then starts after that lane.
+    """
     out_arm, back_arm = arms
-    start = next((k for k, lane in enumerate(other) if lane in out_arm), None)
+    lanes = [lane for lane, _ in other]
+    start = next((k for k, lane in enumerate(lanes) if lane in out_arm), None)
     if (
         start is None
-        and other
-        and jid[other[0]] == j
-        and any(other[0] in _inside_successors(prep, jid, j, lane) for lane in out_arm)
+        and lanes
+        and jid[lanes[0]] == j
+        and any(lanes[0] in _inside_successors(prep, jid, j, lane) for lane in out_arm)
     ):
         start = 0
-    return start is not None and any(lane in back_arm for lane in other[start:])
+    if start is None:
+        return False
+    if admap_defects and not _along_admap_order(prep, other[start]):
+        start += 1
+    return any(lane in back_arm for lane in lanes[start:])
+
+
+def _along_admap_order(prep: PreparedGraph, step: Step) -> bool:
+    """Whether a route step runs along ad-map's point order of its lane."""
+    lane, forward = step
+    flags = prep.graph.admap_reversed
+    return forward != (flags is not None and bool(flags[lane]))
+
+
+def _turn(
+    prep: PreparedGraph,
+    route: tuple[Step, ...],
+    span: tuple[int, int, int],
+    arms: dict[int, Arm],
+    *,
+    admap_defects: bool,
+) -> Arm:
+    """The arm where ``route`` leaves the intersection ``span`` (ad-map's turn direction).
+
+    A route that ends inside it has no turn (``UNKNOWN``), except with ``admap_defects``:
+    ad-map then takes the exits its junction lanes lead to (the first by lane index
+    where they lead to several).
+    """
+    j, first, last = span
+    if last + 1 < len(route):
+        return arms.get(route[last + 1][0], Arm.UNKNOWN)
+    if not admap_defects:
+        return Arm.UNKNOWN
+    jid = junction_list(prep)
+    entry = route[first][0]
+    inside = {entry} | _inside_successors(prep, jid, j, entry)
+    exits = sorted({x for lane in inside for x in _exits(prep, lane) if jid[x] != j})
+    return arms.get(exits[0], Arm.UNKNOWN) if exits else Arm.UNKNOWN
 
 
 def memoised(prep: PreparedGraph, compute: Callable[..., _T], *args: object) -> _T:
@@ -284,12 +380,15 @@ def relation(
     route: tuple[Step, ...],
     span: tuple[int, int, int],
     other: tuple[Step, ...],
+    *,
+    admap_defects: bool = False,
 ) -> Relation:
     """How ``other`` meets the intersection ``span`` (from :func:`junctions_on`) of ``route``.
 
+    ``admap_defects``: arms as ad-map 5.0 orders them (:func:`intersection_arms`).
     Memoised per prepared graph (routes repeat from frame to frame).
     """
-    return memoised(prep, _relation, route, span, other)
+    return memoised(prep, _relation, route, span, other, admap_defects)
 
 
 def _relation(
@@ -297,6 +396,7 @@ def _relation(
     route: tuple[Step, ...],
     span: tuple[int, int, int],
     other: tuple[Step, ...],
+    admap_defects: bool,  # noqa: FBT001 - positional: part of the memo key
 ) -> Relation:
     jid = junction_list(prep)
     j, first, last = span
@@ -307,8 +407,8 @@ def _relation(
     incoming = {lane for lane, fwd in cross_section(prep, before) if fwd == before[1]}
     if _same_arm(prep, jid, j, incoming, lanes):
         return Relation.SAME_ARM
-    arms = intersection_arms(prep, j, before[0])
-    turn = arms.get(route[last + 1][0], Arm.UNKNOWN) if last + 1 < len(route) else Arm.UNKNOWN
+    arms = intersection_arms(prep, j, before[0], admap_defects=admap_defects)
+    turn = _turn(prep, route, span, arms, admap_defects=admap_defects)
     out_arm = {lane for lane, arm in arms.items() if arm == turn}
     back_arm = {lane for lane, arm in arms.items() if arm == Arm.UTURN}
     own = _inside_successors(prep, jid, j, before[0])
@@ -316,7 +416,8 @@ def _relation(
     crossing = any(
         jid[lane] == j and lane not in own and prep.conflicts[mine, lane].any() for lane in lanes
     )
-    if _opposite(prep, jid, j, (out_arm, back_arm), lanes) or not crossing:
+    opposite = _opposite(prep, jid, j, (out_arm, back_arm), other, admap_defects=admap_defects)
+    if opposite or not crossing:
         return Relation.OPPOSITE
     return Relation.CROSSING
 

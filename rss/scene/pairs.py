@@ -29,6 +29,7 @@ import numpy as np
 from rss.model import Constellation, ConstellationType
 from rss.scene.connecting import Connecting, Kind, connecting_routes
 from rss.scene.corridor import corridor_plans
+from rss.scene.cut_areas import cut_area_spans
 from rss.scene.frame import FrameContext, ego_routes
 from rss.scene.intersection import (
     IntersectionPair,
@@ -57,10 +58,13 @@ def _intersection(
     first shared lane); ``kind`` overrides the priority-derived type (merging routes).
     The memoised uncut plans are shared: only their ends are copied and cut.
     """
-    ego_plans = fresh_ends(pair.ego_plans, last=False)
-    obj_plans = fresh_ends(pair.obj_plans, last=False)
-    cut_window(ego_plans, f.matches, (0,), cut_end=False)
-    cut_window(obj_plans, f.matches, (i + 1,), cut_end=False)
+    compat = f.settings.reproduce_adrss_5_0_defects
+    ego_plans = fresh_ends(pair.ego_plans, last=compat)
+    obj_plans = fresh_ends(pair.obj_plans, last=compat)
+    cut_window(ego_plans, f.matches, (0,), cut_end=False, cut_intersection=compat)
+    cut_window(obj_plans, f.matches, (i + 1,), cut_end=False, cut_intersection=compat)
+    if compat and not cut_area_spans(f.prep, ego_plans[-1], obj_plans[-1]):
+        return None
     return f.constellation(pair.priority if kind is None else kind, i, ego_plans, obj_plans)
 
 
@@ -120,11 +124,16 @@ def _following(
 
 
 def _corridor(
-    f: FrameContext, i: int, target: int, kind: ConstellationType
+    f: FrameContext, i: int, cr: Connecting, kind: ConstellationType
 ) -> Constellation | None:
-    """A same/opposite-direction constellation along the connecting route to ``target``."""
-    plans, ends = corridor_plans(f.prep, f.tree, target, f.matches, (0, i + 1))
-    return f.constellation(kind, i, plans, None, ends)
+    """A same/opposite-direction constellation along the connecting route ``cr``.
+
+    ad-rss 5.0 swaps the two vehicles' route headings on a route of an object following
+    the ego; reproduced under ``[scene] reproduce_adrss_5_0_defects``.
+    """
+    plans, ends = corridor_plans(f.prep, f.tree, cr.target, f.matches, (0, i + 1))
+    swap = cr.kind == Kind.OBJECT_FOLLOWS and f.settings.reproduce_adrss_5_0_defects
+    return f.constellation(kind, i, plans, None, ends, swap_headings=swap)
 
 
 @dataclass(slots=True)
@@ -147,7 +156,7 @@ class _Pair:
         key = (kind, cr.target)
         if key in self.out:
             return
-        c = _corridor(self.f, self.i, cr.target, kind)
+        c = _corridor(self.f, self.i, cr, kind)
         if c is None and kind == ConstellationType.SameDirection:
             if not self.obj_routes:
                 self.obj_routes = self.f.routes(self.i + 1, self.reach_m)
@@ -198,7 +207,13 @@ def _route_pair(
             return
         base, other = other, base
     for span in spans:
-        rel = relation(p.f.prep, base, span, other)
+        rel = relation(
+            p.f.prep,
+            base,
+            span,
+            other,
+            admap_defects=p.f.settings.reproduce_adrss_5_0_defects,
+        )
         if rel == Relation.NONE:
             continue
         if rel == Relation.CROSSING or cr.kind == Kind.MERGING:

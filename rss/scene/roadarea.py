@@ -259,14 +259,24 @@ def lane_heading(prep: PreparedGraph, lane: int, param: float) -> float:
 
 
 def cut_window(
-    plans: list[SegmentPlan], matches: Matches, boxes: tuple[int, ...], *, cut_end: bool = True
+    plans: list[SegmentPlan],
+    matches: Matches,
+    boxes: tuple[int, ...],
+    *,
+    cut_end: bool = True,
+    cut_intersection: bool = False,
 ) -> None:
-    """Cut the first (and last) segment at the outermost extent of ``boxes`` (in place)."""
+    """Cut the first (and last) segment at the outermost extent of ``boxes`` (in place).
+
+    Intersection segments are kept whole unless ``cut_intersection`` (ad-rss 5.0 cuts a
+    vehicle's intersection road area at its rear also on its conflict lane; reproduced
+    under ``[scene] reproduce_adrss_5_0_defects``).
+    """
     if not plans:
         return
     first, last = plans[0], plans[-1]
     normal = RoadSegmentType.Normal
-    start = dict(first.lanes) if first.segment_type == normal else {}
+    start = dict(first.lanes) if cut_intersection or first.segment_type == normal else {}
     end = dict(last.lanes) if cut_end and last.segment_type == normal else {}
     if not (start or end):
         return

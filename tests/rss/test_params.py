@@ -37,6 +37,15 @@ def test_example_toml_loads() -> None:
     assert params.scene.ego_length_m == 4.5
 
 
+def test_reproduce_adrss_5_0_defects_is_an_opt_in_bool() -> None:
+    assert RssParams().scene.reproduce_adrss_5_0_defects is False
+    on = parse_rss_params("[scene]\nreproduce_adrss_5_0_defects = true\n")
+    assert on.scene.reproduce_adrss_5_0_defects is True
+    off = parse_rss_params("[scene]\nreproduce_adrss_5_0_defects = false\n")
+    assert off.scene.reproduce_adrss_5_0_defects is False
+    assert on.scene.restrict_speed_limit_mode == RestrictSpeedLimitMode.INCREASED_SPEED_LIMIT_10
+
+
 def test_vehicle_table_then_class_refinement() -> None:
     params = parse_rss_params(
         "[vehicle]\nresponse_time = 1.5\n[truck]\nbrake_min = -3.0\nbrake_min_correct = -2.0\n"
@@ -58,6 +67,8 @@ def test_vehicle_table_then_class_refinement() -> None:
         ("[bogus]\nx = 1", "bogus"),
         ("[scene]\nrestrict_speed_limit_mode = 'Fast'", "scene.restrict_speed_limit_mode"),
         ("[scene]\nego_length = -1", "scene.ego_length"),
+        ("[scene]\nreproduce_adrss_5_0_defects = 'yes'", "scene.reproduce_adrss_5_0_defects"),
+        ("[scene]\nreproduce_adrss_5_0_defects = 1", "scene.reproduce_adrss_5_0_defects"),
         (
             "[pedestrian]\nvehicle_trajectory_calculation_step = 0",
             "pedestrian.vehicle_trajectory_calculation_step",

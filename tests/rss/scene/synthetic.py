@@ -2,13 +2,20 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from rss.model import LaneDrivingDirection
 from rss.params import DEFAULT_EGO_DYNAMICS, DEFAULT_VEHICLE_DYNAMICS
 from rss.scene import LaneGraph, SceneEgo, SceneObjects
 
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+
 WIDTH = 3.5
+#: Half width [m] of the lanes of :func:`straight_lane`.
+HALF = 1.75
 
 
 def straight_road(
@@ -89,4 +96,54 @@ def objects(*rows: tuple[float, float, float, float]) -> SceneObjects:
         length_m=np.full(n, 4.0),
         width_m=np.full(n, 2.0),
         dynamics=(DEFAULT_VEHICLE_DYNAMICS,) * n,
+    )
+
+
+def straight_lane(
+    start: tuple[float, float], end: tuple[float, float]
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(left, right, centre)`` of a straight lane ``start -> end`` (11 points, 3.5 m wide)."""
+    a, b = np.asarray(start, float), np.asarray(end, float)
+    t = np.linspace(0.0, 1.0, 11)[:, None]
+    centre = a + (b - a) * t
+    d = (b - a) / np.linalg.norm(b - a)
+    left = centre + np.array([-d[1], d[0]]) * HALF
+    right = centre - np.array([-d[1], d[0]]) * HALF
+    return left, right, centre
+
+
+def straight_lanes(
+    pts: Sequence[tuple[tuple[float, float], tuple[float, float]]],
+    successors: tuple[tuple[int, ...], ...],
+    *,
+    junction: tuple[int, ...] = (),
+    priority: np.ndarray | None = None,
+    traffic_light: np.ndarray | None = None,
+    light_ids: tuple[str, ...] = (),
+) -> LaneGraph:
+    """Straight lanes ``start -> end`` (driven that way, 14 m/s), linked by ``successors``.
+
+    ``junction`` lists the intersection lanes; ``priority`` / ``traffic_light`` default to
+    none anywhere.
+    """
+    lanes = [straight_lane(a, b) for a, b in pts]
+    n = len(lanes)
+    predecessors = tuple(tuple(a for a in range(n) if b in successors[a]) for b in range(n))
+    return LaneGraph(
+        ids=tuple(str(i) for i in range(n)),
+        left_m=tuple(ln[0] for ln in lanes),
+        right_m=tuple(ln[1] for ln in lanes),
+        centre_m=tuple(ln[2] for ln in lanes),
+        direction=np.ones(n, dtype=np.int64),
+        speed_limit_mps=np.full(n, 14.0),
+        successors=successors,
+        predecessors=predecessors,
+        left_neighbour=np.full(n, -1, dtype=np.int64),
+        right_neighbour=np.full(n, -1, dtype=np.int64),
+        left_opposite=np.zeros(n, dtype=bool),
+        right_opposite=np.zeros(n, dtype=bool),
+        is_intersection=np.array([i in junction for i in range(n)]),
+        priority=np.zeros(n, dtype=np.int64) if priority is None else priority,
+        traffic_light=np.full(n, -1, dtype=np.int64) if traffic_light is None else traffic_light,
+        light_ids=light_ids,
     )

@@ -4,8 +4,10 @@ Needs ``RSS_MAP_ORACLE_PYTHON``: an interpreter with ``ad-rss-map-integration`` 
 the packaging work-around of the reference notes §8.4 (see ``adrss_map_oracle.py``);
 skipped otherwise. Compares, pair by pair, the set of constellation types, the lon/lat
 distances of pairs that both sides model with one same/opposite-direction constellation,
-and the verdict (any dangerous constellation). docs/rss_scene.md lists the measured rates;
-the thresholds here guard against regressions.
+and the verdict (any dangerous constellation), in two modes on the same oracle answers:
+the default one (ad-rss' two documented defects not reproduced, their pairs counted apart)
+and ``[scene] reproduce_adrss_5_0_defects`` (raw agreement). docs/rss_scene.md lists the
+measured rates; the thresholds here guard against regressions.
 """
 
 import json
@@ -38,6 +40,11 @@ from workbench.rss_adapter import lane_graph_from_map
 ORACLE = Path(__file__).with_name("adrss_map_oracle.py")
 N_PAIRS = 500
 SETTINGS = SceneSettings(restrict_speed_limit_mode=RestrictSpeedLimitMode.NONE)
+#: The same settings with ad-rss 5.0's defects reproduced (``[scene]
+#: reproduce_adrss_5_0_defects``).
+COMPAT_SETTINGS = SceneSettings(
+    restrict_speed_limit_mode=RestrictSpeedLimitMode.NONE, reproduce_adrss_5_0_defects=True
+)
 
 
 def _pose(prep: PreparedGraph, rng: np.random.Generator, lane: int) -> dict[str, float]:
@@ -92,9 +99,12 @@ def pair_inputs(pair: dict[str, Any]) -> tuple[SceneEgo, SceneObjects]:
     return ego, objects
 
 
-def ours(prep: PreparedGraph, pair: dict[str, Any]) -> dict[str, Any]:
+def ours(
+    prep: PreparedGraph, pair: dict[str, Any], settings: SceneSettings = SETTINGS
+) -> dict[str, Any]:
+    """Our situations of one pair in the oracle's answer format (types, distances, speeds)."""
     ego, objects = pair_inputs(pair)
-    scene = create_scene(prep, ego, objects, SETTINGS)
+    scene = create_scene(prep, ego, objects, settings)
     out: dict[str, Any] = {"situations": [], "dangerous": []}
     if scene.constellations:
         result, _ = check_frame(stack_constellations(scene.constellations), DEFAULT_EGO_DYNAMICS)
@@ -271,7 +281,11 @@ def test_town01_borders_are_ad_maps(external_dir):
     assert max(gaps.values()) < 1e-6
 
 
-def test_town01_against_ad_rss_map_integration(external_dir):
+@pytest.fixture(scope="module")
+def town01_answers(
+    external_dir: Path,
+) -> tuple[PreparedGraph, list[dict[str, Any]], list[dict[str, Any]]]:
+    """The prepared Town01 graph, the seeded pairs and the oracle's answers (asked once)."""
     oracle_python = _oracle_python()
     town = external_dir / "maps" / "Town01.xodr"
     prep = prepare(lane_graph_from_map(read_opendrive(town)))
@@ -299,6 +313,14 @@ def test_town01_against_ad_rss_map_integration(external_dir):
     for proc, (out, err) in zip(procs, outputs, strict=True):
         assert proc.returncode == 0, f"oracle failed: {err[-2000:]}"
         theirs += json.loads(out.strip().splitlines()[-1])
+    return prep, pairs, theirs
+
+
+def test_town01_against_ad_rss_map_integration(
+    town01_answers: tuple[PreparedGraph, list[dict[str, Any]], list[dict[str, Any]]],
+) -> None:
+    """Default mode: ad-rss 5.0's two documented defects are not reproduced (counted apart)."""
+    prep, pairs, theirs = town01_answers
     defects = [turn_defect(prep, p, answer) for p, answer in zip(pairs, theirs, strict=True)]
     stats = compare([ours(prep, p) for p in pairs], theirs, defects)
     sys.stderr.write(f"ad-rss map integration cross-check: {stats}\n")
@@ -312,6 +334,26 @@ def test_town01_against_ad_rss_map_integration(external_dir):
     assert stats["verdicts"] >= 0.935
     assert stats["verdicts_without_swapped_headings"] >= 0.985
     assert stats["verdicts_outside_defects"] >= 0.995
+    assert stats["lat_within_0_2"] >= 0.995
+    assert stats["lat_within_0_01"] >= 0.99
+    assert stats["lon_within_0_5"] >= 0.96
+    assert stats["lon_within_0_01"] >= 0.905
+    assert stats["lon_median_m"] <= 0.0005
+
+
+def test_town01_compat_mode_reproduces_ad_rss(
+    town01_answers: tuple[PreparedGraph, list[dict[str, Any]], list[dict[str, Any]]],
+) -> None:
+    """``[scene] reproduce_adrss_5_0_defects``: raw agreement, nothing counted apart."""
+    prep, pairs, theirs = town01_answers
+    mine = [ours(prep, p, COMPAT_SETTINGS) for p in pairs]
+    stats = compare(mine, theirs, [False] * len(pairs))
+    sys.stderr.write(f"ad-rss map integration cross-check, compat mode: {stats}\n")
+    # measured (docs/rss_scene.md): types 99.8 % (pair 473: ad-map's duplicate filter of
+    # routes to lanes side by side), verdicts 100 %, lateral within 0.2 m 100 % / 1 cm
+    # 99.2 %, longitudinal within 0.5 m 97.0 % / 1 cm 92.0 %
+    assert stats["types"] >= 0.996
+    assert stats["verdicts"] >= 0.996
     assert stats["lat_within_0_2"] >= 0.995
     assert stats["lat_within_0_01"] >= 0.99
     assert stats["lon_within_0_5"] >= 0.96

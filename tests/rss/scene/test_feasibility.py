@@ -24,7 +24,8 @@ from rss.scene import LaneGraph, create_scene, prepare
 from rss.scene.connecting import MIN_FEASIBILITY, Connecting, Kind, _drop_infeasible, heading_rating
 
 from .synthetic import ego, objects
-from .test_intersection import SETTINGS, _lane
+from .synthetic import straight_lane as _lane
+from .test_intersection import SETTINGS
 
 YAW = 0.05
 

@@ -7,22 +7,9 @@ from rss.model import ConstellationType, RoadSegmentType
 from rss.params import DEFAULT_EGO_DYNAMICS, RestrictSpeedLimitMode, SceneSettings
 from rss.scene import LaneGraph, Scene, create_scene, prepare
 
-from .synthetic import ego, objects
+from .synthetic import HALF, ego, objects, straight_lanes
 
 SETTINGS = SceneSettings(restrict_speed_limit_mode=RestrictSpeedLimitMode.NONE)
-HALF = 1.75
-
-
-def _lane(
-    start: tuple[float, float], end: tuple[float, float]
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    a, b = np.asarray(start, float), np.asarray(end, float)
-    t = np.linspace(0.0, 1.0, 11)[:, None]
-    centre = a + (b - a) * t
-    d = (b - a) / np.linalg.norm(b - a)
-    left = centre + np.array([-d[1], d[0]]) * HALF
-    right = centre - np.array([-d[1], d[0]]) * HALF
-    return left, right, centre
 
 
 def crossing(ego_priority: int, other_priority: int, *, light_on_ego: bool = False) -> LaneGraph:
@@ -36,27 +23,16 @@ def crossing(ego_priority: int, other_priority: int, *, light_on_ego: bool = Fal
         ((-5, 0), (5, 0)),
         ((5, 0), (100, 0)),
     ]
-    lanes = [_lane(a, b) for a, b in pts]
-    n = len(lanes)
+    n = len(pts)
     light = np.full(n, -1, dtype=np.int64)
     if light_on_ego:
         light[1] = 0
     priority = np.zeros(n, dtype=np.int64)
     priority[1], priority[4] = ego_priority, other_priority
-    return LaneGraph(
-        ids=tuple(str(i) for i in range(n)),
-        left_m=tuple(ln[0] for ln in lanes),
-        right_m=tuple(ln[1] for ln in lanes),
-        centre_m=tuple(ln[2] for ln in lanes),
-        direction=np.ones(n, dtype=np.int64),
-        speed_limit_mps=np.full(n, 14.0),
-        successors=((1,), (2,), (), (4,), (5,), ()),
-        predecessors=((), (0,), (1,), (), (3,), (4,)),
-        left_neighbour=np.full(n, -1, dtype=np.int64),
-        right_neighbour=np.full(n, -1, dtype=np.int64),
-        left_opposite=np.zeros(n, dtype=bool),
-        right_opposite=np.zeros(n, dtype=bool),
-        is_intersection=np.array([False, True, False, False, True, False]),
+    return straight_lanes(
+        pts,
+        ((1,), (2,), (), (4,), (5,), ()),
+        junction=(1, 4),
         priority=priority,
         traffic_light=light,
         light_ids=("tl",),

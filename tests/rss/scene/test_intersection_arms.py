@@ -103,3 +103,22 @@ def test_bucket_boundaries_match_ad_map_sectors() -> None:
     assert _bucket(math.radians(270.0)) == Arm.LEFT
     assert _bucket(math.radians(315.1)) == Arm.UTURN
     assert _bucket(math.radians(-90.0)) == Arm.LEFT
+
+
+def test_town01_compat_mode_takes_the_left_turn_for_a_u_turn(town01: PreparedGraph) -> None:
+    """``[scene] reproduce_adrss_5_0_defects``: ad-map 5.0's arms on Town01.
+
+    Measured with the oracle (``Intersection.turnDirection`` of its predicted routes): the
+    left turn 180151 -> 40151 (our 18_0_1 -> 4_0_1) is a U-turn, and on that route the
+    oncoming straight route 2960149 -> 180149 is opposite (it reaches the "outgoing" U-turn
+    arm at 180149, which is also the arm the ego came from).
+    """
+    prep = town01
+    left = _route(prep, "18_0_1", "304_0_1", "4_0_1")
+    oncoming = _route(prep, "17_0_-1", "296_0_-1", "18_0_-1")
+    j = junction_list(prep)[_lane(prep, "304_0_1")]
+    arms = intersection_arms(prep, j, _lane(prep, "18_0_1"), admap_defects=True)
+    assert arms[_lane(prep, "4_0_1")] == Arm.UTURN
+    (span,) = junctions_on(prep, left)
+    assert relation(prep, left, span, oncoming, admap_defects=True) == Relation.OPPOSITE
+    assert relation(prep, left, span, oncoming) == Relation.CROSSING

@@ -29,7 +29,8 @@ from rss.scene.matching import match_boxes
 from rss.scene.routes import RouteTree
 
 from .synthetic import ego, objects
-from .test_intersection import _lane, crossing
+from .synthetic import straight_lane as _lane
+from .test_intersection import crossing
 
 SETTINGS = SceneSettings(restrict_speed_limit_mode=RestrictSpeedLimitMode.NONE)
 ANGLE = np.radians(60.0)

@@ -105,7 +105,11 @@ def test_rss_params_file_changes_the_dynamics(tmp_path):
 
 @pytest.mark.parametrize(
     ("text", "message"),
-    [("[car]\nbrake_min = 4\n", "brakes are negative"), ("[ego\n", "TOML")],
+    [
+        ("[car]\nbrake_min = 4\n", "brakes are negative"),
+        ("[ego\n", "TOML"),
+        ("[scene]\nreproduce_adrss_5_0_defects = 'yes'\n", "must be true or false"),
+    ],
 )
 def test_bad_rss_params_are_one_line_errors(tmp_path, capsys, text, message):
     path = tmp_path / "bad.toml"
