@@ -32,6 +32,7 @@ from rss.scene.admap_nearest import (
     range_of,
     segments,
 )
+from rss.scene.align import Aligner
 from rss.scene.cache import GraphScalars, LaneSegmentCache
 from rss.scene.polylines import Polylines, polylines
 
@@ -177,6 +178,11 @@ class PreparedGraph:
     def lane_segments(self) -> LaneSegmentCache:
         """Lane segments of road areas, built once per lane and orientation."""
         return LaneSegmentCache(self)
+
+    @functools.cached_property
+    def aligner(self) -> Aligner:
+        """ad-map's aligned cuts of lanes side by side (``rss.scene.align``)."""
+        return Aligner(self)
 
     @functools.cached_property
     def border_segments(self) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
