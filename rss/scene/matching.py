@@ -69,8 +69,10 @@ _REACH_MARGIN_M = 1.5
 _ALONG_COS = 0.5
 #: A footprint vertex this close to a box corner is that corner (a lattice point).
 _CORNER_TOL_M = 1e-7
-#: A point projecting onto a lane end counts as in the lane only this close (ad-map).
-_END_MATCH_M = 0.05 + DISTANCE_TOL_M
+#: A point projecting onto a lane end counts as in the lane only this close (ad-map 3.0's
+#: ``isLongitudinalInLaneMatch``: 0.1 m, earlier releases 5 cm), so every point matching
+#: there does.
+_END_MATCH_M = 0.1 + DISTANCE_TOL_M
 #: ad-physics' tolerance of parametric equality (``ParametricValue::cPrecisionValue``).
 _END_TOL = 1e-6
 #: Lattice points evaluated to either side of where a box side's inner lateral extreme
@@ -286,7 +288,7 @@ def _regions(  # noqa: PLR0917 - the pairs' arrays
     """Per pair: whether it has a region, and its lon / lat ranges (ad-map's ``addLaneRegions``).
 
     A region needs one point inside the lane (lat in [0, 1], not beyond a lane end by
-    5 cm or more); every matching point widens it, lat clamped to the borders.
+    more than 0.1 m); every matching point widens it, lat clamped to the borders.
     """
     # Curved borders are searched only near the box centre's station (scaled from the
     # centre line to each border).

@@ -2,7 +2,7 @@
 
 The reference samples every box on ad-map's full lattice (steps of at most 0.1 m, edges
 included), matches every lattice point to every lane one point at a time (nearest points
-on both borders, ad-map's first-of-nearly-equal-segments rule, its 0.1 m / 5 cm / 1 mm
+on both borders, ad-map's first-of-nearly-equal-segments rule, its 0.1 m / 1 mm
 tolerances) and merges the matches as ``AdMapMatching::addLaneRegions`` does. The fast
 version evaluates only the points that can hold the extremes, so the two agree closely
 but not to the last bit (cut points of shallow crossings, parabola vertices).
@@ -102,7 +102,7 @@ def _reference(
             if dist >= 0.101:
                 continue
             end = lon < 1e-6 or lon > 1.0 - 1e-6
-            actual = 0.0 <= lat <= 1.0 and not (end and dist >= 0.051)
+            actual = 0.0 <= lat <= 1.0 and not (end and dist >= 0.101)
             (inside if actual else rest).append((lon, min(max(lat, 0.0), 1.0)))
     if not inside:
         return None
