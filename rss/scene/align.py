@@ -47,7 +47,7 @@ _REACH_SHARE = 0.1
 class Aligner:
     """ad-map's aligned cuts on one prepared graph (see module docstring).
 
-    Holds the (simplified) borders of ``prep.borders`` as Python lists for scalar access:
+    Holds the borders of ``prep.borders`` as Python lists for scalar access:
     line ``l`` is the left border of lane ``l``, line ``L + l`` its right border.
     """
 
