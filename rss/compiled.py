@@ -47,6 +47,7 @@ _LOG = logging.getLogger(__name__)
 #: The compiled modules (the per-object Python of scene creation).
 MODULES = (
     "rss.batch",
+    "rss.scene.align",
     "rss.scene.cache",
     "rss.scene.connecting",
     "rss.scene.corridor",

@@ -173,7 +173,7 @@ def nearest_arcs(
     """Where ad-map cuts a lane border for centre parametric positions ``t`` (vectorised).
 
     Args:
-        prep: The prepared graph (its simplified ``borders``).
+        prep: The prepared graph (its ``borders``).
         lines: ``(Q,)`` border lines: ``l`` the left border of lane ``l``, ``L + l`` its
             right border.
         t: ``(Q,)`` parametric positions along the lane's point order (0..1).
@@ -182,7 +182,7 @@ def nearest_arcs(
         reach_m: See ``near_m``.
 
     Returns:
-        ``(Q,)`` arc lengths [m] along the simplified border of the nearest points (with
+        ``(Q,)`` arc lengths [m] along the border of the nearest points (with
         ad-map's tie rule) of the centre points ``c(t)``.
     """
     borders = prep.borders

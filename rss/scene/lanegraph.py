@@ -33,6 +33,7 @@ from rss.scene.admap_nearest import (
     segment_window,
     segments,
 )
+from rss.scene.align import Aligner
 from rss.scene.cache import GraphScalars, LaneSegmentCache
 from rss.scene.polylines import Polylines, polylines
 from rss.scene.segment_cells import SegmentCells, narrowed, segment_cells
@@ -143,9 +144,9 @@ class PreparedGraph:
         line_backwards: ``(2 L,)`` per line of ``borders``: ad-map's point order runs
             against ours.
         centre: ``centre_lines`` as flat arrays (vectorised linear referencing).
-        borders: The (simplified) borders as flat arrays: line ``l`` is the left border of
-            lane ``l``, line ``L + l`` its right border.
-        straight: ``(L,)`` both (simplified) borders are single segments.
+        borders: The borders (every given vertex) as flat arrays: line ``l`` is the left
+            border of lane ``l``, line ``L + l`` its right border.
+        straight: ``(L,)`` both borders, simplified to ``SIMPLIFY_M``, are single segments.
         match_polygons: ``(L,)`` lane polygons grown by ``MATCH_DISTANCE_M`` (prepared).
         match_tree: STRtree over ``match_polygons``.
         match_outlines: Outer rings of ``match_polygons`` as flat arrays (of the largest
@@ -179,6 +180,11 @@ class PreparedGraph:
     def lane_segments(self) -> LaneSegmentCache:
         """Lane segments of road areas, built once per lane and orientation."""
         return LaneSegmentCache(self)
+
+    @functools.cached_property
+    def aligner(self) -> Aligner:
+        """ad-map's aligned cuts of lanes side by side (``rss.scene.align``)."""
+        return Aligner(self)
 
     @functools.cached_property
     def border_segments(self) -> FloatArray:
@@ -340,7 +346,12 @@ def prepare(graph: LaneGraph) -> PreparedGraph:
     )
     lefts = [shapely.LineString(line) for line in graph.left_m]
     rights = [shapely.LineString(line) for line in graph.right_m]
-    borders = shapely.simplify(np.array([*lefts, *rights], dtype=object), SIMPLIFY_M)
+    # The borders keep every vertex: ad-map measures cut lane pieces and aligns cuts on its
+    # own vertices, which a 1 cm simplification moves by up to 2 cm along a lane (a short
+    # end segment at a kink). Whether a lane counts as straight for box matching is
+    # decided on the simplified borders (collinear vertices do not bend a lane).
+    borders = np.array([*lefts, *rights], dtype=object)
+    simplified = shapely.simplify(borders, SIMPLIFY_M)
     match_polygons = shapely.buffer(polygons, MATCH_DISTANCE_M, join_style="mitre")
     shapely.prepare(match_polygons)
     left_len = np.array([_polyline_length(p) for p in graph.left_m])
@@ -383,7 +394,7 @@ def prepare(graph: LaneGraph) -> PreparedGraph:
         centre=polylines(centre),
         borders=polylines(borders),
         straight=np.all(
-            shapely.get_num_points(borders).reshape(2, len(graph)) == 2,  # noqa: PLR2004 - one segment
+            shapely.get_num_points(simplified).reshape(2, len(graph)) == 2,  # noqa: PLR2004 - one segment
             axis=0,
         ),
         match_polygons=match_polygons,

@@ -14,8 +14,11 @@ the lanes grown by 0.1 m -> index pairs)::
      right border ───────────────────────────▶  lat 1
 
 On curved lanes the lateral position along a box side is not linear: for boxes along the
-lane, samples on the sides give the extreme inside a side (a parabola through the best
-sample and its neighbours). Only the part of a box that lies on the map counts, so a
+lane, samples on the sides locate the extreme inside a side (a parabola through the best
+sample and its neighbours), and the lattice points round that place give its value (the
+parabola's own vertex overshoots by up to 2 cm where the nearest border segments change
+along the side). Every evaluated point is a lattice point, so no region reaches beyond
+ad-map's. Only the part of a box that lies on the map counts, so a
 vehicle partly off the map still gets regions for the lanes it touches; a box touching
 no lane gets none.
 """
@@ -39,6 +42,7 @@ from rss.scene.matching_points import (
     lattice_neighbours,
     matches_point,
     outline_crossings,
+    side_lattice,
 )
 from rss.scene.polylines import heading_at, interpolate
 
@@ -66,10 +70,15 @@ _REACH_MARGIN_M = 1.5
 _ALONG_COS = 0.5
 #: A footprint vertex this close to a box corner is that corner (a lattice point).
 _CORNER_TOL_M = 1e-7
-#: A point projecting onto a lane end counts as in the lane only this close (ad-map).
-_END_MATCH_M = 0.05 + DISTANCE_TOL_M
+#: A point projecting onto a lane end counts as in the lane only this close (ad-map 3.0's
+#: ``isLongitudinalInLaneMatch``: 0.1 m, earlier releases 5 cm), so every point matching
+#: there does.
+_END_MATCH_M = 0.1 + DISTANCE_TOL_M
 #: ad-physics' tolerance of parametric equality (``ParametricValue::cPrecisionValue``).
 _END_TOL = 1e-6
+#: Lattice points evaluated to either side of where a box side's inner lateral extreme
+#: seems to lie (``side_lattice``).
+_SIDE_STEPS = 5
 #: Anchor choice: a lane across the box heading counts like a centre this far outside.
 _MISALIGNED_M = 2.0
 
@@ -285,7 +294,7 @@ def _regions(  # noqa: PLR0917 - the pairs' arrays
     """Per pair: whether it has a region, and its lon / lat ranges (ad-map's ``addLaneRegions``).
 
     A region needs one point inside the lane (lat in [0, 1], not beyond a lane end by
-    5 cm or more); every matching point widens it, lat clamped to the borders.
+    more than 0.1 m); every matching point widens it, lat clamped to the borders.
     """
     # Curved borders are searched only near the box centre's station (scaled from the
     # centre line to each border).
@@ -315,11 +324,22 @@ def _regions(  # noqa: PLR0917 - the pairs' arrays
     np.maximum.at(lat_max, o, lat_m)
     if c.bent.size:
         k = RING_POINTS * c.bent.size
-        lo, hi = edge_extremes(
-            lat[-k:].reshape(-1, RING_POINTS), member[-k:].reshape(-1, RING_POINTS)
+        ext = edge_extremes(lat[-k:].reshape(-1, RING_POINTS), member[-k:].reshape(-1, RING_POINTS))
+        lo_rows, hi_rows = np.flatnonzero(np.isfinite(ext.lo)), np.flatnonzero(np.isfinite(ext.hi))
+        rows = np.concatenate([lo_rows, hi_rows])
+        pair = c.bent[rows]
+        side = np.concatenate([ext.lo_side[lo_rows], ext.hi_side[hi_rows]])
+        back = np.concatenate([ext.lo_back[lo_rows], ext.hi_back[hi_rows]])
+        points = side_lattice(boxes, box_idx[pair], side, back, _SIDE_STEPS)
+        owner = np.repeat(pair, points.shape[1])
+        _, lat_s, dist_s = ad_map_positions(
+            graph, lane_idx[owner], points.reshape(-1, 2), near[:, owner], reach
         )
-        lat_min[c.bent] = np.minimum(lat_min[c.bent], np.clip(lo, 0.0, 1.0))
-        lat_max[c.bent] = np.maximum(lat_max[c.bent], np.clip(hi, 0.0, 1.0))
+        ok = matches_point(dist_s)
+        lat_s = np.clip(lat_s, 0.0, 1.0)
+        lo_n = len(lo_rows) * points.shape[1]
+        np.minimum.at(lat_min, owner[:lo_n][ok[:lo_n]], lat_s[:lo_n][ok[:lo_n]])
+        np.maximum.at(lat_max, owner[lo_n:][ok[lo_n:]], lat_s[lo_n:][ok[lo_n:]])
     return has, np.clip(lon_min, 0.0, 1.0), np.clip(lon_max, 0.0, 1.0), lat_min, lat_max
 
 

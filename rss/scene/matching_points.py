@@ -19,7 +19,7 @@ hold a region's extremes (see there); this module holds the per-point pieces.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
@@ -34,12 +34,14 @@ if TYPE_CHECKING:
 __all__ = [
     "DISTANCE_TOL_M",
     "RING_POINTS",
+    "SideExtremes",
     "ad_map_positions",
     "box_ring",
     "edge_extremes",
     "lattice_neighbours",
     "matches_point",
     "outline_crossings",
+    "side_lattice",
 ]
 
 #: ad-map's lattice step never drops below 0.1 m.
@@ -182,33 +184,48 @@ def outline_crossings(
     return a[k, edge] + t[k, edge][:, None] * e[k, edge], row[k]
 
 
+def _lattice_count(boxes: BoxArrays, box_idx: IntArray) -> FloatArray:
+    """Lattice steps along the length of each box (ad-map: ``ceil(length / 0.1)``)."""
+    out: FloatArray = np.ceil(boxes.length_m[box_idx] / _MIN_STRIDE_M)
+    return out
+
+
 def box_ring(boxes: BoxArrays, box_idx: IntArray) -> FloatArray:
-    """``(P, RING_POINTS, 2)`` samples on the outline of each box.
+    """``(P, RING_POINTS, 2)`` samples on the outline of each box (lattice points).
 
     Points ``0..3`` are the corners front-left, front-right, rear-right, rear-left;
-    ``4..6`` and ``7..9`` the quarter points of the right and the left side. The ends get
-    no inner samples: a lateral extreme inside them (a box across a curved lane) is left
-    to the corners.
+    ``4..6`` and ``7..9`` the lattice points nearest to the quarter points of the right
+    and the left side. The ends get no inner samples: a lateral extreme inside them (a
+    box across a curved lane) is left to the corners.
     """
     front_left, along, left = _frame(boxes, box_idx)
     length, width = boxes.length_m[box_idx], boxes.width_m[box_idx]
-    back = np.array([0.0, 0.0, 1.0, 1.0, 0.25, 0.5, 0.75, 0.75, 0.5, 0.25])
+    n_l = _lattice_count(boxes, box_idx)[:, None]
+    back = np.floor(_RING_BACK[None] * n_l + 0.5) / n_l
     right = np.array([0.0, 1.0, 1.0, 0.0, 1.0, 1.0, 1.0, 0.0, 0.0, 0.0])
-    db = (back[None] * length[:, None])[..., None] * along[:, None, :]
+    db = (back * length[:, None])[..., None] * along[:, None, :]
     dr = (right[None] * width[:, None])[..., None] * left[:, None, :]
     out: FloatArray = front_left[:, None, :] - db - dr
     return out
 
 
-def _local_extremes(y: FloatArray, member: BoolArray) -> tuple[FloatArray, FloatArray]:
-    """Extremes of samples ``y`` ``(E, K)`` along straight edges, refined between samples.
+#: Share of the length behind the front of each ``box_ring`` point.
+_RING_BACK = np.array([0.0, 0.0, 1.0, 1.0, 0.25, 0.5, 0.75, 0.75, 0.5, 0.25])
+
+
+def _local_extremes(
+    y: FloatArray, member: BoolArray
+) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    """Extremes of samples ``y`` ``(E, K)`` along straight edges, located between samples.
 
     Around the best inner sample, the parabola through it and its two neighbours (all
     matching) gives the extreme; ``+inf`` / ``-inf`` where the best sample is an end or
-    a neighbour does not match (the ends themselves count as points anyway).
+    a neighbour does not match (the ends themselves count as points anyway). Also returns
+    where the two extremes lie (sample index, fractional; NaN where there is none).
     """
     rows = np.arange(len(y))
     out = []
+    where = []
     for sign in (1.0, -1.0):
         v = np.where(member, sign * y, np.inf)
         k = np.argmin(v, axis=1)
@@ -219,17 +236,81 @@ def _local_extremes(y: FloatArray, member: BoolArray) -> tuple[FloatArray, Float
         y0, y1, y2 = np.where(ok, y0, 0.0), np.where(ok, y1, 0.0), np.where(ok, y2, 0.0)
         curv = y0 - 2.0 * y1 + y2
         ok &= curv > 0.0
-        vertex = y1 - (y0 - y2) ** 2 / (8.0 * np.where(ok, curv, 1.0))
+        safe = np.where(ok, curv, 1.0)
+        vertex = y1 - (y0 - y2) ** 2 / (8.0 * safe)
         out.append(np.where(ok, sign * vertex, sign * np.inf))
-    return out[0], out[1]
+        where.append(np.where(ok, k + (y0 - y2) / (2.0 * safe), np.nan))
+    return out[0], out[1], where[0], where[1]
 
 
-def edge_extremes(lat: FloatArray, member: BoolArray) -> tuple[FloatArray, FloatArray]:
+class SideExtremes(NamedTuple):
+    """Lateral extremes inside the long sides of box rings, ``(P,)`` each.
+
+    Attributes:
+        lo: Smallest ``lat`` (``+inf`` where no side has an inner minimum).
+        hi: Largest ``lat`` (``-inf`` where none).
+        lo_side: Side holding ``lo``: 0 right, 1 left.
+        lo_back: Where on it: share of the length behind the front (NaN where none).
+        hi_side: Side holding ``hi``.
+        hi_back: Where on it.
+    """
+
+    lo: FloatArray
+    hi: FloatArray
+    lo_side: IntArray
+    lo_back: FloatArray
+    hi_side: IntArray
+    hi_back: FloatArray
+
+
+def edge_extremes(lat: FloatArray, member: BoolArray) -> SideExtremes:
     """Smallest and largest ``lat`` between the samples of each box ring ``(P, RING_POINTS)``.
 
     Along a box side over a curved lane the lateral position is smooth but not linear:
     its extreme may lie inside the side (the middle of the side facing the inside of a
-    curve). Pairs without an inner extreme give ``+inf`` / ``-inf``.
+    curve). The parabola through the samples locates it only roughly (the lateral
+    position bends where the nearest border segments change): :func:`side_lattice` gives
+    the lattice points round it.
     """
-    lo, hi = _local_extremes(lat[:, _SIDES].reshape(-1, 5), member[:, _SIDES].reshape(-1, 5))
-    return lo.reshape(len(lat), 2).min(axis=1), hi.reshape(len(lat), 2).max(axis=1)
+    lo, hi, lo_at, hi_at = (
+        v.reshape(len(lat), 2)
+        for v in _local_extremes(lat[:, _SIDES].reshape(-1, 5), member[:, _SIDES].reshape(-1, 5))
+    )
+    rows = np.arange(len(lat))
+    lo_side, hi_side = np.argmin(lo, axis=1), np.argmax(hi, axis=1)
+    # the samples of a side lie a quarter of the length apart: rearwards on the right
+    # side, frontwards on the left one
+    lo_at, hi_at = lo_at[rows, lo_side] / 4.0, hi_at[rows, hi_side] / 4.0
+    return SideExtremes(
+        lo[rows, lo_side],
+        hi[rows, hi_side],
+        lo_side,
+        np.where(lo_side == 0, lo_at, 1.0 - lo_at),
+        hi_side,
+        np.where(hi_side == 0, hi_at, 1.0 - hi_at),
+    )
+
+
+def side_lattice(
+    boxes: BoxArrays, box_idx: IntArray, side: IntArray, back: FloatArray, steps: int
+) -> FloatArray:
+    """ad-map's lattice points on a long side of boxes round a place on it.
+
+    Args:
+        boxes: The boxes.
+        box_idx: ``(Q,)`` the box of each place.
+        side: ``(Q,)`` 0 the right side, 1 the left one.
+        back: ``(Q,)`` share of the length behind the front.
+        steps: Lattice steps taken to either side of the nearest lattice point.
+
+    Returns:
+        ``(Q, 2 steps + 1, 2)`` lattice points (clamped to the side's ends).
+    """
+    front_left, along, left = _frame(boxes, box_idx)
+    n_l = _lattice_count(boxes, box_idx)
+    i = np.floor(back * n_l + 0.5)[:, None] + np.arange(-steps, steps + 1)[None]
+    i = np.clip(i, 0.0, n_l[:, None])
+    db = (i * (boxes.length_m[box_idx] / n_l)[:, None])[..., None] * along[:, None, :]
+    dr = ((1 - side) * boxes.width_m[box_idx])[:, None, None] * left[:, None, :]
+    out: FloatArray = front_left[:, None, :] - db - dr
+    return out

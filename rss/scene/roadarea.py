@@ -39,6 +39,7 @@ if TYPE_CHECKING:
     from collections.abc import Sequence
 
     from rss.batch import FloatArray
+    from rss.scene.align import Aligner
     from rss.scene.cache import LaneMiddle
     from rss.scene.lanegraph import PreparedGraph
     from rss.scene.matching import Matches
@@ -73,7 +74,11 @@ class SegmentPlan:
         p0: Kept window start (road-area direction, parametric).
         p1: Kept window end.
         whole: ``(id offset, conversion)`` of the uncut plan, kept by :func:`build_road`
-            (plans shared by memos skip the lookup; only ``p0`` / ``p1`` may change).
+            (plans shared by memos skip the lookup; only ``p0`` / ``p1`` / ``anchors``
+            may change).
+        anchors: The lanes cut exactly at ``p0`` and at ``p1`` (-1: none, every lane is
+            cut at the same fraction); the other lanes are cut where ad-map aligns them
+            (``rss.scene.align``).
     """
 
     lanes: list[Step]
@@ -83,6 +88,7 @@ class SegmentPlan:
     p0: float = 0.0
     p1: float = 1.0
     whole: tuple[int, BuiltSegment] | None = field(default=None, repr=False, compare=False)
+    anchors: tuple[int, int] = (-1, -1)
 
 
 def fresh_ends(plans: Sequence[SegmentPlan], *, last: bool = True) -> list[SegmentPlan]:
@@ -94,7 +100,9 @@ def fresh_ends(plans: Sequence[SegmentPlan], *, last: bool = True) -> list[Segme
     out = list(plans)
     for k in {0, len(out) - 1 if last else 0} if out else ():
         p = out[k]
-        out[k] = SegmentPlan(p.lanes, p.segment_type, p.before_m, p.after_m, p.p0, p.p1, p.whole)
+        out[k] = SegmentPlan(
+            p.lanes, p.segment_type, p.before_m, p.after_m, p.p0, p.p1, p.whole, p.anchors
+        )
     return out
 
 
@@ -181,12 +189,20 @@ def cut_between(
 def cut_at(
     plans: list[SegmentPlan], matches: Matches, cut: Between
 ) -> dict[int, tuple[int, float]]:
-    """Cut ``plans`` in place where :func:`between` says; the route ends at each box."""
+    """Cut ``plans`` in place where :func:`between` says; the route ends at each box.
+
+    Each end is cut exactly in the lane of the box region that reaches furthest towards
+    the other box, the lanes beside it where ad-map aligns them (``SegmentPlan.anchors``).
+    """
     (k0, p0), (k1, p1), rear_box, front_box = cut
     del plans[k1 + 1 :]
     del plans[:k0]
     plans[0].p0 = min(p0, 1.0 - 0.001)
     plans[-1].p1 = max(p1, plans[-1].p0 + 0.001)
+    first = _anchor(plans[0], matches, rear_box, front=True)
+    last = _anchor(plans[-1], matches, front_box, front=False)
+    plans[0].anchors = (first, plans[0].anchors[1])
+    plans[-1].anchors = (plans[-1].anchors[0], last)
     ends = {}
     for box, plan, at in ((rear_box, plans[0], plans[0].p0), (front_box, plans[-1], plans[-1].p1)):
         lanes = {region.lane for region in matches.regions(box)}
@@ -197,6 +213,20 @@ def cut_at(
                 break
         ends[box] = (lane, at if fwd else 1.0 - at)
     return ends
+
+
+def _anchor(plan: SegmentPlan, matches: Matches, box: int, *, front: bool) -> int:
+    """The lane of ``plan`` where ``box`` reaches furthest forward (``front``) or back."""
+    lanes = dict(plan.lanes)
+    best, lane = -math.inf, -1
+    for region in matches.regions(box):
+        fwd = lanes.get(region.lane)
+        if fwd is not None:
+            lo, hi = _road_param(region.lon_min, region.lon_max, forward=fwd)
+            reach = hi if front else -lo
+            if reach > best:
+                best, lane = reach, region.lane
+    return lane
 
 
 #: ad-map measures a lane's heading over this stretch [m] around the position.
@@ -364,7 +394,7 @@ def _built(
         id_offset,
     )
     if not uncut:
-        key = (*key, plan.p0, plan.p1)
+        key = (*key, plan.p0, plan.p1, plan.anchors)
     built = memo.get(key)
     if built is None:
         memo[key] = built = _segment(prep, plan, id_offset)
@@ -379,11 +409,11 @@ def _segment(prep: PreparedGraph, plan: SegmentPlan, id_offset: int) -> BuiltSeg
     speed_limits = prep.scalars.speed_limit_mps
     lanes = []
     placed = []
-    for lane, fwd in plan.lanes:
-        lanes.append(
-            segments.lane_segment(lane, forward=fwd, id_offset=id_offset, p0=plan.p0, p1=plan.p1)
-        )
-        placed.append((lane, PlacedLane(lane + id_offset, fwd, plan.p0, plan.p1)))
+    windows = []
+    for (lane, fwd), (p0, p1) in zip(plan.lanes, _windows(prep, plan), strict=True):
+        lanes.append(segments.lane_segment(lane, forward=fwd, id_offset=id_offset, p0=p0, p1=p1))
+        placed.append((lane, PlacedLane(lane + id_offset, fwd, p0, p1)))
+        windows.append((lane, *lane_window(p0, p1, forward=fwd)))
     segment = RoadSegment(
         lanes=tuple(lanes),
         segment_type=plan.segment_type,
@@ -391,8 +421,40 @@ def _segment(prep: PreparedGraph, plan: SegmentPlan, id_offset: int) -> BuiltSeg
         min_length_after_intersecting_area_m=plan.after_m,
     )
     finite = tuple(v for lane, _ in plan.lanes if math.isfinite(v := speed_limits[lane]))
-    windows = tuple((lane, *lane_window(plan.p0, plan.p1, forward=fwd)) for lane, fwd in plan.lanes)
-    return segment, tuple(placed), finite, windows
+    return segment, tuple(placed), finite, tuple(windows)
+
+
+def _windows(prep: PreparedGraph, plan: SegmentPlan) -> list[tuple[float, float]]:
+    """Each lane's kept window ``(p0, p1)`` (road-area direction) of a plan.
+
+    ``p0`` and ``p1`` for every lane, except that a cut end with an anchor lane is cut
+    exactly there only in the anchor, elsewhere where ad-map aligns it
+    (``rss.scene.align``); each window keeps at least 0.001.
+    """
+    p0, p1 = plan.p0, plan.p1
+    a0, a1 = plan.anchors
+    if (a0 < 0 or p0 <= 0.0) and (a1 < 0 or p1 >= 1.0):
+        return [(p0, p1)] * len(plan.lanes)
+    lanes = dict(plan.lanes)
+    aligner = prep.aligner
+    out = []
+    for lane, fwd in plan.lanes:
+        lo, hi = p0, p1
+        if a0 >= 0 and p0 > 0.0 and lane != a0:
+            lo = _aligned(aligner, (a0, lanes[a0]), p0, (lane, fwd))
+        if a1 >= 0 and p1 < 1.0 and lane != a1:
+            hi = _aligned(aligner, (a1, lanes[a1]), p1, (lane, fwd))
+        lo = min(lo, 1.0 - 0.001)
+        out.append((lo, max(hi, lo + 0.001)))
+    return out
+
+
+def _aligned(aligner: Aligner, anchor: Step, p: float, step: Step) -> float:
+    """Road-area position where ad-map cuts ``step`` when it cuts ``anchor`` at ``p``."""
+    t = p if anchor[1] else 1.0 - p
+    fwd = step[1]
+    at = aligner.aligned(anchor[0], t, step[0], p if fwd else 1.0 - p)
+    return min(max(at if fwd else 1.0 - at, 0.0), 1.0)
 
 
 def place_object(  # noqa: PLR0917 - one object: identity, matches, velocity

@@ -84,10 +84,24 @@ def test_box_over_a_lane_end_reaches_it() -> None:
     np.testing.assert_allclose(regions[1][:2], (197 / 200, 1.0), atol=1e-9)
 
 
+def test_box_just_beyond_a_lane_end_touches_it() -> None:
+    # ad-map 3.0 (``isLongitudinalInLaneMatch``): a point projecting onto a lane end is in
+    # the lane within 0.1 m of it (earlier releases: 5 cm). A box 8 cm beyond the end of
+    # lane 1 thus occupies it there, in a zero-length region; 12 cm beyond, it does not.
+    prep = prepare(straight_road(3))
+    centre = Y_LEFT[1] - WIDTH / 2
+    regions = _regions(prep, _box(200.08 + 2.0, centre))
+    assert list(regions) == [1]
+    half = 1.0 / WIDTH  # half the box width as a share of the lane width
+    np.testing.assert_allclose(regions[1], (1.0, 1.0, 0.5 - half, 0.5 + half), atol=1e-9)
+    assert _regions(prep, _box(200.12 + 2.0, centre)) == {}
+
+
 R_CENTRE = 10.0
-N_ARC = 1801
-#: Borders are simplified to 1 cm (``rss.scene.lanegraph.SIMPLIFY_M``): on a 10 m radius
-#: the chords cut the circle by up to 1 cm, which moves nearest points along the arc too.
+#: Chords of the arc cut the circle by up to 1 cm (ad-map's reader: 5 cm), which moves
+#: nearest points along the arc too. Much denser chords would put many segments within
+#: ad-map's 1 mm tie tolerance of a point's nearest one, and the first of them wins.
+N_ARC = 21
 LAT_TOL = 0.01 / WIDTH
 LON_TOL = 2e-3
 

@@ -2,7 +2,7 @@
 
 The reference samples every box on ad-map's full lattice (steps of at most 0.1 m, edges
 included), matches every lattice point to every lane one point at a time (nearest points
-on both borders, ad-map's first-of-nearly-equal-segments rule, its 0.1 m / 5 cm / 1 mm
+on both borders, ad-map's first-of-nearly-equal-segments rule, its 0.1 m / 1 mm
 tolerances) and merges the matches as ``AdMapMatching::addLaneRegions`` does. The fast
 version evaluates only the points that can hold the extremes, so the two agree closely
 but not to the last bit (cut points of shallow crossings, parabola vertices).
@@ -102,7 +102,7 @@ def _reference(
             if dist >= 0.101:
                 continue
             end = lon < 1e-6 or lon > 1.0 - 1e-6
-            actual = 0.0 <= lat <= 1.0 and not (end and dist >= 0.051)
+            actual = 0.0 <= lat <= 1.0 and not (end and dist >= 0.101)
             (inside if actual else rest).append((lon, min(max(lat, 0.0), 1.0)))
     if not inside:
         return None
@@ -162,3 +162,37 @@ def test_boxes_off_the_map_touch_nothing(town01) -> None:
     assert m.box.size == 0
     np.testing.assert_array_equal(m.anchor, [-1, -1, -1])
     assert m.starts == [0, 0, 0, 0]
+
+
+def test_regions_along_curves_are_lattice_extremes(town01) -> None:
+    """Boxes along curved lanes: every evaluated point is a lattice point, so no region
+    reaches beyond the full lattice's; the lateral extreme inside a box side is found
+    among the lattice points round where the side samples' parabola puts it."""
+    rng = np.random.default_rng(11)
+    curved = np.flatnonzero(~town01.straight)
+    rows = []
+    for _ in range(150):
+        c = town01.graph.centre_m[int(rng.choice(curved))]
+        k = int(rng.integers(0, len(c) - 1))
+        d = c[k + 1] - c[k]
+        xy = c[k] + rng.uniform() * d + rng.normal(0.0, 0.5, 2)
+        rows.append((*xy, np.arctan2(d[1], d[0]) + rng.normal(0.0, 0.1)))
+    arr = np.array(rows)
+    n = len(arr)
+    boxes = BoxArrays(arr[:, 0], arr[:, 1], arr[:, 2], np.full(n, 4.5), np.full(n, 1.9))
+    m = match_boxes(town01, boxes)
+    lat_errors = []
+    for box in range(n):
+        for r in m.rows(box):
+            lane = int(m.lane[r])
+            ref = _reference(town01, boxes, box, lane)
+            if ref is None:
+                continue
+            assert m.lon_min[r] >= ref[0] - 1e-9
+            assert m.lon_max[r] <= ref[1] + 1e-9
+            assert m.lat_min[r] >= ref[2] - 1e-9
+            assert m.lat_max[r] <= ref[3] + 1e-9
+            width = float(np.mean(town01.width_m[lane]))
+            lat_errors.append(max(m.lat_min[r] - ref[2], ref[3] - m.lat_max[r]) * width)
+    assert len(lat_errors) > 300
+    assert np.mean(np.array(lat_errors) < 1e-3) >= 0.95

@@ -158,3 +158,35 @@ def test_stations_are_increasing_from_zero_to_one(turn: PreparedGraph) -> None:
     assert np.all(np.diff(t) > 0.0)
     # Away from the jumps a table is exact; stations are few (linear runs are dropped).
     assert len(t) < 40 * (len(turn.graph.left_m[0]) + len(turn.graph.right_m[0]))
+
+
+def test_cuts_are_measured_on_every_given_vertex() -> None:
+    # The left border bends by 8 mm over its last 2 cm (less than the 1 cm a simplified
+    # border would drop): the centre point at t = 1 has its nearest left point at the
+    # bend (20, 0), not at the end, so the left piece of [0.5, 1] ends 2 cm early.
+    left = np.array([[0.0, 0.0], [20.0, 0.0], [20.02, 0.008]])
+    right = np.array([[0.0, -3.0], [20.02, -3.0]])
+    one = np.ones(1, dtype=np.int64)
+    graph = LaneGraph(
+        ids=("kinked",),
+        left_m=(left,),
+        right_m=(right,),
+        centre_m=((left[[0, 2]] + right) / 2,),
+        direction=one * int(LaneDrivingDirection.Positive),
+        speed_limit_mps=np.full(1, 10.0),
+        successors=((),),
+        predecessors=((),),
+        left_neighbour=-one,
+        right_neighbour=-one,
+        left_opposite=np.zeros(1, dtype=bool),
+        right_opposite=np.zeros(1, dtype=bool),
+        is_intersection=np.zeros(1, dtype=bool),
+        priority=0 * one,
+        traffic_light=-one,
+    )
+    seg = prepare(graph).lane_segments.lane_segment(0, forward=True, p0=0.5, p1=1.0)
+    # c(0.5): halfway along each border, (x_l + x_r) / 2 with y = -1.5; its nearest left
+    # point lies straight above it, its nearest right point straight below
+    x_mid = (0.5 * (20.0 + np.hypot(0.02, 0.008)) + 0.5 * 20.02) / 2
+    assert seg.length_min_m == pytest.approx(20.0 - x_mid, abs=1e-9)  # left: to the bend
+    assert seg.length_max_m == pytest.approx(20.02 - x_mid, abs=1e-9)  # right: to its end
