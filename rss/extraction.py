@@ -175,22 +175,21 @@ def _other_extents(
 ) -> Extents:
     """The other object in the ego road (non-intersection) or its own road (intersection).
 
-    Each is computed only for the constellations that need it.
+    The intersecting road areas are computed only for the constellations that need them.
     """
     if not intersection.any():
         return place(batch.other, ego_table)
     if intersection.all():
         return object_extents(batch.other, batch.intersecting_road)
-    cross_rows, same_rows = np.flatnonzero(intersection), np.flatnonzero(~intersection)
+    cross_rows = np.flatnonzero(intersection)
     cross = object_extents(
         take_rows(batch.other, cross_rows), take_rows(batch.intersecting_road, cross_rows)
     )
-    same = object_extents(take_rows(batch.other, same_rows), take_rows(batch.ego_road, same_rows))
+    same = place(batch.other, ego_table)  # row by row, so its cross rows can be replaced
     fields = {}
     for name in Extents.__dataclass_fields__:
-        a = getattr(same, name)
-        merged = np.empty(batch.size, dtype=a.dtype)
-        merged[same_rows], merged[cross_rows] = a, getattr(cross, name)
+        merged = getattr(same, name).copy()
+        merged[cross_rows] = getattr(cross, name)
         fields[name] = merged
     return Extents(**fields)
 

@@ -34,13 +34,17 @@ _P = DISTANCE_PRECISION
 
 
 def pick_dynamics(mask: BoolArray, a: DynamicsArrays, b: DynamicsArrays) -> DynamicsArrays:
-    """Row-wise choice between two dynamics arrays (``a`` where ``mask``)."""
-    return type(a)(
-        **{
-            name: np.where(mask, getattr(a, name), getattr(b, name))
-            for name in a.__dataclass_fields__
-        }
+    """Row-wise choice between two dynamics arrays (``a`` where ``mask``).
+
+    One ``np.where`` over all fields stacked (``(D, C)``), not one per field.
+    """
+    names = tuple(a.__dataclass_fields__)
+    chosen = np.where(
+        mask,
+        np.stack([getattr(a, name) for name in names]),
+        np.stack([getattr(b, n) for n in names]),
     )
+    return type(a)(**dict(zip(names, chosen, strict=True)))
 
 
 def pick(mask: BoolArray, a: FloatArray, b: FloatArray) -> FloatArray:

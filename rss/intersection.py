@@ -28,7 +28,14 @@ from rss.physics import (
 from rss.states import LongitudinalPosition, RssStateEvaluator
 
 if TYPE_CHECKING:
-    from rss.batch import BoolArray, ConstellationBatch, FloatArray, IntArray
+    from rss.batch import (
+        BoolArray,
+        ConstellationBatch,
+        DynamicsArrays,
+        FloatArray,
+        IntArray,
+        ObjectArrays,
+    )
     from rss.extraction import Relative
 
 __all__ = ["IntersectionState", "intersection_checks"]
@@ -46,13 +53,15 @@ class IntersectionState:
     NO_TIME_OVERLAP = 3
 
 
-def _intersection_rows(
-    batch: ConstellationBatch, rel: Relative
+def _intersection_rows(  # noqa: PLR0917  (the parts of a batch it reads)
+    ctype: IntArray,
+    ego: ObjectArrays,
+    oth: ObjectArrays,
+    ego_d: DynamicsArrays,
+    oth_d: DynamicsArrays,
+    rel: Relative,
 ) -> tuple[BoolArray, IntArray, FloatArray, FloatArray, IntArray]:
     """Intersection checks in ad-rss' order; the first success wins."""
-    ego_d, oth_d = batch.ego_dynamics, batch.other_dynamics
-    ego, oth = batch.ego, batch.other
-    ctype = batch.constellation_type
     ego_prio = ctype == ConstellationType.IntersectionEgoHasPriority
     other_prio = ctype == ConstellationType.IntersectionObjectHasPriority
 
@@ -165,8 +174,15 @@ def intersection_checks(
     )
     rows = np.flatnonzero(intersection)
     if rows.size:
-        for target, values in zip(
-            out, _intersection_rows(take_rows(batch, rows), take_rows(rel, rows)), strict=True
-        ):
+        # only the parts the checks read (not the road areas)
+        checked = _intersection_rows(
+            batch.constellation_type[rows],
+            take_rows(batch.ego, rows),
+            take_rows(batch.other, rows),
+            take_rows(batch.ego_dynamics, rows),
+            take_rows(batch.other_dynamics, rows),
+            take_rows(rel, rows),
+        )
+        for target, values in zip(out, checked, strict=True):
             target[rows] = values
     return out
