@@ -89,37 +89,40 @@ def _intersection_rows(  # noqa: PLR0917  (the parts of a batch it reads)
     safe3 = ~able & gt(rel.lon_distance_m, front_dist, _P)
 
     cap = ego_d.max_speed_on_acceleration_mps  # ad-rss uses the ego's cap for both vehicles
-    reach_ego = time_to_cover_distance(
-        ego.speed_lon_max_mps,
+    # the four times in one vectorised call: rows reach ego, leave ego, reach other,
+    # leave other (``(4, n)``; the cap broadcasts)
+    reach_ego, leave_ego, reach_oth, leave_oth = time_to_cover_distance(
+        np.stack(
+            [
+                ego.speed_lon_max_mps,
+                ego.speed_lon_min_mps,
+                oth.speed_lon_max_mps,
+                oth.speed_lon_min_mps,
+            ]
+        ),
         cap,
-        ego_d.response_time_s,
-        ego_d.accel_max_mps2,
-        ego_d.brake_min_mps2,
-        rel.ego_dist_to_enter_m,
-    )
-    leave_ego = time_to_cover_distance(
-        ego.speed_lon_min_mps,
-        cap,
-        ego_d.response_time_s,
-        ego_d.brake_max_mps2,
-        ego_d.brake_max_mps2,
-        rel.ego_dist_to_leave_m,
-    )
-    reach_oth = time_to_cover_distance(
-        oth.speed_lon_max_mps,
-        cap,
-        oth_d.response_time_s,
-        oth_d.accel_max_mps2,
-        oth_d.brake_min_mps2,
-        rel.other_dist_to_enter_m,
-    )
-    leave_oth = time_to_cover_distance(
-        oth.speed_lon_min_mps,
-        cap,
-        oth_d.response_time_s,
-        oth_d.brake_max_mps2,
-        oth_d.brake_max_mps2,
-        rel.other_dist_to_leave_m,
+        np.stack(
+            [
+                ego_d.response_time_s,
+                ego_d.response_time_s,
+                oth_d.response_time_s,
+                oth_d.response_time_s,
+            ]
+        ),
+        np.stack(
+            [ego_d.accel_max_mps2, ego_d.brake_max_mps2, oth_d.accel_max_mps2, oth_d.brake_max_mps2]
+        ),
+        np.stack(
+            [ego_d.brake_min_mps2, ego_d.brake_max_mps2, oth_d.brake_min_mps2, oth_d.brake_max_mps2]
+        ),
+        np.stack(
+            [
+                rel.ego_dist_to_enter_m,
+                rel.ego_dist_to_leave_m,
+                rel.other_dist_to_enter_m,
+                rel.other_dist_to_leave_m,
+            ]
+        ),
     )
     never = eq(reach_ego, DURATION_MAX_S, DURATION_PRECISION) & eq(
         reach_oth, DURATION_MAX_S, DURATION_PRECISION
