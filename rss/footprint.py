@@ -57,13 +57,17 @@ _BOUND_SIGN = np.array([[-1.0], [1.0], [-1.0], [1.0]])
 
 
 def _exclusive_cumsum(values: FloatArray) -> FloatArray:
-    """Sums of the preceding entries along the last axis.
+    """Sums of the preceding entries along the (short) last axis.
 
     Accumulated left to right exactly as ad-rss does (``cumsum - values`` would differ in
-    the last bit and flip 1 mm tolerance decisions).
+    the last bit and flip 1 mm tolerance decisions); the same additions as ``np.cumsum``,
+    one vectorised step per entry (numpy accumulates a short last axis row by row).
     """
     out = np.zeros_like(values)
-    out[..., 1:] = np.cumsum(values[..., :-1], axis=-1)
+    if values.shape[-1] > 1:
+        out[..., 1] = values[..., 0]
+    for j in range(2, values.shape[-1]):
+        out[..., j] = out[..., j - 1] + values[..., j - 1]
     return out
 
 
@@ -74,18 +78,20 @@ class LaneTable:
     Attributes:
         lane_id: ``(C, W)`` lane ids (-1 = none).
         direction: ``(C, W)`` :class:`LaneDrivingDirection` codes.
-        start_m: ``(4, C * W)`` start of each lane's region frame: segment start along
-            the road area (sums of min / max lengths before it), column start from the
-            left border (sums of min / max widths left of it), as
-            ``lon_min, lon_max, lat_min, lat_max``.
-        scale_m: ``(4, C * W)`` lane length min / max and width min / max (same order).
+        segment_start_m: ``(2, C, R)`` start of each segment along the road area: sums
+            of the min / max segment lengths before it.
+        column_start_m: ``(2, C, L)`` start of each lane column from the left border:
+            sums of the min / max column widths left of it.
+        scale_m: ``(4, C * W)`` lane length min / max and width min / max, in the order
+            of the extents ``lon_min, lon_max, lat_min, lat_max``.
         intersection_min_m: ``(C,)`` entry of the intersecting area (NaN if none).
         intersection_max_m: ``(C,)`` exit of the intersecting area (NaN if none).
     """
 
     lane_id: IntArray
     direction: IntArray
-    start_m: FloatArray
+    segment_start_m: FloatArray
+    column_start_m: FloatArray
     scale_m: FloatArray
     intersection_min_m: FloatArray
     intersection_max_m: FloatArray
@@ -110,21 +116,19 @@ def lane_table(road: RoadAreaArrays) -> LaneTable:
     col_start = _exclusive_cumsum(col_w)  # (2, C, L)
 
     is_intersection = road.segment_type == RoadSegmentType.Intersection  # (C, R)
-    has_intersection = is_intersection.any(axis=1)
     first = is_intersection.argmax(axis=1)
     rows = np.arange(c)
+    has_intersection = is_intersection[rows, first]
     start_min, start_max = seg_start[:, rows, first]
     i_min = start_min + road.before_intersection_m[rows, first]
     i_max = start_max + seg_len[1, rows, first] - road.after_intersection_m[rows, first]
 
-    start = np.empty((4, c, r, n_lanes))
-    start[:2] = seg_start[:, :, :, None]
-    start[2:] = col_start[:, :, None, :]
     scale = np.stack([road.length_min_m, road.length_max_m, road.width_min_m, road.width_max_m])
     return LaneTable(
         lane_id=road.lane_id.reshape(c, r * n_lanes),
         direction=road.driving_direction.reshape(c, r * n_lanes),
-        start_m=start.reshape(4, -1),
+        segment_start_m=seg_start,
+        column_start_m=col_start,
         scale_m=scale.reshape(4, -1),
         intersection_min_m=np.where(has_intersection, i_min, np.nan),
         intersection_max_m=np.where(has_intersection, i_max, np.nan),
@@ -161,7 +165,11 @@ def place(obj: ObjectArrays, table: LaneTable) -> Extents:
         idx, hit = idx.ravel()[order], hit.ravel()[order]
         params = params.reshape(4, c * k)[:, order]
     lane_row = idx + rows * width  # (C, K)
-    bounds = table.start_m[:, lane_row] + params * table.scale_m[:, lane_row]  # (4, C, K)
+    segment, column = np.divmod(idx, table.column_start_m.shape[2])
+    start = np.concatenate(
+        [table.segment_start_m[:, rows, segment], table.column_start_m[:, rows, column]]
+    )
+    bounds = start + params * table.scale_m[:, lane_row]  # (4, C, K)
     direction = table.direction.ravel()[lane_row]
     if k > 1:
         merged = _merge(bounds, hit, _BOUND_SIGN)
