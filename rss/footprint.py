@@ -76,7 +76,8 @@ class LaneTable:
     """Per-lane metric quantities of ``C`` road areas, lanes flattened to ``W = R*L``.
 
     Attributes:
-        lane_id: ``(C, W)`` lane ids (-1 = none).
+        lane_id: ``(W, C)`` lane ids (-1 = none), lane-major (each lane slot a
+            contiguous row over the road areas).
         direction: ``(C, W)`` :class:`LaneDrivingDirection` codes.
         segment_start_m: ``(2, C, R)`` start of each segment along the road area: sums
             of the min / max segment lengths before it.
@@ -125,7 +126,7 @@ def lane_table(road: RoadAreaArrays) -> LaneTable:
 
     scale = np.stack([road.length_min_m, road.length_max_m, road.width_min_m, road.width_max_m])
     return LaneTable(
-        lane_id=road.lane_id.reshape(c, r * n_lanes),
+        lane_id=np.ascontiguousarray(road.lane_id.reshape(c, r * n_lanes).T),
         direction=road.driving_direction.reshape(c, r * n_lanes),
         segment_start_m=seg_start,
         column_start_m=col_start,
@@ -146,12 +147,9 @@ def place(obj: ObjectArrays, table: LaneTable) -> Extents:
         The extents; ``found`` is False where no region lies in the road area. Regions
         whose lane is not in the road area are ignored (as ad-rss does).
     """
-    lane = obj.region_lane_id  # (C, K)
-    c, k = lane.shape
-    width = table.lane_id.shape[1]
-    match = (table.lane_id[:, None, :] == lane[:, :, None]) & (lane >= 0)[:, :, None]
-    hit = match.any(axis=2)  # (C, K)
-    idx = match.argmax(axis=2)  # (C, K)
+    c, k = obj.region_lane_id.shape
+    hit, idx = _find_lanes(obj.region_lane_id, table.lane_id)
+    width = table.lane_id.shape[0]
     params = np.stack(
         [obj.region_lon_min, obj.region_lon_max, obj.region_lat_min, obj.region_lat_max]
     )
@@ -160,8 +158,10 @@ def place(obj: ObjectArrays, table: LaneTable) -> Extents:
         # ad-rss walks the road area segment by segment, lane by lane, and merges each
         # region with a tolerant std::min / std::max (a region within 1 mm does not widen
         # the extent)
-        order = np.argsort(np.where(hit, idx, np.iinfo(np.int64).max), axis=1, kind="stable")
-        order += rows * k
+        # one stable sort of all regions by (row, slot; regions not found last) gives the
+        # flat positions of the sorted regions directly
+        key = np.where(hit, idx, width) + rows * (width + 1)
+        order = np.argsort(key.ravel(), kind="stable").reshape(c, k)
         idx, hit = idx.ravel()[order], hit.ravel()[order]
         params = params.reshape(4, c * k)[:, order]
     lane_row = idx + rows * width  # (C, K)
@@ -188,6 +188,30 @@ def place(obj: ObjectArrays, table: LaneTable) -> Extents:
     )
 
 
+def _find_lanes(lane: IntArray, table_lanes: IntArray) -> tuple[BoolArray, IntArray]:
+    """The first lane slot of each region's lane in its road area.
+
+    Args:
+        lane: ``(C, K)`` lane id per region (-1 = none).
+        table_lanes: ``(W, C)`` lane ids per lane slot of the road areas.
+
+    Returns:
+        ``(hit, idx)``, ``(C, K)`` each: found, and the first matching slot (0 if none).
+        One vectorised step per slot, over ``(K, C)`` rows (numpy reduces a short last
+        axis row by row).
+    """
+    lanes = np.ascontiguousarray(lane.T)  # (K, C)
+    valid = lanes >= 0
+    hit = np.zeros(lanes.shape, dtype=np.bool_)
+    idx = np.zeros(lanes.shape, dtype=np.int64)
+    for slot in range(table_lanes.shape[0] - 1, -1, -1):  # the first match is set last
+        same = lanes == table_lanes[slot]
+        same &= valid
+        idx[same] = slot
+        hit |= same
+    return hit.T, idx.T
+
+
 _MIN_MAX_SIGN = np.array([[-1.0], [1.0]])
 
 
@@ -199,7 +223,12 @@ def _reduce(values: FloatArray, valid: BoolArray) -> FloatArray:
     """
     _, c, a, b = values.shape
     merged = _merge(values.reshape(2, c * a, b), valid.reshape(c * a, b), _MIN_MAX_SIGN)
-    out: FloatArray = np.nan_to_num(merged, nan=0.0).reshape(2, c, a)
+    # np.nan_to_num(merged, nan=0.0) with fewer numpy calls: NaN -> 0, +-inf -> +-max
+    merged[np.isnan(merged)] = 0.0
+    infinite = np.isinf(merged)
+    if infinite.any():
+        merged[infinite] = np.copysign(np.finfo(np.float64).max, merged[infinite])
+    out: FloatArray = merged.reshape(2, c, a)
     return out
 
 
