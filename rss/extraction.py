@@ -76,10 +76,10 @@ def relative_position(
     Codes of :class:`LongitudinalPosition`; lateral uses the same codes (InFront <-> AtRight).
 
     Args:
-        ego_min: ``(C,)`` ego interval start (larger = further ahead / right).
-        ego_max: ``(C,)`` ego interval end.
-        other_min: ``(C,)``.
-        other_max: ``(C,)``.
+        ego_min: ``(...)`` ego interval start (larger = further ahead / right).
+        ego_max: ``(...)`` ego interval end.
+        other_min: ``(...)``.
+        other_max: ``(...)``.
 
     Returns:
         ``(position, distance)``; distance 0 for overlaps.
@@ -209,26 +209,27 @@ def extract(batch: ConstellationBatch) -> Relative:
     ego_table = lane_table(batch.ego_road)
     ego = place(batch.ego, ego_table)
     other = _other_extents(batch, intersection, ego_table)
-    lon_pos, lon_dist = relative_position(
-        ego.lon_min_m, ego.lon_max_m, other.lon_min_m, other.lon_max_m
+    # one call for all frames of reference: longitudinal, lateral and (intersection
+    # types) longitudinal relative to the own intersection entry, as rows of (n, C)
+    ego_min, ego_max = [ego.lon_min_m, ego.lat_min_m], [ego.lon_max_m, ego.lat_max_m]
+    other_min, other_max = [other.lon_min_m, other.lat_min_m], [other.lon_max_m, other.lat_max_m]
+    crossing = bool(intersection.any())
+    if crossing:
+        ego_min.append(ego.lon_min_m - ego.intersection_min_m)
+        ego_max.append(ego.lon_max_m - ego.intersection_min_m)
+        other_min.append(other.lon_min_m - other.intersection_min_m)
+        other_max.append(other.lon_max_m - other.intersection_min_m)
+    position, distance = relative_position(
+        np.stack(ego_min), np.stack(ego_max), np.stack(other_min), np.stack(other_max)
     )
-    lat_code, lat_dist = relative_position(
-        ego.lat_min_m, ego.lat_max_m, other.lat_min_m, other.lat_max_m
-    )
-    lat_pos = _LAT_FROM_LON[lat_code]
+    lon_pos, lon_dist = position[0], distance[0]
+    lat_pos, lat_dist = _LAT_FROM_LON[position[1]], distance[1]
 
     ego_enter, ego_leave = _distances_to_intersection(ego)
     other_enter, other_leave = _distances_to_intersection(other)
-    if intersection.any():
-        # intersection-centric frame: position relative to the own intersection entry
-        int_pos, int_dist = relative_position(
-            ego.lon_min_m - ego.intersection_min_m,
-            ego.lon_max_m - ego.intersection_min_m,
-            other.lon_min_m - other.intersection_min_m,
-            other.lon_max_m - other.intersection_min_m,
-        )
-        lon_pos = np.where(intersection, int_pos, lon_pos)
-        lon_dist = np.where(intersection, int_dist, lon_dist)
+    if crossing:
+        lon_pos = np.where(intersection, position[2], lon_pos)
+        lon_dist = np.where(intersection, distance[2], lon_dist)
     lat_pos = np.where(intersection, LateralPosition.Overlap, lat_pos)
     lat_dist = np.where(intersection, 0.0, lat_dist)
     zero = np.zeros(batch.size)
