@@ -103,13 +103,16 @@ def _groups(batch: ConstellationBatch, rel: Relative, frame: IntArray) -> _Layou
     if valid.size < 2:  # noqa: PLR2004 - a group needs two rows
         return None
     kinds = batch.constellation_type
-    ids = np.stack([frame, batch.ego.object_id, batch.other.object_id, kinds], axis=1)
+    # (4, C): comparisons reduce over the leading axis (numpy reduces a short last axis
+    # row by row)
+    ids = np.stack([frame, batch.ego.object_id, batch.other.object_id, kinds])
     ids = ids.astype(np.int64, copy=False)
     # Only rows sharing (frame, pair, type) can merge: find them vectorised first, so a
     # batch of many frames without similar constellations costs one sort.
-    sub = ids[valid]
-    order = np.lexsort(sub.T[::-1])
-    same = (sub[order[1:]] == sub[order[:-1]]).all(axis=1)
+    sub = ids[:, valid]
+    order = np.lexsort(sub[::-1])
+    ordered = sub[:, order]
+    same = (ordered[:, 1:] == ordered[:, :-1]).all(axis=0)
     if not same.any():
         return None
     shared = np.zeros(valid.size, dtype=np.bool_)
@@ -120,7 +123,7 @@ def _groups(batch: ConstellationBatch, rel: Relative, frame: IntArray) -> _Layou
     inter_type &= kinds[candidates] <= int(ConstellationType.IntersectionSamePriority)
     keys = np.concatenate(
         [
-            ids[candidates],
+            ids[:, candidates].T,
             _lane_keys(batch.ego_road, candidates, inter_type),
             _lane_keys(batch.intersecting_road, candidates, inter_type),
             _dynamics_keys(batch.ego_dynamics, candidates),
@@ -132,9 +135,9 @@ def _groups(batch: ConstellationBatch, rel: Relative, frame: IntArray) -> _Layou
     # rows of a group stay ascending
     whole = keys.view(np.dtype((np.void, keys.shape[1] * keys.itemsize))).ravel()
     order = np.argsort(whole, kind="stable")
-    ordered = whole[order]
+    sorted_keys = whole[order]
     first = np.ones(order.size, dtype=np.bool_)
-    first[1:] = ordered[1:] != ordered[:-1]
+    first[1:] = sorted_keys[1:] != sorted_keys[:-1]
     group = np.cumsum(first) - 1
     size = np.bincount(group)
     in_group = size[group] > 1
