@@ -117,7 +117,9 @@ def lane_table(road: RoadAreaArrays) -> LaneTable:
     col_start = _exclusive_cumsum(col_w)  # (2, C, L)
 
     is_intersection = road.segment_type == RoadSegmentType.Intersection  # (C, R)
-    first = is_intersection.argmax(axis=1)
+    first = np.zeros(c, dtype=np.int64)  # is_intersection.argmax(axis=1), slot by slot
+    for segment in range(r - 1, -1, -1):
+        first[is_intersection[:, segment]] = segment
     rows = np.arange(c)
     has_intersection = is_intersection[rows, first]
     start_min, start_max = seg_start[:, rows, first]
@@ -180,12 +182,20 @@ def place(obj: ObjectArrays, table: LaneTable) -> Extents:
         lon_max_m=merged[1],
         lat_min_m=merged[2],
         lat_max_m=merged[3],
-        on_positive_lane=(hit & (direction == LaneDrivingDirection.Positive)).any(axis=1),
-        on_negative_lane=(hit & (direction == LaneDrivingDirection.Negative)).any(axis=1),
-        found=np.asarray(hit.any(axis=1), dtype=np.bool_),
+        on_positive_lane=_any_region(hit & (direction == LaneDrivingDirection.Positive)),
+        on_negative_lane=_any_region(hit & (direction == LaneDrivingDirection.Negative)),
+        found=_any_region(hit),
         intersection_min_m=table.intersection_min_m,
         intersection_max_m=table.intersection_max_m,
     )
+
+
+def _any_region(flags: BoolArray) -> BoolArray:
+    """``flags.any(axis=1)`` of ``(C, K)`` flags, one step per region slot."""
+    out = flags[:, 0].copy()
+    for k in range(1, flags.shape[1]):
+        out |= flags[:, k]
+    return out
 
 
 def _find_lanes(lane: IntArray, table_lanes: IntArray) -> tuple[BoolArray, IntArray]:
