@@ -14,8 +14,9 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from rss.formulas import (
+    dynamics_rows,
     pick,
-    pick_dynamics,
+    pick_rows,
     safe_lateral_distance,
     safe_longitudinal_distance_opposite,
     safe_longitudinal_distance_same,
@@ -88,16 +89,15 @@ class RawStates:
 
 
 def _longitudinal(
-    batch: ConstellationBatch, rel: Relative
+    batch: ConstellationBatch, rel: Relative, ego_d: FloatArray, oth_d: FloatArray
 ) -> tuple[BoolArray, IntArray, IntArray, FloatArray]:
-    ego_d, oth_d = batch.ego_dynamics, batch.other_dynamics
     ego, oth = batch.ego, batch.other
     # same direction
     ego_leads = rel.lon_position <= int(LongitudinalPosition.OverlapFront)  # InFront, OverlapFront
     sd_safe_dist = safe_longitudinal_distance_same(
-        pick_dynamics(ego_leads, oth_d, ego_d),
+        pick_rows(ego_leads, oth_d, ego_d),
         pick(ego_leads, oth.speed_lon_max_mps, ego.speed_lon_max_mps),
-        pick_dynamics(ego_leads, ego_d, oth_d),
+        pick_rows(ego_leads, ego_d, oth_d),
         pick(ego_leads, ego.speed_lon_min_mps, oth.speed_lon_min_mps),
     )
     sd_eval = np.where(
@@ -112,9 +112,9 @@ def _longitudinal(
     od_safe_dist = sd_safe_dist
     if opposite.any():
         od_safe_dist = safe_longitudinal_distance_opposite(
-            pick_dynamics(ego_correct, ego_d, oth_d),
+            pick_rows(ego_correct, ego_d, oth_d),
             pick(ego_correct, ego.speed_lon_max_mps, oth.speed_lon_max_mps),
-            pick_dynamics(ego_correct, oth_d, ego_d),
+            pick_rows(ego_correct, oth_d, ego_d),
             pick(ego_correct, oth.speed_lon_max_mps, ego.speed_lon_max_mps),
         )
     od_eval = np.where(
@@ -130,16 +130,17 @@ def _longitudinal(
     return is_safe, response, evaluator, safe_dist
 
 
-def _lateral(batch: ConstellationBatch, rel: Relative) -> tuple[LateralSide, LateralSide]:
-    ego_d, oth_d = batch.ego_dynamics, batch.other_dynamics
+def _lateral(
+    batch: ConstellationBatch, rel: Relative, ego_d: FloatArray, oth_d: FloatArray
+) -> tuple[LateralSide, LateralSide]:
     ego, oth = batch.ego, batch.other
     ego_left = rel.lat_position == LateralPosition.AtLeft
     ego_right = rel.lat_position == LateralPosition.AtRight
     # only one side is evaluated per pair: left vehicle = ego if it is AtLeft, else the other
     safe_dist = safe_lateral_distance(
-        pick_dynamics(ego_left, ego_d, oth_d),
+        pick_rows(ego_left, ego_d, oth_d),
         pick(ego_left, ego.speed_lat_max_mps, oth.speed_lat_max_mps),
-        pick_dynamics(ego_left, oth_d, ego_d),
+        pick_rows(ego_left, oth_d, ego_d),
         pick(ego_left, oth.speed_lat_min_mps, ego.speed_lat_min_mps),
     )
     gap_safe = gt(rel.lat_distance_m, safe_dist, _P)
@@ -176,8 +177,10 @@ def check_all(batch: ConstellationBatch, rel: Relative) -> RawStates:
     Returns:
         Raw states; NotRelevant constellations are safe with evaluator None.
     """
-    lon_safe, lon_resp, lon_eval, lon_safe_dist = _longitudinal(batch, rel)
-    left, right = _lateral(batch, rel)
+    # the dynamics as (D, C) rows once: every row-wise pick is one np.where
+    ego_d, oth_d = dynamics_rows(batch.ego_dynamics), dynamics_rows(batch.other_dynamics)
+    lon_safe, lon_resp, lon_eval, lon_safe_dist = _longitudinal(batch, rel, ego_d, oth_d)
+    left, right = _lateral(batch, rel, ego_d, oth_d)
     ctype = batch.constellation_type
     intersection = ctype >= ConstellationType.IntersectionEgoHasPriority
     i_safe, i_eval, i_current, i_safe_dist, i_state = intersection_checks(batch, rel, intersection)

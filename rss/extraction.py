@@ -76,10 +76,10 @@ def relative_position(
     Codes of :class:`LongitudinalPosition`; lateral uses the same codes (InFront <-> AtRight).
 
     Args:
-        ego_min: ``(C,)`` ego interval start (larger = further ahead / right).
-        ego_max: ``(C,)`` ego interval end.
-        other_min: ``(C,)``.
-        other_max: ``(C,)``.
+        ego_min: ``(...)`` ego interval start (larger = further ahead / right).
+        ego_max: ``(...)`` ego interval end.
+        other_min: ``(...)``.
+        other_max: ``(...)``.
 
     Returns:
         ``(position, distance)``; distance 0 for overlaps.
@@ -175,22 +175,21 @@ def _other_extents(
 ) -> Extents:
     """The other object in the ego road (non-intersection) or its own road (intersection).
 
-    Each is computed only for the constellations that need it.
+    The intersecting road areas are computed only for the constellations that need them.
     """
     if not intersection.any():
         return place(batch.other, ego_table)
     if intersection.all():
         return object_extents(batch.other, batch.intersecting_road)
-    cross_rows, same_rows = np.flatnonzero(intersection), np.flatnonzero(~intersection)
+    cross_rows = np.flatnonzero(intersection)
     cross = object_extents(
         take_rows(batch.other, cross_rows), take_rows(batch.intersecting_road, cross_rows)
     )
-    same = object_extents(take_rows(batch.other, same_rows), take_rows(batch.ego_road, same_rows))
+    same = place(batch.other, ego_table)  # row by row, so its cross rows can be replaced
     fields = {}
     for name in Extents.__dataclass_fields__:
-        a = getattr(same, name)
-        merged = np.empty(batch.size, dtype=a.dtype)
-        merged[same_rows], merged[cross_rows] = a, getattr(cross, name)
+        merged = getattr(same, name).copy()
+        merged[cross_rows] = getattr(cross, name)
         fields[name] = merged
     return Extents(**fields)
 
@@ -210,26 +209,27 @@ def extract(batch: ConstellationBatch) -> Relative:
     ego_table = lane_table(batch.ego_road)
     ego = place(batch.ego, ego_table)
     other = _other_extents(batch, intersection, ego_table)
-    lon_pos, lon_dist = relative_position(
-        ego.lon_min_m, ego.lon_max_m, other.lon_min_m, other.lon_max_m
+    # one call for all frames of reference: longitudinal, lateral and (intersection
+    # types) longitudinal relative to the own intersection entry, as rows of (n, C)
+    ego_min, ego_max = [ego.lon_min_m, ego.lat_min_m], [ego.lon_max_m, ego.lat_max_m]
+    other_min, other_max = [other.lon_min_m, other.lat_min_m], [other.lon_max_m, other.lat_max_m]
+    crossing = bool(intersection.any())
+    if crossing:
+        ego_min.append(ego.lon_min_m - ego.intersection_min_m)
+        ego_max.append(ego.lon_max_m - ego.intersection_min_m)
+        other_min.append(other.lon_min_m - other.intersection_min_m)
+        other_max.append(other.lon_max_m - other.intersection_min_m)
+    position, distance = relative_position(
+        np.stack(ego_min), np.stack(ego_max), np.stack(other_min), np.stack(other_max)
     )
-    lat_code, lat_dist = relative_position(
-        ego.lat_min_m, ego.lat_max_m, other.lat_min_m, other.lat_max_m
-    )
-    lat_pos = _LAT_FROM_LON[lat_code]
+    lon_pos, lon_dist = position[0], distance[0]
+    lat_pos, lat_dist = _LAT_FROM_LON[position[1]], distance[1]
 
     ego_enter, ego_leave = _distances_to_intersection(ego)
     other_enter, other_leave = _distances_to_intersection(other)
-    if intersection.any():
-        # intersection-centric frame: position relative to the own intersection entry
-        int_pos, int_dist = relative_position(
-            ego.lon_min_m - ego.intersection_min_m,
-            ego.lon_max_m - ego.intersection_min_m,
-            other.lon_min_m - other.intersection_min_m,
-            other.lon_max_m - other.intersection_min_m,
-        )
-        lon_pos = np.where(intersection, int_pos, lon_pos)
-        lon_dist = np.where(intersection, int_dist, lon_dist)
+    if crossing:
+        lon_pos = np.where(intersection, position[2], lon_pos)
+        lon_dist = np.where(intersection, distance[2], lon_dist)
     lat_pos = np.where(intersection, LateralPosition.Overlap, lat_pos)
     lat_dist = np.where(intersection, 0.0, lat_dist)
     zero = np.zeros(batch.size)

@@ -6,10 +6,12 @@ Longitudinal same / opposite direction and lateral, each with ad-physics' tolera
 
 from __future__ import annotations
 
+import dataclasses
 from typing import TYPE_CHECKING
 
 import numpy as np
 
+from rss.batch import DynamicsArrays
 from rss.physics import (
     DISTANCE_PRECISION,
     stated_braking_lateral,
@@ -19,11 +21,12 @@ from rss.physics import (
 )
 
 if TYPE_CHECKING:
-    from rss.batch import BoolArray, DynamicsArrays, FloatArray
+    from rss.batch import BoolArray, FloatArray
 
 __all__ = [
+    "dynamics_rows",
     "pick",
-    "pick_dynamics",
+    "pick_rows",
     "safe_lateral_distance",
     "safe_longitudinal_distance_opposite",
     "safe_longitudinal_distance_same",
@@ -31,16 +34,21 @@ __all__ = [
 ]
 
 _P = DISTANCE_PRECISION
+_DYNAMICS_FIELDS = tuple(f.name for f in dataclasses.fields(DynamicsArrays))
 
 
-def pick_dynamics(mask: BoolArray, a: DynamicsArrays, b: DynamicsArrays) -> DynamicsArrays:
-    """Row-wise choice between two dynamics arrays (``a`` where ``mask``)."""
-    return type(a)(
-        **{
-            name: np.where(mask, getattr(a, name), getattr(b, name))
-            for name in a.__dataclass_fields__
-        }
-    )
+def dynamics_rows(dyn: DynamicsArrays) -> FloatArray:
+    """``(D, C)``: the fields of ``dyn`` stacked in dataclass order (see :func:`pick_rows`)."""
+    return np.stack([getattr(dyn, name) for name in _DYNAMICS_FIELDS])
+
+
+def pick_rows(mask: BoolArray, a: FloatArray, b: FloatArray) -> DynamicsArrays:
+    """Row-wise choice between two :func:`dynamics_rows` (``a`` where ``mask``).
+
+    One ``np.where`` over all fields, not one per field.
+    """
+    chosen = np.where(mask, a, b)
+    return DynamicsArrays(**dict(zip(_DYNAMICS_FIELDS, chosen, strict=True)))
 
 
 def pick(mask: BoolArray, a: FloatArray, b: FloatArray) -> FloatArray:

@@ -28,7 +28,14 @@ from rss.physics import (
 from rss.states import LongitudinalPosition, RssStateEvaluator
 
 if TYPE_CHECKING:
-    from rss.batch import BoolArray, ConstellationBatch, FloatArray, IntArray
+    from rss.batch import (
+        BoolArray,
+        ConstellationBatch,
+        DynamicsArrays,
+        FloatArray,
+        IntArray,
+        ObjectArrays,
+    )
     from rss.extraction import Relative
 
 __all__ = ["IntersectionState", "intersection_checks"]
@@ -46,13 +53,15 @@ class IntersectionState:
     NO_TIME_OVERLAP = 3
 
 
-def _intersection_rows(
-    batch: ConstellationBatch, rel: Relative
+def _intersection_rows(  # noqa: PLR0917  (the parts of a batch it reads)
+    ctype: IntArray,
+    ego: ObjectArrays,
+    oth: ObjectArrays,
+    ego_d: DynamicsArrays,
+    oth_d: DynamicsArrays,
+    rel: Relative,
 ) -> tuple[BoolArray, IntArray, FloatArray, FloatArray, IntArray]:
     """Intersection checks in ad-rss' order; the first success wins."""
-    ego_d, oth_d = batch.ego_dynamics, batch.other_dynamics
-    ego, oth = batch.ego, batch.other
-    ctype = batch.constellation_type
     ego_prio = ctype == ConstellationType.IntersectionEgoHasPriority
     other_prio = ctype == ConstellationType.IntersectionObjectHasPriority
 
@@ -80,37 +89,40 @@ def _intersection_rows(
     safe3 = ~able & gt(rel.lon_distance_m, front_dist, _P)
 
     cap = ego_d.max_speed_on_acceleration_mps  # ad-rss uses the ego's cap for both vehicles
-    reach_ego = time_to_cover_distance(
-        ego.speed_lon_max_mps,
+    # the four times in one vectorised call: rows reach ego, leave ego, reach other,
+    # leave other (``(4, n)``; the cap broadcasts)
+    reach_ego, leave_ego, reach_oth, leave_oth = time_to_cover_distance(
+        np.stack(
+            [
+                ego.speed_lon_max_mps,
+                ego.speed_lon_min_mps,
+                oth.speed_lon_max_mps,
+                oth.speed_lon_min_mps,
+            ]
+        ),
         cap,
-        ego_d.response_time_s,
-        ego_d.accel_max_mps2,
-        ego_d.brake_min_mps2,
-        rel.ego_dist_to_enter_m,
-    )
-    leave_ego = time_to_cover_distance(
-        ego.speed_lon_min_mps,
-        cap,
-        ego_d.response_time_s,
-        ego_d.brake_max_mps2,
-        ego_d.brake_max_mps2,
-        rel.ego_dist_to_leave_m,
-    )
-    reach_oth = time_to_cover_distance(
-        oth.speed_lon_max_mps,
-        cap,
-        oth_d.response_time_s,
-        oth_d.accel_max_mps2,
-        oth_d.brake_min_mps2,
-        rel.other_dist_to_enter_m,
-    )
-    leave_oth = time_to_cover_distance(
-        oth.speed_lon_min_mps,
-        cap,
-        oth_d.response_time_s,
-        oth_d.brake_max_mps2,
-        oth_d.brake_max_mps2,
-        rel.other_dist_to_leave_m,
+        np.stack(
+            [
+                ego_d.response_time_s,
+                ego_d.response_time_s,
+                oth_d.response_time_s,
+                oth_d.response_time_s,
+            ]
+        ),
+        np.stack(
+            [ego_d.accel_max_mps2, ego_d.brake_max_mps2, oth_d.accel_max_mps2, oth_d.brake_max_mps2]
+        ),
+        np.stack(
+            [ego_d.brake_min_mps2, ego_d.brake_max_mps2, oth_d.brake_min_mps2, oth_d.brake_max_mps2]
+        ),
+        np.stack(
+            [
+                rel.ego_dist_to_enter_m,
+                rel.ego_dist_to_leave_m,
+                rel.other_dist_to_enter_m,
+                rel.other_dist_to_leave_m,
+            ]
+        ),
     )
     never = eq(reach_ego, DURATION_MAX_S, DURATION_PRECISION) & eq(
         reach_oth, DURATION_MAX_S, DURATION_PRECISION
@@ -165,8 +177,15 @@ def intersection_checks(
     )
     rows = np.flatnonzero(intersection)
     if rows.size:
-        for target, values in zip(
-            out, _intersection_rows(take_rows(batch, rows), take_rows(rel, rows)), strict=True
-        ):
+        # only the parts the checks read (not the road areas)
+        checked = _intersection_rows(
+            batch.constellation_type[rows],
+            take_rows(batch.ego, rows),
+            take_rows(batch.other, rows),
+            take_rows(batch.ego_dynamics, rows),
+            take_rows(batch.other_dynamics, rows),
+            take_rows(rel, rows),
+        )
+        for target, values in zip(out, checked, strict=True):
             target[rows] = values
     return out

@@ -27,24 +27,19 @@ from rss.states import InvalidReason
 
 if TYPE_CHECKING:
     from rss.batch import (
+        BoolArray,
         ConstellationBatch,
         DynamicsArrays,
+        FloatArray,
         IntArray,
         ObjectArrays,
         RoadAreaArrays,
     )
     from rss.extraction import Relative
 
-__all__ = ["merge_positions", "merge_similar"]
+__all__ = ["merge_position_groups", "merge_positions", "merge_similar"]
 
 _OVERLAP = 2
-_INTERSECTION_TYPES = frozenset(
-    {
-        int(ConstellationType.IntersectionEgoHasPriority),
-        int(ConstellationType.IntersectionObjectHasPriority),
-        int(ConstellationType.IntersectionSamePriority),
-    }
-)
 
 
 def merge_positions(a: int, b: int, dist_a: float, dist_b: float) -> tuple[int, float]:
@@ -61,101 +56,134 @@ def merge_positions(a: int, b: int, dist_a: float, dist_b: float) -> tuple[int, 
     return (side.pop(), dist) if side else (_OVERLAP, 0.0)
 
 
-def _lane_keys(road: RoadAreaArrays, kinds: IntArray) -> IntArray:
-    """``(C, R * L)`` sorted lane ids of the Intersection segments of intersection types.
+def _lane_keys(road: RoadAreaArrays, rows: IntArray, inter_type: BoolArray) -> IntArray:
+    """``(n, R * L)`` sorted lane ids of the Intersection segments of ``rows``.
 
-    -1 pads; rows of other types are all -1.
+    -1 pads; rows not of an intersection type (``inter_type`` False) are all -1.
     """
-    c = road.lane_id.shape[0]
-    inter = road.segment_type == int(RoadSegmentType.Intersection)
-    lanes = np.where(inter[:, :, None], road.lane_id, -1).reshape(c, -1)
-    lanes[~np.isin(kinds, list(_INTERSECTION_TYPES))] = -1
-    out: IntArray = np.sort(lanes, axis=1)
-    return out
+    inter = (road.segment_type[rows] == int(RoadSegmentType.Intersection)) & inter_type[:, None]
+    lanes: IntArray = np.where(inter[:, :, None], road.lane_id[rows], -1).reshape(rows.size, -1)
+    lanes.sort(axis=1)
+    return lanes
 
 
 _DYNAMICS: list[str] = []
 
 
-def _dynamics_keys(dyn: DynamicsArrays) -> IntArray:
+def _dynamics_keys(dyn: DynamicsArrays, rows: IntArray) -> IntArray:
+    """``(n, D)`` bit patterns of the dynamics of ``rows``."""
     if not _DYNAMICS:
         _DYNAMICS.extend(f.name for f in dataclasses.fields(dyn))
-    values = np.stack([getattr(dyn, name) for name in _DYNAMICS], axis=1)
-    out: IntArray = np.ascontiguousarray(values, dtype=np.float64).view(np.int64)
+    values = np.stack([getattr(dyn, name) for name in _DYNAMICS], axis=1)[rows]
+    out: IntArray = values.view(np.int64)
     return out
-
-
-def _groups(batch: ConstellationBatch, rel: Relative, frame: IntArray) -> list[list[int]]:
-    """Rows to merge: valid, same frame, ids, type (and intersection lanes), dynamics."""
-    valid = np.flatnonzero(rel.invalid == int(InvalidReason.Valid))
-    if len(valid) < 2:  # noqa: PLR2004 - a group needs two rows
-        return []
-    kinds = batch.constellation_type
-    ids = np.stack([frame, batch.ego.object_id, batch.other.object_id, kinds], axis=1)
-    ids = ids.astype(np.int64)
-    # Only rows sharing (frame, pair, type) can merge: find them vectorised first, so a
-    # batch of many frames without similar constellations costs one sort.
-    sub = ids[valid]
-    order = np.lexsort(sub.T[::-1])
-    same = np.all(sub[order[1:]] == sub[order[:-1]], axis=1)
-    if not same.any():
-        return []
-    shared = np.zeros(len(valid), dtype=bool)
-    shared[order[1:][same]] = True
-    shared[order[:-1][same]] = True
-    candidates = valid[shared]
-    keys = np.concatenate(
-        [
-            ids[candidates],
-            _lane_keys(batch.ego_road, kinds)[candidates],
-            _lane_keys(batch.intersecting_road, kinds)[candidates],
-            _dynamics_keys(batch.ego_dynamics)[candidates],
-            _dynamics_keys(batch.other_dynamics)[candidates],
-        ],
-        axis=1,
-    )
-    found: dict[tuple[int, ...], list[int]] = {}
-    for row, key in zip(candidates.tolist(), keys.tolist(), strict=True):
-        found.setdefault(tuple(key), []).append(row)
-    return [rows for rows in found.values() if len(rows) > 1]
-
-
-_SPEEDS = ("speed_lon_min_mps", "speed_lon_max_mps", "speed_lat_min_mps", "speed_lat_max_mps")
 
 
 @dataclasses.dataclass(frozen=True)
 class _Layout:
-    """Groups as one row list: ``rows`` concatenated, ``starts`` / ``sizes`` per group."""
+    """Groups as one row list: ``rows`` concatenated group by group, ``starts`` per group.
+
+    Attributes:
+        rows: ``(n,)`` rows of all groups (ascending within a group).
+        starts: ``(G,)`` position of each group's first row in ``rows``.
+        group: ``(n,)`` group number of each entry of ``rows``.
+    """
 
     rows: IntArray
     starts: IntArray
-    sizes: IntArray
-
-    def reduce(self, values: np.ndarray, op: np.ufunc) -> np.ndarray:
-        """``values`` with every group's rows set to ``op`` over the group."""
-        out = values.copy()
-        out[self.rows] = np.repeat(op.reduceat(values[self.rows], self.starts), self.sizes)
-        return out
-
-    def fill(self, values: np.ndarray, per_group: list[float] | list[int]) -> np.ndarray:
-        """``values`` with every group's rows set to its entry of ``per_group``."""
-        out = values.copy()
-        out[self.rows] = np.repeat(np.asarray(per_group, dtype=values.dtype), self.sizes)
-        return out
+    group: IntArray
 
 
-def _layout(groups: list[list[int]]) -> _Layout:
-    sizes = np.array([len(g) for g in groups], dtype=np.int64)
-    starts = np.concatenate([[0], np.cumsum(sizes)[:-1]]).astype(np.int64)
-    return _Layout(np.array([r for g in groups for r in g], dtype=np.int64), starts, sizes)
+def _groups(batch: ConstellationBatch, rel: Relative, frame: IntArray) -> _Layout | None:
+    """Rows to merge: valid, same frame, ids, type (and intersection lanes), dynamics.
+
+    ``None`` when no two rows merge.
+    """
+    valid = np.flatnonzero(rel.invalid == int(InvalidReason.Valid))
+    if valid.size < 2:  # noqa: PLR2004 - a group needs two rows
+        return None
+    kinds = batch.constellation_type
+    # (4, C): comparisons reduce over the leading axis (numpy reduces a short last axis
+    # row by row)
+    ids = np.stack([frame, batch.ego.object_id, batch.other.object_id, kinds])
+    ids = ids.astype(np.int64, copy=False)
+    # Only rows sharing (frame, pair, type) can merge: find them vectorised first, so a
+    # batch of many frames without similar constellations costs one sort.
+    sub = ids[:, valid]
+    order = np.lexsort(sub[::-1])
+    ordered = sub[:, order]
+    same = (ordered[:, 1:] == ordered[:, :-1]).all(axis=0)
+    if not same.any():
+        return None
+    shared = np.zeros(valid.size, dtype=np.bool_)
+    shared[order[1:][same]] = True
+    shared[order[:-1][same]] = True
+    candidates = valid[shared]
+    inter_type = kinds[candidates] >= int(ConstellationType.IntersectionEgoHasPriority)
+    inter_type &= kinds[candidates] <= int(ConstellationType.IntersectionSamePriority)
+    keys = np.concatenate(
+        [
+            ids[:, candidates].T,
+            _lane_keys(batch.ego_road, candidates, inter_type),
+            _lane_keys(batch.intersecting_road, candidates, inter_type),
+            _dynamics_keys(batch.ego_dynamics, candidates),
+            _dynamics_keys(batch.other_dynamics, candidates),
+        ],
+        axis=1,
+    )
+    # one stable sort of the whole keys as byte strings: equal keys become neighbours,
+    # rows of a group stay ascending
+    whole = keys.view(np.dtype((np.void, keys.shape[1] * keys.itemsize))).ravel()
+    order = np.argsort(whole, kind="stable")
+    sorted_keys = whole[order]
+    first = np.ones(order.size, dtype=np.bool_)
+    first[1:] = sorted_keys[1:] != sorted_keys[:-1]
+    group = np.cumsum(first) - 1
+    size = np.bincount(group)
+    in_group = size[group] > 1
+    if not in_group.any():
+        return None
+    group = group[in_group]
+    new = np.ones(group.size, dtype=np.bool_)
+    new[1:] = group[1:] != group[:-1]
+    return _Layout(candidates[order[in_group]], np.flatnonzero(new), np.cumsum(new) - 1)
 
 
-def _union_speeds(obj: ObjectArrays, layout: _Layout) -> ObjectArrays:
-    fields = {
-        name: layout.reduce(getattr(obj, name), np.minimum if "min" in name else np.maximum)
-        for name in _SPEEDS
-    }
-    return dataclasses.replace(obj, **fields)
+_SPEEDS_MIN = ("speed_lon_min_mps", "speed_lat_min_mps")
+_SPEEDS_MAX = ("speed_lon_max_mps", "speed_lat_max_mps")
+_REL_MIN = ("ego_dist_to_enter_m", "other_dist_to_enter_m")
+_REL_MAX = ("ego_dist_to_leave_m", "other_dist_to_leave_m")
+
+
+def merge_position_groups(
+    codes: IntArray, distances: FloatArray, starts: IntArray
+) -> tuple[IntArray, FloatArray]:
+    """Per group the fold of :func:`merge_positions` over its rows, vectorised.
+
+    Args:
+        codes: ``(n, k)`` position codes, rows grouped.
+        distances: ``(n, k)`` their distances [m] (>= 0; 0 for the Overlap codes 1..3).
+        starts: ``(G,)`` first row of each group (ascending, groups not empty).
+
+    Returns:
+        ``(codes, distances)``, ``(G, k)`` each: Overlap and 0 m where a group holds
+        Overlap or codes on both sides of it, else the code nearest to Overlap (on the
+        group's one side) and the smallest distance.
+    """
+    high = np.maximum.reduceat(codes, starts)
+    low = np.minimum.reduceat(codes, starts)
+    overlap = (high >= _OVERLAP) & (low <= _OVERLAP)
+    merged: IntArray = np.where(overlap, _OVERLAP, np.where(high < _OVERLAP, high, low))
+    nearest: FloatArray = np.minimum.reduceat(distances, starts)
+    nearest[overlap] = 0.0
+    return merged, nearest
+
+
+def _filled(values: np.ndarray, rows: IntArray, per_row: np.ndarray) -> np.ndarray:
+    """``values`` with ``rows`` set to ``per_row``."""
+    out = values.copy()
+    out[rows] = per_row
+    return out
 
 
 def merge_similar(
@@ -171,35 +199,61 @@ def merge_similar(
     Returns:
         ``(batch, rel)`` with merged speed intervals and relative situations.
     """
-    groups = _groups(batch, rel, frame)
-    if not groups:
+    layout = _groups(batch, rel, frame)
+    if layout is None:
         return batch, rel
-    layout = _layout(groups)
-    lon, lon_d = rel.lon_position.tolist(), rel.lon_distance_m.tolist()
-    lat, lat_d = rel.lat_position.tolist(), rel.lat_distance_m.tolist()
-    merged: list[list[float]] = [[], [], [], []]
-    for rows in groups:
-        first = rows[0]
-        m = [lon[first], lon_d[first], lat[first], lat_d[first]]
-        for row in rows[1:]:
-            m[0], m[1] = merge_positions(int(m[0]), lon[row], m[1], lon_d[row])
-            m[2], m[3] = merge_positions(int(m[2]), lat[row], m[3], lat_d[row])
-        for column, value in zip(merged, m, strict=True):
-            column.append(value)
-    new_rel = type(rel)(
-        lon_position=layout.fill(rel.lon_position, merged[0]),
-        lon_distance_m=layout.fill(rel.lon_distance_m, merged[1]),
-        lat_position=layout.fill(rel.lat_position, merged[2]),
-        lat_distance_m=layout.fill(rel.lat_distance_m, merged[3]),
-        ego_in_correct_lane=layout.reduce(rel.ego_in_correct_lane, np.logical_and),
-        other_in_correct_lane=layout.reduce(rel.other_in_correct_lane, np.logical_or),
-        ego_dist_to_enter_m=layout.reduce(rel.ego_dist_to_enter_m, np.minimum),
-        ego_dist_to_leave_m=layout.reduce(rel.ego_dist_to_leave_m, np.maximum),
-        other_dist_to_enter_m=layout.reduce(rel.other_dist_to_enter_m, np.minimum),
-        other_dist_to_leave_m=layout.reduce(rel.other_dist_to_leave_m, np.maximum),
-        invalid=rel.invalid,
+    rows, starts, group = layout.rows, layout.starts, layout.group
+    codes, distances = merge_position_groups(
+        np.stack([rel.lon_position, rel.lat_position], axis=1)[rows],
+        np.stack([rel.lon_distance_m, rel.lat_distance_m], axis=1)[rows],
+        starts,
     )
+    codes, distances = codes[group], distances[group]
+    objects = (batch.ego, batch.other)
+    lows = np.minimum.reduceat(
+        np.stack(
+            [getattr(rel, name) for name in _REL_MIN]
+            + [getattr(obj, name) for obj in objects for name in _SPEEDS_MIN],
+            axis=1,
+        )[rows],
+        starts,
+    )[group]
+    highs = np.maximum.reduceat(
+        np.stack(
+            [getattr(rel, name) for name in _REL_MAX]
+            + [getattr(obj, name) for obj in objects for name in _SPEEDS_MAX],
+            axis=1,
+        )[rows],
+        starts,
+    )[group]
+    ego_correct = np.logical_and.reduceat(rel.ego_in_correct_lane[rows], starts)[group]
+    other_correct = np.logical_or.reduceat(rel.other_in_correct_lane[rows], starts)[group]
+    fields = {
+        "lon_position": _filled(rel.lon_position, rows, codes[:, 0]),
+        "lon_distance_m": _filled(rel.lon_distance_m, rows, distances[:, 0]),
+        "lat_position": _filled(rel.lat_position, rows, codes[:, 1]),
+        "lat_distance_m": _filled(rel.lat_distance_m, rows, distances[:, 1]),
+        "ego_in_correct_lane": _filled(rel.ego_in_correct_lane, rows, ego_correct),
+        "other_in_correct_lane": _filled(rel.other_in_correct_lane, rows, other_correct),
+    }
+    for k, name in enumerate(_REL_MIN):
+        fields[name] = _filled(getattr(rel, name), rows, lows[:, k])
+    for k, name in enumerate(_REL_MAX):
+        fields[name] = _filled(getattr(rel, name), rows, highs[:, k])
+    new_rel = type(rel)(**fields, invalid=rel.invalid)
+
+    def union(obj: ObjectArrays, column: int) -> ObjectArrays:
+        speeds = {}
+        for k, name in enumerate(_SPEEDS_MIN):
+            speeds[name] = _filled(getattr(obj, name), rows, lows[:, column + k])
+        for k, name in enumerate(_SPEEDS_MAX):
+            speeds[name] = _filled(getattr(obj, name), rows, highs[:, column + k])
+        return dataclasses.replace(obj, **speeds)
+
+    first = len(_REL_MIN)
     merged_batch = dataclasses.replace(
-        batch, ego=_union_speeds(batch.ego, layout), other=_union_speeds(batch.other, layout)
+        batch,
+        ego=union(batch.ego, first),
+        other=union(batch.other, first + len(_SPEEDS_MIN)),
     )
     return merged_batch, new_rel

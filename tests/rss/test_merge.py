@@ -8,7 +8,7 @@ import pytest
 from rss.batch import stack_constellations
 from rss.engine import check_frame
 from rss.extraction import extract
-from rss.merge import merge_positions, merge_similar
+from rss.merge import merge_position_groups, merge_positions, merge_similar
 from rss.model import Constellation, SpeedInterval
 from rss.params import DEFAULT_EGO_DYNAMICS, RestrictSpeedLimitMode, SceneSettings
 from rss.scene import create_scene, prepare
@@ -36,6 +36,23 @@ def test_merge_positions_worst_case(a, b, expected):
     code, dist = merge_positions(int(a[0]), int(b[0]), a[1], b[1])
     assert (code, dist) == (int(expected[0]), expected[1])
     assert merge_positions(int(b[0]), int(a[0]), b[1], a[1]) == (code, dist)
+
+
+@pytest.mark.parametrize("seed", [1, 7, 2026])
+def test_merge_position_groups_equals_the_scalar_fold(seed):
+    rng = np.random.default_rng(seed)
+    sizes = rng.integers(1, 6, size=300)
+    codes = rng.integers(0, 5, size=(int(sizes.sum()), 2))
+    far = (codes == 0) | (codes == 4)  # AtLeft / AtRight (InFront / AtBack)
+    distances = np.where(far, rng.uniform(0.0, 30.0, codes.shape).round(1), 0.0)
+    starts = np.concatenate([[0], np.cumsum(sizes)[:-1]])
+    got_codes, got_distances = merge_position_groups(codes, distances, starts)
+    for g, (lo, n) in enumerate(zip(starts.tolist(), sizes.tolist(), strict=True)):
+        for k in range(2):
+            code, dist = int(codes[lo, k]), float(distances[lo, k])
+            for row in range(lo + 1, lo + n):
+                code, dist = merge_positions(code, int(codes[row, k]), dist, distances[row, k])
+            assert (int(got_codes[g, k]), float(got_distances[g, k])) == (code, dist)
 
 
 def _pair_on_both_sides() -> tuple[Constellation, Constellation]:
