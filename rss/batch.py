@@ -84,17 +84,18 @@ class DynamicsArrays:
 
 def stack_dynamics(dynamics: Sequence[RssDynamics]) -> DynamicsArrays:
     """Stack validated dynamics into ``(C,)`` arrays (a shared object is read once)."""
-    rows: dict[int, tuple[float, ...]] = {}
-    table = []
+    known: dict[int, int] = {}
+    values: list[float] = []
+    use: list[int] = []
     for d in dynamics:
-        row = rows.get(id(d))
-        if row is None:
-            row = rows[id(d)] = tuple(getattr(d, name) for name in _DYNAMICS_FIELDS)
-        table.append(row)
-    values = np.array(table, dtype=np.float64).reshape(len(table), len(_DYNAMICS_FIELDS))
-    return DynamicsArrays(
-        **{name: _floats(values[:, k]) for k, name in enumerate(_DYNAMICS_FIELDS)}
-    )
+        k = known.get(id(d))
+        if k is None:
+            k = known[id(d)] = len(known)
+            values.extend([getattr(d, name) for name in _DYNAMICS_FIELDS])
+        use.append(k)
+    table = np.array(values, dtype=np.float64).reshape(len(known), len(_DYNAMICS_FIELDS))
+    rows = table[np.array(use, dtype=np.int64)]
+    return DynamicsArrays(**{name: _floats(rows[:, k]) for k, name in enumerate(_DYNAMICS_FIELDS)})
 
 
 @dataclass(frozen=True)
@@ -206,14 +207,11 @@ def stack_constellations(constellations: Sequence[Constellation]) -> Constellati
             raise RssConstellationError(
                 "constellation_type", "Unstructured", "not a structured constellation (issue 6)"
             )
-        for obj in (c.ego, c.other):
-            if not _known(obj.object_type, _OBJECT_CODES):
-                raise RssConstellationError("object_type", obj.object_type, "unknown")
+        ego.add(c.ego)
+        other.add(c.other)
         ego_road.add(c.ego_road)
         intersecting_road.add(c.intersecting_road)
         types.append(int(kind))
-        ego.add(c.ego)
-        other.add(c.other)
     return ConstellationBatch(
         constellation_type=_ints(types),
         ego=ego.arrays(),
@@ -233,50 +231,65 @@ def _known(code: object, codes: frozenset[int]) -> bool:
 
 
 class _ObjectRows:
-    """Objects of ``C`` constellations.
+    """Objects of ``C`` constellations as flat rows.
 
     Each distinct :class:`LaneObject` (a frame's placed objects are shared by many
-    constellations) is read once; its regions are spread to every use in :meth:`arrays`.
+    constellations) is validated and read once, on first sight; its regions are spread to
+    every use in :meth:`arrays`.
     """
 
     def __init__(self) -> None:
         self.uses: list[int] = []  # distinct object per row
         self._known: dict[int, int] = {}
         self._distinct: list[LaneObject] = []
+        self._ids: list[int] = []
+        self._types: list[int] = []
+        self._speeds: list[float] = []  # 4 per distinct object
+        self._counts: list[int] = []  # regions per distinct object
+        self._lanes: list[int] = []  # 1 per region
+        self._params: list[float] = []  # 4 per region
 
     def add(self, obj: LaneObject) -> None:
+        """Add the object of the next row.
+
+        Raises:
+            RssConstellationError: Unknown object type.
+        """
         k = self._known.get(id(obj))
         if k is None:
-            k = self._known[id(obj)] = len(self._distinct)
-            self._distinct.append(obj)
+            k = self._first(obj)
         self.uses.append(k)
 
+    def _first(self, obj: LaneObject) -> int:
+        kind = obj.object_type
+        if not _known(kind, _OBJECT_CODES):
+            raise RssConstellationError("object_type", kind, "unknown")
+        k = self._known[id(obj)] = len(self._distinct)
+        self._distinct.append(obj)
+        self._ids.append(obj.object_id)
+        self._types.append(int(kind))
+        s = obj.speed
+        self._speeds.extend((s.lon_min_mps, s.lon_max_mps, s.lat_min_mps, s.lat_max_mps))
+        regions = obj.regions
+        self._counts.append(len(regions))
+        for r in regions:
+            self._lanes.append(r.lane_id)
+            self._params.extend((r.lon_min, r.lon_max, r.lat_min, r.lat_max))
+        return k
+
     def arrays(self) -> ObjectArrays:
-        distinct = self._distinct
         use = np.array(self.uses, dtype=np.int64)
-        counts = np.array([len(o.regions) for o in distinct], dtype=np.int64)
-        width = max(1, int(counts.max(initial=0)))
+        width = max(1, max(self._counts, default=0))
         lane = np.full((len(use), width), -1, dtype=np.int64)
         params = np.zeros((len(use), width, 4))
-        regions = [r for o in distinct for r in o.regions]
-        if regions:
-            rows, k, src = _spread(counts, use)
-            lane[rows, k] = np.array([r.lane_id for r in regions], dtype=np.int64)[src]
-            params[rows, k] = np.array(
-                [(r.lon_min, r.lon_max, r.lat_min, r.lat_max) for r in regions], dtype=np.float64
-            )[src]
-        speeds = np.array(
-            [
-                (o.speed.lon_min_mps, o.speed.lon_max_mps, o.speed.lat_min_mps, o.speed.lat_max_mps)
-                for o in distinct
-            ],
-            dtype=np.float64,
-        ).reshape(len(distinct), 4)[use]
+        if self._lanes:
+            rows, k, src = _spread(np.array(self._counts, dtype=np.int64), use)
+            lane[rows, k] = np.array(self._lanes, dtype=np.int64)[src]
+            params[rows, k] = np.array(self._params, dtype=np.float64).reshape(-1, 4)[src]
+        speeds = np.array(self._speeds, dtype=np.float64).reshape(-1, 4)[use]
         return ObjectArrays(
-            object_id=_ints(np.array([o.object_id for o in distinct], dtype=np.int64)[use]),
-            object_type=_ints(
-                np.array([int(o.object_type) for o in distinct], dtype=np.int64)[use]
-            ),
+            object_id=_ints(np.array(self._ids, dtype=np.int64)[use]),
+            object_type=_ints(np.array(self._types, dtype=np.int64)[use]),
             region_lane_id=_ints(lane),
             region_lon_min=_floats(params[:, :, 0]),
             region_lon_max=_floats(params[:, :, 1]),
@@ -308,84 +321,96 @@ def _spread(counts: IntArray, use: IntArray) -> tuple[IntArray, IntArray, IntArr
 
 
 class _RoadRows:
-    """Road areas of ``C`` constellations as validated segment rows.
+    """Road areas of ``C`` constellations as validated, flat segment rows.
 
     Each distinct :class:`RoadSegment` object (whole segments are shared by many road
-    areas, a frame's cut ones by several) is validated and read once per stacking; its
-    lanes are spread to every use by a few numpy calls in :meth:`arrays`. A road that
-    fails validation is re-checked lane by lane (:func:`_check_road`) for the exact error.
+    areas, a frame's cut ones by several) is validated and read once per stacking, in one
+    pass over its lanes; its lanes are spread to every use by a few numpy calls in
+    :meth:`arrays`. A road that fails validation is re-checked lane by lane
+    (:func:`_check_road`) for the exact error.
     """
 
     def __init__(self) -> None:
         self.count = 0
-        self.uses: list[tuple[int, int, int]] = []  # (row, segment, distinct segment)
-        self.shape = [1, 1]
-        self._known: dict[int, tuple[RoadSegment, int, frozenset[int]]] = {}
+        self.uses: list[int] = []  # (row, segment, distinct segment) per use, flat
+        self.segments = 1  # R
+        self.lanes = 1  # L
+        self._known: dict[int, tuple[int, frozenset[int]]] = {}
         self._distinct: list[RoadSegment] = []
+        self._kinds: list[int] = []
+        self._lengths: list[float] = []  # before, after per distinct segment
+        self._counts: list[int] = []  # lanes per distinct segment
+        self._codes: list[int] = []  # lane id, driving direction per lane
+        self._values: list[float] = []  # length min, max, width min, max per lane
 
     def add(self, road: tuple[RoadSegment, ...]) -> None:
+        """Add the road area of the next row.
+
+        Raises:
+            RssConstellationError: The first invalid segment or lane of ``road``.
+        """
         row = self.count
-        self.count += 1
-        self.shape[0] = max(self.shape[0], len(road))
+        self.count = row + 1
+        self.segments = max(self.segments, len(road))
         known, uses = self._known, self.uses
         ids: list[frozenset[int]] = []
         for j, segment in enumerate(road):
             entry = known.get(id(segment))
             if entry is None:
                 entry = self._distinct_segment(segment, road)
-            uses.append((row, j, entry[1]))
-            ids.append(entry[2])
+            uses.extend((row, j, entry[0]))
+            ids.append(entry[1])
         if len(ids) > 1 and len(frozenset().union(*ids)) != sum(map(len, ids)):
             _check_road(road)
 
     def _distinct_segment(
         self, segment: RoadSegment, road: tuple[RoadSegment, ...]
-    ) -> tuple[RoadSegment, int, frozenset[int]]:
+    ) -> tuple[int, frozenset[int]]:
         lanes = segment.lanes
-        ok = _known(segment.segment_type, _SEGMENT_CODES) and bool(lanes)
-        ok = ok and all(map(_lane_ok, lanes))
-        ids = frozenset(lane.lane_id for lane in lanes) if ok else frozenset()
+        kind = segment.segment_type
+        ok = _known(kind, _SEGMENT_CODES) and bool(lanes)
+        lane_ids: list[int] = []
+        codes, values = self._codes, self._values
+        for lane in lanes if ok else ():
+            row = _lane_row(lane)
+            if row is None:
+                ok = False
+                break
+            lane_id, direction, low, high, wide_low, wide_high = row
+            lane_ids.append(lane_id)
+            codes.extend((lane_id, direction))
+            values.extend((low, high, wide_low, wide_high))
+        ids = frozenset(lane_ids)
         if not ok or len(ids) != len(lanes):
             _check_road(road)
-        self.shape[1] = max(self.shape[1], len(lanes))
-        entry = (segment, len(self._distinct), ids)
+        self.lanes = max(self.lanes, len(lanes))
+        self._kinds.append(int(kind))
+        self._lengths.extend(
+            (
+                segment.min_length_before_intersecting_area_m,
+                segment.min_length_after_intersecting_area_m,
+            )
+        )
+        self._counts.append(len(lanes))
+        entry = (len(self._distinct), ids)
         self._distinct.append(segment)
         self._known[id(segment)] = entry
         return entry
 
     def arrays(self) -> RoadAreaArrays:
-        shape = (self.count, *self.shape)
+        shape = (self.count, self.segments, self.lanes)
         lane_id = np.full(shape, -1, dtype=np.int64)
         direction = np.zeros(shape, dtype=np.int64)
         metric = np.zeros((*shape, 4))
         segment_type = np.full(shape[:2], -1, dtype=np.int64)
         lengths = np.zeros((*shape[:2], 2))
         if self.uses:
-            distinct = self._distinct
-            kinds = np.array([int(s.segment_type) for s in distinct], dtype=np.int64)
-            before_after = np.array(
-                [
-                    (
-                        s.min_length_before_intersecting_area_m,
-                        s.min_length_after_intersecting_area_m,
-                    )
-                    for s in distinct
-                ],
-                dtype=np.float64,
-            )
-            flat = [lane for s in distinct for lane in s.lanes]
-            codes = np.array(
-                [(lane.lane_id, lane.driving_direction) for lane in flat], dtype=np.int64
-            )
-            values = np.array(
-                [
-                    (lane.length_min_m, lane.length_max_m, lane.width_min_m, lane.width_max_m)
-                    for lane in flat
-                ],
-                dtype=np.float64,
-            )
-            counts = np.array([len(s.lanes) for s in distinct], dtype=np.int64)
-            use = np.array(self.uses, dtype=np.int64)
+            kinds = np.array(self._kinds, dtype=np.int64)
+            before_after = np.array(self._lengths, dtype=np.float64).reshape(-1, 2)
+            codes = np.array(self._codes, dtype=np.int64).reshape(-1, 2)
+            values = np.array(self._values, dtype=np.float64).reshape(-1, 4)
+            counts = np.array(self._counts, dtype=np.int64)
+            use = np.array(self.uses, dtype=np.int64).reshape(-1, 3)
             segment_type[use[:, 0], use[:, 1]] = kinds[use[:, 2]]
             lengths[use[:, 0], use[:, 1]] = before_after[use[:, 2]]
             rows, m, src = _spread(counts, use[:, 2])
@@ -406,17 +431,32 @@ class _RoadRows:
         )
 
 
-def _lane_ok(lane: LaneSegment) -> bool:
-    """Whether a lane's lengths, widths, direction and id are valid (not its uniqueness)."""
+def _lane_row(lane: LaneSegment) -> tuple[int, int, float, float, float, float] | None:
+    """A lane's id, direction code, length min, max and width min, max [m] if they are valid.
+
+    Returns:
+        The row, or None if a length, width, direction or id is invalid (its uniqueness is
+        not checked).
+    """
     try:
-        return (
-            0.0 <= lane.length_min_m <= lane.length_max_m < math.inf
-            and 0.0 <= lane.width_min_m <= lane.width_max_m < math.inf
-            and lane.driving_direction in _DIRECTION_CODES
-            and lane.lane_id >= 0
+        row = (
+            lane.lane_id,
+            lane.driving_direction,
+            lane.length_min_m,
+            lane.length_max_m,
+            lane.width_min_m,
+            lane.width_max_m,
+        )
+        lane_id, direction, low, high, wide_low, wide_high = row
+        ok = (
+            0.0 <= low <= high < math.inf
+            and 0.0 <= wide_low <= wide_high < math.inf
+            and direction in _DIRECTION_CODES
+            and lane_id >= 0
         )
     except TypeError:
-        return False
+        return None
+    return row if ok else None
 
 
 def _check_road(road: tuple[RoadSegment, ...]) -> None:
@@ -430,7 +470,7 @@ def _check_road(road: tuple[RoadSegment, ...]) -> None:
             raise RssConstellationError("road segment", segment, "has no lanes")
         for lane in segment.lanes:
             try:
-                ok = _lane_ok(lane) and lane.lane_id not in seen
+                ok = _lane_row(lane) is not None and lane.lane_id not in seen
             except TypeError:
                 ok = False
             if not ok:
