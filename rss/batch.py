@@ -57,6 +57,11 @@ def _ints(array: npt.ArrayLike) -> IntArray:
     return out
 
 
+def _int_array(values: list[int]) -> IntArray:
+    """A flat list of Python ints as a writeable ``(n,)`` int64 array (no shape discovery)."""
+    return np.fromiter(values, np.int64, len(values))
+
+
 def _floats(array: npt.ArrayLike) -> FloatArray:
     out: FloatArray = np.array(array, dtype=np.float64)
     out.flags.writeable = False
@@ -94,7 +99,7 @@ def stack_dynamics(dynamics: Sequence[RssDynamics]) -> DynamicsArrays:
             values.extend([getattr(d, name) for name in _DYNAMICS_FIELDS])
         use.append(k)
     table = np.array(values, dtype=np.float64).reshape(len(known), len(_DYNAMICS_FIELDS))
-    rows = table[np.array(use, dtype=np.int64)]
+    rows = table[_int_array(use)]
     return DynamicsArrays(**{name: _floats(rows[:, k]) for k, name in enumerate(_DYNAMICS_FIELDS)})
 
 
@@ -278,12 +283,12 @@ class _ObjectRows:
         return k
 
     def arrays(self) -> ObjectArrays:
-        use = np.array(self.uses, dtype=np.int64)
+        use = _int_array(self.uses)
         width = max(1, max(self._counts, default=0))
         lane = np.full((len(use), width), -1, dtype=np.int64)
         params = np.zeros((len(use), width, 4))
         if self._lanes:
-            rows, k, src = _spread(np.array(self._counts, dtype=np.int64), use)
+            rows, k, src = _spread(_int_array(self._counts), use)
             lane[rows, k] = np.array(self._lanes, dtype=np.int64)[src]
             params[rows, k] = np.array(self._params, dtype=np.float64).reshape(-1, 4)[src]
         speeds = np.array(self._speeds, dtype=np.float64).reshape(-1, 4)[use]
@@ -331,12 +336,12 @@ class _RoadRows:
     """
 
     def __init__(self) -> None:
-        self.count = 0
-        self.uses: list[int] = []  # (row, segment, distinct segment) per use, flat
-        self.segments = 1  # R
+        self.sizes: list[int] = []  # segments per row
+        self.uses: list[int] = []  # distinct segment per segment of each row, flat
         self.lanes = 1  # L
-        self._known: dict[int, tuple[int, frozenset[int]]] = {}
+        self._known: dict[int, int] = {}
         self._distinct: list[RoadSegment] = []
+        self._lane_ids: list[frozenset[int]] = []  # per distinct segment
         self._kinds: list[int] = []
         self._lengths: list[float] = []  # before, after per distinct segment
         self._counts: list[int] = []  # lanes per distinct segment
@@ -349,23 +354,20 @@ class _RoadRows:
         Raises:
             RssConstellationError: The first invalid segment or lane of ``road``.
         """
-        row = self.count
-        self.count = row + 1
-        self.segments = max(self.segments, len(road))
+        n = len(road)
+        self.sizes.append(n)
         known, uses = self._known, self.uses
-        ids: list[frozenset[int]] = []
-        for j, segment in enumerate(road):
-            entry = known.get(id(segment))
-            if entry is None:
-                entry = self._distinct_segment(segment, road)
-            uses.extend((row, j, entry[0]))
-            ids.append(entry[1])
-        if len(ids) > 1 and len(frozenset().union(*ids)) != sum(map(len, ids)):
-            _check_road(road)
+        for segment in road:
+            k = known.get(id(segment))
+            if k is None:
+                k = self._distinct_segment(segment, road)
+            uses.append(k)
+        if n > 1:
+            ids = [self._lane_ids[k] for k in uses[-n:]]
+            if len(frozenset().union(*ids)) != sum(map(len, ids)):
+                _check_road(road)
 
-    def _distinct_segment(
-        self, segment: RoadSegment, road: tuple[RoadSegment, ...]
-    ) -> tuple[int, frozenset[int]]:
+    def _distinct_segment(self, segment: RoadSegment, road: tuple[RoadSegment, ...]) -> int:
         lanes = segment.lanes
         kind = segment.segment_type
         ok = _known(kind, _SEGMENT_CODES) and bool(lanes)
@@ -392,32 +394,32 @@ class _RoadRows:
             )
         )
         self._counts.append(len(lanes))
-        entry = (len(self._distinct), ids)
+        self._lane_ids.append(ids)
+        k = self._known[id(segment)] = len(self._distinct)
         self._distinct.append(segment)
-        self._known[id(segment)] = entry
-        return entry
+        return k
 
     def arrays(self) -> RoadAreaArrays:
-        shape = (self.count, self.segments, self.lanes)
+        sizes = _int_array(self.sizes)
+        shape = (len(self.sizes), max(1, int(sizes.max(initial=0))), self.lanes)
         lane_id = np.full(shape, -1, dtype=np.int64)
         direction = np.zeros(shape, dtype=np.int64)
         metric = np.zeros((*shape, 4))
         segment_type = np.full(shape[:2], -1, dtype=np.int64)
         lengths = np.zeros((*shape[:2], 2))
         if self.uses:
-            kinds = np.array(self._kinds, dtype=np.int64)
-            before_after = np.array(self._lengths, dtype=np.float64).reshape(-1, 2)
-            codes = np.array(self._codes, dtype=np.int64).reshape(-1, 2)
-            values = np.array(self._values, dtype=np.float64).reshape(-1, 4)
-            counts = np.array(self._counts, dtype=np.int64)
-            use = np.array(self.uses, dtype=np.int64).reshape(-1, 3)
-            segment_type[use[:, 0], use[:, 1]] = kinds[use[:, 2]]
-            lengths[use[:, 0], use[:, 1]] = before_after[use[:, 2]]
-            rows, m, src = _spread(counts, use[:, 2])
-            at = (use[rows, 0], use[rows, 1], m)
+            use = _int_array(self.uses)
+            row, position, _ = _spread(sizes, np.arange(len(sizes)))
+            segment_type[row, position] = _int_array(self._kinds)[use]
+            lengths[row, position] = np.array(self._lengths, dtype=np.float64).reshape(-1, 2)[use]
+            lanes, m, src = _spread(_int_array(self._counts), use)
+            at = (row[lanes], position[lanes], m)
+            codes = _int_array(self._codes).reshape(-1, 2)
             lane_id[at] = codes[src, 0]
             direction[at] = codes[src, 1]
-            metric[at] = values[src]
+            metric[at] = np.fromiter(self._values, np.float64, len(self._values)).reshape(-1, 4)[
+                src
+            ]
         return RoadAreaArrays(
             lane_id=_ints(lane_id),
             driving_direction=_ints(direction),
