@@ -193,7 +193,10 @@ def stack_constellations(constellations: Sequence[Constellation]) -> Constellati
     """Pad and stack scalar constellations into a :class:`ConstellationBatch`.
 
     One pass over the constellations validates them and collects flat rows; the padded
-    arrays are filled by one indexed assignment per field. Structural errors raise; value
+    arrays are filled by one indexed assignment per field and searched for lane ids
+    repeated within a road area. On any structural error the constellations are checked
+    again one by one (:func:`_check_in_order`), so the first error in their order is the
+    one raised. Structural errors raise; value
     errors of single objects (NaN, negative speed, a region outside the road area) do not:
     the engine flags those constellations invalid.
 
@@ -204,28 +207,71 @@ def stack_constellations(constellations: Sequence[Constellation]) -> Constellati
     types: list[int] = []
     ego, other = _ObjectRows(), _ObjectRows()
     ego_road, intersecting_road = _RoadRows(), _RoadRows()
-    for c in constellations:
-        kind = c.constellation_type
-        if not _known(kind, _CONSTELLATION_CODES):
-            raise RssConstellationError("constellation_type", kind, "unknown")
-        if kind == ConstellationType.Unstructured:
-            raise RssConstellationError(
-                "constellation_type", "Unstructured", "not a structured constellation (issue 6)"
-            )
-        ego.add(c.ego)
-        other.add(c.other)
-        ego_road.add(c.ego_road)
-        intersecting_road.add(c.intersecting_road)
-        types.append(int(kind))
+    try:
+        for c in constellations:
+            kind = c.constellation_type
+            _check_kind(kind)
+            ego.add(c.ego)
+            other.add(c.other)
+            ego_road.add(c.ego_road)
+            intersecting_road.add(c.intersecting_road)
+            types.append(int(kind))
+    except RssConstellationError:
+        _check_in_order(constellations)
+        raise
+    roads = ego_road.arrays(), intersecting_road.arrays()
+    if any(_repeats_lane(road.lane_id) for road in roads):
+        _check_in_order(constellations)
     return ConstellationBatch(
         constellation_type=_ints(types),
         ego=ego.arrays(),
         other=other.arrays(),
         ego_dynamics=stack_dynamics([c.ego_dynamics for c in constellations]),
         other_dynamics=stack_dynamics([c.other_dynamics for c in constellations]),
-        ego_road=ego_road.arrays(),
-        intersecting_road=intersecting_road.arrays(),
+        ego_road=roads[0],
+        intersecting_road=roads[1],
     )
+
+
+def _check_kind(kind: object) -> None:
+    """Raise unless ``kind`` is a known structured constellation type."""
+    if not _known(kind, _CONSTELLATION_CODES):
+        raise RssConstellationError("constellation_type", kind, "unknown")
+    if kind == ConstellationType.Unstructured:
+        raise RssConstellationError(
+            "constellation_type", "Unstructured", "not a structured constellation (issue 6)"
+        )
+
+
+def _check_object(obj: LaneObject) -> None:
+    """Raise unless ``obj`` has a known object type."""
+    if not _known(obj.object_type, _OBJECT_CODES):
+        raise RssConstellationError("object_type", obj.object_type, "unknown")
+
+
+def _check_in_order(constellations: Sequence[Constellation]) -> None:
+    """Raise the first structural error of ``constellations`` (the exact, slow checks).
+
+    Per constellation in order: its type, the ego's and the other's object type, then
+    the ego road and the intersecting road in road order (:func:`_check_road`).
+    """
+    for c in constellations:
+        _check_kind(c.constellation_type)
+        _check_object(c.ego)
+        _check_object(c.other)
+        _check_road(c.ego_road)
+        _check_road(c.intersecting_road)
+
+
+def _repeats_lane(lane_id: IntArray) -> bool:
+    """Whether a lane id occurs twice in one road area.
+
+    Args:
+        lane_id: ``(C, R, L)`` lane ids, -1 = no lane (valid ids are >= 0).
+    """
+    count, segments, lanes = lane_id.shape
+    ids = np.sort(lane_id.reshape(count, segments * lanes), axis=1)
+    return bool(((ids[:, 1:] == ids[:, :-1]) & (ids[:, 1:] >= 0)).any())
 
 
 def _known(code: object, codes: frozenset[int]) -> bool:
@@ -266,9 +312,8 @@ class _ObjectRows:
         self.uses.append(k)
 
     def _first(self, obj: LaneObject) -> int:
+        _check_object(obj)
         kind = obj.object_type
-        if not _known(kind, _OBJECT_CODES):
-            raise RssConstellationError("object_type", kind, "unknown")
         k = self._known[id(obj)] = len(self._distinct)
         self._distinct.append(obj)
         self._ids.append(obj.object_id)
@@ -332,7 +377,8 @@ class _RoadRows:
     areas, a frame's cut ones by several) is validated and read once per stacking, in one
     pass over its lanes; its lanes are spread to every use by a few numpy calls in
     :meth:`arrays`. A road that fails validation is re-checked lane by lane
-    (:func:`_check_road`) for the exact error.
+    (:func:`_check_road`) for the exact error. Lane ids repeated within a road area are
+    not checked here but in the padded arrays (:func:`stack_constellations`).
     """
 
     def __init__(self) -> None:
@@ -341,7 +387,6 @@ class _RoadRows:
         self.lanes = 1  # L
         self._known: dict[int, int] = {}
         self._distinct: list[RoadSegment] = []
-        self._lane_ids: list[frozenset[int]] = []  # per distinct segment
         self._kinds: list[int] = []
         self._lengths: list[float] = []  # before, after per distinct segment
         self._counts: list[int] = []  # lanes per distinct segment
@@ -352,26 +397,21 @@ class _RoadRows:
         """Add the road area of the next row.
 
         Raises:
-            RssConstellationError: The first invalid segment or lane of ``road``.
+            RssConstellationError: The first invalid segment or lane of ``road`` (repeated
+                lane ids are not checked here).
         """
-        n = len(road)
-        self.sizes.append(n)
+        self.sizes.append(len(road))
         known, uses = self._known, self.uses
         for segment in road:
             k = known.get(id(segment))
             if k is None:
                 k = self._distinct_segment(segment, road)
             uses.append(k)
-        if n > 1:
-            ids = [self._lane_ids[k] for k in uses[-n:]]
-            if len(frozenset().union(*ids)) != sum(map(len, ids)):
-                _check_road(road)
 
     def _distinct_segment(self, segment: RoadSegment, road: tuple[RoadSegment, ...]) -> int:
         lanes = segment.lanes
         kind = segment.segment_type
         ok = _known(kind, _SEGMENT_CODES) and bool(lanes)
-        lane_ids: list[int] = []
         codes, values = self._codes, self._values
         for lane in lanes if ok else ():
             row = _lane_row(lane)
@@ -379,11 +419,9 @@ class _RoadRows:
                 ok = False
                 break
             lane_id, direction, low, high, wide_low, wide_high = row
-            lane_ids.append(lane_id)
             codes.extend((lane_id, direction))
             values.extend((low, high, wide_low, wide_high))
-        ids = frozenset(lane_ids)
-        if not ok or len(ids) != len(lanes):
+        if not ok:
             _check_road(road)
         self.lanes = max(self.lanes, len(lanes))
         self._kinds.append(int(kind))
@@ -394,7 +432,6 @@ class _RoadRows:
             )
         )
         self._counts.append(len(lanes))
-        self._lane_ids.append(ids)
         k = self._known[id(segment)] = len(self._distinct)
         self._distinct.append(segment)
         return k
