@@ -10,8 +10,9 @@ from __future__ import annotations
 import dataclasses
 import functools
 import math
+import operator
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, TypeVar
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import numpy as np
 import numpy.typing as npt
@@ -41,6 +42,16 @@ __all__ = [
 _T = TypeVar("_T")
 
 _DYNAMICS_FIELDS = tuple(DYNAMICS_KEYS.values())
+# multi-attribute getters return the attribute objects as they are (compiled code would
+# unbox and box again each float read through the typed model)
+_LANE = operator.attrgetter(
+    "lane_id", "driving_direction", "length_min_m", "length_max_m", "width_min_m", "width_max_m"
+)
+_LENGTHS = operator.attrgetter(
+    "min_length_before_intersecting_area_m", "min_length_after_intersecting_area_m"
+)
+_REGION = operator.attrgetter("lon_min", "lon_max", "lat_min", "lat_max")
+_SPEED = operator.attrgetter("lon_min_mps", "lon_max_mps", "lat_min_mps", "lat_max_mps")
 _CONSTELLATION_CODES = frozenset(int(v) for v in ConstellationType)
 _OBJECT_CODES = frozenset(int(v) for v in ObjectType)
 _SEGMENT_CODES = frozenset(int(v) for v in RoadSegmentType)
@@ -318,13 +329,12 @@ class _ObjectRows:
         self._distinct.append(obj)
         self._ids.append(obj.object_id)
         self._types.append(int(kind))
-        s = obj.speed
-        self._speeds.extend((s.lon_min_mps, s.lon_max_mps, s.lat_min_mps, s.lat_max_mps))
+        self._speeds.extend(_SPEED(obj.speed))
         regions = obj.regions
         self._counts.append(len(regions))
         for r in regions:
             self._lanes.append(r.lane_id)
-            self._params.extend((r.lon_min, r.lon_max, r.lat_min, r.lat_max))
+            self._params.extend(_REGION(r))
         return k
 
     def arrays(self) -> ObjectArrays:
@@ -418,19 +428,13 @@ class _RoadRows:
             if row is None:
                 ok = False
                 break
-            lane_id, direction, low, high, wide_low, wide_high = row
-            codes.extend((lane_id, direction))
-            values.extend((low, high, wide_low, wide_high))
+            codes.extend(row[:2])
+            values.extend(row[2:])
         if not ok:
             _check_road(road)
         self.lanes = max(self.lanes, len(lanes))
         self._kinds.append(int(kind))
-        self._lengths.extend(
-            (
-                segment.min_length_before_intersecting_area_m,
-                segment.min_length_after_intersecting_area_m,
-            )
-        )
+        self._lengths.extend(_LENGTHS(segment))
         self._counts.append(len(lanes))
         k = self._known[id(segment)] = len(self._distinct)
         self._distinct.append(segment)
@@ -470,23 +474,16 @@ class _RoadRows:
         )
 
 
-def _lane_row(lane: LaneSegment) -> tuple[int, int, float, float, float, float] | None:
+def _lane_row(lane: LaneSegment) -> tuple[Any, ...] | None:
     """A lane's id, direction code, length min, max and width min, max [m] if they are valid.
 
     Returns:
         The row, or None if a length, width, direction or id is invalid (its uniqueness is
         not checked).
     """
+    row: tuple[Any, ...] = _LANE(lane)
+    lane_id, direction, low, high, wide_low, wide_high = row
     try:
-        row = (
-            lane.lane_id,
-            lane.driving_direction,
-            lane.length_min_m,
-            lane.length_max_m,
-            lane.width_min_m,
-            lane.width_max_m,
-        )
-        lane_id, direction, low, high, wide_low, wide_high = row
         ok = (
             0.0 <= low <= high < math.inf
             and 0.0 <= wide_low <= wide_high < math.inf
