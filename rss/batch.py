@@ -10,8 +10,9 @@ from __future__ import annotations
 import dataclasses
 import functools
 import math
+import operator
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, TypeVar
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import numpy as np
 import numpy.typing as npt
@@ -41,6 +42,16 @@ __all__ = [
 _T = TypeVar("_T")
 
 _DYNAMICS_FIELDS = tuple(DYNAMICS_KEYS.values())
+# multi-attribute getters return the attribute objects as they are (compiled code would
+# unbox and box again each float read through the typed model)
+_LANE = operator.attrgetter(
+    "lane_id", "driving_direction", "length_min_m", "length_max_m", "width_min_m", "width_max_m"
+)
+_LENGTHS = operator.attrgetter(
+    "min_length_before_intersecting_area_m", "min_length_after_intersecting_area_m"
+)
+_REGION = operator.attrgetter("lon_min", "lon_max", "lat_min", "lat_max")
+_SPEED = operator.attrgetter("lon_min_mps", "lon_max_mps", "lat_min_mps", "lat_max_mps")
 _CONSTELLATION_CODES = frozenset(int(v) for v in ConstellationType)
 _OBJECT_CODES = frozenset(int(v) for v in ObjectType)
 _SEGMENT_CODES = frozenset(int(v) for v in RoadSegmentType)
@@ -55,6 +66,11 @@ def _ints(array: npt.ArrayLike) -> IntArray:
     out: IntArray = np.array(array, dtype=np.int64)
     out.flags.writeable = False
     return out
+
+
+def _int_array(values: list[int]) -> IntArray:
+    """A flat list of Python ints as a writeable ``(n,)`` int64 array (no shape discovery)."""
+    return np.fromiter(values, np.int64, len(values))
 
 
 def _floats(array: npt.ArrayLike) -> FloatArray:
@@ -84,17 +100,18 @@ class DynamicsArrays:
 
 def stack_dynamics(dynamics: Sequence[RssDynamics]) -> DynamicsArrays:
     """Stack validated dynamics into ``(C,)`` arrays (a shared object is read once)."""
-    rows: dict[int, tuple[float, ...]] = {}
-    table = []
+    known: dict[int, int] = {}
+    values: list[float] = []
+    use: list[int] = []
     for d in dynamics:
-        row = rows.get(id(d))
-        if row is None:
-            row = rows[id(d)] = tuple(getattr(d, name) for name in _DYNAMICS_FIELDS)
-        table.append(row)
-    values = np.array(table, dtype=np.float64).reshape(len(table), len(_DYNAMICS_FIELDS))
-    return DynamicsArrays(
-        **{name: _floats(values[:, k]) for k, name in enumerate(_DYNAMICS_FIELDS)}
-    )
+        k = known.get(id(d))
+        if k is None:
+            k = known[id(d)] = len(known)
+            values.extend([getattr(d, name) for name in _DYNAMICS_FIELDS])
+        use.append(k)
+    table = np.array(values, dtype=np.float64).reshape(len(known), len(_DYNAMICS_FIELDS))
+    rows = table[_int_array(use)]
+    return DynamicsArrays(**{name: _floats(rows[:, k]) for k, name in enumerate(_DYNAMICS_FIELDS)})
 
 
 @dataclass(frozen=True)
@@ -187,7 +204,10 @@ def stack_constellations(constellations: Sequence[Constellation]) -> Constellati
     """Pad and stack scalar constellations into a :class:`ConstellationBatch`.
 
     One pass over the constellations validates them and collects flat rows; the padded
-    arrays are filled by one indexed assignment per field. Structural errors raise; value
+    arrays are filled by one indexed assignment per field and searched for lane ids
+    repeated within a road area. On any structural error the constellations are checked
+    again one by one (:func:`_check_in_order`), so the first error in their order is the
+    one raised. Structural errors raise; value
     errors of single objects (NaN, negative speed, a region outside the road area) do not:
     the engine flags those constellations invalid.
 
@@ -198,31 +218,71 @@ def stack_constellations(constellations: Sequence[Constellation]) -> Constellati
     types: list[int] = []
     ego, other = _ObjectRows(), _ObjectRows()
     ego_road, intersecting_road = _RoadRows(), _RoadRows()
-    for c in constellations:
-        kind = c.constellation_type
-        if not _known(kind, _CONSTELLATION_CODES):
-            raise RssConstellationError("constellation_type", kind, "unknown")
-        if kind == ConstellationType.Unstructured:
-            raise RssConstellationError(
-                "constellation_type", "Unstructured", "not a structured constellation (issue 6)"
-            )
-        for obj in (c.ego, c.other):
-            if not _known(obj.object_type, _OBJECT_CODES):
-                raise RssConstellationError("object_type", obj.object_type, "unknown")
-        ego_road.add(c.ego_road)
-        intersecting_road.add(c.intersecting_road)
-        types.append(int(kind))
-        ego.add(c.ego)
-        other.add(c.other)
+    try:
+        for c in constellations:
+            kind = c.constellation_type
+            _check_kind(kind)
+            ego.add(c.ego)
+            other.add(c.other)
+            ego_road.add(c.ego_road)
+            intersecting_road.add(c.intersecting_road)
+            types.append(int(kind))
+    except RssConstellationError:
+        _check_in_order(constellations)
+        raise
+    roads = ego_road.arrays(), intersecting_road.arrays()
+    if any(_repeats_lane(road.lane_id) for road in roads):
+        _check_in_order(constellations)
     return ConstellationBatch(
         constellation_type=_ints(types),
         ego=ego.arrays(),
         other=other.arrays(),
         ego_dynamics=stack_dynamics([c.ego_dynamics for c in constellations]),
         other_dynamics=stack_dynamics([c.other_dynamics for c in constellations]),
-        ego_road=ego_road.arrays(),
-        intersecting_road=intersecting_road.arrays(),
+        ego_road=roads[0],
+        intersecting_road=roads[1],
     )
+
+
+def _check_kind(kind: object) -> None:
+    """Raise unless ``kind`` is a known structured constellation type."""
+    if not _known(kind, _CONSTELLATION_CODES):
+        raise RssConstellationError("constellation_type", kind, "unknown")
+    if kind == ConstellationType.Unstructured:
+        raise RssConstellationError(
+            "constellation_type", "Unstructured", "not a structured constellation (issue 6)"
+        )
+
+
+def _check_object(obj: LaneObject) -> None:
+    """Raise unless ``obj`` has a known object type."""
+    if not _known(obj.object_type, _OBJECT_CODES):
+        raise RssConstellationError("object_type", obj.object_type, "unknown")
+
+
+def _check_in_order(constellations: Sequence[Constellation]) -> None:
+    """Raise the first structural error of ``constellations`` (the exact, slow checks).
+
+    Per constellation in order: its type, the ego's and the other's object type, then
+    the ego road and the intersecting road in road order (:func:`_check_road`).
+    """
+    for c in constellations:
+        _check_kind(c.constellation_type)
+        _check_object(c.ego)
+        _check_object(c.other)
+        _check_road(c.ego_road)
+        _check_road(c.intersecting_road)
+
+
+def _repeats_lane(lane_id: IntArray) -> bool:
+    """Whether a lane id occurs twice in one road area.
+
+    Args:
+        lane_id: ``(C, R, L)`` lane ids, -1 = no lane (valid ids are >= 0).
+    """
+    count, segments, lanes = lane_id.shape
+    ids = np.sort(lane_id.reshape(count, segments * lanes), axis=1)
+    return bool(((ids[:, 1:] == ids[:, :-1]) & (ids[:, 1:] >= 0)).any())
 
 
 def _known(code: object, codes: frozenset[int]) -> bool:
@@ -233,50 +293,63 @@ def _known(code: object, codes: frozenset[int]) -> bool:
 
 
 class _ObjectRows:
-    """Objects of ``C`` constellations.
+    """Objects of ``C`` constellations as flat rows.
 
     Each distinct :class:`LaneObject` (a frame's placed objects are shared by many
-    constellations) is read once; its regions are spread to every use in :meth:`arrays`.
+    constellations) is validated and read once, on first sight; its regions are spread to
+    every use in :meth:`arrays`.
     """
 
     def __init__(self) -> None:
         self.uses: list[int] = []  # distinct object per row
         self._known: dict[int, int] = {}
         self._distinct: list[LaneObject] = []
+        self._ids: list[int] = []
+        self._types: list[int] = []
+        self._speeds: list[float] = []  # 4 per distinct object
+        self._counts: list[int] = []  # regions per distinct object
+        self._lanes: list[int] = []  # 1 per region
+        self._params: list[float] = []  # 4 per region
 
     def add(self, obj: LaneObject) -> None:
+        """Add the object of the next row.
+
+        Raises:
+            RssConstellationError: Unknown object type.
+        """
         k = self._known.get(id(obj))
         if k is None:
-            k = self._known[id(obj)] = len(self._distinct)
-            self._distinct.append(obj)
+            k = self._first(obj)
         self.uses.append(k)
 
+    def _first(self, obj: LaneObject) -> int:
+        _check_object(obj)
+        kind = obj.object_type
+        k = self._known[id(obj)] = len(self._distinct)
+        self._distinct.append(obj)
+        self._ids.append(obj.object_id)
+        self._types.append(int(kind))
+        self._speeds.extend(_SPEED(obj.speed))
+        regions = obj.regions
+        self._counts.append(len(regions))
+        for r in regions:
+            self._lanes.append(r.lane_id)
+            self._params.extend(_REGION(r))
+        return k
+
     def arrays(self) -> ObjectArrays:
-        distinct = self._distinct
-        use = np.array(self.uses, dtype=np.int64)
-        counts = np.array([len(o.regions) for o in distinct], dtype=np.int64)
-        width = max(1, int(counts.max(initial=0)))
+        use = _int_array(self.uses)
+        width = max(1, max(self._counts, default=0))
         lane = np.full((len(use), width), -1, dtype=np.int64)
         params = np.zeros((len(use), width, 4))
-        regions = [r for o in distinct for r in o.regions]
-        if regions:
-            rows, k, src = _spread(counts, use)
-            lane[rows, k] = np.array([r.lane_id for r in regions], dtype=np.int64)[src]
-            params[rows, k] = np.array(
-                [(r.lon_min, r.lon_max, r.lat_min, r.lat_max) for r in regions], dtype=np.float64
-            )[src]
-        speeds = np.array(
-            [
-                (o.speed.lon_min_mps, o.speed.lon_max_mps, o.speed.lat_min_mps, o.speed.lat_max_mps)
-                for o in distinct
-            ],
-            dtype=np.float64,
-        ).reshape(len(distinct), 4)[use]
+        if self._lanes:
+            rows, k, src = _spread(_int_array(self._counts), use)
+            lane[rows, k] = np.array(self._lanes, dtype=np.int64)[src]
+            params[rows, k] = np.array(self._params, dtype=np.float64).reshape(-1, 4)[src]
+        speeds = np.array(self._speeds, dtype=np.float64).reshape(-1, 4)[use]
         return ObjectArrays(
-            object_id=_ints(np.array([o.object_id for o in distinct], dtype=np.int64)[use]),
-            object_type=_ints(
-                np.array([int(o.object_type) for o in distinct], dtype=np.int64)[use]
-            ),
+            object_id=_ints(np.array(self._ids, dtype=np.int64)[use]),
+            object_type=_ints(np.array(self._types, dtype=np.int64)[use]),
             region_lane_id=_ints(lane),
             region_lon_min=_floats(params[:, :, 0]),
             region_lon_max=_floats(params[:, :, 1]),
@@ -308,91 +381,86 @@ def _spread(counts: IntArray, use: IntArray) -> tuple[IntArray, IntArray, IntArr
 
 
 class _RoadRows:
-    """Road areas of ``C`` constellations as validated segment rows.
+    """Road areas of ``C`` constellations as validated, flat segment rows.
 
     Each distinct :class:`RoadSegment` object (whole segments are shared by many road
-    areas, a frame's cut ones by several) is validated and read once per stacking; its
-    lanes are spread to every use by a few numpy calls in :meth:`arrays`. A road that
-    fails validation is re-checked lane by lane (:func:`_check_road`) for the exact error.
+    areas, a frame's cut ones by several) is validated and read once per stacking, in one
+    pass over its lanes; its lanes are spread to every use by a few numpy calls in
+    :meth:`arrays`. A road that fails validation is re-checked lane by lane
+    (:func:`_check_road`) for the exact error. Lane ids repeated within a road area are
+    not checked here but in the padded arrays (:func:`stack_constellations`).
     """
 
     def __init__(self) -> None:
-        self.count = 0
-        self.uses: list[tuple[int, int, int]] = []  # (row, segment, distinct segment)
-        self.shape = [1, 1]
-        self._known: dict[int, tuple[RoadSegment, int, frozenset[int]]] = {}
+        self.sizes: list[int] = []  # segments per row
+        self.uses: list[int] = []  # distinct segment per segment of each row, flat
+        self.lanes = 1  # L
+        self._known: dict[int, int] = {}
         self._distinct: list[RoadSegment] = []
+        self._kinds: list[int] = []
+        self._lengths: list[float] = []  # before, after per distinct segment
+        self._counts: list[int] = []  # lanes per distinct segment
+        self._codes: list[int] = []  # lane id, driving direction per lane
+        self._values: list[float] = []  # length min, max, width min, max per lane
 
     def add(self, road: tuple[RoadSegment, ...]) -> None:
-        row = self.count
-        self.count += 1
-        self.shape[0] = max(self.shape[0], len(road))
-        known, uses = self._known, self.uses
-        ids: list[frozenset[int]] = []
-        for j, segment in enumerate(road):
-            entry = known.get(id(segment))
-            if entry is None:
-                entry = self._distinct_segment(segment, road)
-            uses.append((row, j, entry[1]))
-            ids.append(entry[2])
-        if len(ids) > 1 and len(frozenset().union(*ids)) != sum(map(len, ids)):
-            _check_road(road)
+        """Add the road area of the next row.
 
-    def _distinct_segment(
-        self, segment: RoadSegment, road: tuple[RoadSegment, ...]
-    ) -> tuple[RoadSegment, int, frozenset[int]]:
+        Raises:
+            RssConstellationError: The first invalid segment or lane of ``road`` (repeated
+                lane ids are not checked here).
+        """
+        self.sizes.append(len(road))
+        known, uses = self._known, self.uses
+        for segment in road:
+            k = known.get(id(segment))
+            if k is None:
+                k = self._distinct_segment(segment, road)
+            uses.append(k)
+
+    def _distinct_segment(self, segment: RoadSegment, road: tuple[RoadSegment, ...]) -> int:
         lanes = segment.lanes
-        ok = _known(segment.segment_type, _SEGMENT_CODES) and bool(lanes)
-        ok = ok and all(map(_lane_ok, lanes))
-        ids = frozenset(lane.lane_id for lane in lanes) if ok else frozenset()
-        if not ok or len(ids) != len(lanes):
+        kind = segment.segment_type
+        ok = _known(kind, _SEGMENT_CODES) and bool(lanes)
+        codes, values = self._codes, self._values
+        for lane in lanes if ok else ():
+            row = _lane_row(lane)
+            if row is None:
+                ok = False
+                break
+            codes.extend(row[:2])
+            values.extend(row[2:])
+        if not ok:
             _check_road(road)
-        self.shape[1] = max(self.shape[1], len(lanes))
-        entry = (segment, len(self._distinct), ids)
+        self.lanes = max(self.lanes, len(lanes))
+        self._kinds.append(int(kind))
+        self._lengths.extend(_LENGTHS(segment))
+        self._counts.append(len(lanes))
+        k = self._known[id(segment)] = len(self._distinct)
         self._distinct.append(segment)
-        self._known[id(segment)] = entry
-        return entry
+        return k
 
     def arrays(self) -> RoadAreaArrays:
-        shape = (self.count, *self.shape)
+        sizes = _int_array(self.sizes)
+        shape = (len(self.sizes), max(1, int(sizes.max(initial=0))), self.lanes)
         lane_id = np.full(shape, -1, dtype=np.int64)
         direction = np.zeros(shape, dtype=np.int64)
         metric = np.zeros((*shape, 4))
         segment_type = np.full(shape[:2], -1, dtype=np.int64)
         lengths = np.zeros((*shape[:2], 2))
         if self.uses:
-            distinct = self._distinct
-            kinds = np.array([int(s.segment_type) for s in distinct], dtype=np.int64)
-            before_after = np.array(
-                [
-                    (
-                        s.min_length_before_intersecting_area_m,
-                        s.min_length_after_intersecting_area_m,
-                    )
-                    for s in distinct
-                ],
-                dtype=np.float64,
-            )
-            flat = [lane for s in distinct for lane in s.lanes]
-            codes = np.array(
-                [(lane.lane_id, lane.driving_direction) for lane in flat], dtype=np.int64
-            )
-            values = np.array(
-                [
-                    (lane.length_min_m, lane.length_max_m, lane.width_min_m, lane.width_max_m)
-                    for lane in flat
-                ],
-                dtype=np.float64,
-            )
-            counts = np.array([len(s.lanes) for s in distinct], dtype=np.int64)
-            use = np.array(self.uses, dtype=np.int64)
-            segment_type[use[:, 0], use[:, 1]] = kinds[use[:, 2]]
-            lengths[use[:, 0], use[:, 1]] = before_after[use[:, 2]]
-            rows, m, src = _spread(counts, use[:, 2])
-            at = (use[rows, 0], use[rows, 1], m)
+            use = _int_array(self.uses)
+            row, position, _ = _spread(sizes, np.arange(len(sizes)))
+            segment_type[row, position] = _int_array(self._kinds)[use]
+            lengths[row, position] = np.array(self._lengths, dtype=np.float64).reshape(-1, 2)[use]
+            lanes, m, src = _spread(_int_array(self._counts), use)
+            at = (row[lanes], position[lanes], m)
+            codes = _int_array(self._codes).reshape(-1, 2)
             lane_id[at] = codes[src, 0]
             direction[at] = codes[src, 1]
-            metric[at] = values[src]
+            metric[at] = np.fromiter(self._values, np.float64, len(self._values)).reshape(-1, 4)[
+                src
+            ]
         return RoadAreaArrays(
             lane_id=_ints(lane_id),
             driving_direction=_ints(direction),
@@ -406,17 +474,25 @@ class _RoadRows:
         )
 
 
-def _lane_ok(lane: LaneSegment) -> bool:
-    """Whether a lane's lengths, widths, direction and id are valid (not its uniqueness)."""
+def _lane_row(lane: LaneSegment) -> tuple[Any, ...] | None:
+    """A lane's id, direction code, length min, max and width min, max [m] if they are valid.
+
+    Returns:
+        The row, or None if a length, width, direction or id is invalid (its uniqueness is
+        not checked).
+    """
+    row: tuple[Any, ...] = _LANE(lane)
+    lane_id, direction, low, high, wide_low, wide_high = row
     try:
-        return (
-            0.0 <= lane.length_min_m <= lane.length_max_m < math.inf
-            and 0.0 <= lane.width_min_m <= lane.width_max_m < math.inf
-            and lane.driving_direction in _DIRECTION_CODES
-            and lane.lane_id >= 0
+        ok = (
+            0.0 <= low <= high < math.inf
+            and 0.0 <= wide_low <= wide_high < math.inf
+            and direction in _DIRECTION_CODES
+            and lane_id >= 0
         )
     except TypeError:
-        return False
+        return None
+    return row if ok else None
 
 
 def _check_road(road: tuple[RoadSegment, ...]) -> None:
@@ -430,7 +506,7 @@ def _check_road(road: tuple[RoadSegment, ...]) -> None:
             raise RssConstellationError("road segment", segment, "has no lanes")
         for lane in segment.lanes:
             try:
-                ok = _lane_ok(lane) and lane.lane_id not in seen
+                ok = _lane_row(lane) is not None and lane.lane_id not in seen
             except TypeError:
                 ok = False
             if not ok:

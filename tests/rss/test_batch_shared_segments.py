@@ -79,3 +79,29 @@ def test_first_invalid_lane_in_road_order_is_reported() -> None:
         stack_constellations([dataclasses.replace(c, ego_road=(RoadSegment((bad_width,)), seg))])
     with pytest.raises(RssConstellationError, match="no lanes"):
         stack_constellations([dataclasses.replace(c, ego_road=(seg, RoadSegment(())))])
+
+
+def test_first_error_in_constellation_order_is_reported() -> None:
+    """Repeated lane ids (found in the padded arrays) still rank by constellation order."""
+    c = _base()
+    (seg,) = c.ego_road
+    a, b, _ = seg.lanes
+    same_twice = RoadSegment((a, a))
+    repeated = dataclasses.replace(c, intersecting_road=(RoadSegment((b,)), RoadSegment((b,))))
+    unknown = dataclasses.replace(c, constellation_type=17)  # type: ignore[arg-type]
+    bad_width = dataclasses.replace(
+        c,
+        ego_road=(RoadSegment((LaneSegment(99, 1, 10, 10, 3, 2),)),),  # type: ignore[arg-type]
+    )
+    cases = [
+        ([c, repeated, unknown], "lane id"),
+        ([c, unknown, repeated], "constellation_type"),
+        ([repeated, bad_width], "lane id"),
+        ([bad_width, repeated], "width"),
+        ([dataclasses.replace(c, ego_road=(same_twice,)), unknown], "lane id"),
+        ([dataclasses.replace(repeated, ego_road=bad_width.ego_road)], "width"),
+    ]
+    for constellations, message in cases:
+        with pytest.raises(RssConstellationError, match=message):
+            stack_constellations(constellations)
+    assert stack_constellations([c, c]).ego_road.lane_id.shape == (2, 1, 3)
