@@ -210,22 +210,16 @@ def merge_similar(
     )
     codes, distances = codes[group], distances[group]
     objects = (batch.ego, batch.other)
-    lows = np.minimum.reduceat(
-        np.stack(
-            [getattr(rel, name) for name in _REL_MIN]
-            + [getattr(obj, name) for obj in objects for name in _SPEEDS_MIN],
-            axis=1,
-        )[rows],
-        starts,
-    )[group]
-    highs = np.maximum.reduceat(
-        np.stack(
-            [getattr(rel, name) for name in _REL_MAX]
-            + [getattr(obj, name) for obj in objects for name in _SPEEDS_MAX],
-            axis=1,
-        )[rows],
-        starts,
-    )[group]
+
+    def worst(reduce: np.ufunc, rel_names: tuple[str, ...], speeds: tuple[str, ...]) -> FloatArray:
+        """Per row, ``reduce`` of the named columns over its group."""
+        columns = [getattr(rel, name) for name in rel_names]
+        columns += [getattr(obj, name) for obj in objects for name in speeds]
+        out: FloatArray = reduce.reduceat(np.stack(columns, axis=1)[rows], starts)[group]
+        return out
+
+    lows = worst(np.minimum, _REL_MIN, _SPEEDS_MIN)
+    highs = worst(np.maximum, _REL_MAX, _SPEEDS_MAX)
     ego_correct = np.logical_and.reduceat(rel.ego_in_correct_lane[rows], starts)[group]
     other_correct = np.logical_or.reduceat(rel.other_in_correct_lane[rows], starts)[group]
     fields = {

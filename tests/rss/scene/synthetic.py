@@ -147,3 +147,25 @@ def straight_lanes(
         traffic_light=np.full(n, -1, dtype=np.int64) if traffic_light is None else traffic_light,
         light_ids=light_ids,
     )
+
+
+def lone_lane(left: np.ndarray, right: np.ndarray, centre: np.ndarray, name: str) -> LaneGraph:
+    """One unlinked lane driven along its point order (10 m/s, no rules) from its lines [m]."""
+    one = np.ones(1, dtype=np.int64)
+    return LaneGraph(
+        ids=(name,),
+        left_m=(left,),
+        right_m=(right,),
+        centre_m=(centre,),
+        direction=one * int(LaneDrivingDirection.Positive),
+        speed_limit_mps=np.full(1, 10.0),
+        successors=((),),
+        predecessors=((),),
+        left_neighbour=-one,
+        right_neighbour=-one,
+        left_opposite=np.zeros(1, dtype=bool),
+        right_opposite=np.zeros(1, dtype=bool),
+        is_intersection=np.zeros(1, dtype=bool),
+        priority=0 * one,
+        traffic_light=-one,
+    )

@@ -16,10 +16,9 @@ import numpy as np
 import pytest
 import shapely
 
-from rss.model import LaneDrivingDirection
 from rss.scene import LaneGraph, prepare
 
-from .synthetic import straight_road
+from .synthetic import lone_lane, straight_road
 
 if TYPE_CHECKING:
     from rss.scene.lanegraph import PreparedGraph
@@ -51,24 +50,7 @@ def turn_lane() -> LaneGraph:
     centre = np.vstack(
         [[[0.0, width / 2]], _arc(6.0 + width / 2, np.array([12.0, width / 2]), 0.5)]
     )
-    one = np.ones(1, dtype=np.int64)
-    return LaneGraph(
-        ids=("turn",),
-        left_m=(left,),
-        right_m=(right,),
-        centre_m=(centre,),
-        direction=one * int(LaneDrivingDirection.Positive),
-        speed_limit_mps=np.full(1, 10.0),
-        successors=((),),
-        predecessors=((),),
-        left_neighbour=-one,
-        right_neighbour=-one,
-        left_opposite=np.zeros(1, dtype=bool),
-        right_opposite=np.zeros(1, dtype=bool),
-        is_intersection=np.zeros(1, dtype=bool),
-        priority=0 * one,
-        traffic_light=-one,
-    )
+    return lone_lane(left, right, centre, "turn")
 
 
 def _nearest_arc(border: np.ndarray, point: shapely.Point) -> float:
@@ -166,24 +148,7 @@ def test_cuts_are_measured_on_every_given_vertex() -> None:
     # bend (20, 0), not at the end, so the left piece of [0.5, 1] ends 2 cm early.
     left = np.array([[0.0, 0.0], [20.0, 0.0], [20.02, 0.008]])
     right = np.array([[0.0, -3.0], [20.02, -3.0]])
-    one = np.ones(1, dtype=np.int64)
-    graph = LaneGraph(
-        ids=("kinked",),
-        left_m=(left,),
-        right_m=(right,),
-        centre_m=((left[[0, 2]] + right) / 2,),
-        direction=one * int(LaneDrivingDirection.Positive),
-        speed_limit_mps=np.full(1, 10.0),
-        successors=((),),
-        predecessors=((),),
-        left_neighbour=-one,
-        right_neighbour=-one,
-        left_opposite=np.zeros(1, dtype=bool),
-        right_opposite=np.zeros(1, dtype=bool),
-        is_intersection=np.zeros(1, dtype=bool),
-        priority=0 * one,
-        traffic_light=-one,
-    )
+    graph = lone_lane(left, right, (left[[0, 2]] + right) / 2, "kinked")
     seg = prepare(graph).lane_segments.lane_segment(0, forward=True, p0=0.5, p1=1.0)
     # c(0.5): halfway along each border, (x_l + x_r) / 2 with y = -1.5; its nearest left
     # point lies straight above it, its nearest right point straight below
