@@ -9,9 +9,11 @@ machine still slow it through shared caches), two ways over the same frames:
 * batched, as the pipeline runs (``RssRunner.step_many``): chunks of ``CHUNK_FRAMES``
   frames, map matching of all boxes of a chunk in one call (``match_frames``), then
   routes + constellations per frame (``create_scene`` on the matches), one
-  ``stack_constellations`` and one ``check_frames`` per chunk (memory carried);
+  ``stack_constellations`` and one ``check_frames`` per chunk (memory carried), each
+  drive under the pipeline's garbage-collector threshold (``engine_gc``);
 * one call per frame (``RssRunner.step``): ``create_scene`` (map matching alone timed
-  again apart, on the same boxes), ``stack_constellations``, ``check_frame``.
+  again apart, on the same boxes), ``stack_constellations``, ``check_frame``, at
+  Python's default garbage-collector threshold.
 """
 
 from __future__ import annotations
@@ -41,11 +43,13 @@ from rss.scene import (
 )
 from rss.scene.chunked import match_frames
 from rss.scene.create import scene_boxes
-from workbench.evaluate.pipeline import CHUNK_FRAMES
+from workbench.evaluate.pipeline import CHUNK_FRAMES, ENGINE_GC_THRESHOLD, engine_gc
 from workbench.rss_adapter import lane_graph_from_map
 
 if TYPE_CHECKING:
     from collections.abc import Callable
+
+    from rss.memory import RssMemory
 
 Drives = list[list[tuple[SceneEgo, SceneObjects]]]
 Phases = dict[str, float]
@@ -151,33 +155,47 @@ def _per_frame(prep: PreparedGraph, drives: Drives, settings: SceneSettings) -> 
 
 
 def _batched(prep: PreparedGraph, drives: Drives, settings: SceneSettings) -> Phases:
-    """Chunks of ``CHUNK_FRAMES`` frames as ``RssRunner.step_many`` runs them: one
+    """Each drive as the pipeline runs ``RssRunner.step_many`` on it: under its GC
+    threshold (``engine_gc``), chunks of ``CHUNK_FRAMES`` frames, each with one
     ``match_frames``, ``create_scene`` per frame on its matches, one stacking and one
-    ``check_frames`` per chunk."""
+    ``check_frames``. The drive's closing GC pass counts in ``check``."""
     t = dict.fromkeys(("match", "scene", "stack", "check"), 0.0)
     for drive in drives:
         memory = None
-        for lo in range(0, len(drive), CHUNK_FRAMES):
-            chunk = drive[lo : lo + CHUNK_FRAMES]
-            a = time.process_time()
-            matches = match_frames(prep, [scene_boxes(ego, objects) for ego, objects in chunk])
-            b = time.process_time()
-            scenes = [
-                create_scene(prep, ego, objects, settings, matches=m)
-                for (ego, objects), m in zip(chunk, matches, strict=True)
-            ]
-            c = time.process_time()
-            counts = [len(s.constellations) for s in scenes]
-            batch = stack_constellations([x for s in scenes for x in s.constellations])
-            d = time.process_time()
-            frame = np.repeat(np.arange(len(chunk)), counts)
-            _, memory = check_frames(batch, frame, len(chunk), DEFAULT_EGO_DYNAMICS, memory)
-            memory = memory if counts[-1] else None
-            t["match"] += b - a
-            t["scene"] += c - a
-            t["stack"] += d - c
-            t["check"] += time.process_time() - d
+        with engine_gc():
+            for lo in range(0, len(drive), CHUNK_FRAMES):
+                memory = _chunk(prep, drive[lo : lo + CHUNK_FRAMES], settings, memory, t)
+            e = time.process_time()
+        t["check"] += time.process_time() - e
     return t
+
+
+def _chunk(
+    prep: PreparedGraph,
+    chunk: list[tuple[SceneEgo, SceneObjects]],
+    settings: SceneSettings,
+    memory: RssMemory | None,
+    t: Phases,
+) -> RssMemory | None:
+    """One chunk of :func:`_batched`, its phases added to ``t``; the memory after it."""
+    a = time.process_time()
+    matches = match_frames(prep, [scene_boxes(ego, objects) for ego, objects in chunk])
+    b = time.process_time()
+    scenes = [
+        create_scene(prep, ego, objects, settings, matches=m)
+        for (ego, objects), m in zip(chunk, matches, strict=True)
+    ]
+    c = time.process_time()
+    counts = [len(s.constellations) for s in scenes]
+    batch = stack_constellations([x for s in scenes for x in s.constellations])
+    d = time.process_time()
+    frame = np.repeat(np.arange(len(chunk)), counts)
+    _, memory = check_frames(batch, frame, len(chunk), DEFAULT_EGO_DYNAMICS, memory)
+    t["match"] += b - a
+    t["scene"] += c - a
+    t["stack"] += d - c
+    t["check"] += time.process_time() - d
+    return memory if counts[-1] else None
 
 
 #: Runs per measurement; the run with the smallest total counts (CPU time on a shared
@@ -290,7 +308,10 @@ def run(quick: bool) -> str:  # noqa: FBT001 - bench interface
         f"{N_OBJECTS} vehicles within {RADIUS_M:.0f} m of the ego; {len(drives)} drives, "
         f"{n} frames, best of {RUNS} runs. Batched: chunks of {CHUNK_FRAMES} frames as the "
         "pipeline hands them to "
-        "`RssRunner.step_many` (one map matching, stacking and engine call per chunk). "
+        "`RssRunner.step_many` (one map matching, stacking and engine call per chunk), "
+        "each drive under the pipeline's garbage-collector threshold (`engine_gc`, "
+        f"young generation {ENGINE_GC_THRESHOLD:,}; the one-call-per-frame column at "
+        "Python's default 700). "
         f"In-process runs: {mode}; the pure-Python column ran the same frames in a fresh "
         f"interpreter with `{compiled.PURE_ENV}=1`, its runs alternating with the batched "
         "in-process ones (bit-identical results, "
