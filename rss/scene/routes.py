@@ -17,6 +17,7 @@ lane is its connecting route.
 
 from __future__ import annotations
 
+import bisect
 import heapq
 import math
 from dataclasses import dataclass, field
@@ -37,6 +38,7 @@ __all__ = [
     "predict_routes",
 ]
 
+#: Smallest cost of a lateral step (ad-map's ``cMinimumNeighborDistance``).
 _LATERAL_COST_M = 0.1
 _MAX_ROUTES = 16
 
@@ -124,7 +126,11 @@ def connect(
     Costs are metric distances from the ego's position: each search state remembers
     where (parametric, along the road-area direction) it entered its lane, so leaving a
     lane ahead costs the rest of it and leaving it behind costs the part before; a lateral
-    step keeps the position (plus a small cost).
+    step keeps the position and costs, as in ad-map's route expansion
+    (``RouteExpander::createNeighbor``), the distance between the two lanes' centre lines
+    there (at least :data:`_LATERAL_COST_M`). So a route does not cross to a shorter
+    parallel lane, e.g. through the opposite lanes around a junction to the inner one of
+    two junction lanes side by side, when the lane changes cost more than the saving.
 
     Args:
         prep: The prepared lane graph.
@@ -152,7 +158,8 @@ def connect(
         for right, dj in ((True, 1), (False, -1)):
             step = lateral(prep, lane, forward=fwd, right=right)
             if step is not None:
-                moves.append((step, k, j + dj, _LATERAL_COST_M, pos, last))
+                gap = _centre_gap(prep, (lane, fwd), step, pos)
+                moves.append((step, k, j + dj, max(gap, _LATERAL_COST_M), pos, last))
         length = float(lengths[lane])
         for ahead, dk in ((True, 1), (False, -1)):
             if last == -dk:
@@ -168,6 +175,25 @@ def connect(
                 item = (cost + extra, counter, nxt, nk, nj, nfwd, lane, npos, first or move, move)
                 heapq.heappush(heap, item)
     return tree
+
+
+def _centre_point(prep: PreparedGraph, lane: int, t: float) -> tuple[float, float]:
+    """The centre-line point of ``lane`` at parametric ``t`` (its point order) [m]."""
+    sc = prep.scalars
+    arc, xy = sc.centre_arc_m[lane], sc.centre_xy_m[lane]
+    s = min(max(t, 0.0), 1.0) * arc[-1]
+    i = min(max(bisect.bisect_right(arc, s) - 1, 0), len(arc) - 2)
+    span = arc[i + 1] - arc[i]
+    u = (s - arc[i]) / span if span > 0.0 else 0.0
+    (x0, y0), (x1, y1) = xy[i], xy[i + 1]
+    return x0 + u * (x1 - x0), y0 + u * (y1 - y0)
+
+
+def _centre_gap(prep: PreparedGraph, a: Step, b: Step, pos: float) -> float:
+    """Distance between the centre lines of ``a`` and ``b`` at road-area position ``pos`` [m]."""
+    xa, ya = _centre_point(prep, a[0], pos if a[1] else 1.0 - pos)
+    xb, yb = _centre_point(prep, b[0], pos if b[1] else 1.0 - pos)
+    return math.hypot(xb - xa, yb - ya)
 
 
 def follows_traffic(prep: PreparedGraph, lane: int, *, forward: bool) -> bool:
