@@ -21,7 +21,7 @@ import bisect
 import heapq
 import math
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, cast
 
 from rss.model import LaneDrivingDirection
 
@@ -190,10 +190,24 @@ def _centre_point(prep: PreparedGraph, lane: int, t: float) -> tuple[float, floa
 
 
 def _centre_gap(prep: PreparedGraph, a: Step, b: Step, pos: float) -> float:
-    """Distance between the centre lines of ``a`` and ``b`` at road-area position ``pos`` [m]."""
+    """Distance between the centre lines of ``a`` and ``b`` at road-area position ``pos`` [m].
+
+    Memoised per map at the lane ends (``pos`` 0 or 1, where most lateral steps start; a
+    finite set of keys per map) in ``prep.scalars.route_facts``.
+    """
+    end = pos in (0.0, 1.0)
+    key = ("centre gap", a, b, pos)
+    memo = prep.scalars.route_facts
+    if end:
+        known = memo.get(key)
+        if known is not None:
+            return cast("float", known)
     xa, ya = _centre_point(prep, a[0], pos if a[1] else 1.0 - pos)
     xb, yb = _centre_point(prep, b[0], pos if b[1] else 1.0 - pos)
-    return math.hypot(xb - xa, yb - ya)
+    gap = math.hypot(xb - xa, yb - ya)
+    if end:
+        memo[key] = gap
+    return gap
 
 
 def follows_traffic(prep: PreparedGraph, lane: int, *, forward: bool) -> bool:
