@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import gc
 from types import SimpleNamespace
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, cast
 
 import pytest
 
@@ -18,6 +18,8 @@ from workbench.evaluate.pipeline import (
 
 if TYPE_CHECKING:
     from collections.abc import Iterator
+
+    from loaders.records import Frame
 
 
 @pytest.fixture
@@ -86,11 +88,15 @@ def test_evaluate_frames_runs_the_drive_under_the_policy(threshold):
     class Probe:
         name = "probe"
 
-        def step_many(self, chunk):
+        def step(self, frame: Frame) -> EngineOutput:
+            return self.step_many([frame])[0]
+
+        def step_many(self, chunk: list[Frame]) -> list[EngineOutput]:
             seen.append(gc.get_threshold())
             return [EngineOutput(record={}, is_safe=True) for _ in chunk]
 
-    results = [r.frame for _, r in evaluate_frames(frames, [Probe()])]
+    drive = cast("list[Frame]", frames)  # the pipeline reads only index and t_ns
+    results = [r.frame for _, r in evaluate_frames(drive, [Probe()])]
     assert results == list(range(CHUNK_FRAMES + 5))
     assert seen == [(ENGINE_GC_THRESHOLD, 10, 10)] * 2
     assert gc.get_threshold() == threshold
