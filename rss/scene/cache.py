@@ -36,7 +36,7 @@ per-object code of scene creation (scalar access to numpy arrays costs ≈ 100 n
 from __future__ import annotations
 
 from bisect import bisect_right
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypeVar, cast
 
 import numpy as np
 
@@ -44,12 +44,23 @@ from rss.model import LaneDrivingDirection, LaneSegment
 from rss.scene.polylines import interpolate
 
 if TYPE_CHECKING:
+    from collections.abc import Callable
+
     from rss.batch import FloatArray, IntArray
     from rss.scene.lanegraph import PreparedGraph
     from rss.scene.roadarea import BuiltSegment, SegmentPlan
     from rss.scene.routes import Step
 
-__all__ = ["GraphScalars", "LaneMiddle", "LaneSegmentCache", "nearest_arcs", "projected_stations"]
+__all__ = [
+    "GraphScalars",
+    "LaneMiddle",
+    "LaneSegmentCache",
+    "memoised",
+    "nearest_arcs",
+    "projected_stations",
+]
+
+_T = TypeVar("_T")
 
 #: ad-map's middle line of a lane (``rss.scene.roadarea``): border-length fractions of its
 #: points, their x and y [m], and the mean border length [m].
@@ -350,7 +361,7 @@ class GraphScalars:
         is_intersection: ``(L,)`` lane lies inside an intersection.
         conflict_rows: ``(L, L)`` ``prep.conflicts`` as nested lists.
         cross_sections: Memo of ``rss.scene.routes.cross_section`` by step.
-        route_facts: Memo of pure route functions (``rss.scene.intersection.memoised``).
+        route_facts: Memo of pure route functions (:func:`memoised`).
         route_searches: Recent predicted-route searches by start step, with their
             horizon comparisons (``rss.scene.routes.predict_routes``).
         lane_middles: Memo of ad-map's middle line per lane (``rss.scene.roadarea``).
@@ -381,3 +392,25 @@ class GraphScalars:
             Step, list[tuple[tuple[tuple[Step, ...], ...], tuple[tuple[int, int, bool], ...]]]
         ] = {}
         self.lane_middles: dict[int, LaneMiddle] = {}
+
+
+#: Entries of a graph's route memo (:func:`memoised`) before it is emptied.
+_MEMO_SIZE = 100_000
+_MISSING = object()
+
+
+def memoised(prep: PreparedGraph, compute: Callable[..., _T], *args: object) -> _T:
+    """``compute(prep, *args)``, or its earlier result in the graph's memo (bounded).
+
+    For pure functions of routes and lanes (``rss.scene.intersection``, ``connecting``,
+    ``cut_areas``, ``routes``): their results are kept per prepared graph
+    (:attr:`GraphScalars.route_facts`), keyed by the function and its arguments.
+    """
+    memo = prep.scalars.route_facts
+    key = (compute, *args)
+    found = memo.get(key, _MISSING)
+    if found is _MISSING:
+        if len(memo) > _MEMO_SIZE:
+            memo.clear()
+        found = memo[key] = compute(prep, *args)
+    return cast("_T", found)

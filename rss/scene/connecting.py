@@ -25,7 +25,8 @@ import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from rss.scene.intersection import conflict, memoised
+from rss.scene.cache import memoised
+from rss.scene.intersection import conflict
 from rss.scene.roadarea import lane_heading
 from rss.scene.routes import predict_routes
 

@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 import shapely
 
-from rss.scene.intersection import memoised
+from rss.scene.cache import memoised
 from rss.scene.matching_points import ad_map_positions
 from rss.scene.roadarea import lane_window
 

@@ -19,24 +19,22 @@ from __future__ import annotations
 import enum
 import math
 import weakref
-from typing import TYPE_CHECKING, NamedTuple, TypeVar, cast
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 import shapely
 
 from rss.model import ConstellationType, LaneDrivingDirection, RoadSegmentType
 from rss.scene.admap_heading import lane_chord_heading
+from rss.scene.cache import memoised
 from rss.scene.roadarea import SegmentPlan
 from rss.scene.routes import cross_section
 
 if TYPE_CHECKING:
-    from collections.abc import Callable
-
     from rss.batch import IntArray
     from rss.scene.lanegraph import PreparedGraph
     from rss.scene.routes import Step
 
-_T = TypeVar("_T")
 
 __all__ = [
     "Arm",
@@ -48,14 +46,10 @@ __all__ = [
     "intersection_plans",
     "intersection_type",
     "junctions_on",
-    "memoised",
     "relation",
     "route_priority",
 ]
 
-#: Memoised route relations kept per prepared graph before the memo is emptied.
-_MEMO_SIZE = 100_000
-_MISSING = object()
 _JUNCTIONS: dict[int, tuple[weakref.ref[PreparedGraph], IntArray, list[int]]] = {}
 
 
@@ -356,23 +350,6 @@ def _turn(
     inside = {entry} | _inside_successors(prep, jid, j, entry)
     exits = sorted({x for lane in inside for x in _exits(prep, lane) if jid[x] != j})
     return arms.get(exits[0], Arm.UNKNOWN) if exits else Arm.UNKNOWN
-
-
-def memoised(prep: PreparedGraph, compute: Callable[..., _T], *args: object) -> _T:
-    """``compute(prep, *args)``, or its earlier result in the graph's memo (bounded).
-
-    For pure functions of routes (here and in ``rss.scene.connecting``): their results
-    are kept per prepared graph (``GraphScalars.route_facts``), keyed by the function and
-    its arguments.
-    """
-    memo = prep.scalars.route_facts
-    key = (compute, *args)
-    found = memo.get(key, _MISSING)
-    if found is _MISSING:
-        if len(memo) > _MEMO_SIZE:
-            memo.clear()
-        found = memo[key] = compute(prep, *args)
-    return cast("_T", found)
 
 
 def relation(

@@ -21,9 +21,10 @@ import bisect
 import heapq
 import math
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, cast
+from typing import TYPE_CHECKING
 
 from rss.model import LaneDrivingDirection
+from rss.scene.cache import memoised
 
 if TYPE_CHECKING:
     from rss.scene.lanegraph import PreparedGraph
@@ -192,22 +193,19 @@ def _centre_point(prep: PreparedGraph, lane: int, t: float) -> tuple[float, floa
 def _centre_gap(prep: PreparedGraph, a: Step, b: Step, pos: float) -> float:
     """Distance between the centre lines of ``a`` and ``b`` at road-area position ``pos`` [m].
 
-    Memoised per map at the lane ends (``pos`` 0 or 1, where most lateral steps start; a
-    finite set of keys per map) in ``prep.scalars.route_facts``.
+    Memoised per map (:func:`~rss.scene.cache.memoised`) at the lane ends (``pos`` 0 or
+    1, where most lateral steps start: a finite set of keys per map).
     """
-    end = pos in (0.0, 1.0)
-    key = ("centre gap", a, b, pos)
-    memo = prep.scalars.route_facts
-    if end:
-        known = memo.get(key)
-        if known is not None:
-            return cast("float", known)
+    if pos in (0.0, 1.0):
+        return memoised(prep, _centre_distance, a, b, pos)
+    return _centre_distance(prep, a, b, pos)
+
+
+def _centre_distance(prep: PreparedGraph, a: Step, b: Step, pos: float) -> float:
+    """:func:`_centre_gap`, computed."""
     xa, ya = _centre_point(prep, a[0], pos if a[1] else 1.0 - pos)
     xb, yb = _centre_point(prep, b[0], pos if b[1] else 1.0 - pos)
-    gap = math.hypot(xb - xa, yb - ya)
-    if end:
-        memo[key] = gap
-    return gap
+    return math.hypot(xb - xa, yb - ya)
 
 
 def follows_traffic(prep: PreparedGraph, lane: int, *, forward: bool) -> bool:
