@@ -30,7 +30,7 @@ from bench.scene_reference import reference_ms_per_frame, reference_unavailable,
 from loaders.maps.lanelet2 import read_lanelet2
 from loaders.maps.opendrive import read_opendrive
 from rss import compiled
-from rss.batch import FloatArray, stack_constellations
+from rss.batch import stack_constellations
 from rss.engine import check_frame, check_frames
 from rss.params import DEFAULT_EGO_DYNAMICS, DEFAULT_VEHICLE_DYNAMICS, SceneSettings
 from rss.scene import (
@@ -49,6 +49,7 @@ from workbench.rss_adapter import lane_graph_from_map
 if TYPE_CHECKING:
     from collections.abc import Callable
 
+    from rss.arrays import FloatArray
     from rss.memory import RssMemory
 
 Drives = list[list[tuple[SceneEgo, SceneObjects]]]

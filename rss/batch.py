@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, Any, TypeVar
 import numpy as np
 import numpy.typing as npt
 
+from rss.arrays import FloatArray, IntArray  # noqa: TC001 - dataclass field types, read at run time when compiled (mypyc)
 from rss.dynamics import DYNAMICS_KEYS, RssDynamics
 from rss.errors import RssConstellationError
 from rss.model import ConstellationType, LaneDrivingDirection, ObjectType, RoadSegmentType
@@ -27,11 +28,8 @@ if TYPE_CHECKING:
     from rss.model import Constellation, LaneObject, LaneSegment, RoadSegment
 
 __all__ = [
-    "BoolArray",
     "ConstellationBatch",
     "DynamicsArrays",
-    "FloatArray",
-    "IntArray",
     "ObjectArrays",
     "RoadAreaArrays",
     "stack_constellations",
@@ -56,10 +54,6 @@ _CONSTELLATION_CODES = frozenset(int(v) for v in ConstellationType)
 _OBJECT_CODES = frozenset(int(v) for v in ObjectType)
 _SEGMENT_CODES = frozenset(int(v) for v in RoadSegmentType)
 _DIRECTION_CODES = frozenset(int(v) for v in LaneDrivingDirection)
-
-BoolArray = npt.NDArray[np.bool_]
-FloatArray = npt.NDArray[np.float64]
-IntArray = npt.NDArray[np.int64]
 
 
 def _ints(array: npt.ArrayLike) -> IntArray:

@@ -33,7 +33,8 @@ from rss.states import (
 )
 
 if TYPE_CHECKING:
-    from rss.batch import BoolArray, ConstellationBatch, FloatArray, IntArray
+    from rss.arrays import BoolArray, FloatArray, IntArray
+    from rss.batch import ConstellationBatch
     from rss.extraction import Relative
 
 __all__ = ["IntersectionState", "LateralSide", "RawStates", "check_all"]

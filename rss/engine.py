@@ -22,7 +22,8 @@ from rss.response import ProperResponses, resolve
 from rss.states import InvalidReason
 
 if TYPE_CHECKING:
-    from rss.batch import BoolArray, ConstellationBatch, IntArray
+    from rss.arrays import BoolArray, IntArray
+    from rss.batch import ConstellationBatch
     from rss.dynamics import RssDynamics
 
 __all__ = ["FrameResult", "check_frame", "check_frames", "select_frame"]

@@ -21,7 +21,8 @@ from rss.physics import DISTANCE_PRECISION, gt, lt
 from rss.states import InvalidReason, LateralPosition, LongitudinalPosition
 
 if TYPE_CHECKING:
-    from rss.batch import BoolArray, ConstellationBatch, FloatArray, IntArray
+    from rss.arrays import BoolArray, FloatArray, IntArray
+    from rss.batch import ConstellationBatch
 
 __all__ = ["Relative", "extract", "relative_position"]
 

@@ -18,7 +18,8 @@ from rss.model import LaneDrivingDirection, RoadSegmentType
 from rss.physics import DISTANCE_PRECISION
 
 if TYPE_CHECKING:
-    from rss.batch import BoolArray, FloatArray, IntArray, ObjectArrays, RoadAreaArrays
+    from rss.arrays import BoolArray, FloatArray, IntArray
+    from rss.batch import ObjectArrays, RoadAreaArrays
 
 __all__ = ["Extents", "LaneTable", "lane_table", "object_extents", "place"]
 

@@ -21,7 +21,7 @@ from rss.physics import (
 )
 
 if TYPE_CHECKING:
-    from rss.batch import BoolArray, FloatArray
+    from rss.arrays import BoolArray, FloatArray
 
 __all__ = [
     "dynamics_rows",

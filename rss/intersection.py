@@ -28,14 +28,8 @@ from rss.physics import (
 from rss.states import LongitudinalPosition, RssStateEvaluator
 
 if TYPE_CHECKING:
-    from rss.batch import (
-        BoolArray,
-        ConstellationBatch,
-        DynamicsArrays,
-        FloatArray,
-        IntArray,
-        ObjectArrays,
-    )
+    from rss.arrays import BoolArray, FloatArray, IntArray
+    from rss.batch import ConstellationBatch, DynamicsArrays, ObjectArrays
     from rss.extraction import Relative
 
 __all__ = ["IntersectionState", "intersection_checks"]

@@ -31,7 +31,8 @@ from rss.model import ConstellationType
 from rss.states import LateralPosition, LateralResponse, LongitudinalPosition, LongitudinalResponse
 
 if TYPE_CHECKING:
-    from rss.batch import BoolArray, ConstellationBatch, IntArray
+    from rss.arrays import BoolArray, IntArray
+    from rss.batch import ConstellationBatch
     from rss.extraction import Relative
 
 __all__ = ["RssMemory", "apply_memory", "is_dangerous"]

@@ -26,15 +26,8 @@ from rss.model import ConstellationType, RoadSegmentType
 from rss.states import InvalidReason
 
 if TYPE_CHECKING:
-    from rss.batch import (
-        BoolArray,
-        ConstellationBatch,
-        DynamicsArrays,
-        FloatArray,
-        IntArray,
-        ObjectArrays,
-        RoadAreaArrays,
-    )
+    from rss.arrays import BoolArray, FloatArray, IntArray
+    from rss.batch import ConstellationBatch, DynamicsArrays, ObjectArrays, RoadAreaArrays
     from rss.extraction import Relative
 
 __all__ = ["merge_position_groups", "merge_positions", "merge_similar"]

@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 if TYPE_CHECKING:
-    from rss.batch import FloatArray
+    from rss.arrays import FloatArray
 
 __all__ = [
     "ACCELERATION_LOWEST_MPS2",

@@ -24,7 +24,8 @@ from rss.physics import ACCELERATION_LOWEST_MPS2
 from rss.states import LateralResponse, LongitudinalResponse
 
 if TYPE_CHECKING:
-    from rss.batch import BoolArray, ConstellationBatch, FloatArray, IntArray
+    from rss.arrays import BoolArray, FloatArray, IntArray
+    from rss.batch import ConstellationBatch
     from rss.checks import LateralSide, RawStates
     from rss.dynamics import RssDynamics
 

@@ -34,7 +34,7 @@ import shapely
 from rss.scene.polylines import Polylines, interpolate, polylines
 
 if TYPE_CHECKING:
-    from rss.batch import BoolArray, FloatArray, IntArray
+    from rss.arrays import BoolArray, FloatArray, IntArray
 
 __all__ = [
     "DISTANCE_TOL_M",

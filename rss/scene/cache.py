@@ -46,7 +46,7 @@ from rss.scene.polylines import interpolate
 if TYPE_CHECKING:
     from collections.abc import Callable
 
-    from rss.batch import FloatArray, IntArray
+    from rss.arrays import FloatArray, IntArray
     from rss.scene.lanegraph import PreparedGraph
     from rss.scene.roadarea import BuiltSegment, SegmentPlan
     from rss.scene.routes import Step

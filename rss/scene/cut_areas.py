@@ -26,7 +26,7 @@ from rss.scene.matching_points import ad_map_positions
 from rss.scene.roadarea import lane_window
 
 if TYPE_CHECKING:
-    from rss.batch import FloatArray
+    from rss.arrays import FloatArray
     from rss.scene.lanegraph import PreparedGraph
     from rss.scene.roadarea import SegmentPlan
 

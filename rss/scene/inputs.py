@@ -6,7 +6,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from rss.batch import FloatArray, IntArray
+    from rss.arrays import FloatArray, IntArray
     from rss.dynamics import RssDynamics
     from rss.model import Constellation
     from rss.scene.routes import Step

@@ -31,7 +31,7 @@ from rss.scene.roadarea import SegmentPlan
 from rss.scene.routes import cross_section
 
 if TYPE_CHECKING:
-    from rss.batch import IntArray
+    from rss.arrays import IntArray
     from rss.scene.lanegraph import PreparedGraph
     from rss.scene.routes import Step
 

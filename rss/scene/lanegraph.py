@@ -39,7 +39,7 @@ from rss.scene.polylines import Polylines, polylines
 from rss.scene.segment_cells import SegmentCells, narrowed, segment_cells
 
 if TYPE_CHECKING:
-    from rss.batch import BoolArray, FloatArray, IntArray
+    from rss.arrays import BoolArray, FloatArray, IntArray
     from rss.model import LaneDrivingDirection
 
 __all__ = [

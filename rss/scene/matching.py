@@ -47,7 +47,7 @@ from rss.scene.matching_points import (
 from rss.scene.polylines import heading_at, interpolate
 
 if TYPE_CHECKING:
-    from rss.batch import BoolArray, FloatArray, IntArray
+    from rss.arrays import BoolArray, FloatArray, IntArray
     from rss.scene.lanegraph import PreparedGraph
 
 __all__ = [

@@ -27,7 +27,7 @@ from rss.scene.admap_nearest import DISTANCE_TOL_M, columns, flat_runs
 from rss.scene.lanegraph import MATCH_DISTANCE_M
 
 if TYPE_CHECKING:
-    from rss.batch import BoolArray, FloatArray, IntArray
+    from rss.arrays import BoolArray, FloatArray, IntArray
     from rss.scene.lanegraph import PreparedGraph
     from rss.scene.matching import BoxArrays
 

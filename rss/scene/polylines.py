@@ -22,7 +22,7 @@ import numpy as np
 import shapely
 
 if TYPE_CHECKING:
-    from rss.batch import FloatArray, IntArray
+    from rss.arrays import FloatArray, IntArray
 
 __all__ = ["Polylines", "heading_at", "interpolate", "polylines"]
 

@@ -38,7 +38,7 @@ from rss.scene.routes import Step  # noqa: TC001 - dataclass field types, read a
 if TYPE_CHECKING:
     from collections.abc import Sequence
 
-    from rss.batch import FloatArray
+    from rss.arrays import FloatArray
     from rss.scene.align import Aligner
     from rss.scene.cache import LaneMiddle
     from rss.scene.lanegraph import PreparedGraph

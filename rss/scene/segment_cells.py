@@ -34,7 +34,7 @@ from rss.scene.admap_nearest import DISTANCE_TOL_M, flat_runs
 if TYPE_CHECKING:
     import numpy.typing as npt
 
-    from rss.batch import FloatArray, IntArray
+    from rss.arrays import FloatArray, IntArray
     from rss.scene.polylines import Polylines
 
 __all__ = ["BAND_M", "CELL_M", "SegmentCells", "narrowed", "segment_cells"]

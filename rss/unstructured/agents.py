@@ -26,7 +26,7 @@ from rss.unstructured.errors import UnstructuredInputError
 if TYPE_CHECKING:
     from collections.abc import Sequence
 
-    from rss.batch import FloatArray, IntArray
+    from rss.arrays import FloatArray, IntArray
 
 __all__ = ["MotionModel", "UnstructuredAgents", "motion_model"]
 

@@ -21,7 +21,7 @@ from rss.unstructured.sets import TrajectorySets
 if TYPE_CHECKING:
     from collections.abc import Sequence
 
-    from rss.batch import BoolArray, FloatArray, IntArray
+    from rss.arrays import BoolArray, FloatArray, IntArray
     from rss.dynamics import RssDynamics, UnstructuredSettings
 
 __all__ = ["CORNERS", "AgentDynamics", "PiecePlan", "RowPieces", "constant", "plan_sets", "span"]

@@ -29,7 +29,7 @@ from rss.physics import DISTANCE_PRECISION, SPEED_PRECISION, eq, gt, le
 from rss.unstructured.memory import UnstructuredMemory
 
 if TYPE_CHECKING:
-    from rss.batch import BoolArray, FloatArray, IntArray
+    from rss.arrays import BoolArray, FloatArray, IntArray
     from rss.unstructured.agents import UnstructuredAgents
     from rss.unstructured.kinematics import Real
 

@@ -31,7 +31,7 @@ from rss.unstructured.vehicle_batch import vehicle_sets_batch
 if TYPE_CHECKING:
     from collections.abc import Sequence
 
-    from rss.batch import BoolArray, IntArray
+    from rss.arrays import BoolArray, IntArray
     from rss.dynamics import RssDynamics, UnstructuredSettings
 
 __all__ = [

@@ -22,7 +22,7 @@ import shapely
 from rss.unstructured.sets import hulls_of
 
 if TYPE_CHECKING:
-    from rss.batch import BoolArray, FloatArray, IntArray
+    from rss.arrays import BoolArray, FloatArray, IntArray
     from rss.unstructured.sets import TrajectorySets
 
 __all__ = ["FIRST_ROUND_MIN_PAIRS", "SECOND_ROUND_PAIRS", "intersections"]

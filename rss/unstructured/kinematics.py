@@ -38,7 +38,7 @@ from rss.physics import (
 )
 
 if TYPE_CHECKING:
-    from rss.batch import FloatArray
+    from rss.arrays import FloatArray
 
 #: A float or a float array broadcast against the points (rss.physics kernels take both).
 Real = Any

@@ -36,7 +36,7 @@ from rss.unstructured.kinematics import (
 from rss.unstructured.sets import Location, PieceCollector, TrajectorySets, front_and_sides
 
 if TYPE_CHECKING:
-    from rss.batch import FloatArray
+    from rss.arrays import FloatArray
     from rss.dynamics import RssDynamics
     from rss.unstructured.agents import UnstructuredAgents
     from rss.unstructured.kinematics import Real

@@ -41,7 +41,7 @@ from rss.unstructured.pedestrian import CIRCLE_VERTICES, heading_ratios
 from rss.unstructured.sets import TrajectorySets, front_and_sides
 
 if TYPE_CHECKING:
-    from rss.batch import FloatArray, IntArray
+    from rss.arrays import FloatArray, IntArray
     from rss.dynamics import UnstructuredSettings
     from rss.unstructured.agents import UnstructuredAgents
     from rss.unstructured.batch import AgentDynamics

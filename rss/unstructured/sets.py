@@ -21,7 +21,7 @@ import shapely
 if TYPE_CHECKING:
     from collections.abc import Sequence
 
-    from rss.batch import BoolArray, FloatArray, IntArray
+    from rss.arrays import BoolArray, FloatArray, IntArray
 
 __all__ = [
     "Location",

@@ -35,7 +35,7 @@ from rss.unstructured.sets import Location, PieceCollector, TrajectorySets, fron
 if TYPE_CHECKING:
     from collections.abc import Sequence
 
-    from rss.batch import FloatArray
+    from rss.arrays import FloatArray
     from rss.dynamics import RssDynamics
     from rss.unstructured.agents import UnstructuredAgents
     from rss.unstructured.kinematics import Real

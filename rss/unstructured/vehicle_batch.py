@@ -49,7 +49,7 @@ from rss.unstructured.sets import front_and_sides
 from rss.unstructured.vehicle import ratio_pairs
 
 if TYPE_CHECKING:
-    from rss.batch import BoolArray, FloatArray, IntArray
+    from rss.arrays import BoolArray, FloatArray, IntArray
     from rss.dynamics import UnstructuredSettings
     from rss.unstructured.agents import UnstructuredAgents
     from rss.unstructured.batch import AgentDynamics

@@ -23,7 +23,7 @@ if TYPE_CHECKING:
 
     from loaders.maps.model import LaneMap
     from loaders.records import Frame
-    from rss.batch import IntArray
+    from rss.arrays import IntArray
     from rss.engine import FrameResult
     from rss.memory import RssMemory
     from rss.scene import PreparedGraph, Scene

@@ -20,7 +20,7 @@ from bench.scene_reference import (
     scene_frame,
 )
 from loaders.maps.opendrive import read_opendrive
-from rss.batch import FloatArray
+from rss.arrays import FloatArray
 from rss.params import DEFAULT_EGO_DYNAMICS, DEFAULT_VEHICLE_DYNAMICS
 from rss.scene import SceneEgo, SceneObjects
 from workbench.rss_adapter import lane_graph_from_map
