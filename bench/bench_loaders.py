@@ -56,7 +56,7 @@ import json, os, resource, sys, time
 os.sched_setaffinity(0, {min(os.sched_getaffinity(0))})
 from pathlib import Path
 from loaders import open_drive
-from workbench.replay.run import replay_drive
+from workbench.viewer.replay import replay_drive
 t0 = time.perf_counter()
 drive = open_drive(sys.argv[1])
 summary = replay_drive(drive, out=Path(sys.argv[2]))

@@ -21,8 +21,8 @@ from loaders.scenario_architect import open_scenario_architect
 from reachsets.adapter import reach_inputs_from_arrays
 from reachsets.engine import RuleState, evaluate, evaluate_many
 from reachsets.params import ReachMethod, ReachParams
-from workbench.evaluate.pipeline import CHUNK_FRAMES
-from workbench.reach_adapter import frame_to_reach_inputs, prepare_map
+from workbench.driver import CHUNK_FRAMES
+from workbench.engines.reachsets.adapter import frame_to_reach_inputs, prepare_map
 from workbench.samples.racing import racing_centre, write_racing_sample
 
 if TYPE_CHECKING:

@@ -22,7 +22,7 @@ from typing import TYPE_CHECKING
 
 from bench.child import run_json
 from tests.workbench.fakes import DT_NS, T0_NS, FakeDrive, synthetic_frame
-from workbench.replay.run import replay_drive
+from workbench.viewer.replay import replay_drive
 
 if TYPE_CHECKING:
     from collections.abc import Iterator
@@ -71,7 +71,7 @@ _CHILD = """
 import json, resource, sys
 from pathlib import Path
 from bench.bench_replay import PooledDrive
-from workbench.replay.run import replay_drive
+from workbench.viewer.replay import replay_drive
 n, out = int(sys.argv[1]), Path(sys.argv[2])
 def rss_mib():
     return int(Path("/proc/self/statm").read_text().split()[1]) * 4096 / 2**20
@@ -90,7 +90,7 @@ def _memory(n_frames: int, out: Path) -> dict[str, float]:
 
 
 def _sample_logs() -> list[Path]:
-    from workbench.cli.demo import find_sample_logs  # noqa: PLC0415
+    from workbench.demo import find_sample_logs  # noqa: PLC0415
 
     samples = Path(__file__).resolve().parent.parent / "sample_logs"
     return find_sample_logs(samples) if samples.is_dir() else []

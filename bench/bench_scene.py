@@ -43,8 +43,8 @@ from rss.scene import (
 )
 from rss.scene.chunked import match_frames
 from rss.scene.create import scene_boxes
-from workbench.evaluate.pipeline import CHUNK_FRAMES, ENGINE_GC_THRESHOLD, engine_gc
-from workbench.rss_adapter import lane_graph_from_map
+from workbench.driver import CHUNK_FRAMES, ENGINE_GC_THRESHOLD, engine_gc
+from workbench.engines.rss.adapter import lane_graph_from_map
 
 if TYPE_CHECKING:
     from collections.abc import Callable

@@ -36,7 +36,7 @@ __all__ = ["run", "run_calls", "run_frames"]
 #: (label, pedestrian share) of the frame kinds.
 KINDS = (("mixed", 0.5), ("vehicles", 0.0), ("pedestrians", 1.0))
 SIZES = (1, 10, 50)
-#: Consecutive frames of one batched call (``workbench.evaluate.pipeline.CHUNK_FRAMES``).
+#: Consecutive frames of one batched call (``workbench.driver.run.CHUNK_FRAMES``).
 CHUNK = 32
 #: Frames of the chunk the binding is timed on.
 BINDING_FRAMES = 6

@@ -41,8 +41,8 @@ from tests.rss.scene.test_crosscheck_adrss_map import (  # noqa: E402
     pair_inputs,
     placements,
 )
-from workbench.evaluate.pipeline import CHUNK_FRAMES  # noqa: E402
-from workbench.rss_adapter import lane_graph_from_map  # noqa: E402
+from workbench.driver import CHUNK_FRAMES  # noqa: E402
+from workbench.engines.rss.adapter import lane_graph_from_map  # noqa: E402
 
 if TYPE_CHECKING:
     from rss.scene import Matches

@@ -46,7 +46,7 @@ from tests.rss.scene.test_crosscheck_adrss_map import (  # noqa: E402
     placements,
     turn_defect,
 )
-from workbench.rss_adapter import lane_graph_from_map  # noqa: E402
+from workbench.engines.rss.adapter import lane_graph_from_map  # noqa: E402
 
 if TYPE_CHECKING:
     from rss.params import SceneSettings

@@ -12,7 +12,7 @@ import pytest
 from loaders.scenario_architect import open_scenario_architect
 from reachsets.engine import ReachResult, evaluate, evaluate_many
 from reachsets.params import F1Params, ReachMethod, ReachParams
-from workbench.reach_adapter import frame_to_reach_inputs
+from workbench.engines.reachsets.adapter import frame_to_reach_inputs
 
 if TYPE_CHECKING:
     from pathlib import Path

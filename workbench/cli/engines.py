@@ -1,100 +1,31 @@
-"""Engine selection shared by ``evaluate``, ``replay`` and ``demo``."""
+"""``workbench engines``: the registered engines, their viewer tabs and violation causes."""
 
 from __future__ import annotations
 
-import enum
 from typing import TYPE_CHECKING
 
-from workbench.errors import WorkbenchError
+from rich.console import Console
+from rich.table import Table
 
 if TYPE_CHECKING:
-    from pathlib import Path
+    import typer
 
-    from loaders.drive import Drive
-    from rss.params import RssParams
-    from workbench.evaluate.pipeline import EngineRunner
-
-__all__ = [
-    "AVAILABLE_ENGINES",
-    "ReachMethodOption",
-    "build_engines",
-    "load_rss_params",
-    "parse_engines",
-]
+__all__ = ["register"]
 
 
-class ReachMethodOption(enum.StrEnum):
-    """``--reach-method`` values."""
+def engines() -> None:
+    """List the engines ``--engines`` accepts (built-ins and installed plugins)."""
+    from workbench.engines.registry import engine, names  # noqa: PLC0415 - start-up light
 
-    simple = "simple"
-    turn = "turn"
-    bound = "bound"
-
-
-def parse_engines(text: str) -> list[str]:
-    """Split ``--engines a,b`` into names (empty names dropped)."""
-    return [n.strip() for n in text.split(",") if n.strip()]
-
-
-#: Engines that evaluate recorded drives in this build.
-AVAILABLE_ENGINES = ("reachsets", "rss", "unstructured")
+    table = Table(title="engines")
+    for column in ("name", "viewer tab", "violation causes"):
+        table.add_column(column)
+    for name in names():
+        spec = engine(name)
+        table.add_row(spec.name, spec.title, ", ".join(spec.causes))
+    Console().print(table)
 
 
-def load_rss_params(path: Path | None) -> RssParams | None:
-    """Read ``--rss-params FILE.toml`` (DESIGN.md); ``None`` keeps the defaults.
-
-    Raises:
-        WorkbenchError: The file cannot be read.
-        RssParameterError: The TOML is malformed or has an unknown table, key or bad value.
-    """
-    from rss.params import parse_rss_params  # noqa: PLC0415 - keeps CLI start-up light
-
-    if path is None:
-        return None
-    try:
-        text = path.read_text()
-    except OSError as err:
-        raise WorkbenchError(f"--rss-params {path}: {err.strerror}") from err
-    return parse_rss_params(text)
-
-
-def build_engines(
-    drive: Drive,
-    names: list[str],
-    reach_method: str,
-    *,
-    full_geometry: bool = False,
-    rss_params: RssParams | None = None,
-) -> list[EngineRunner]:
-    """Engine runners for ``names`` (validated), bound to the drive's lane map.
-
-    Args:
-        drive: The opened drive (its lane map feeds the engines).
-        names: Engine names from ``--engines``.
-        reach_method: ``simple``, ``turn`` or ``bound``.
-        full_geometry: Compute the geometry the viewer draws (every reachable set in full,
-            RSS road-area outlines).
-        rss_params: RSS dynamics and scene settings for ``rss`` and ``unstructured``.
-    """
-    from reachsets.params import ReachMethod  # noqa: PLC0415 - keeps CLI start-up light
-    from workbench.evaluate.reach_runner import ReachRunner  # noqa: PLC0415
-    from workbench.evaluate.rss_runner import RssRunner  # noqa: PLC0415
-    from workbench.evaluate.unstructured_runner import UnstructuredRunner  # noqa: PLC0415
-
-    engines: list[EngineRunner] = []
-    for name in names:
-        if name not in AVAILABLE_ENGINES:
-            known = ", ".join(AVAILABLE_ENGINES)
-            raise WorkbenchError(f"--engines: unknown engine {name!r} (known: {known})")
-        if name == "rss":
-            engines.append(RssRunner(drive.lane_map, rss_params, outlines=full_geometry))
-            continue
-        if name == "unstructured":
-            engines.append(UnstructuredRunner(drive.lane_map, rss_params))
-            continue
-        engines.append(
-            ReachRunner(
-                drive.lane_map, method=ReachMethod(reach_method), full_geometry=full_geometry
-            )
-        )
-    return engines
+def register(app: typer.Typer) -> None:
+    """Add ``engines`` to the CLI."""
+    app.command("engines")(engines)

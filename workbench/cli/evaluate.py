@@ -9,18 +9,13 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
-from workbench.cli.engines import (
-    ReachMethodOption,
-    build_engines,
-    load_rss_params,
-    parse_engines,
-)
+from workbench.cli.options import ReachMethodOption
 from workbench.cli.progress import frame_progress
-from workbench.cli.replay import open_log, window_ns
+from workbench.drives import load_rss_params, open_log, window_ns
 from workbench.errors import WorkbenchError
 
 if TYPE_CHECKING:
-    from workbench.evaluate.violations import Violation
+    from workbench.sinks.violations import Violation
 
 __all__ = ["register"]
 
@@ -49,7 +44,7 @@ def evaluate(
     profile: Annotated[Path | None, typer.Option("--profile", help="TOML topic profile.")] = None,
     ego_id: Annotated[str | None, typer.Option("--ego-id", help="CommonRoad ego id.")] = None,
     engines: Annotated[
-        str, typer.Option("--engines", help="Comma-separated: rss, unstructured, reachsets.")
+        str, typer.Option("--engines", help="Comma-separated; `workbench engines` lists them.")
     ] = "reachsets",
     reach_method: Annotated[
         ReachMethodOption, typer.Option("--reach-method", help="Reachable-set method.")
@@ -68,17 +63,19 @@ def evaluate(
     ] = None,
 ) -> None:
     """Re-evaluate every frame; print the violations, optionally write per-frame JSON lines."""
-    from workbench.evaluate.run import evaluate_drive  # noqa: PLC0415 - keeps start-up light
-    from workbench.evaluate.violations import write_violations  # noqa: PLC0415
+    from workbench.driver.evaluate import evaluate_drive  # noqa: PLC0415 - keeps start-up light
+    from workbench.engines import EngineSettings, build_runners, parse_engines  # noqa: PLC0415
+    from workbench.sinks.violations import write_violations  # noqa: PLC0415
 
     names = parse_engines(engines)
     if not names:
         raise WorkbenchError("--engines: name at least one engine")
     drive = open_log(log, map_path=map_path, profile=profile, ego_id=ego_id)
     try:
-        runners = build_engines(
-            drive, names, reach_method.value, rss_params=load_rss_params(rss_params)
+        settings = EngineSettings(
+            rss_params=load_rss_params(rss_params), reach_method=reach_method.value
         )
+        runners = build_runners(names, drive.lane_map, settings)
         start_ns, end_ns = window_ns(drive, start, end)
         with frame_progress() as bar:
             task = bar.add_task(f"evaluate {log.name}", total=drive.info.frame_count or None)
@@ -88,13 +85,13 @@ def evaluate(
                 start_ns=start_ns,
                 end_ns=end_ns,
                 per_frame=per_frame,
-                progress=lambda: bar.advance(task),
+                progress=lambda done: bar.update(task, completed=done),
             )
     finally:
         drive.close()
     found = list(done.violations)
     typer.echo(
-        f"{len(done.results)} frames evaluated with {', '.join(names)}; {done.unsafe_frames} unsafe"
+        f"{done.frames} frames evaluated with {', '.join(names)}; {done.unsafe_frames} unsafe"
     )
     if found:
         Console().print(_summary_table(found, drive.info.start_ns))
@@ -106,9 +103,7 @@ def evaluate(
     if per_frame is not None:
         typer.echo(f"wrote {per_frame}")
     if done.stopped_by is not None:
-        typer.echo(
-            f"stopped early: the outputs above cover the {len(done.results)} readable frames"
-        )
+        typer.echo(f"stopped early: the outputs above cover the {done.frames} readable frames")
         raise done.stopped_by
 
 

@@ -4,79 +4,15 @@ from __future__ import annotations
 
 import time
 from pathlib import Path
-from typing import TYPE_CHECKING, Annotated
+from typing import Annotated
 
 import typer
 
-from workbench.cli.engines import (
-    ReachMethodOption,
-    build_engines,
-    load_rss_params,
-    parse_engines,
-)
-from workbench.cli.progress import frame_progress
+from workbench.cli.options import ReachMethodOption
+from workbench.cli.progress import run_with_progress
+from workbench.drives import default_output, load_rss_params, open_log
 
-if TYPE_CHECKING:
-    from loaders.drive import Drive
-    from workbench.replay.run import ReplaySummary
-
-__all__ = ["default_output", "open_log", "register", "replay", "window_ns"]
-
-
-def default_output(log: Path, out_dir: Path) -> Path:
-    """``<out_dir>/<log stem>.rrd``; a rosbag2 directory keeps its whole name."""
-    stem = log.name if log.is_dir() else log.stem
-    return out_dir / f"{stem}.rrd"
-
-
-def window_ns(
-    drive: Drive, start_s: float | None, end_s: float | None
-) -> tuple[int | None, int | None]:
-    """Turn ``--start``/``--end`` seconds from the drive start into absolute nanoseconds."""
-    t0 = drive.info.start_ns
-    start = None if start_s is None else t0 + round(start_s * 1e9)
-    end = None if end_s is None else t0 + round(end_s * 1e9)
-    return start, end
-
-
-def open_log(
-    log: Path, *, map_path: Path | None, profile: Path | None, ego_id: str | None
-) -> Drive:
-    """Open a drive with ``loaders.open_drive``, turning a missing path into a one-line error."""
-    from workbench.replay.run import ReplayError  # noqa: PLC0415 - keeps CLI start-up light
-
-    if not log.exists():
-        raise ReplayError(f"{log}: no such file or directory")
-    try:
-        from loaders import open_drive  # type: ignore[attr-defined,unused-ignore]  # noqa: PLC0415
-    except ImportError as err:
-        raise ReplayError("loaders.open_drive is not available in this build") from err
-    drive: Drive = open_drive(log, map=map_path, profile=profile, ego_id=ego_id)
-    return drive
-
-
-def run_with_progress(
-    drive: Drive,
-    *,
-    label: str,
-    start_s: float | None,
-    end_s: float | None,
-    **targets: object,
-) -> ReplaySummary:
-    """Replay ``drive`` with a rich progress bar on stderr; ``targets`` go to ``replay_drive``."""
-    from workbench.replay.run import replay_drive  # noqa: PLC0415
-
-    start_ns, end_ns = window_ns(drive, start_s, end_s)
-    total = drive.info.frame_count or None
-    with frame_progress() as bar:
-        task = bar.add_task(label, total=total)
-        return replay_drive(
-            drive,
-            start_ns=start_ns,
-            end_ns=end_ns,
-            progress=lambda done: bar.update(task, completed=done),
-            **targets,  # type: ignore[arg-type]
-        )
+__all__ = ["register", "replay"]
 
 
 def _wait_for_ctrl_c(url: str) -> None:
@@ -128,7 +64,9 @@ def replay(
     ] = None,
     engines: Annotated[
         str,
-        typer.Option("--engines", help="Also evaluate and show these engines, e.g. reachsets."),
+        typer.Option(
+            "--engines", help="Also evaluate and show these (`workbench engines` lists them)."
+        ),
     ] = "",
     reach_method: Annotated[
         ReachMethodOption, typer.Option("--reach-method", help="Reachable-set method.")
@@ -139,20 +77,20 @@ def replay(
     ] = None,
 ) -> None:
     """Replay a drive into Rerun: map, ego, actors, plan and plots on timelines frame/log_time."""
-    from workbench.replay.run import ReplayError  # noqa: PLC0415
+    from workbench.engines import EngineSettings, build_runners, parse_engines  # noqa: PLC0415
+    from workbench.viewer.outputs import ReplayError  # noqa: PLC0415
 
     if sum((out is not None, spawn, serve)) > 1:
         raise ReplayError("--out, --spawn and --serve are mutually exclusive")
     target = out if (out is not None or spawn or serve) else default_output(log, out_dir)
     drive = open_log(log, map_path=map_path, profile=profile, ego_id=ego_id)
     try:
-        runners = build_engines(
-            drive,
-            parse_engines(engines),
-            reach_method.value,
-            full_geometry=True,
+        settings = EngineSettings(
             rss_params=load_rss_params(rss_params),
+            reach_method=reach_method.value,
+            full_geometry=True,
         )
+        runners = build_runners(parse_engines(engines), drive.lane_map, settings)
         summary = run_with_progress(
             drive,
             label=f"replay {log.name}",

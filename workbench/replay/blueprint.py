@@ -7,13 +7,13 @@
     |  world: 3-D scene, camera follows   +------------------------+
     |  the ego from above and behind      | actors: count, nearest |
     |                                     +------------------------+
-    |                                     | reach | rss | unstr. |
+    |                                     | engine state lanes     |
     +-------------------------------------+------------------------+
     | time panel on the ``frame`` timeline                         |
     +--------------------------------------------------------------+
 
-``/rss/structured``, ``/rss/unstructured`` and ``/reach`` stay empty until the engines log
-their results there.
+Each registered engine adds its own plots (``EngineSpec.views``) while it runs and one tab of
+state lanes (``EngineSpec.state_origin``), empty until the engine logs its results there.
 """
 
 from __future__ import annotations
@@ -22,6 +22,7 @@ from typing import TYPE_CHECKING
 
 import rerun.blueprint as rrb
 
+from workbench.engines.registry import engine, names
 from workbench.replay.sink import FRAME_TIMELINE, TIME_TIMELINE
 
 if TYPE_CHECKING:
@@ -63,8 +64,8 @@ def replay_blueprint(
     Args:
         ego_start_m: Ego position at the first frame ``(x, y)``; the camera starts there and
             then tracks ``world/ego``.
-        engines: Names of the engines whose results are logged; the first one's state lane
-            is the active tab.
+        engines: Names of the engines whose results are logged (registered engines); the
+            first one's state lanes are the active tab.
     """
     x0, y0 = ego_start_m or (0.0, 0.0)
     dx, dy, dz = _EYE_OFFSET_M
@@ -85,28 +86,12 @@ def replay_blueprint(
         rrb.TimeSeriesView(name="ego", origin="/plots/ego"),
         rrb.TimeSeriesView(name="actors", origin="/plots/actors"),
     ]
-    if "reachsets" in engines:
-        views.append(
-            rrb.TimeSeriesView(name="first collision [s into plan]", origin="/plots/reach")
-        )
-    if "rss" in engines:
-        views.append(
-            rrb.TimeSeriesView(
-                name="rss acceleration limits [m/s²]", origin="/plots/rss/acceleration"
-            )
-        )
-        views.append(
-            rrb.TimeSeriesView(name="rss distance vs safe [m]", origin="/plots/rss/distances")
-        )
-    tabs = {"reachsets": "reach sets", "rss": "rss", "unstructured": "unstructured"}
-    views.append(
-        rrb.Tabs(
-            rrb.StateTimelineView(name="reach sets", origin="/reach"),
-            rrb.StateTimelineView(name="rss", origin="/rss/structured"),
-            rrb.StateTimelineView(name="unstructured", origin="/rss/unstructured"),
-            active_tab=tabs.get(engines[0], "reach sets") if engines else "reach sets",
-        )
-    )
+    for name in engines:
+        views.extend(engine(name).views())
+    specs = [engine(name) for name in names()]
+    tabs = [rrb.StateTimelineView(name=spec.title, origin=spec.state_origin) for spec in specs]
+    active = engine(engines[0]).title if engines else specs[0].title
+    views.append(rrb.Tabs(*tabs, active_tab=active))
     side = rrb.Vertical(*views, row_shares=[2] * (len(views) - 1) + [2 if engines else 1])
     return rrb.Blueprint(
         rrb.Horizontal(scene, side, column_shares=[3, 1]),

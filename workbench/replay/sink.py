@@ -37,7 +37,7 @@ if TYPE_CHECKING:
     from numpy.typing import NDArray
 
     from workbench.replay.layout import ChunkLayout, MapLayout
-    from workbench.replay.reach_layout import StripColumns
+    from workbench.replay.strips import StripColumns
 
 __all__ = [
     "FRAME_TIMELINE",

@@ -11,12 +11,13 @@ from typing import TYPE_CHECKING
 from workbench.errors import WorkbenchError
 
 if TYPE_CHECKING:
-    from collections.abc import Iterable
+    from collections.abc import Iterable, Mapping
     from pathlib import Path
 
-    from workbench.evaluate.pipeline import FrameResult
+    from workbench.driver.run import Chunk
+    from workbench.engines.base import Verdict
 
-__all__ = ["Violation", "detect_violations", "write_violations"]
+__all__ = ["Violation", "ViolationDetector", "detect_violations", "write_violations"]
 
 
 @dataclass(slots=True)
@@ -60,52 +61,81 @@ def _stable_id(log: str, engine: str, start_frame: int) -> str:
     return f"{engine}-{start_frame:06d}-{digest[:8]}"
 
 
-def detect_violations(results: Iterable[FrameResult], log: str) -> list[Violation]:
-    """Merge consecutive unsafe frames of each engine into intervals.
+class ViolationDetector:
+    """Merges consecutive unsafe frames of each engine into intervals, chunk by chunk.
 
-    A frame gap (a frame the engine rated safe) ends an interval.
-
-    Args:
-        results: Frame results in frame order.
-        log: Log name recorded in each violation (and part of its id).
-
-    Returns:
-        Violations ordered by start frame, then engine.
+    Only the open intervals and the finished rows are kept, so memory stays flat however
+    long the drive is. A frame the engine rated safe ends its interval.
     """
-    open_: dict[str, Violation] = {}
-    done: list[Violation] = []
-    for res in results:
-        for engine, out in res.outputs.items():
-            current = open_.get(engine)
+
+    def __init__(self, log: str) -> None:
+        """Start empty; ``log`` is recorded in each violation (and part of its id)."""
+        self.log = log
+        self._open: dict[str, Violation] = {}
+        self._done: list[Violation] = []
+        #: Frames added so far.
+        self.frames = 0
+        #: Frames at least one engine rated unsafe.
+        self.unsafe_frames = 0
+        #: Unsafe frames per engine, in the order the engines first appeared.
+        self.unsafe_per_engine: dict[str, int] = {}
+
+    def add(self, frame: int, t_ns: int, verdicts: Mapping[str, Verdict]) -> None:
+        """Add one frame's verdicts (frames in order)."""
+        self.frames += 1
+        self.unsafe_frames += not all(v.is_safe for v in verdicts.values())
+        for engine, out in verdicts.items():
+            self.unsafe_per_engine[engine] = self.unsafe_per_engine.get(engine, 0) + (
+                not out.is_safe
+            )
+            current = self._open.get(engine)
             if out.is_safe:
                 if current is not None:
-                    done.append(open_.pop(engine))
+                    self._done.append(self._open.pop(engine))
                 continue
-            if current is None or current.end_frame != res.frame - 1:
+            if current is None or current.end_frame != frame - 1:
                 if current is not None:
-                    done.append(current)
+                    self._done.append(current)
                 current = Violation(
-                    id=_stable_id(log, engine, res.frame),
-                    log=log,
+                    id=_stable_id(self.log, engine, frame),
+                    log=self.log,
                     engine=engine,
-                    label=out.label,
+                    label=out.cause,
                     objects=[],
-                    start_frame=res.frame,
-                    end_frame=res.frame,
-                    start_ns=res.t_ns,
-                    end_ns=res.t_ns,
+                    start_frame=frame,
+                    end_frame=frame,
+                    start_ns=t_ns,
+                    end_ns=t_ns,
                     worst_margin=out.margin,
                 )
-                open_[engine] = current
-            current.end_frame = res.frame
-            current.end_ns = res.t_ns
+                self._open[engine] = current
+            current.end_frame = frame
+            current.end_ns = t_ns
             current.worst_margin = min(current.worst_margin, out.margin)
             current.objects = sorted(set(current.objects) | set(out.culprits))
-            if out.label:
-                current.labels = sorted(set(current.labels) | {out.label})
-    done.extend(open_.values())
-    done.sort(key=lambda v: (v.start_frame, v.engine))
-    return done
+            if out.cause:
+                current.labels = sorted(set(current.labels) | {out.cause})
+
+    def add_chunk(self, chunk: Chunk) -> None:
+        """Add every frame of a driver chunk."""
+        for k, frame in enumerate(chunk.frames):
+            self.add(frame.index, frame.t_ns, {n: v[k] for n, v in chunk.verdicts.items()})
+
+    def violations(self) -> list[Violation]:
+        """Every interval so far (open ones included), by start frame, then engine."""
+        found = [*self._done, *self._open.values()]
+        found.sort(key=lambda v: (v.start_frame, v.engine))
+        return found
+
+
+def detect_violations(
+    frames: Iterable[tuple[int, int, Mapping[str, Verdict]]], log: str
+) -> list[Violation]:
+    """Violation intervals of ``(frame, t_ns, verdicts per engine)`` in frame order."""
+    detector = ViolationDetector(log)
+    for frame, t_ns, verdicts in frames:
+        detector.add(frame, t_ns, verdicts)
+    return detector.violations()
 
 
 def write_violations(violations: list[Violation], path: Path) -> None:

@@ -17,7 +17,7 @@ from rss.model import LaneDrivingDirection, RoadSegmentType
 from rss.scene import LaneGraph, PreparedGraph, prepare
 from rss.scene.polylines import interpolate
 from rss.scene.roadarea import SegmentPlan, build_road
-from workbench.rss_adapter import lane_graph_from_map
+from workbench.engines.rss.adapter import lane_graph_from_map
 
 
 def _skewed_pair() -> LaneGraph:

@@ -33,7 +33,7 @@ from rss.params import SceneSettings
 from rss.scene import create_scene, prepare
 from rss.scene.chunked import match_frames
 from rss.scene.create import scene_boxes
-from workbench.rss_adapter import lane_graph_from_map
+from workbench.engines.rss.adapter import lane_graph_from_map
 
 prep = prepare(lane_graph_from_map(read_lanelet2(Path("sample_logs/urban_intersection.osm"))))
 digest = hashlib.sha256()

@@ -35,7 +35,7 @@ from rss.params import (
 from rss.scene import PreparedGraph, SceneEgo, SceneObjects, create_scene, match_boxes, prepare
 from rss.scene.create import scene_boxes
 from rss.scene.intersection import Arm, intersection_arms, junction_list
-from workbench.rss_adapter import lane_graph_from_map
+from workbench.engines.rss.adapter import lane_graph_from_map
 
 ORACLE = Path(__file__).with_name("adrss_map_oracle.py")
 N_PAIRS = 500

@@ -17,7 +17,7 @@ from rss.scene.intersection import (
     junctions_on,
     relation,
 )
-from workbench.rss_adapter import lane_graph_from_map
+from workbench.engines.rss.adapter import lane_graph_from_map
 
 from .test_intersection import crossing
 

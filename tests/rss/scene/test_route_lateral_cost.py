@@ -16,7 +16,7 @@ from loaders.maps.opendrive import read_opendrive
 from rss.scene import prepare
 from rss.scene.routes import connect
 from tests.rss.scene.synthetic import WIDTH, straight_road
-from workbench.rss_adapter import lane_graph_from_map
+from workbench.engines.rss.adapter import lane_graph_from_map
 
 if TYPE_CHECKING:
     from pathlib import Path

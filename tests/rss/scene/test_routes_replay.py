@@ -6,7 +6,7 @@ import pytest
 from loaders.maps.opendrive import read_opendrive
 from rss.scene import prepare
 from rss.scene.routes import _search, predict_routes
-from workbench.rss_adapter import lane_graph_from_map
+from workbench.engines.rss.adapter import lane_graph_from_map
 
 
 @pytest.fixture(scope="module")

@@ -23,7 +23,7 @@ from loaders.maps.opendrive import read_opendrive
 from rss.arrays import FloatArray
 from rss.params import DEFAULT_EGO_DYNAMICS, DEFAULT_VEHICLE_DYNAMICS
 from rss.scene import SceneEgo, SceneObjects
-from workbench.rss_adapter import lane_graph_from_map
+from workbench.engines.rss.adapter import lane_graph_from_map
 
 PHASES = {"matching", "append", "world_model", "extraction", "checking", "resolving"}
 

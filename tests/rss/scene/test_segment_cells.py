@@ -13,7 +13,7 @@ from rss.scene import BoxArrays, lanegraph, match_boxes, prepare
 from rss.scene.admap_nearest import nearest_in_windows, segment_window, segments
 from rss.scene.polylines import Polylines, polylines
 from rss.scene.segment_cells import narrowed, segment_cells
-from workbench.rss_adapter import lane_graph_from_map
+from workbench.engines.rss.adapter import lane_graph_from_map
 
 
 def _arc(centre: tuple[float, float], radius: float, step_deg: float) -> np.ndarray:

@@ -10,7 +10,7 @@ from rss.batch import stack_constellations
 from rss.engine import check_frame
 from rss.params import DEFAULT_EGO_DYNAMICS, DEFAULT_VEHICLE_DYNAMICS, SceneSettings
 from rss.scene import PreparedGraph, SceneEgo, SceneObjects, create_scene, prepare
-from workbench.rss_adapter import lane_graph_from_map
+from workbench.engines.rss.adapter import lane_graph_from_map
 
 
 @pytest.fixture(scope="module")

@@ -1,4 +1,4 @@
-"""The pipeline's garbage-collector policy while a drive is evaluated."""
+"""The driver's garbage-collector policy while a drive is evaluated."""
 
 from __future__ import annotations
 
@@ -8,17 +8,13 @@ from typing import TYPE_CHECKING, cast
 
 import pytest
 
-from workbench.evaluate.pipeline import (
-    CHUNK_FRAMES,
-    ENGINE_GC_THRESHOLD,
-    EngineOutput,
-    engine_gc,
-    evaluate_frames,
-)
+from workbench.driver import CHUNK_FRAMES, ENGINE_GC_THRESHOLD, DriveRun, engine_gc
+from workbench.engines.base import VerdictSummary
 
 if TYPE_CHECKING:
-    from collections.abc import Iterator
+    from collections.abc import Iterator, Sequence
 
+    from loaders.drive import Drive
     from loaders.records import Frame
 
 
@@ -81,22 +77,22 @@ def test_disabled_collector_stays_disabled(threshold):
         gc.enable()
 
 
-def test_evaluate_frames_runs_the_drive_under_the_policy(threshold):
+def test_the_drive_run_is_under_the_policy(threshold):
     frames = [SimpleNamespace(index=i, t_ns=i * 100_000_000) for i in range(CHUNK_FRAMES + 5)]
     seen: list[tuple[int, int, int]] = []
 
     class Probe:
         name = "probe"
 
-        def step(self, frame: Frame) -> EngineOutput:
-            return self.step_many([frame])[0]
-
-        def step_many(self, chunk: list[Frame]) -> list[EngineOutput]:
+        def step_many(self, chunk: Sequence[Frame]) -> list[VerdictSummary]:
             seen.append(gc.get_threshold())
-            return [EngineOutput(record={}, is_safe=True) for _ in chunk]
+            return [VerdictSummary(is_safe=True) for _ in chunk]
 
-    drive = cast("list[Frame]", frames)  # the pipeline reads only index and t_ns
-    results = [r.frame for _, r in evaluate_frames(drive, [Probe()])]
-    assert results == list(range(CHUNK_FRAMES + 5))
+    # the driver reads only frames(start, end), and of a frame only index and t_ns
+    drive = cast("Drive", SimpleNamespace(frames=lambda _s, _e: iter(frames)))
+    run = DriveRun(drive, [Probe()])
+    indices = [f.index for chunk in run for f in chunk.frames]
+    assert indices == list(range(CHUNK_FRAMES + 5))
     assert seen == [(ENGINE_GC_THRESHOLD, 10, 10)] * 2
     assert gc.get_threshold() == threshold
+    assert run.stopped_by is None

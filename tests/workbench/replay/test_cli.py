@@ -9,8 +9,8 @@ from typer.testing import CliRunner
 import loaders
 from loaders.errors import UnsupportedFormatError
 from tests.workbench.fakes import FakeDrive
-from workbench.cli.demo import find_sample_logs, output_names, primary_logs
 from workbench.cli.main import app, main
+from workbench.demo import find_sample_logs, output_names, primary_logs
 
 runner = CliRunner()
 

@@ -16,7 +16,7 @@ from loaders import open_drive
 from loaders.records import ObjectClass
 from tests.conftest import running_in_ci
 from workbench.replay import style
-from workbench.replay.run import replay_drive
+from workbench.viewer.replay import replay_drive
 
 ROOT = Path(__file__).resolve().parents[3]
 ICD_DIR = Path("/usr/share/vulkan/icd.d")

@@ -6,7 +6,7 @@ import pytest
 from rerun.chunk import RrdReader
 
 from loaders import open_drive
-from workbench.replay.run import replay_drive
+from workbench.viewer.replay import replay_drive
 
 pytestmark = pytest.mark.external
 

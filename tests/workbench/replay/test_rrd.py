@@ -12,7 +12,7 @@ from rerun.chunk import RrdReader
 from loaders import open_drive
 from loaders.errors import CorruptLogError
 from tests.workbench.fakes import T0_NS, FakeDrive
-from workbench.replay.run import ReplayError, replay_drive
+from workbench.viewer import ReplayError, replay_drive
 
 
 def _store(path: Path) -> Any:
@@ -25,7 +25,7 @@ def _rows(store: Any, entity: str) -> Any:
 
 def test_replay_writes_entities_timelines_and_properties(tmp_path):
     out = tmp_path / "sub" / "drive.rrd"
-    summary = replay_drive(FakeDrive(n_frames=23, n_actors=4), out=out, chunk_frames=10)
+    summary = replay_drive(FakeDrive(n_frames=23, n_actors=4), out=out, send_frames=10)
     assert out.is_file()
     assert (summary.frames, summary.actors_seen) == (23, 4)
     assert summary.duration_s == pytest.approx(2.2)
@@ -142,7 +142,7 @@ def test_truncated_log_keeps_the_readable_frames_in_the_rrd(tmp_path):
     out = tmp_path / "cut.rrd"
     drive = open_drive(cut)
     try:
-        summary = replay_drive(drive, out=out, chunk_frames=100)
+        summary = replay_drive(drive, out=out, send_frames=100)
     finally:
         drive.close()
     assert isinstance(summary.stopped_by, CorruptLogError)

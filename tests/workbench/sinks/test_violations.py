@@ -3,26 +3,27 @@ import json
 
 import pytest
 
+from workbench.engines.base import VerdictSummary
 from workbench.errors import WorkbenchError
-from workbench.evaluate.pipeline import EngineOutput, FrameResult
-from workbench.evaluate.violations import detect_violations, write_violations
+from workbench.sinks.violations import detect_violations, write_violations
 
 
-def _results(pattern: str, engine: str = "reachsets") -> list[FrameResult]:
+def _results(
+    pattern: str, engine: str = "reachsets"
+) -> list[tuple[int, int, dict[str, VerdictSummary]]]:
     """One frame per character: '.' safe, 'x' unsafe with culprit 'a' and margin = frame."""
     out = []
     for i, ch in enumerate(pattern):
         unsafe = ch == "x"
         outputs = {
-            engine: EngineOutput(
-                record={"is_safe": not unsafe},
+            engine: VerdictSummary(
                 is_safe=not unsafe,
                 culprits=(f"obj{i % 2}",) if unsafe else (),
-                label="collision" if unsafe else "",
+                cause="collision" if unsafe else "",
                 margin=float(10 - i) if unsafe else float("inf"),
             )
         }
-        out.append(FrameResult(frame=i, t_ns=1_000 + 100 * i, outputs=outputs))
+        out.append((i, 1_000 + 100 * i, outputs))
     return out
 
 

@@ -6,15 +6,15 @@ from typing import TYPE_CHECKING
 
 from reachsets.engine import evaluate_many
 from reachsets.params import ReachMethod, ReachParams
-from workbench.evaluate.pipeline import EngineOutput
-from workbench.reach_adapter import frame_to_reach_inputs, prepare_map
+from workbench.engines.reachsets.adapter import frame_to_reach_inputs, prepare_map
+from workbench.engines.reachsets.verdict import ReachVerdict, reach_verdict
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
 
     from loaders.maps.model import LaneMap
     from loaders.records import Frame
-    from reachsets.engine import ReachResult, RuleState
+    from reachsets.engine import RuleState
 
 __all__ = ["ReachRunner"]
 
@@ -48,33 +48,8 @@ class ReachRunner:
         self._params = ReachParams(method=method, full_geometry=full_geometry)
         self._state: RuleState | None = None
 
-    def step(self, frame: Frame) -> EngineOutput:
-        """Evaluate one frame."""
-        return self.step_many([frame])[0]
-
-    def step_many(self, frames: Sequence[Frame]) -> list[EngineOutput]:
+    def step_many(self, frames: Sequence[Frame]) -> list[ReachVerdict]:
         """Evaluate consecutive frames at once (as ``step`` on each in turn)."""
         inputs = [frame_to_reach_inputs(f, self._map) for f in frames]
         results, self._state = evaluate_many(inputs, self._params, self._state)
-        return [_output(r) for r in results]
-
-
-def _output(result: ReachResult) -> EngineOutput:
-    collisions = [
-        {"object_id": c.object_id, "t_offset_s": round(c.t_offset_s, 6)} for c in result.collisions
-    ]
-    record = {
-        "is_safe": result.is_safe,
-        "collisions": collisions,
-        "patches": sorted({f"{p.rule}:{p.object_id}" for p in result.patches}),
-        "skipped_objects": list(result.skipped_ids),
-    }
-    first = min((c.t_offset_s for c in result.collisions), default=float("inf"))
-    return EngineOutput(
-        record=record,
-        is_safe=result.is_safe,
-        culprits=tuple(c.object_id for c in result.collisions),
-        label="" if result.is_safe else "reach-set collision",
-        margin=first,
-        detail=result,
-    )
+        return [reach_verdict(r) for r in results]

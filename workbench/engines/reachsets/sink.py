@@ -21,12 +21,18 @@ from typing import TYPE_CHECKING
 import numpy as np
 import rerun as rr
 
+from workbench.engines.reachsets.layout import layout_reach
 from workbench.replay.sink import send_strips, state_configuration, time_index
 
 if TYPE_CHECKING:
+    from collections.abc import Sequence
+
     from numpy.typing import NDArray
 
-    from workbench.replay.reach_layout import ReachColumns
+    from loaders.records import Frame
+    from workbench.engines.reachsets.layout import ReachColumns
+    from workbench.engines.reachsets.verdict import ReachVerdict
+    from workbench.replay.layout import ChunkLayout
 
 __all__ = ["STATE_COLORS", "ReachSink"]
 
@@ -44,7 +50,7 @@ class ReachSink:
         self.recording = recording
         recording.log("reach/state", state_configuration(STATE_COLORS), static=True)
 
-    def send_chunk(
+    def send_columns(
         self, frame: NDArray[np.int64], t_ns: NDArray[np.int64], cols: ReachColumns
     ) -> None:
         """Send one chunk of reach-set results."""
@@ -72,3 +78,10 @@ class ReachSink:
                 indexes=time_index(frame[unsafe], t_ns[unsafe]),
                 columns=rr.Scalars.columns(scalars=cols.first_collision_s[unsafe]),
             )
+
+    def send_chunk(
+        self, frames: Sequence[Frame], layout: ChunkLayout, verdicts: Sequence[ReachVerdict]
+    ) -> None:
+        """Lay out and send the verdicts of a chunk of frames."""
+        results = [v.result for v in verdicts]
+        self.send_columns(layout.frame, layout.t_ns, layout_reach(frames, results))

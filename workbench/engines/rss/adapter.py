@@ -20,20 +20,19 @@ from rss.model import LaneDrivingDirection, ObjectType
 from rss.params import ObjectClass
 from rss.scene import LaneGraph, SceneEgo, SceneObjects
 from rss.scene.matching import match_route
+from workbench.engines.ids import EGO_OBJECT_ID
 
 if TYPE_CHECKING:
     from loaders.maps.model import Lane, LaneMap
     from loaders.records import Frame
     from rss.params import RssParams
     from rss.scene import PreparedGraph
+    from workbench.engines.ids import IdMap
 
-__all__ = ["EGO_OBJECT_ID", "IdMap", "frame_to_scene", "lane_graph_from_map"]
+__all__ = ["frame_to_scene", "lane_graph_from_map"]
 
-#: Id of the ego in constellations (never a published actor id).
-EGO_OBJECT_ID = 2**62
 _DRIVABLE = (LaneKind.ROAD, LaneKind.INTERSECTION, LaneKind.BICYCLE)
 _OVERLAP_M2 = 1.0
-_MAX_DECIMAL_DIGITS = 12
 _DIRECTION = {
     LaneDirection.POSITIVE: LaneDrivingDirection.Positive,
     LaneDirection.NEGATIVE: LaneDrivingDirection.Negative,
@@ -107,32 +106,6 @@ def lane_graph_from_map(lane_map: LaneMap) -> LaneGraph:
         light_ids=tuple(tl.id for tl in lane_map.traffic_lights),
         admap_reversed=np.array([ln.admap_reversed for ln in lanes], dtype=np.bool_),
     )
-
-
-class IdMap:
-    """Stable integer ids for string actor ids (decimal ids keep their value)."""
-
-    def __init__(self) -> None:
-        """Start empty; non-decimal ids get 2**40, 2**40 + 1, ... in order of appearance."""
-        self._ids: dict[str, int] = {}
-        self._back: dict[int, str] = {}
-
-    def to_int(self, actor_id: str) -> int:
-        """The integer id of ``actor_id``."""
-        value = self._ids.get(actor_id)
-        if value is None:
-            value = (
-                int(actor_id)
-                if actor_id.isdigit() and len(actor_id) < _MAX_DECIMAL_DIGITS
-                else 2**40 + len(self._ids)
-            )
-            self._ids[actor_id] = value
-            self._back[value] = actor_id
-        return value
-
-    def to_str(self, value: int) -> str:
-        """The actor id of an integer id."""
-        return self._back.get(value, str(value))
 
 
 def frame_to_scene(

@@ -26,6 +26,7 @@ import numpy as np
 
 from rss.model import ConstellationType
 from rss.physics import DISTANCE_MAX_M
+from rss.states import LateralResponse, LongitudinalResponse
 from workbench.replay.layout import pad_polylines, yaw_to_quaternion
 
 if TYPE_CHECKING:
@@ -34,8 +35,7 @@ if TYPE_CHECKING:
     from numpy.typing import NDArray
 
     from loaders.records import Frame
-    from workbench.evaluate.pipeline import EngineOutput
-    from workbench.evaluate.rss_detail import RssFrameDetail
+    from workbench.engines.rss.verdict import RssVerdict
 
 __all__ = [
     "ACCEL_SERIES",
@@ -215,8 +215,10 @@ def _finite(value: float) -> float:
     return value if abs(value) < DISTANCE_MAX_M / 2 else float("nan")
 
 
-def _rows(detail: RssFrameDetail) -> list[_Row]:
+def _rows(detail: RssVerdict) -> list[_Row]:
     res = detail.result
+    if res is None or detail.constellation_type is None:
+        return []
     st = res.states
     rows = []
     for c, label in enumerate(detail.labels):
@@ -276,7 +278,7 @@ class _Builder:
     states: dict[str, list[str]] = field(default_factory=dict)
     dist: dict[str, tuple[list[int], list[float]]] = field(default_factory=dict)
 
-    def add_frame(self, i: int, frame: Frame, detail: RssFrameDetail) -> tuple[int, int, int]:
+    def add_frame(self, i: int, frame: Frame, detail: RssVerdict) -> tuple[int, int, int]:
         """Add frame ``i``'s constellations; returns its numbers of lines, areas, boxes."""
         rows = _rows(detail)
         actors = frame.actors
@@ -328,40 +330,52 @@ class _Builder:
         return n_links, n_areas, n_boxes
 
 
-def _accel(record: dict[str, object], name: str) -> float:
-    restrictions = record.get("acceleration_restrictions")
-    if not isinstance(restrictions, dict):
-        return float("nan")
-    key, bound = ACCEL_SERIES[name]
-    value = restrictions[key][bound]
-    if not isinstance(value, (int, float)) or abs(value) >= _UNBOUNDED_MPS2:
-        return float("nan")
-    return float(value)
+#: Verdict response arrays behind each :data:`RESPONSE_LANES` lane.
+_RESPONSE_ARRAYS = {
+    "longitudinal_response": ("longitudinal_response", LongitudinalResponse),
+    "lateral_response_left": ("lateral_response_left", LateralResponse),
+    "lateral_response_right": ("lateral_response_right", LateralResponse),
+}
 
 
-def layout_rss(frames: Sequence[Frame], outputs: Sequence[EngineOutput]) -> RssColumns:
-    """Columnar structured-RSS display data for a chunk of frames and the runner's outputs.
+def _response(verdict: RssVerdict, key: str) -> str:
+    """The frame's response name for a :data:`RESPONSE_LANES` key (``None`` without one)."""
+    if verdict.result is None:
+        return "None"
+    field_name, names = _RESPONSE_ARRAYS[key]
+    return str(names(int(getattr(verdict.result.responses, field_name)[0])))
+
+
+def _accel(verdict: RssVerdict, name: str) -> float:
+    """One acceleration bound [m/s²]; NaN without constellations or when unbounded."""
+    if verdict.result is None:
+        return float("nan")
+    value = float(getattr(verdict.result.responses, name)[0])
+    if not np.isfinite(value) or abs(value) >= _UNBOUNDED_MPS2:
+        return float("nan")
+    return value
+
+
+def layout_rss(frames: Sequence[Frame], verdicts: Sequence[RssVerdict]) -> RssColumns:
+    """Columnar structured-RSS display data for a chunk of frames and their verdicts.
 
     Args:
         frames: ``N`` frames.
-        outputs: The ``rss`` engine output of each frame; ``detail`` is an
-            :class:`~workbench.evaluate.rss_detail.RssFrameDetail` or ``None`` (no
-            constellation).
+        verdicts: The ``rss`` verdict of each frame.
     """
     n = len(frames)
     b = _Builder(n)
     counts = np.zeros((3, n), dtype=np.int64)
     frame_state = []
-    for i, (frame, out) in enumerate(zip(frames, outputs, strict=True)):
-        if out.detail is None:
+    for i, (frame, verdict) in enumerate(zip(frames, verdicts, strict=True)):
+        if verdict.result is None:
             frame_state.append("no constellation")
             continue
-        frame_state.append("safe" if out.is_safe else "dangerous")
-        counts[:, i] = b.add_frame(i, frame, out.detail)
+        frame_state.append("safe" if verdict.is_safe else "dangerous")
+        counts[:, i] = b.add_frame(i, frame, verdict)
     box = np.array(b.danger, dtype=np.float64).reshape(-1, 7)
     responses = {
-        lane: [str(out.record.get(key, "None")) for out in outputs]
-        for key, (lane, _) in RESPONSE_LANES.items()
+        lane: [_response(v, key) for v in verdicts] for key, (lane, _) in RESPONSE_LANES.items()
     }
     return RssColumns(
         frame_state=frame_state,
@@ -384,7 +398,7 @@ def layout_rss(frames: Sequence[Frame], outputs: Sequence[EngineOutput]) -> RssC
         },
         responses=responses,
         accel={
-            name: np.array([_accel(out.record, name) for out in outputs], dtype=np.float64)
+            name: np.array([_accel(v, name) for v in verdicts], dtype=np.float64)
             for name in ACCEL_SERIES
         },
     )

@@ -1,8 +1,7 @@
-"""What the structured RSS runner hands to the viewer for one frame (beside its JSON record)."""
+"""Road-area outlines of structured RSS constellations, for the viewer."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -13,33 +12,12 @@ if TYPE_CHECKING:
 
     from numpy.typing import NDArray
 
-    from rss.engine import FrameResult
     from rss.scene import LaneGraph
 
-__all__ = ["RssFrameDetail", "road_area_outlines"]
+__all__ = ["road_area_outlines"]
 
 #: Lanes of one road area are merged with this tolerance (borders shared up to rounding).
 _MERGE_M = 0.05
-
-
-@dataclass(frozen=True, slots=True)
-class RssFrameDetail:
-    """The checked constellations of one frame, for drawing.
-
-    Attributes:
-        labels: Actor id (or ``road_boundary_left/right``) of the other object of each of the
-            ``C`` constellations.
-        constellation_type: ``(C,)`` :class:`rss.model.ConstellationType` codes.
-        result: The engine's result for this one frame (``C`` constellations, ``F = 1``).
-        road_areas: Outline of the road area of each constellation: ``(C,)`` entries, each
-            a tuple of closed ``(K, 2)`` rings in the map frame [m] (empty tuple: not
-            computed).
-    """
-
-    labels: tuple[str, ...]
-    constellation_type: NDArray[np.int64]
-    result: FrameResult
-    road_areas: tuple[tuple[NDArray[np.float64], ...], ...] = ()
 
 
 def _cut(line: NDArray[np.float64], p0: float, p1: float) -> NDArray[np.float64]:

@@ -2,21 +2,22 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from rss.batch import stack_constellations
-from rss.conformance import response_record
 from rss.engine import check_frames, select_frame
 from rss.params import ObjectClass, RssParams
 from rss.scene import create_scene, prepare
 from rss.scene.boundaries import LEFT_BOUNDARY_ID, RIGHT_BOUNDARY_ID
 from rss.scene.chunked import match_frames
 from rss.scene.create import scene_boxes
-from workbench.evaluate.pipeline import EngineOutput
-from workbench.evaluate.rss_detail import RssFrameDetail, road_area_outlines
-from workbench.rss_adapter import IdMap, frame_to_scene, lane_graph_from_map
+from rss.states import LongitudinalResponse
+from workbench.engines.ids import IdMap
+from workbench.engines.rss.adapter import frame_to_scene, lane_graph_from_map
+from workbench.engines.rss.outlines import road_area_outlines
+from workbench.engines.rss.verdict import RssVerdict
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -29,8 +30,6 @@ if TYPE_CHECKING:
     from rss.scene import PreparedGraph, Scene
 
 __all__ = ["RssRunner"]
-
-_DROPPED_KEYS = ("unstructured_constellation_response", "heading_ranges")
 
 
 class RssRunner:
@@ -71,11 +70,7 @@ class RssRunner:
         self._ids = IdMap()
         self._memory: RssMemory | None = None
 
-    def step(self, frame: Frame) -> EngineOutput:
-        """Evaluate one frame."""
-        return self.step_many([frame])[0]
-
-    def step_many(self, frames: Sequence[Frame]) -> list[EngineOutput]:
+    def step_many(self, frames: Sequence[Frame]) -> list[RssVerdict]:
         """Evaluate consecutive frames at once (as ``step`` on each in turn).
 
         The boxes of all frames are map-matched in one call, the constellations of all
@@ -85,7 +80,7 @@ class RssRunner:
         """
         prep = self._prep
         if prep is None:
-            return [_safe({"constellations": 0, "invalid_objects": []}) for _ in frames]
+            return [_safe(()) for _ in frames]
         inputs = [frame_to_scene(f, prep, self._params, self._ids) for f in frames]
         matches = match_frames(prep, [scene_boxes(ego, objects) for ego, objects, _ in inputs])
         scenes = [
@@ -102,20 +97,17 @@ class RssRunner:
         counts = [len(s.constellations) for s in scenes]
         if not any(counts):
             self._memory = None
-            return [
-                _safe({"constellations": 0, "invalid_objects": sorted(invalid)})
-                for _, _, invalid in inputs
-            ]
+            return [_safe(invalid) for _, _, invalid in inputs]
         batch = stack_constellations([c for s in scenes for c in s.constellations])
         frame_of = np.repeat(np.arange(len(frames)), counts)
         ego_dyn = self._params.for_class(ObjectClass.EGO)
         result, memory = check_frames(batch, frame_of, len(frames), ego_dyn, self._memory)
         self._memory = memory if counts[-1] else None
-        outputs = []
+        outputs: list[RssVerdict] = []
         offsets = np.concatenate([[0], np.cumsum(counts)]).tolist()
         for k, (scene, (_, _, invalid)) in enumerate(zip(scenes, inputs, strict=True)):
             if not counts[k]:
-                outputs.append(_safe({"constellations": 0, "invalid_objects": sorted(invalid)}))
+                outputs.append(_safe(invalid))
                 continue
             rows = slice(offsets[k], offsets[k + 1])
             ids, kinds = batch.other.object_id[rows], batch.constellation_type[rows]
@@ -129,32 +121,27 @@ class RssRunner:
         object_id: IntArray,
         constellation_type: IntArray,
         result: FrameResult,
-    ) -> EngineOutput:
-        """One frame's output: its scene, ``(C,)`` other ids and types, result (``F = 1``)."""
-        record: dict[str, Any] = response_record(result, object_id, 0)
-        for key in _DROPPED_KEYS:
-            record.pop(key, None)
-        dangerous = sorted({_label(self._ids, int(x)) for x in record["dangerous_objects"]})
-        record["dangerous_objects"] = dangerous
-        record["constellations"] = len(object_id)
+    ) -> RssVerdict:
+        """One frame's verdict: its scene, ``(C,)`` other ids and types, result (``F = 1``)."""
+        dangerous = object_id[result.dangerous & (result.frame == 0)]
+        culprits = tuple(sorted({_label(self._ids, int(x)) for x in dangerous}))
         bad = object_id[np.asarray(result.invalid) != 0]
-        record["invalid_objects"] = sorted({*invalid, *(self._ids.to_str(int(x)) for x in bad)})
-        is_safe = bool(record["is_safe"])
+        is_safe = bool(result.responses.is_safe[0])
+        response = LongitudinalResponse(int(result.responses.longitudinal_response[0]))
         prep = self._prep
-        return EngineOutput(
-            record=record,
+        return RssVerdict(
             is_safe=is_safe,
-            culprits=tuple(dangerous),
-            label="" if is_safe else f"RSS {record['longitudinal_response']}",
-            margin=0.0 if not is_safe else float("inf"),
-            detail=RssFrameDetail(
-                labels=tuple(_label(self._ids, int(x)) for x in object_id),
-                constellation_type=constellation_type,
-                result=result,
-                road_areas=road_area_outlines(prep.graph, scene.road_areas)
-                if self._outlines and prep is not None
-                else (),
-            ),
+            culprits=culprits,
+            cause="" if is_safe else f"RSS {response}",
+            margin=float("inf") if is_safe else 0.0,
+            invalid_objects=tuple(sorted({*invalid, *(self._ids.to_str(int(x)) for x in bad)})),
+            labels=tuple(_label(self._ids, int(x)) for x in object_id),
+            constellation_type=constellation_type,
+            object_id=object_id,
+            result=result,
+            road_areas=road_area_outlines(prep.graph, scene.road_areas)
+            if self._outlines and prep is not None
+            else (),
         )
 
 
@@ -163,14 +150,6 @@ def _label(ids: IdMap, object_id: int) -> str:
     return names.get(object_id) or ids.to_str(object_id)
 
 
-def _safe(extra: dict[str, Any]) -> EngineOutput:
-    record: dict[str, Any] = {
-        "is_safe": True,
-        "dangerous_objects": [],
-        "longitudinal_response": "None",
-        "lateral_response_left": "None",
-        "lateral_response_right": "None",
-        "acceleration_restrictions": None,
-        **extra,
-    }
-    return EngineOutput(record=record, is_safe=True)
+def _safe(invalid: tuple[str, ...] | list[str]) -> RssVerdict:
+    """The verdict of a frame without constellations."""
+    return RssVerdict(is_safe=True, invalid_objects=tuple(sorted(invalid)))

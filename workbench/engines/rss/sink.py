@@ -24,14 +24,19 @@ from typing import TYPE_CHECKING
 import numpy as np
 import rerun as rr
 
-from workbench.replay.reach_layout import StripColumns
-from workbench.replay.rss_layout import FRAME_STATES, OBJECT_STATES, RESPONSE_LANES
+from workbench.engines.rss.layout import FRAME_STATES, OBJECT_STATES, RESPONSE_LANES, layout_rss
 from workbench.replay.sink import send_strips, state_configuration, time_index
+from workbench.replay.strips import StripColumns
 
 if TYPE_CHECKING:
+    from collections.abc import Sequence
+
     from numpy.typing import NDArray
 
-    from workbench.replay.rss_layout import RssColumns
+    from loaders.records import Frame
+    from workbench.engines.rss.layout import RssColumns
+    from workbench.engines.rss.verdict import RssVerdict
+    from workbench.replay.layout import ChunkLayout
 
 __all__ = ["RssSink", "object_path"]
 
@@ -86,7 +91,7 @@ class RssSink:
                 self._states(object_path(object_id), frame[change], t_ns[change], picked)
             self._last[object_id] = states[-1]
 
-    def send_chunk(
+    def send_columns(
         self, frame: NDArray[np.int64], t_ns: NDArray[np.int64], cols: RssColumns
     ) -> None:
         """Send one chunk of structured RSS results."""
@@ -135,3 +140,9 @@ class RssSink:
                 indexes=time_index(frame[rows], t_ns[rows]),
                 columns=rr.Scalars.columns(scalars=values),
             )
+
+    def send_chunk(
+        self, frames: Sequence[Frame], layout: ChunkLayout, verdicts: Sequence[RssVerdict]
+    ) -> None:
+        """Lay out and send the verdicts of a chunk of frames."""
+        self.send_columns(layout.frame, layout.t_ns, layout_rss(frames, verdicts))

@@ -36,7 +36,7 @@ from loaders.records import ObjectClass as FrameClass
 from rss.model import ObjectType
 from rss.params import ConstellationCreationMode, ObjectClass
 from rss.unstructured import UnstructuredAgents
-from workbench.rss_adapter import EGO_OBJECT_ID
+from workbench.engines.ids import EGO_OBJECT_ID
 
 if TYPE_CHECKING:
     from numpy.typing import NDArray
@@ -45,7 +45,7 @@ if TYPE_CHECKING:
     from loaders.records import Frame
     from rss.dynamics import RssDynamics
     from rss.params import RssParams
-    from workbench.rss_adapter import IdMap
+    from workbench.engines.ids import IdMap
 
 __all__ = [
     "MOVING_MIN_MPS",
@@ -139,7 +139,7 @@ class FrameAgents:
     """Unstructured inputs of one frame.
 
     Attributes:
-        ego: The ego (one row, id :data:`workbench.rss_adapter.EGO_OBJECT_ID`).
+        ego: The ego (one row, id :data:`workbench.engines.rss.adapter.EGO_OBJECT_ID`).
         agents: ``(K,)`` the selected, valid actors.
         dynamics: One dynamics per agent.
         actor_ids: ``(K,)`` the agents' actor ids (strings, as in the log).

@@ -11,7 +11,7 @@ drive-away headings as a fan from the ego::
     safe              green  the brake sets are disjoint (22.2)
 
 The ego's own sets are light grey (the state lane carries the frame's response). Sets
-are simplified by ``reach_layout.SIMPLIFY_M`` for display and triangulated with shapely's
+are simplified by ``strips.SIMPLIFY_M`` for display and triangulated with shapely's
 constrained Delaunay triangulation; each frame is one mesh per entity (three vertices per triangle,
 per-vertex colours) and the outlines one padded ``(S, V, 3)`` array per chunk.
 """
@@ -26,19 +26,14 @@ import numpy as np
 import shapely
 
 from rss.unstructured import UnstructuredResponse
-from workbench.replay.reach_layout import (  # the reach sets' ring helpers, shared
-    SIMPLIFY_M,
-    StripColumns,
-    polygon_rings,
-    stack_strips,
-)
+from workbench.replay.strips import SIMPLIFY_M, StripColumns, polygon_rings, stack_strips
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
 
     from numpy.typing import NDArray
 
-    from workbench.evaluate.unstructured_runner import UnstructuredDetail
+    from workbench.engines.unstructured.verdict import UnstructuredDetail
 
 __all__ = [
     "COLORS",

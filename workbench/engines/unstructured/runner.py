@@ -1,44 +1,25 @@
-"""Runner of unstructured RSS (trajectory sets, ``rss.unstructured``) over loader frames.
-
-Per-frame record (keys shared with the ``rss`` runner keep its names and meaning)::
-
-    is_safe                    bool, no dangerous object
-    dangerous_objects          [actor id, ...] sorted
-    decisions                  {actor id: "Brake" | "ContinueForward" | "DriveAway" | "None"}
-    longitudinal_response      "BrakeMin" when the resolved response is Brake, else "None"
-    unstructured_constellation_response   the resolved response (ad-rss ProperResponse)
-    heading_ranges             [[begin, end], ...] allowed headings while driving away [rad]
-    acceleration_restrictions  {"longitudinal": [min, max], "lateral_left": ..., ...} [m/s²]
-    constellations             number of unstructured pairs checked
-    invalid_objects            [actor id, ...] selected rows that could not be checked
-
-ad-rss leaves ``longitudinal_response`` "None" for unstructured constellations and restricts
-the acceleration instead (max ≤ ``brake_min`` on Brake); we name that restriction BrakeMin so
-the key means the same as in structured RSS.
-"""
+"""Runner of unstructured RSS (trajectory sets, ``rss.unstructured``) over loader frames."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
-from rss.conformance import json_number
 from rss.params import ObjectClass, RssParams
 from rss.physics import ACCELERATION_LOWEST_MPS2
 from rss.unstructured import FrameInputs, UnstructuredResponse, check_unstructured_frames
-from workbench.evaluate.pipeline import EngineOutput
-from workbench.rss_adapter import IdMap
-from workbench.unstructured_adapter import UnstructuredScope, frame_to_agents
+from workbench.engines.ids import IdMap
+from workbench.engines.unstructured.adapter import UnstructuredScope, frame_to_agents
+from workbench.engines.unstructured.verdict import UnstructuredDetail, UnstructuredVerdict
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
 
     from loaders.maps.model import LaneMap
     from loaders.records import Frame
-    from rss.unstructured import UnstructuredAgents, UnstructuredMemory, UnstructuredResult
-    from workbench.unstructured_adapter import FrameAgents
+    from rss.unstructured import UnstructuredMemory, UnstructuredResult
+    from workbench.engines.unstructured.adapter import FrameAgents
 
-__all__ = ["UnstructuredDetail", "UnstructuredRunner", "response_label"]
+__all__ = ["UnstructuredRunner", "response_label"]
 
 _LABELS = {
     UnstructuredResponse.Brake: "brake",
@@ -53,23 +34,8 @@ def response_label(response: UnstructuredResponse) -> str:
     return _LABELS[UnstructuredResponse(response)]
 
 
-@dataclass(frozen=True)
-class UnstructuredDetail:
-    """What the Rerun sink draws for one frame.
-
-    Attributes:
-        ego: The ego as checked (one row, heading of travel).
-        result: The engine's result (sets, decisions, proper response).
-        actor_ids: ``(K,)`` actor id of each agent of ``result``.
-    """
-
-    ego: UnstructuredAgents
-    result: UnstructuredResult
-    actor_ids: tuple[str, ...]
-
-
 class UnstructuredRunner:
-    """Checks the unstructured pairs of every frame (see ``workbench.unstructured_adapter``).
+    """Checks the unstructured pairs of every frame (see ``adapter`` beside this module).
 
     The memory (22.1b of the last safe step, drive-away state) is carried from frame to
     frame; a fresh runner starts a replay at any frame with empty memory. ``step_many``
@@ -91,11 +57,7 @@ class UnstructuredRunner:
         self._ids = IdMap()
         self._memory: UnstructuredMemory | None = None
 
-    def step(self, frame: Frame) -> EngineOutput:
-        """Evaluate one frame."""
-        return self.step_many([frame])[0]
-
-    def step_many(self, frames: Sequence[Frame]) -> list[EngineOutput]:
+    def step_many(self, frames: Sequence[Frame]) -> list[UnstructuredVerdict]:
         """Evaluate consecutive frames at once (as ``step`` on each in turn).
 
         Each run of frames with unstructured pairs is one ``check_unstructured_frames``
@@ -105,7 +67,7 @@ class UnstructuredRunner:
         inputs = [
             frame_to_agents(f, self._scope.select(f), self._params, self._ids) for f in frames
         ]
-        outputs: list[EngineOutput] = []
+        outputs: list[UnstructuredVerdict] = []
         run: list[FrameAgents] = []
         for frame_inputs in [*inputs, None]:
             if frame_inputs is not None and len(frame_inputs.agents):
@@ -115,11 +77,10 @@ class UnstructuredRunner:
             run = []
             if frame_inputs is not None:
                 self._memory = None
-                record = _safe_record(self._params, sorted(frame_inputs.invalid))
-                outputs.append(EngineOutput(record=record, is_safe=True))
+                outputs.append(_safe(self._params, frame_inputs.invalid))
         return outputs
 
-    def _check(self, run: Sequence[FrameAgents]) -> list[EngineOutput]:
+    def _check(self, run: Sequence[FrameAgents]) -> list[UnstructuredVerdict]:
         """Outputs of consecutive frames with pairs, the memory carried through them."""
         if not run:
             return []
@@ -130,72 +91,37 @@ class UnstructuredRunner:
         )
         return [self._output(i, r) for i, r in zip(run, results, strict=True)]
 
-    def _output(self, inputs: FrameAgents, result: UnstructuredResult) -> EngineOutput:
-        """The record and verdict of one checked frame."""
+    def _output(self, inputs: FrameAgents, result: UnstructuredResult) -> UnstructuredVerdict:
+        """The verdict of one checked frame."""
         pr = result.proper_response
         decisions = {
-            actor: str(UnstructuredResponse(int(code)))
+            actor: UnstructuredResponse(int(code))
             for actor, code in zip(inputs.actor_ids, result.decisions.response, strict=True)
         }
-        dangerous = sorted({self._ids.to_str(int(x)) for x in pr.dangerous_objects})
-        record = _record(
-            is_safe=pr.is_safe,
-            dangerous=dangerous,
-            decisions=dict(sorted(decisions.items())),
-            response=pr.response,
-            heading_ranges=[[json_number(b), json_number(e)] for b, e in pr.heading_ranges],
-            lon=(pr.lon_min_mps2, pr.lon_max_mps2),
-            lat=(pr.lat_min_mps2, pr.lat_max_mps2),
-        )
-        record["constellations"] = len(inputs.agents)
-        record["invalid_objects"] = sorted(inputs.invalid)
-        return EngineOutput(
-            record=record,
-            is_safe=pr.is_safe,
-            culprits=tuple(dangerous),
-            label="" if pr.is_safe else f"unstructured: {response_label(pr.response)}",
+        dangerous = tuple(sorted({self._ids.to_str(int(x)) for x in pr.dangerous_objects}))
+        response = UnstructuredResponse(pr.response)
+        return UnstructuredVerdict(
+            is_safe=bool(pr.is_safe),
+            culprits=dangerous,
+            cause="" if pr.is_safe else f"unstructured: {response_label(response)}",
             margin=float("inf") if pr.is_safe else 0.0,
+            response=response,
+            decisions=tuple(sorted(decisions.items())),
+            heading_ranges_rad=tuple((float(b), float(e)) for b, e in pr.heading_ranges),
+            lon_mps2=(pr.lon_min_mps2, pr.lon_max_mps2),
+            lat_mps2=(pr.lat_min_mps2, pr.lat_max_mps2),
+            constellations=len(inputs.agents),
+            invalid_objects=tuple(sorted(inputs.invalid)),
             detail=UnstructuredDetail(inputs.ego, result, inputs.actor_ids),
         )
 
 
-def _record(  # noqa: PLR0917 - one record, built in one place
-    is_safe: bool,  # noqa: FBT001
-    dangerous: list[str],
-    decisions: dict[str, str],
-    response: UnstructuredResponse,
-    heading_ranges: list[list[float | None]],
-    lon: tuple[float, float],
-    lat: tuple[float, float],
-) -> dict[str, Any]:
-    lat_range = [json_number(lat[0]), json_number(lat[1])]
-    return {
-        "is_safe": bool(is_safe),
-        "dangerous_objects": dangerous,
-        "decisions": decisions,
-        "longitudinal_response": ("BrakeMin" if response == UnstructuredResponse.Brake else "None"),
-        "unstructured_constellation_response": str(UnstructuredResponse(response)),
-        "heading_ranges": heading_ranges,
-        "acceleration_restrictions": {
-            "longitudinal": [json_number(lon[0]), json_number(lon[1])],
-            "lateral_left": lat_range,
-            "lateral_right": list(lat_range),
-        },
-    }
-
-
-def _safe_record(params: RssParams, invalid: list[str]) -> dict[str, Any]:
-    """Record of a frame without unstructured pairs: the ego's unrestricted ranges."""
+def _safe(params: RssParams, invalid: Sequence[str]) -> UnstructuredVerdict:
+    """Verdict of a frame without unstructured pairs: the ego's unrestricted ranges."""
     ego = params.for_class(ObjectClass.EGO)
-    record = _record(
-        True,  # noqa: FBT003
-        [],
-        {},
-        UnstructuredResponse.None_,
-        [],
-        (ego.brake_max_mps2, ego.accel_max_mps2),
-        (ACCELERATION_LOWEST_MPS2, ego.lat_accel_max_mps2),
+    return UnstructuredVerdict(
+        is_safe=True,
+        lon_mps2=(ego.brake_max_mps2, ego.accel_max_mps2),
+        lat_mps2=(ACCELERATION_LOWEST_MPS2, ego.lat_accel_max_mps2),
+        invalid_objects=tuple(sorted(invalid)),
     )
-    record["constellations"] = 0
-    record["invalid_objects"] = invalid
-    return record

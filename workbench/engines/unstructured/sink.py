@@ -21,13 +21,18 @@ from typing import TYPE_CHECKING
 import numpy as np
 import rerun as rr
 
+from workbench.engines.unstructured.layout import COLORS, Category, layout_unstructured
 from workbench.replay.sink import send_strips, state_configuration, time_index
-from workbench.replay.unstructured_layout import COLORS, Category
 
 if TYPE_CHECKING:
+    from collections.abc import Sequence
+
     from numpy.typing import NDArray
 
-    from workbench.replay.unstructured_layout import MeshColumns, UnstructuredColumns
+    from loaders.records import Frame
+    from workbench.engines.unstructured.layout import MeshColumns, UnstructuredColumns
+    from workbench.engines.unstructured.verdict import UnstructuredVerdict
+    from workbench.replay.layout import ChunkLayout
 
 __all__ = ["ROOT", "STATE_PATH", "UnstructuredSink"]
 
@@ -64,7 +69,7 @@ class UnstructuredSink:
             ],
         )
 
-    def send_chunk(
+    def send_columns(
         self, frame: NDArray[np.int64], t_ns: NDArray[np.int64], cols: UnstructuredColumns
     ) -> None:
         """Send one chunk of unstructured results."""
@@ -81,3 +86,14 @@ class UnstructuredSink:
         self.recording.send_columns(
             STATE_PATH, indexes=index, columns=rr.StateChange.columns(state=cols.states)
         )
+
+    def send_chunk(
+        self,
+        frames: Sequence[Frame],
+        layout: ChunkLayout,
+        verdicts: Sequence[UnstructuredVerdict],
+    ) -> None:
+        """Lay out and send the verdicts of a chunk of frames."""
+        del frames  # the sets carry their own positions
+        details = [v.detail for v in verdicts]
+        self.send_columns(layout.frame, layout.t_ns, layout_unstructured(details))

@@ -8,12 +8,14 @@ import shapely
 from rerun.chunk import RrdReader
 
 from loaders import open_drive
+from tests.workbench.engines.helpers import step
 from tests.workbench.fakes import FakeDrive
-from workbench.evaluate.reach_runner import ReachRunner
-from workbench.replay.reach_layout import layout_reach, time_colors
-from workbench.replay.run import replay_drive
+from workbench.engines.reachsets.layout import layout_reach
+from workbench.engines.reachsets.runner import ReachRunner
+from workbench.replay.strips import time_colors
+from workbench.viewer.replay import replay_drive
 
-SAMPLES = Path(__file__).resolve().parents[3] / "sample_logs"
+SAMPLES = Path(__file__).resolve().parents[4] / "sample_logs"
 
 
 def test_time_colors_run_from_yellow_to_purple():
@@ -26,7 +28,7 @@ def test_layout_matches_the_engine_result_frame_by_frame():
     drive = FakeDrive(n_frames=6, n_actors=3)
     runner = ReachRunner(drive.lane_map, full_geometry=True)
     frames = list(drive.frames())
-    results = [runner.step(f).detail for f in frames]
+    results = [step(runner, f).result for f in frames]
     cols = layout_reach(frames, results)
     assert cols.is_safe.tolist() == [r.is_safe for r in results]
     assert cols.hit_counts.tolist() == [len(r.collisions) for r in results]
@@ -53,9 +55,9 @@ def test_replay_with_reach_engine_logs_results_and_violations(tmp_path):
     drive = FakeDrive(n_frames=12, n_actors=3)
     out = tmp_path / "reach.rrd"
     runner = ReachRunner(drive.lane_map, full_geometry=True)
-    summary = replay_drive(drive, out=out, chunk_frames=5, engines=[runner])
+    summary = replay_drive(drive, out=out, send_frames=5, engines=[runner])
     check = ReachRunner(drive.lane_map)
-    verdicts = [check.step(f).is_safe for f in drive.frames()]
+    verdicts = [step(check, f).is_safe for f in drive.frames()]
     assert summary.unsafe_frames == {"reachsets": verdicts.count(False)}
     flagged = {f for v in summary.violations for f in range(v.start_frame, v.end_frame + 1)}
     assert flagged == {i for i, ok in enumerate(verdicts) if not ok}
@@ -74,7 +76,7 @@ def test_cut_in_sample_flags_the_cutting_in_car():
     culprits: set[str] = set()
     frames = 0
     for frame in drive.frames(t0 + 5_500_000_000, t0 + 8_500_000_000):
-        culprits.update(runner.step(frame).culprits)
+        culprits.update(step(runner, frame).culprits)
         frames += 1
     drive.close()
     assert frames == 60

@@ -3,20 +3,24 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import TYPE_CHECKING
+from types import SimpleNamespace
+from typing import TYPE_CHECKING, cast
 
 import pytest
 
 from loaders import open_drive
-from workbench.evaluate.pipeline import CHUNK_FRAMES, evaluate_frames
-from workbench.evaluate.reach_runner import ReachRunner
+from loaders.errors import CorruptLogError
+from tests.workbench.engines.helpers import record, step
+from workbench.driver import CHUNK_FRAMES, DriveRun
+from workbench.engines.reachsets.runner import ReachRunner
 
 if TYPE_CHECKING:
     from collections.abc import Iterator
 
+    from loaders.drive import Drive
     from loaders.records import Frame
 
-SAMPLES = Path(__file__).resolve().parents[3] / "sample_logs"
+SAMPLES = Path(__file__).resolve().parents[4] / "sample_logs"
 
 
 @pytest.mark.parametrize("name", ["racing_overtake.saa", "highway_cut_in.mcap"])
@@ -25,14 +29,19 @@ def test_step_many_equals_step_by_step(name):
     frames = list(drive.frames())[:70]
     drive.close()
     one = ReachRunner(drive.lane_map)
-    expected = [one.step(f).record for f in frames]
+    expected = [record(step(one, f)) for f in frames]
     many = ReachRunner(drive.lane_map)
     got = many.step_many(frames[:25]) + many.step_many(frames[25:])
-    assert [o.record for o in got] == expected
+    assert [record(o) for o in got] == expected
     assert any(not r["is_safe"] for r in expected)
 
 
-def test_pipeline_hands_chunks_to_step_many_and_keeps_order():
+def _drive_of(frames: list[Frame] | Iterator[Frame]) -> Drive:
+    """A drive whose ``frames()`` yields ``frames`` (the driver reads nothing else)."""
+    return cast("Drive", SimpleNamespace(frames=lambda _s, _e: iter(frames)))
+
+
+def test_driver_hands_chunks_to_step_many_and_keeps_order():
     drive = open_drive(SAMPLES / "racing_overtake.saa")
     frames = list(drive.frames())
     drive.close()
@@ -44,17 +53,17 @@ def test_pipeline_hands_chunks_to_step_many_and_keeps_order():
             calls.append(len(chunk))
             return super().step_many(chunk)
 
-    results = [r for _, r in evaluate_frames(frames, [Counting(drive.lane_map)])]
-    assert [r.frame for r in results] == [f.index for f in frames]
+    chunks = list(DriveRun(_drive_of(frames), [Counting(drive.lane_map)]))
+    assert [f.index for c in chunks for f in c.frames] == [f.index for f in frames]
     assert max(calls) == CHUNK_FRAMES
     assert sum(calls) == len(frames)
     single = ReachRunner(drive.lane_map)
-    assert [r.outputs["reachsets"].record for r in results] == [
-        single.step(f).record for f in frames
+    assert [record(v) for c in chunks for v in c.verdicts["reachsets"]] == [
+        record(step(single, f)) for f in frames
     ]
 
 
-def test_pipeline_evaluates_the_frames_read_before_a_reader_error():
+def test_driver_evaluates_the_frames_read_before_a_reader_error():
     drive = open_drive(SAMPLES / "racing_overtake.saa")
     frames = list(drive.frames())[:10]
     drive.close()
@@ -64,7 +73,23 @@ def test_pipeline_evaluates_the_frames_read_before_a_reader_error():
         raise OSError("truncated")
 
     seen: list[int] = []
-    results = evaluate_frames(broken(), [ReachRunner(drive.lane_map)])
+    chunks = iter(DriveRun(_drive_of(broken()), [ReachRunner(drive.lane_map)]))
     with pytest.raises(OSError, match="truncated"):
-        seen.extend(frame.index for frame, _ in results)
+        seen.extend(f.index for chunk in chunks for f in chunk.frames)
     assert seen == [f.index for f in frames]
+
+
+def test_driver_keeps_the_frames_before_a_loader_error_and_reports_it():
+    drive = open_drive(SAMPLES / "racing_overtake.saa")
+    frames = list(drive.frames())[:40]
+    drive.close()
+    stop = CorruptLogError("racing_overtake.saa", "cut short")
+
+    def truncated() -> Iterator[Frame]:
+        yield from frames
+        raise stop
+
+    run = DriveRun(_drive_of(truncated()), [ReachRunner(drive.lane_map)])
+    seen = [f.index for chunk in run for f in chunk.frames]
+    assert seen == [f.index for f in frames]
+    assert run.stopped_by is stop

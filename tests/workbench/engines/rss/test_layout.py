@@ -11,14 +11,14 @@ from loaders import open_drive
 from loaders.drive import Drive
 from loaders.records import Frame
 from rss.model import ConstellationType
-from workbench.evaluate.pipeline import EngineOutput
-from workbench.evaluate.rss_detail import RssFrameDetail
-from workbench.evaluate.rss_runner import RssRunner
-from workbench.replay.rss_layout import layout_rss
-from workbench.replay.rss_sink import object_path
-from workbench.replay.run import replay_drive
+from tests.workbench.engines.helpers import record, step
+from workbench.engines.rss.layout import layout_rss
+from workbench.engines.rss.runner import RssRunner
+from workbench.engines.rss.sink import object_path
+from workbench.engines.rss.verdict import RssVerdict
+from workbench.viewer.replay import replay_drive
 
-SAMPLES = Path(__file__).resolve().parents[3] / "sample_logs"
+SAMPLES = Path(__file__).resolve().parents[4] / "sample_logs"
 CUT_IN = SAMPLES / "highway_cut_in.mcap"
 #: The cut-in (5.5 .. 8.5 s) with some free flow before it.
 WINDOW_S = (4.0, 9.0)
@@ -32,11 +32,11 @@ def _open_window() -> Drive:
 
 
 @pytest.fixture(scope="module")
-def cut_in() -> tuple[list[Frame], list[EngineOutput]]:
+def cut_in() -> tuple[list[Frame], list[RssVerdict]]:
     drive = _open_window()
     runner = RssRunner(drive.lane_map, outlines=True)
     frames = list(drive.frames())
-    outputs = [runner.step(f) for f in frames]
+    outputs = [step(runner, f) for f in frames]
     drive.close()
     return frames, outputs
 
@@ -46,23 +46,23 @@ def test_layout_follows_the_engine_frame_by_frame(cut_in):
     cols = layout_rss(frames, outputs)
     n = len(frames)
     assert cols.frame_state == [
-        "no constellation" if o.detail is None else ("safe" if o.is_safe else "dangerous")
+        "no constellation" if o.result is None else ("safe" if o.is_safe else "dangerous")
         for o in outputs
     ]
     assert {"safe", "dangerous"} <= set(cols.frame_state)
     for i, (frame, out) in enumerate(zip(frames, outputs, strict=True)):
-        detail = out.detail
-        assert isinstance(detail, RssFrameDetail)
+        detail = out
+        assert isinstance(detail, RssVerdict)
         present = {str(a) for a in frame.actors.ids}
         assert cols.link_counts[i] == len(set(detail.labels) & present)
-        dangerous = set(out.record["dangerous_objects"])
+        dangerous = set(record(out)["dangerous_objects"])
         assert cols.danger_counts[i] == len(dangerous & present)
         for object_id, states in cols.object_states.items():
             if object_id in dangerous:
                 assert states[i] == "dangerous"
             elif object_id not in detail.labels:
                 assert states[i] == "not relevant"
-        assert cols.responses["longitudinal"][i] == out.record["longitudinal_response"]
+        assert cols.responses["longitudinal"][i] == record(out)["longitudinal_response"]
     assert len(cols.link_labels) == cols.link_strips_m.shape[0] == int(cols.link_counts.sum())
     assert cols.danger_centre_m.shape == (int(cols.danger_counts.sum()), 3)
     assert all(len(states) == n for states in cols.object_states.values())
@@ -105,8 +105,8 @@ def test_acceleration_restrictions_follow_the_response(cut_in):
     ):
         upper = cols.accel[series]
         for i, out in enumerate(outputs):
-            assert upper[i] == pytest.approx(out.record["acceleration_restrictions"][key][1])
-            if out.record[response] != "None":
+            assert upper[i] == pytest.approx(record(out)["acceleration_restrictions"][key][1])
+            if record(out)[response] != "None":
                 assert upper[i] < 0
                 braking += 1
     assert braking > 0
@@ -120,7 +120,7 @@ def test_frames_without_constellations_are_marked():
     frames = [f for _, f in zip(range(5), drive.frames(), strict=False)]
     drive.close()
     runner = RssRunner(None)
-    cols = layout_rss(frames, [runner.step(f) for f in frames])
+    cols = layout_rss(frames, [step(runner, f) for f in frames])
     assert cols.frame_state == ["no constellation"] * 5
     assert cols.object_states == {}
     assert np.all(np.isnan(cols.accel["lon_min_mps2"]))
@@ -133,8 +133,8 @@ def test_constellation_types_are_named_in_the_labels(cut_in):
     types = {
         ConstellationType(int(t))
         for out in outputs
-        if out.detail is not None
-        for t in out.detail.constellation_type
+        if out.result is not None
+        for t in out.constellation_type
     }
     assert types == {ConstellationType.SameDirection}
     assert cols.link_labels
@@ -162,7 +162,7 @@ def test_replay_logs_state_lanes_constellations_and_plots(tmp_path, cut_in):
     path = tmp_path / "rss.rrd"
     drive = _open_window()
     runner = RssRunner(drive.lane_map, outlines=True)
-    summary = replay_drive(drive, out=path, chunk_frames=7, engines=[runner])
+    summary = replay_drive(drive, out=path, send_frames=7, engines=[runner])
     drive.close()
     assert summary.unsafe_frames == {"rss": sum(not o.is_safe for o in outputs)}
     cols = layout_rss(frames, outputs)
@@ -190,7 +190,7 @@ def test_intersection_constellations_show_the_distances_to_enter():
     drive = open_drive(SAMPLES / "urban_intersection.mcap")
     runner = RssRunner(drive.lane_map)
     frames = list(drive.frames())
-    outputs = [runner.step(f) for f in frames]
+    outputs = [step(runner, f) for f in frames]
     drive.close()
     cols = layout_rss(frames, outputs)
     crossing = [label for label in cols.link_labels if ": intersection" in label]

@@ -1,7 +1,8 @@
 """The ``rss`` engine runner on the sample drives: pinned records, golden files, CLI.
 
-Regenerate the golden files with ``RSS_GOLDEN_UPDATE=1 pytest tests/workbench/test_rss_runner.py``
-and review the diff against the scenario descriptions in docs/samples.md.
+Regenerate the golden files with
+``RSS_GOLDEN_UPDATE=1 pytest tests/workbench/engines/rss/test_runner.py`` and review the
+diff against the scenario descriptions in docs/samples.md.
 """
 
 import json
@@ -12,10 +13,11 @@ from typing import Any
 import pytest
 
 from loaders.open import open_drive
+from tests.workbench.engines.helpers import record, step
 from workbench.cli.main import main
-from workbench.evaluate.rss_runner import RssRunner
+from workbench.engines.rss.runner import RssRunner
 
-SAMPLES = Path(__file__).resolve().parents[2] / "sample_logs"
+SAMPLES = Path(__file__).resolve().parents[4] / "sample_logs"
 SCENARIOS = [
     "highway_cut_in",
     "hard_braking_lead",
@@ -43,15 +45,15 @@ def _frames(name: str) -> list[dict[str, Any]]:
         runner = RssRunner(drive.lane_map)
         out = []
         for frame in drive.frames():
-            result = runner.step(frame)
-            assert set(result.record) == PINNED
+            result = step(runner, frame)
+            assert set(record(result)) == PINNED
             assert result.is_safe == (not result.culprits)
             out.append(
                 {
                     "frame": frame.index,
                     "t_ns": frame.t_ns,
-                    "is_safe": result.record["is_safe"],
-                    "dangerous_objects": result.record["dangerous_objects"],
+                    "is_safe": record(result)["is_safe"],
+                    "dangerous_objects": record(result)["dangerous_objects"],
                 }
             )
         return out
@@ -120,7 +122,7 @@ def test_cli_evaluate_with_rss(log, tmp_path, capsys):
 
 def test_adapter_marks_junction_lanes_and_right_of_way():
     from loaders.maps.lanelet2 import read_lanelet2  # noqa: PLC0415
-    from workbench.rss_adapter import lane_graph_from_map  # noqa: PLC0415
+    from workbench.engines.rss.adapter import lane_graph_from_map  # noqa: PLC0415
 
     graph = lane_graph_from_map(read_lanelet2(SAMPLES / "urban_intersection.osm"))
     ids = list(graph.ids)
@@ -134,7 +136,7 @@ def test_adapter_marks_junction_lanes_and_right_of_way():
 
 def test_adapter_traffic_light_and_drivable_lanes_only():
     from loaders.maps.lanelet2 import read_lanelet2  # noqa: PLC0415
-    from workbench.rss_adapter import lane_graph_from_map  # noqa: PLC0415
+    from workbench.engines.rss.adapter import lane_graph_from_map  # noqa: PLC0415
 
     graph = lane_graph_from_map(read_lanelet2(SAMPLES / "pedestrian_crossing.osm"))
     assert "140" not in graph.ids  # crosswalk
@@ -144,17 +146,17 @@ def test_adapter_traffic_light_and_drivable_lanes_only():
 
 
 def test_runner_without_map_is_safe_and_ids_are_strings():
-    from workbench.rss_adapter import IdMap  # noqa: PLC0415
+    from workbench.engines.ids import IdMap  # noqa: PLC0415
 
     drive = open_drive(SAMPLES / "hard_braking_lead.mcap")
     try:
         runner = RssRunner(None)
         frame = next(iter(drive.frames()))
-        out = runner.step(frame)
+        out = step(runner, frame)
     finally:
         drive.close()
     assert out.is_safe
-    assert set(out.record) == PINNED
+    assert set(record(out)) == PINNED
     ids = IdMap()
     assert ids.to_int("17") == 17
     hexed = "000102030405060708090a0b0c0d0e0f"
@@ -166,7 +168,7 @@ def test_runner_with_road_boundaries_names_them():
     try:
         runner = RssRunner(drive.lane_map, road_boundaries=True)
         records = [
-            runner.step(frame).record for _, frame in zip(range(20), drive.frames(), strict=False)
+            record(step(runner, frame)) for _, frame in zip(range(20), drive.frames(), strict=False)
         ]
     finally:
         drive.close()

@@ -15,29 +15,31 @@ from loaders.records import ActorTable, EgoState, Frame, ObjectClass
 from rss.params import RssParams
 from rss.scene import create_scene, prepare
 from tests.equality import assert_same
-from tests.workbench.test_rss_runner import SCENARIOS
-from workbench.evaluate.rss_runner import RssRunner
-from workbench.rss_adapter import IdMap, frame_to_scene, lane_graph_from_map
+from tests.workbench.engines.helpers import record, step
+from tests.workbench.engines.rss.test_runner import SCENARIOS
+from workbench.engines.ids import IdMap
+from workbench.engines.rss.adapter import frame_to_scene, lane_graph_from_map
+from workbench.engines.rss.runner import RssRunner
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
 
     from loaders.maps.model import LaneMap
-    from workbench.evaluate.pipeline import EngineOutput
+    from workbench.engines.rss.verdict import RssVerdict
 
-ROOT = Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[4]
 SAMPLES = ROOT / "sample_logs"
 TOWN01 = ROOT.parent / "shared" / "external" / "maps" / "Town01.xodr"
 CHUNKS = [1, 7, 32]
 
 
-def _compare(lane_map: LaneMap | None, frames: Sequence[Frame], chunk: int) -> list[EngineOutput]:
+def _compare(lane_map: LaneMap | None, frames: Sequence[Frame], chunk: int) -> list[RssVerdict]:
     """Run both paths with outlines; assert equality incl. memory after every chunk."""
     one, many = RssRunner(lane_map, outlines=True), RssRunner(lane_map, outlines=True)
-    out: list[EngineOutput] = []
+    out: list[RssVerdict] = []
     for lo in range(0, len(frames), chunk):
         part = frames[lo : lo + chunk]
-        expected = [one.step(f) for f in part]
+        expected = [step(one, f) for f in part]
         got = many.step_many(part)
         assert_same(got, expected, f"frames {lo}..")
         assert_same(many._memory, one._memory, f"memory after frame {lo + len(part) - 1}")
@@ -54,7 +56,7 @@ def test_step_many_equals_step_on_the_sample_drives(name, chunk):
     assert drive.lane_map is not None
     outputs = _compare(drive.lane_map, frames, chunk)
     assert len(outputs) == len(frames)
-    assert any(o.record["constellations"] > 0 for o in outputs)
+    assert any(record(o)["constellations"] > 0 for o in outputs)
 
 
 def test_step_many_equals_step_without_a_lane_map():
@@ -64,7 +66,7 @@ def test_step_many_equals_step_without_a_lane_map():
     drive.close()
     outputs = _compare(drive.lane_map, frames, 7)
     assert len(outputs) == len(frames)
-    assert all(o.is_safe and o.record["constellations"] == 0 for o in outputs)
+    assert all(o.is_safe and record(o)["constellations"] == 0 for o in outputs)
 
 
 def _town01_frames(lane_map: LaneMap, n_frames: int) -> list[Frame]:
@@ -132,7 +134,7 @@ def town01() -> LaneMap:
 def test_step_many_equals_step_on_a_moving_town01_scene(town01, chunk):
     frames = _town01_frames(town01, 45)
     outputs = _compare(town01, frames, chunk)
-    counts = [o.record["constellations"] for o in outputs]
+    counts = [record(o)["constellations"] for o in outputs]
     assert counts[9] == counts[10] == counts[40] == 0
     assert sum(c > 10 for c in counts) > 30
 

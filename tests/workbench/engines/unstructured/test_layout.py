@@ -11,19 +11,21 @@ import shapely
 from rerun.chunk import RrdReader
 
 from rss.params import ConstellationCreationMode, RssParams, SceneSettings
+from tests.workbench.engines.helpers import step
+from tests.workbench.engines.unstructured.test_runner import _frame, _pedestrian
 from tests.workbench.fakes import straight_road
-from tests.workbench.test_unstructured_runner import _frame, _pedestrian
 from workbench.cli.main import main
-from workbench.evaluate.unstructured_runner import UnstructuredDetail, UnstructuredRunner
-from workbench.replay.reach_layout import SIMPLIFY_M
-from workbench.replay.unstructured_layout import (
+from workbench.engines.unstructured.layout import (
     COLORS,
     EGO_SET_COLOR,
     Category,
     layout_unstructured,
     triangulate,
 )
-from workbench.replay.unstructured_sink import ROOT, STATE_PATH, UnstructuredSink
+from workbench.engines.unstructured.runner import UnstructuredRunner
+from workbench.engines.unstructured.sink import ROOT, STATE_PATH, UnstructuredSink
+from workbench.engines.unstructured.verdict import UnstructuredDetail
+from workbench.replay.strips import SIMPLIFY_M
 
 
 def _detail(
@@ -33,7 +35,9 @@ def _detail(
     mode: ConstellationCreationMode = ConstellationCreationMode.STRUCTURED,
 ) -> UnstructuredDetail:
     params = RssParams(scene=SceneSettings(constellation_creation_mode=mode))
-    out = UnstructuredRunner(straight_road(lanes=2), params).step(_frame(rows, ego_speed=ego_speed))
+    out = step(
+        UnstructuredRunner(straight_road(lanes=2), params), _frame(rows, ego_speed=ego_speed)
+    )
     assert isinstance(out.detail, UnstructuredDetail)
     return out.detail
 
@@ -110,7 +114,7 @@ def test_rrd_round_trip(tmp_path, details):
     frames = [None, details["brake"], details["drive_away"]]
     cols = layout_unstructured(frames)
     t_ns = 1_700_000_000_000_000_000 + np.arange(3, dtype=np.int64) * 50_000_000
-    sink.send_chunk(np.arange(3, dtype=np.int64), t_ns, cols)
+    sink.send_columns(np.arange(3, dtype=np.int64), t_ns, cols)
     rec.flush()
     rec.disconnect()
     agents = _read(path, f"/{ROOT}/agent_sets")
@@ -127,7 +131,7 @@ def test_rrd_round_trip(tmp_path, details):
 
 
 def test_cli_replay_logs_the_unstructured_entities(tmp_path):
-    log = Path(__file__).resolve().parents[3] / "sample_logs" / "pedestrian_crossing.mcap"
+    log = Path(__file__).resolve().parents[4] / "sample_logs" / "pedestrian_crossing.mcap"
     out = tmp_path / "ped.rrd"
     args = ["replay", str(log), "--engines", "unstructured", "--out", str(out)]
     with pytest.raises(SystemExit) as info:

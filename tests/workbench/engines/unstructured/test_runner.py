@@ -1,8 +1,8 @@
 """The ``unstructured`` engine: adapter, pair selection, runner, CLI, golden files.
 
 Regenerate the golden files with
-``UNSTRUCTURED_GOLDEN_UPDATE=1 pytest tests/workbench/test_unstructured_runner.py`` and review
-the diff against the scenario descriptions in docs/samples.md.
+``UNSTRUCTURED_GOLDEN_UPDATE=1 pytest tests/workbench/engines/unstructured/test_runner.py``
+and review the diff against the scenario descriptions in docs/samples.md.
 """
 
 import json
@@ -22,13 +22,14 @@ from rss.params import ConstellationCreationMode, RssParams, SceneSettings
 from rss.params import ObjectClass as DynClass
 from rss.unstructured import UnstructuredMemory
 from tests.rss.unstructured.frames_check import assert_same_memory, assert_same_result
+from tests.workbench.engines.helpers import record, step
 from tests.workbench.fakes import straight_road
 from workbench.cli.main import main
-from workbench.evaluate.unstructured_runner import UnstructuredRunner
-from workbench.rss_adapter import EGO_OBJECT_ID, IdMap
-from workbench.unstructured_adapter import UnstructuredScope, frame_to_agents
+from workbench.engines.ids import EGO_OBJECT_ID, IdMap
+from workbench.engines.unstructured.adapter import UnstructuredScope, frame_to_agents
+from workbench.engines.unstructured.runner import UnstructuredRunner
 
-SAMPLES = Path(__file__).resolve().parents[2] / "sample_logs"
+SAMPLES = Path(__file__).resolve().parents[4] / "sample_logs"
 T0_NS = 1_700_000_000_000_000_000
 PINNED = {
     "is_safe",
@@ -181,48 +182,48 @@ def _runner(mode: ConstellationCreationMode = ConstellationCreationMode.STRUCTUR
 
 
 def test_pedestrian_stepping_in_front_means_brake():
-    out = _runner().step(_frame([_pedestrian(25.0, 0.0)]))
-    assert set(out.record) == PINNED
+    out = step(_runner(), _frame([_pedestrian(25.0, 0.0)]))
+    assert set(record(out)) == PINNED
     assert not out.is_safe
     assert out.culprits == ("7",)
-    assert out.record["decisions"] == {"7": "Brake"}
-    assert out.record["longitudinal_response"] == "BrakeMin"
-    assert out.record["unstructured_constellation_response"] == "Brake"
-    assert out.label == "unstructured: brake"
+    assert record(out)["decisions"] == {"7": "Brake"}
+    assert record(out)["longitudinal_response"] == "BrakeMin"
+    assert record(out)["unstructured_constellation_response"] == "Brake"
+    assert out.cause == "unstructured: brake"
     assert out.margin == 0.0
-    lon = out.record["acceleration_restrictions"]["longitudinal"]
+    lon = record(out)["acceleration_restrictions"]["longitudinal"]
     assert lon[1] == RssParams().for_class(DynClass.EGO).brake_min_mps2
     assert out.detail.actor_ids == ("7",)
 
 
 def test_far_pedestrian_is_safe_and_cars_on_lanes_are_left_to_structured_rss():
-    out = _runner().step(_frame([_pedestrian(200.0, -3.0, vy=0.0), {"id": 1, "x": 20.0}]))
+    out = step(_runner(), _frame([_pedestrian(200.0, -3.0, vy=0.0), {"id": 1, "x": 20.0}]))
     assert out.is_safe
     assert out.culprits == ()
-    assert out.record["decisions"] == {"7": "ContinueForward"}
-    assert out.record["constellations"] == 1
-    assert out.record["heading_ranges"] == []
+    assert record(out)["decisions"] == {"7": "ContinueForward"}
+    assert record(out)["constellations"] == 1
+    assert record(out)["heading_ranges"] == []
 
 
 def test_no_pairs_is_safe_without_detail():
-    out = _runner().step(_frame([{"id": 1, "x": 20.0}]))
+    out = step(_runner(), _frame([{"id": 1, "x": 20.0}]))
     assert out.is_safe
-    assert set(out.record) == PINNED
-    assert out.record["constellations"] == 0
+    assert set(record(out)) == PINNED
+    assert record(out)["constellations"] == 0
     assert out.detail is None
 
 
 def test_both_stopped_and_close_means_drive_away_with_memory():
     runner = _runner(ConstellationCreationMode.UNSTRUCTURED)
     car = {"id": 9, "x": 16.0}  # stopped right in front of the stopped ego
-    first = runner.step(_frame([car], ego_speed=0.0))
-    assert first.record["decisions"] == {"9": "DriveAway"}
-    assert first.record["unstructured_constellation_response"] == "DriveAway"
-    assert first.label == "unstructured: drive-away"
-    assert len(first.record["heading_ranges"]) == 1
+    first = step(runner, _frame([car], ego_speed=0.0))
+    assert record(first)["decisions"] == {"9": "DriveAway"}
+    assert record(first)["unstructured_constellation_response"] == "DriveAway"
+    assert first.cause == "unstructured: drive-away"
+    assert len(record(first)["heading_ranges"]) == 1
     # the other moves: the drive-away state is dropped and the ego must brake
-    moved = runner.step(_frame([{**car, "x": 16.5, "vx": 0.5}], ego_speed=0.0, index=1))
-    assert moved.record["decisions"] == {"9": "Brake"}
+    moved = step(runner, _frame([{**car, "x": 16.5, "vx": 0.5}], ego_speed=0.0, index=1))
+    assert record(moved)["decisions"] == {"9": "Brake"}
 
 
 @pytest.mark.parametrize("name", ["pedestrian_crossing", "parking_lot"])
@@ -235,21 +236,22 @@ def test_step_many_equals_step_by_step_on_the_sample_drives(name):
     expected, got = [], []
     for lo in range(0, len(frames), 29):  # chunks that start mid-run of frames with pairs
         chunk = frames[lo : lo + 29]
-        expected += [one.step(f) for f in chunk]
+        expected += [step(one, f) for f in chunk]
         got += many.step_many(chunk)
         assert_same_memory(many._memory or UnstructuredMemory.empty(), one._memory)
     assert len(got) == len(frames)
     checked = 0
     for g, e in zip(got, expected, strict=True):
-        assert (g.record, g.is_safe, g.culprits, g.label, g.margin) == (
-            e.record,
+        assert (record(g), g.is_safe, g.culprits, g.cause, g.margin) == (
+            record(e),
             e.is_safe,
             e.culprits,
-            e.label,
+            e.cause,
             e.margin,
         )
         assert (g.detail is None) == (e.detail is None)
         if e.detail is not None:
+            assert g.detail is not None
             assert g.detail.actor_ids == e.detail.actor_ids
             for field in e.detail.ego.__dataclass_fields__:
                 np.testing.assert_array_equal(

@@ -1,0 +1,65 @@
+"""Opening drives and reading the user's run settings, for every command (library, not CLI)."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from workbench.errors import WorkbenchError
+
+if TYPE_CHECKING:
+    from pathlib import Path
+
+    from loaders.drive import Drive
+    from rss.params import RssParams
+
+__all__ = ["default_output", "load_rss_params", "open_log", "window_ns"]
+
+
+def default_output(log: Path, out_dir: Path) -> Path:
+    """``<out_dir>/<log stem>.rrd``; a rosbag2 directory keeps its whole name."""
+    stem = log.name if log.is_dir() else log.stem
+    return out_dir / f"{stem}.rrd"
+
+
+def window_ns(
+    drive: Drive, start_s: float | None, end_s: float | None
+) -> tuple[int | None, int | None]:
+    """Turn ``--start``/``--end`` seconds from the drive start into absolute nanoseconds."""
+    t0 = drive.info.start_ns
+    start = None if start_s is None else t0 + round(start_s * 1e9)
+    end = None if end_s is None else t0 + round(end_s * 1e9)
+    return start, end
+
+
+def open_log(
+    log: Path, *, map_path: Path | None, profile: Path | None, ego_id: str | None
+) -> Drive:
+    """Open a drive with ``loaders.open_drive``, turning a missing path into a one-line error.
+
+    Raises:
+        WorkbenchError: ``log`` does not exist.
+        LoaderError: The loader cannot read it (its own one-line message).
+    """
+    from loaders import open_drive  # noqa: PLC0415 - keeps CLI start-up light
+
+    if not log.exists():
+        raise WorkbenchError(f"{log}: no such file or directory")
+    return open_drive(log, map=map_path, profile=profile, ego_id=ego_id)
+
+
+def load_rss_params(path: Path | None) -> RssParams | None:
+    """Read ``--rss-params FILE.toml`` (DESIGN.md); ``None`` keeps the defaults.
+
+    Raises:
+        WorkbenchError: The file cannot be read.
+        RssParameterError: The TOML is malformed or has an unknown table, key or bad value.
+    """
+    from rss.params import parse_rss_params  # noqa: PLC0415 - keeps CLI start-up light
+
+    if path is None:
+        return None
+    try:
+        text = path.read_text()
+    except OSError as err:
+        raise WorkbenchError(f"--rss-params {path}: {err.strerror}") from err
+    return parse_rss_params(text)

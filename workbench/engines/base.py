@@ -1,0 +1,136 @@
+"""What every engine plugin provides: its runner, typed verdicts, record, Rerun sink and views.
+
+An engine is one :class:`EngineSpec` registered in :mod:`workbench.engines.registry`. The
+driver (:mod:`workbench.driver`) calls its runner on chunks of frames; the runner returns one
+frozen, typed verdict per frame. The sinks consume the verdicts: the per-frame JSON line
+(:mod:`workbench.sinks.per_frame`, through the spec's ``record``), violation intervals
+(:mod:`workbench.sinks.violations`, through the four summary attributes every verdict
+has) and Rerun (the spec's ``sink`` and ``views``).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Protocol
+
+if TYPE_CHECKING:
+    from collections.abc import Callable, Sequence
+
+    import rerun as rr
+    import rerun.blueprint as rrb
+
+    from loaders.maps.model import LaneMap
+    from loaders.records import Frame
+    from rss.params import RssParams
+    from workbench.replay.layout import ChunkLayout
+
+__all__ = [
+    "EngineRunner",
+    "EngineSettings",
+    "EngineSink",
+    "EngineSpec",
+    "Verdict",
+    "VerdictSummary",
+    "summarise",
+]
+
+
+class Verdict(Protocol):
+    """What every engine's per-frame verdict carries besides its own typed fields.
+
+    Attributes:
+        is_safe: The frame verdict of this engine.
+        culprits: Ids of the objects that make the frame unsafe, sorted.
+        cause: Short reason (rule or response) for violation intervals; ``""`` when safe.
+        margin: Engine-specific severity, smaller is worse (``inf`` when safe).
+    """
+
+    @property
+    def is_safe(self) -> bool: ...  # noqa: D102
+    @property
+    def culprits(self) -> tuple[str, ...]: ...  # noqa: D102
+    @property
+    def cause(self) -> str: ...  # noqa: D102
+    @property
+    def margin(self) -> float: ...  # noqa: D102
+
+
+@dataclass(frozen=True, slots=True)
+class VerdictSummary:
+    """The light part of a verdict (no geometry): what violation detection keeps per frame."""
+
+    is_safe: bool
+    culprits: tuple[str, ...] = ()
+    cause: str = ""
+    margin: float = float("inf")
+
+
+def summarise(verdict: Verdict) -> VerdictSummary:
+    """The summary of any engine's verdict."""
+    return VerdictSummary(verdict.is_safe, verdict.culprits, verdict.cause, verdict.margin)
+
+
+class EngineRunner(Protocol):
+    """A stateful wrapper of one pure engine, carrying its explicit state across calls."""
+
+    name: str
+
+    def step_many(self, frames: Sequence[Frame]) -> Sequence[Verdict]:
+        """Evaluate consecutive frames (same verdicts as one frame per call, in turn)."""
+        ...
+
+
+class EngineSink(Protocol):
+    """Sends one engine's verdicts of a chunk of frames to a Rerun recording."""
+
+    def send_chunk(
+        self, frames: Sequence[Frame], layout: ChunkLayout, verdicts: Sequence[Any]
+    ) -> None:
+        """Lay out and send the verdicts of ``frames`` (``layout``: the scene columns).
+
+        ``verdicts`` are the engine's own verdict type (the runner's ``step_many`` output).
+        """
+        ...
+
+
+@dataclass(frozen=True, slots=True)
+class EngineSettings:
+    """The user's settings every engine factory receives.
+
+    Attributes:
+        rss_params: RSS dynamics, scene settings and the ego's dimensions
+            (``--rss-params``); ``None`` = defaults.
+        reach_method: ``--reach-method`` (``simple``, ``turn`` or ``bound``).
+        full_geometry: Compute everything the viewer draws (replay), not only the verdict.
+    """
+
+    rss_params: RssParams | None = None
+    reach_method: str = "turn"
+    full_geometry: bool = False
+
+
+@dataclass(frozen=True, slots=True)
+class EngineSpec:
+    """One engine plugin.
+
+    Attributes:
+        name: ``--engines`` name and key of its per-frame JSON record.
+        title: Name of its state-lane tab in the viewer.
+        short: Column name in the ``demo`` table.
+        state_origin: Entity path of its state lanes (the tab's origin).
+        causes: The violation causes its verdicts can name (documentation, incident filters).
+        build: Runner factory from the drive's lane map and the user's settings.
+        record: The engine's part of the pinned per-frame JSON line, from one verdict.
+        sink: Rerun sink factory (sends static configuration on creation).
+        views: Extra viewer panels (plots) shown while the engine runs.
+    """
+
+    name: str
+    title: str
+    short: str
+    state_origin: str
+    causes: tuple[str, ...]
+    build: Callable[[LaneMap | None, EngineSettings], EngineRunner]
+    record: Callable[[Any], dict[str, Any]]
+    sink: Callable[[rr.RecordingStream], EngineSink]
+    views: Callable[[], list[rrb.View]]

@@ -1,0 +1,53 @@
+"""The rule-based reach-set supervisor as a workbench engine.
+
+Files: ``adapter`` (lane map and frames to reach-set inputs), ``runner``, ``verdict``,
+``record`` (its pinned JSON), ``layout`` and ``sink`` (what the viewer shows).
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import rerun.blueprint as rrb
+
+from workbench.engines.base import EngineSpec
+from workbench.engines.reachsets.record import reach_record
+
+if TYPE_CHECKING:
+    import rerun as rr
+
+    from loaders.maps.model import LaneMap
+    from workbench.engines.base import EngineRunner, EngineSettings, EngineSink
+
+__all__ = ["SPEC"]
+
+
+def _build(lane_map: LaneMap | None, settings: EngineSettings) -> EngineRunner:
+    from reachsets.params import ReachMethod  # noqa: PLC0415 - heavy, on demand
+    from workbench.engines.reachsets.runner import ReachRunner  # noqa: PLC0415
+
+    method = ReachMethod(settings.reach_method)
+    return ReachRunner(lane_map, method=method, full_geometry=settings.full_geometry)
+
+
+def _sink(recording: rr.RecordingStream) -> EngineSink:
+    from workbench.engines.reachsets.sink import ReachSink  # noqa: PLC0415
+
+    return ReachSink(recording)
+
+
+def _views() -> list[rrb.View]:
+    return [rrb.TimeSeriesView(name="first collision [s into plan]", origin="/plots/reach")]
+
+
+SPEC = EngineSpec(
+    name="reachsets",
+    title="reach sets",
+    short="reach",
+    state_origin="/reach",
+    causes=("reach-set collision",),
+    build=_build,
+    record=reach_record,
+    sink=_sink,
+    views=_views,
+)

@@ -1,0 +1,41 @@
+"""The reach-set verdict of one frame: typed, frozen, read by the record, the layout and sinks."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from reachsets.engine import ReachResult
+
+__all__ = ["ReachVerdict", "reach_verdict"]
+
+
+@dataclass(frozen=True, slots=True)
+class ReachVerdict:
+    """The reach-set supervisor on one frame.
+
+    Attributes:
+        is_safe: No object's rule-conform reachable set hits the ego's occupancy.
+        culprits: Ids of the objects whose set hits the ego, in collision order.
+        cause: ``"reach-set collision"`` when unsafe, else ``""``.
+        margin: Earliest collision offset into the plan [s] (``inf`` when safe).
+        result: The engine's result (sets, occupancy, patches, collisions).
+    """
+
+    is_safe: bool
+    culprits: tuple[str, ...]
+    cause: str
+    margin: float
+    result: ReachResult
+
+
+def reach_verdict(result: ReachResult) -> ReachVerdict:
+    """The verdict of one frame's result."""
+    return ReachVerdict(
+        is_safe=result.is_safe,
+        culprits=tuple(c.object_id for c in result.collisions),
+        cause="" if result.is_safe else "reach-set collision",
+        margin=min((c.t_offset_s for c in result.collisions), default=float("inf")),
+        result=result,
+    )

@@ -1,0 +1,55 @@
+"""Structured RSS as a workbench engine: scene creation from the lane map + ad-rss 5.0 checks.
+
+Files: ``adapter`` (lane map and frames to scene inputs), ``runner`` (state across frames),
+``verdict`` (the typed per-frame verdict), ``record`` (its pinned JSON), ``outlines``,
+``layout`` and ``sink`` (what the viewer shows).
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import rerun.blueprint as rrb
+
+from workbench.engines.base import EngineSpec
+from workbench.engines.rss.record import rss_record
+
+if TYPE_CHECKING:
+    import rerun as rr
+
+    from loaders.maps.model import LaneMap
+    from workbench.engines.base import EngineRunner, EngineSettings, EngineSink
+
+__all__ = ["SPEC"]
+
+
+def _build(lane_map: LaneMap | None, settings: EngineSettings) -> EngineRunner:
+    from workbench.engines.rss.runner import RssRunner  # noqa: PLC0415 - heavy, on demand
+
+    return RssRunner(lane_map, settings.rss_params, outlines=settings.full_geometry)
+
+
+def _sink(recording: rr.RecordingStream) -> EngineSink:
+    from workbench.engines.rss.sink import RssSink  # noqa: PLC0415
+
+    return RssSink(recording)
+
+
+def _views() -> list[rrb.View]:
+    return [
+        rrb.TimeSeriesView(name="rss acceleration limits [m/s²]", origin="/plots/rss/acceleration"),
+        rrb.TimeSeriesView(name="rss distance vs safe [m]", origin="/plots/rss/distances"),
+    ]
+
+
+SPEC = EngineSpec(
+    name="rss",
+    title="rss",
+    short="rss",
+    state_origin="/rss/structured",
+    causes=("RSS BrakeMin", "RSS BrakeMinCorrect", "RSS None"),
+    build=_build,
+    record=rss_record,
+    sink=_sink,
+    views=_views,
+)

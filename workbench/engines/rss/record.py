@@ -1,0 +1,57 @@
+"""The ``rss`` part of the pinned per-frame JSON line (``evaluate --per-frame``), from a verdict.
+
+Keys, in order: ``is_safe``, ``dangerous_objects`` (actor ids, sorted),
+``longitudinal_response``, ``lateral_response_left``, ``lateral_response_right`` (ad-rss
+response names), ``acceleration_restrictions`` (``{"longitudinal" | "lateral_left" |
+"lateral_right": [min, max]}`` in m/s², ``null`` bounds for unbounded values; ``null``
+without constellations), ``constellations``, ``invalid_objects``.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+from rss.conformance import json_number
+from rss.states import LateralResponse, LongitudinalResponse
+
+if TYPE_CHECKING:
+    from workbench.engines.rss.verdict import RssVerdict
+
+__all__ = ["rss_record"]
+
+
+def rss_record(verdict: RssVerdict) -> dict[str, Any]:
+    """The JSON-ready record of one frame."""
+    result = verdict.result
+    if result is None:
+        return {
+            "is_safe": True,
+            "dangerous_objects": [],
+            "longitudinal_response": "None",
+            "lateral_response_left": "None",
+            "lateral_response_right": "None",
+            "acceleration_restrictions": None,
+            "constellations": 0,
+            "invalid_objects": list(verdict.invalid_objects),
+        }
+    pr = result.responses
+    return {
+        "is_safe": bool(pr.is_safe[0]),
+        "dangerous_objects": list(verdict.culprits),
+        "longitudinal_response": str(LongitudinalResponse(int(pr.longitudinal_response[0]))),
+        "lateral_response_left": str(LateralResponse(int(pr.lateral_response_left[0]))),
+        "lateral_response_right": str(LateralResponse(int(pr.lateral_response_right[0]))),
+        "acceleration_restrictions": {
+            "longitudinal": [json_number(pr.lon_min_mps2[0]), json_number(pr.lon_max_mps2[0])],
+            "lateral_left": [
+                json_number(pr.lat_left_min_mps2[0]),
+                json_number(pr.lat_left_max_mps2[0]),
+            ],
+            "lateral_right": [
+                json_number(pr.lat_right_min_mps2[0]),
+                json_number(pr.lat_right_max_mps2[0]),
+            ],
+        },
+        "constellations": verdict.constellations,
+        "invalid_objects": list(verdict.invalid_objects),
+    }

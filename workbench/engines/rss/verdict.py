@@ -1,0 +1,52 @@
+"""The structured RSS verdict of one frame: typed and frozen; record, layout and sinks read it."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    import numpy as np
+    from numpy.typing import NDArray
+
+    from rss.engine import FrameResult
+
+__all__ = ["RssVerdict"]
+
+
+@dataclass(frozen=True, slots=True)
+class RssVerdict:
+    """Structured RSS on one frame: ``C`` constellations, or none.
+
+    Attributes:
+        is_safe: No dangerous constellation.
+        culprits: Labels of the dangerous objects, sorted.
+        cause: ``"RSS <longitudinal response>"`` when unsafe, else ``""``.
+        margin: ``0.0`` when unsafe, else ``inf``.
+        invalid_objects: Ids of objects that could not be checked (not placeable, bad
+            values), sorted.
+        labels: ``(C,)`` actor id (or ``road_boundary_left/right``) of the other object of
+            each constellation.
+        constellation_type: ``(C,)`` :class:`rss.model.ConstellationType` codes.
+        object_id: ``(C,)`` engine ids of the other objects (the record's order).
+        result: The engine's result for this frame (``F = 1``); ``None`` without
+            constellations.
+        road_areas: Outline rings of each constellation's road area in the map frame [m]
+            (``(C,)`` entries of closed ``(K, 2)`` rings; empty tuple: not computed).
+    """
+
+    is_safe: bool
+    culprits: tuple[str, ...] = ()
+    cause: str = ""
+    margin: float = float("inf")
+    invalid_objects: tuple[str, ...] = ()
+    labels: tuple[str, ...] = ()
+    constellation_type: NDArray[np.int64] | None = None
+    object_id: NDArray[np.int64] | None = None
+    result: FrameResult | None = None
+    road_areas: tuple[tuple[NDArray[np.float64], ...], ...] = ()
+
+    @property
+    def constellations(self) -> int:
+        """Number of constellations checked."""
+        return len(self.labels)

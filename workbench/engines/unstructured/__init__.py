@@ -1,0 +1,55 @@
+"""Unstructured RSS (ad-rss 5.0 trajectory sets) as a workbench engine.
+
+Files: ``adapter`` (which pairs are unstructured; frames to agents), ``runner``, ``verdict``,
+``record`` (its pinned JSON), ``layout`` and ``sink`` (what the viewer shows).
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from workbench.engines.base import EngineSpec
+from workbench.engines.unstructured.record import unstructured_record
+
+if TYPE_CHECKING:
+    import rerun as rr
+    import rerun.blueprint as rrb
+
+    from loaders.maps.model import LaneMap
+    from workbench.engines.base import EngineRunner, EngineSettings, EngineSink
+
+__all__ = ["SPEC"]
+
+
+def _build(lane_map: LaneMap | None, settings: EngineSettings) -> EngineRunner:
+    from workbench.engines.unstructured.runner import UnstructuredRunner  # noqa: PLC0415
+
+    return UnstructuredRunner(lane_map, settings.rss_params)
+
+
+def _sink(recording: rr.RecordingStream) -> EngineSink:
+    from workbench.engines.unstructured.sink import UnstructuredSink  # noqa: PLC0415
+
+    return UnstructuredSink(recording)
+
+
+def _views() -> list[rrb.View]:
+    return []
+
+
+SPEC = EngineSpec(
+    name="unstructured",
+    title="unstructured",
+    short="unstr.",
+    state_origin="/rss/unstructured",
+    causes=(
+        "unstructured: brake",
+        "unstructured: drive-away",
+        "unstructured: continue-forward",
+        "unstructured: none",
+    ),
+    build=_build,
+    record=unstructured_record,
+    sink=_sink,
+    views=_views,
+)

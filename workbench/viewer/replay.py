@@ -1,0 +1,148 @@
+"""Replay a drive into Rerun: the driver's chunks into a recording, sent to one destination.
+
+Frames are read, evaluated and sent in chunks so memory stays flat for long drives.
+"""
+
+from __future__ import annotations
+
+import time
+import uuid
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+import rerun as rr
+
+from workbench.driver.run import DriveRun
+from workbench.replay.blueprint import replay_blueprint
+from workbench.sinks.rerun_drive import SEND_FRAMES, RerunDriveSink
+from workbench.sinks.violations import ViolationDetector
+from workbench.viewer.outputs import LOCALHOST, attached
+
+if TYPE_CHECKING:
+    from collections.abc import Callable, Iterator, Mapping, Sequence
+    from pathlib import Path
+
+    from loaders.drive import Drive
+    from loaders.errors import LoaderError
+    from workbench.driver.run import Chunk
+    from workbench.engines.base import EngineRunner
+    from workbench.sinks.violations import Violation
+
+__all__ = ["APPLICATION_ID", "ReplaySummary", "replay_drive"]
+
+APPLICATION_ID = "rss-workbench"
+
+
+@dataclass(frozen=True, slots=True)
+class ReplaySummary:
+    """What a replay did.
+
+    Attributes:
+        log: The drive file or directory.
+        source_format: Format detected by the loader.
+        frames: Frames sent.
+        actors_seen: Distinct actor ids over the replayed frames.
+        duration_s: Drive time covered by the frames sent.
+        output: The ``.rrd`` path, the viewer URL, or ``"viewer"`` for a spawned viewer.
+        elapsed_s: Wall-clock time for loading and logging.
+        violations: Violation intervals found by the engines, if any ran.
+        unsafe_frames: Unsafe frames per engine.
+        stopped_by: The loader error that ended a truncated or corrupted log early; the
+            output holds every frame read before it.
+    """
+
+    log: Path
+    source_format: str
+    frames: int
+    actors_seen: int
+    duration_s: float
+    output: str
+    elapsed_s: float
+    violations: tuple[Violation, ...] = ()
+    unsafe_frames: Mapping[str, int] = field(default_factory=dict)
+    stopped_by: LoaderError | None = None
+
+    @property
+    def frames_per_s(self) -> float:
+        """Throughput, load plus log."""
+        return self.frames / self.elapsed_s if self.elapsed_s > 0 else float("inf")
+
+
+def _recording_id(drive: Drive, start_ns: int | None, end_ns: int | None) -> str:
+    key = f"{drive.info.path.resolve()}|{start_ns}|{end_ns}"
+    return str(uuid.uuid5(uuid.NAMESPACE_URL, key))
+
+
+def replay_drive(
+    drive: Drive,
+    *,
+    out: Path | None = None,
+    spawn: bool = False,
+    serve: bool = False,
+    progress: Callable[[int], None] | None = None,
+    start_ns: int | None = None,
+    end_ns: int | None = None,
+    ports: tuple[int, int] = (9876, 9090),
+    on_served: Callable[[str], None] | None = None,
+    engines: Sequence[EngineRunner] = (),
+    bind: str = LOCALHOST,
+    send_frames: int = SEND_FRAMES,
+) -> ReplaySummary:
+    """Send a drive's map, frames and engine verdicts to exactly one destination.
+
+    Args:
+        drive: An opened drive; the caller closes it.
+        out: Write an ``.rrd`` file here (parent directories are created).
+        spawn: Start a native viewer and stream to it.
+        serve: Host a gRPC server on 127.0.0.1 plus the web viewer.
+        progress: Called with the number of frames read after each chunk.
+        start_ns: Only frames at or after this time.
+        end_ns: Only frames before this time.
+        ports: ``(grpc_port, web_port)`` for ``serve``.
+        on_served: With ``serve``, called with the viewer URL once everything was sent; the
+            server lives until it returns (the CLI waits for Ctrl-C there).
+        engines: Engine runners evaluated on every frame; their verdicts and geometry are
+            logged beside the scene and merged into violation intervals.
+        bind: With ``serve``, the address the gRPC proxy and the web viewer listen on.
+        send_frames: Frames per columnar batch sent to Rerun.
+
+    Returns:
+        Counts and timings of the replay.
+    """
+    t0 = time.perf_counter()
+    run = DriveRun(drive, engines, start_ns=start_ns, end_ns=end_ns)
+    chunks = iter(run)
+    first = next(chunks, None)
+    ego_start = (first.frames[0].ego.x_m, first.frames[0].ego.y_m) if first else None
+    rec = rr.RecordingStream(APPLICATION_ID, recording_id=_recording_id(drive, start_ns, end_ns))
+    blueprint = replay_blueprint(ego_start, engines=run.engine_names)
+    detector = ViolationDetector(drive.info.path.name)
+    sink = RerunDriveSink(rec, drive, run.engine_names, send_frames=send_frames)
+    with attached(rec, blueprint, out=out, spawn=spawn, serve=serve, ports=ports, bind=bind) as to:
+        for chunk in _with_first(first, chunks):
+            sink.add_chunk(chunk)
+            detector.add_chunk(chunk)
+            if progress is not None:
+                progress(detector.frames)
+        sink.close()
+        if on_served is not None and serve:
+            on_served(to)
+        rec.disconnect()
+    return ReplaySummary(
+        log=drive.info.path,
+        source_format=drive.info.source_format,
+        frames=sink.frames,
+        actors_seen=len(sink.actor_ids),
+        duration_s=sink.duration_s,
+        output=to,
+        elapsed_s=time.perf_counter() - t0,
+        violations=tuple(detector.violations()),
+        unsafe_frames={n: detector.unsafe_per_engine.get(n, 0) for n in run.engine_names},
+        stopped_by=run.stopped_by,
+    )
+
+
+def _with_first(first: Chunk | None, rest: Iterator[Chunk]) -> Iterator[Chunk]:
+    if first is not None:
+        yield first
+        yield from rest
