@@ -330,20 +330,12 @@ class _Builder:
         return n_links, n_areas, n_boxes
 
 
-#: Verdict response arrays behind each :data:`RESPONSE_LANES` lane.
-_RESPONSE_ARRAYS = {
-    "longitudinal_response": ("longitudinal_response", LongitudinalResponse),
-    "lateral_response_left": ("lateral_response_left", LateralResponse),
-    "lateral_response_right": ("lateral_response_right", LateralResponse),
-}
-
-
 def _response(verdict: RssVerdict, key: str) -> str:
     """The frame's response name for a :data:`RESPONSE_LANES` key (``None`` without one)."""
     if verdict.result is None:
         return "None"
-    field_name, names = _RESPONSE_ARRAYS[key]
-    return str(names(int(getattr(verdict.result.responses, field_name)[0])))
+    names = LongitudinalResponse if key == "longitudinal_response" else LateralResponse
+    return str(names(int(getattr(verdict.result.responses, key)[0])))
 
 
 def _accel(verdict: RssVerdict, name: str) -> float:
