@@ -29,6 +29,9 @@ if TYPE_CHECKING:
     from numpy.typing import NDArray
 
 __all__ = [
+    "DEFAULT_EGO_HEIGHT_M",
+    "DEFAULT_EGO_LENGTH_M",
+    "DEFAULT_EGO_WIDTH_M",
     "ActorTable",
     "EgoState",
     "Frame",
@@ -36,6 +39,13 @@ __all__ = [
     "Plan",
     "freeze",
 ]
+
+#: The ego's size where the log does not carry it (a mid-size car with mirrors; the size
+#: ad-rss' scene creation assumes too). The one default of the whole workbench: every
+#: engine and the viewer read the ego's size from the frame (docs/architecture.md).
+DEFAULT_EGO_LENGTH_M = 4.5
+DEFAULT_EGO_WIDTH_M = 2.0
+DEFAULT_EGO_HEIGHT_M = 1.5
 
 
 class ObjectClass(enum.IntEnum):
@@ -82,7 +92,12 @@ def _freeze_fields(obj: object) -> None:
 
 @dataclass(frozen=True, slots=True)
 class EgoState:
-    """Ego vehicle state at one frame (map frame, SI units)."""
+    """Ego vehicle state at one frame (map frame, SI units).
+
+    The size is the log's where it carries one (CommonRoad obstacle shape, ScenarioArchitect
+    vehicle), else the ``DEFAULT_EGO_*`` values; ``--rss-params [scene] ego_length`` etc.
+    replace it in every frame (``workbench.driver``).
+    """
 
     x_m: float
     y_m: float
@@ -91,9 +106,9 @@ class EgoState:
     speed_mps: float
     accel_mps2: float
     yaw_rate_radps: float
-    length_m: float = 4.5
-    width_m: float = 1.9
-    height_m: float = 1.5
+    length_m: float = DEFAULT_EGO_LENGTH_M
+    width_m: float = DEFAULT_EGO_WIDTH_M
+    height_m: float = DEFAULT_EGO_HEIGHT_M
 
 
 @dataclass(frozen=True, slots=True)

@@ -101,14 +101,15 @@ class ConstellationCreationMode(enum.StrEnum):
 
 @dataclass(frozen=True)
 class SceneSettings:
-    """Scene-creation settings and the ego size (no standard message carries it).
+    """Scene-creation settings and the user's ego size.
 
     Attributes:
         restrict_speed_limit_mode: Speed-limit mode of scene creation.
         constellation_creation_mode: Structured or unstructured constellations.
-        ego_length_m: Ego length, > 0.
-        ego_width_m: Ego width, > 0.
-        ego_height_m: Ego height, > 0.
+        ego_length_m: Ego length, > 0; ``None``: the size every frame carries (the log's,
+            or the loaders' default; docs/architecture.md, "the ego's size").
+        ego_width_m: Ego width, > 0, or ``None`` (as ``ego_length_m``).
+        ego_height_m: Ego height, > 0, or ``None`` (as ``ego_length_m``).
         reproduce_adrss_5_0_defects: Reproduce two documented defects of ad-rss 5.0 /
             ad-map 5.0 in scene creation (docs/rss_scene.md, compatibility mode): the
             swapped route headings of an object following the ego, and ad-map's
@@ -121,9 +122,9 @@ class SceneSettings:
         RestrictSpeedLimitMode.INCREASED_SPEED_LIMIT_10
     )
     constellation_creation_mode: ConstellationCreationMode = ConstellationCreationMode.STRUCTURED
-    ego_length_m: float = 4.5
-    ego_width_m: float = 2.0
-    ego_height_m: float = 1.5
+    ego_length_m: float | None = None
+    ego_width_m: float | None = None
+    ego_height_m: float | None = None
     reproduce_adrss_5_0_defects: bool = False
 
 

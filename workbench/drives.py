@@ -11,8 +11,9 @@ if TYPE_CHECKING:
 
     from loaders.drive import Drive
     from rss.params import RssParams
+    from workbench.driver.run import EgoSize
 
-__all__ = ["default_output", "load_rss_params", "open_log", "window_ns"]
+__all__ = ["default_output", "ego_size", "load_rss_params", "open_log", "window_ns"]
 
 
 def default_output(log: Path, out_dir: Path) -> Path:
@@ -63,3 +64,13 @@ def load_rss_params(path: Path | None) -> RssParams | None:
     except OSError as err:
         raise WorkbenchError(f"--rss-params {path}: {err.strerror}") from err
     return parse_rss_params(text)
+
+
+def ego_size(params: RssParams | None) -> EgoSize | None:
+    """The user's ego size of ``--rss-params [scene]`` (``None``: every frame keeps the log's)."""
+    from workbench.driver.run import EgoSize  # noqa: PLC0415 - keeps CLI start-up light
+
+    if params is None:
+        return None
+    scene = params.scene
+    return EgoSize(scene.ego_length_m, scene.ego_width_m, scene.ego_height_m)

@@ -34,7 +34,7 @@ def test_example_toml_loads() -> None:
         pytest.skip("example not present")
     params = parse_rss_params(EXAMPLE.read_text())
     assert params.for_class(ObjectClass.EGO).response_time_s == 1.0
-    assert params.scene.ego_length_m == 4.5
+    assert params.scene.ego_length_m is None
 
 
 def test_reproduce_adrss_5_0_defects_is_an_opt_in_bool() -> None:

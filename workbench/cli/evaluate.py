@@ -11,7 +11,7 @@ from rich.table import Table
 
 from workbench.cli.options import ReachMethodOption
 from workbench.cli.progress import frame_progress
-from workbench.drives import load_rss_params, open_log, window_ns
+from workbench.drives import ego_size, load_rss_params, open_log, window_ns
 from workbench.errors import WorkbenchError
 
 if TYPE_CHECKING:
@@ -70,11 +70,10 @@ def evaluate(
     names = parse_engines(engines)
     if not names:
         raise WorkbenchError("--engines: name at least one engine")
+    params = load_rss_params(rss_params)
     drive = open_log(log, map_path=map_path, profile=profile, ego_id=ego_id)
     try:
-        settings = EngineSettings(
-            rss_params=load_rss_params(rss_params), reach_method=reach_method.value
-        )
+        settings = EngineSettings(rss_params=params, reach_method=reach_method.value)
         runners = build_runners(names, drive.lane_map, settings)
         start_ns, end_ns = window_ns(drive, start, end)
         with frame_progress() as bar:
@@ -86,6 +85,7 @@ def evaluate(
                 end_ns=end_ns,
                 per_frame=per_frame,
                 progress=lambda done: bar.update(task, completed=done),
+                ego_size=ego_size(params),
             )
     finally:
         drive.close()

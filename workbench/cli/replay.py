@@ -10,7 +10,7 @@ import typer
 
 from workbench.cli.options import ReachMethodOption
 from workbench.cli.progress import run_with_progress
-from workbench.drives import default_output, load_rss_params, open_log
+from workbench.drives import default_output, ego_size, load_rss_params, open_log
 
 __all__ = ["register", "replay"]
 
@@ -83,12 +83,11 @@ def replay(
     if sum((out is not None, spawn, serve)) > 1:
         raise ReplayError("--out, --spawn and --serve are mutually exclusive")
     target = out if (out is not None or spawn or serve) else default_output(log, out_dir)
+    params = load_rss_params(rss_params)
     drive = open_log(log, map_path=map_path, profile=profile, ego_id=ego_id)
     try:
         settings = EngineSettings(
-            rss_params=load_rss_params(rss_params),
-            reach_method=reach_method.value,
-            full_geometry=True,
+            rss_params=params, reach_method=reach_method.value, full_geometry=True
         )
         runners = build_runners(parse_engines(engines), drive.lane_map, settings)
         summary = run_with_progress(
@@ -102,6 +101,7 @@ def replay(
             on_served=_wait_for_ctrl_c,
             engines=runners,
             bind=bind,
+            ego_size=ego_size(params),
         )
     finally:
         drive.close()

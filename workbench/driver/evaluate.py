@@ -6,7 +6,7 @@ import contextlib
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
-from workbench.driver.run import DriveRun
+from workbench.driver.run import DriveRun, EgoSize
 from workbench.sinks.per_frame import PerFrameJsonl
 from workbench.sinks.violations import Violation, ViolationDetector
 
@@ -49,6 +49,7 @@ def evaluate_drive(
     end_ns: int | None = None,
     per_frame: Path | None = None,
     progress: Callable[[int], None] | None = None,
+    ego_size: EgoSize | None = None,
 ) -> Evaluation:
     """Run the engines over every frame of a drive.
 
@@ -60,12 +61,13 @@ def evaluate_drive(
         per_frame: Write one JSON line per frame here (pinned format of DESIGN.md); the
             file appears whole when the evaluation ends (written beside it, then renamed).
         progress: Called with the number of frames evaluated after each chunk.
+        ego_size: The user's ego size for every engine (``--rss-params [scene]``).
 
     Returns:
         The verdicts. A ``LoaderError`` raised while reading (truncated or corrupted log)
         does not lose the frames evaluated before it: it is returned in ``stopped_by``.
     """
-    run = DriveRun(drive, engines, start_ns=start_ns, end_ns=end_ns)
+    run = DriveRun(drive, engines, start_ns=start_ns, end_ns=end_ns, ego_size=ego_size)
     detector = ViolationDetector(drive.info.path.name)
     with contextlib.ExitStack() as stack:
         lines = stack.enter_context(PerFrameJsonl(per_frame)) if per_frame else None

@@ -18,6 +18,7 @@ read before it were evaluated and yielded.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -31,10 +32,24 @@ if TYPE_CHECKING:
     from loaders.records import Frame
     from workbench.engines.base import EngineRunner, Verdict
 
-__all__ = ["CHUNK_FRAMES", "Chunk", "DriveRun", "evaluate_chunk"]
+__all__ = ["CHUNK_FRAMES", "Chunk", "DriveRun", "EgoSize", "evaluate_chunk"]
 
 #: Frames handed at once to the engines and then to the sinks.
 CHUNK_FRAMES = 32
+
+
+@dataclass(frozen=True, slots=True)
+class EgoSize:
+    """The user's ego size [m] (``--rss-params [scene] ego_length`` ...); ``None``: the log's."""
+
+    length_m: float | None = None
+    width_m: float | None = None
+    height_m: float | None = None
+
+    def fields(self) -> dict[str, float]:
+        """The ``EgoState`` fields to replace."""
+        given = {"length_m": self.length_m, "width_m": self.width_m, "height_m": self.height_m}
+        return {k: v for k, v in given.items() if v is not None}
 
 
 @dataclass(frozen=True, slots=True)
@@ -70,6 +85,7 @@ class DriveRun:
         start_ns: int | None = None,
         end_ns: int | None = None,
         chunk_frames: int = CHUNK_FRAMES,
+        ego_size: EgoSize | None = None,
     ) -> None:
         """Set up the run.
 
@@ -79,11 +95,14 @@ class DriveRun:
             start_ns: Only frames at or after this time.
             end_ns: Only frames before this time.
             chunk_frames: Frames per chunk (tests; the default is the policy).
+            ego_size: The user's ego size, replacing the log's in every frame before any
+                engine or sink sees it (``None`` or ``None`` fields: keep the log's).
         """
         self.drive = drive
         self.runners = tuple(runners)
         self._window = (start_ns, end_ns)
         self._chunk_frames = chunk_frames
+        self._ego_size = ego_size.fields() if ego_size is not None else {}
         #: The loader error that ended a truncated or corrupted log, once iterated.
         self.stopped_by: LoaderError | None = None
 
@@ -92,12 +111,17 @@ class DriveRun:
         """Names of the engines that run, in order."""
         return tuple(r.name for r in self.runners)
 
+    def _sized(self, frame: Frame) -> Frame:
+        if not self._ego_size:
+            return frame
+        return dataclasses.replace(frame, ego=dataclasses.replace(frame.ego, **self._ego_size))
+
     def _read(self) -> Iterator[list[Frame]]:
         """Frames in chunks; a loader error ends the drive after the frames read before it."""
         chunk: list[Frame] = []
         try:
             for frame in self.drive.frames(*self._window):
-                chunk.append(frame)
+                chunk.append(self._sized(frame))
                 if len(chunk) == self._chunk_frames:
                     yield chunk
                     chunk = []

@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 
 import rerun as rr
 
-from workbench.driver.run import DriveRun
+from workbench.driver.run import DriveRun, EgoSize
 from workbench.replay.blueprint import replay_blueprint
 from workbench.sinks.rerun_drive import SEND_FRAMES, RerunDriveSink
 from workbench.sinks.violations import ViolationDetector
@@ -87,6 +87,7 @@ def replay_drive(
     engines: Sequence[EngineRunner] = (),
     bind: str = LOCALHOST,
     send_frames: int = SEND_FRAMES,
+    ego_size: EgoSize | None = None,
 ) -> ReplaySummary:
     """Send a drive's map, frames and engine verdicts to exactly one destination.
 
@@ -105,12 +106,13 @@ def replay_drive(
             logged beside the scene and merged into violation intervals.
         bind: With ``serve``, the address the gRPC proxy and the web viewer listen on.
         send_frames: Frames per columnar batch sent to Rerun.
+        ego_size: The user's ego size for every engine and the viewer (``--rss-params``).
 
     Returns:
         Counts and timings of the replay.
     """
     t0 = time.perf_counter()
-    run = DriveRun(drive, engines, start_ns=start_ns, end_ns=end_ns)
+    run = DriveRun(drive, engines, start_ns=start_ns, end_ns=end_ns, ego_size=ego_size)
     chunks = iter(run)
     first = next(chunks, None)
     ego_start = (first.frames[0].ego.x_m, first.frames[0].ego.y_m) if first else None

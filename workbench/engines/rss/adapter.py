@@ -127,8 +127,8 @@ def frame_to_scene(
         y_m=ego.y_m,
         yaw_rad=ego.yaw_rad,
         speed_mps=max(ego.speed_mps, 0.0),
-        length_m=params.scene.ego_length_m,
-        width_m=params.scene.ego_width_m,
+        length_m=ego.length_m,
+        width_m=ego.width_m,
         dynamics=params.for_class(ObjectClass.EGO),
         route=route,
     )

@@ -188,9 +188,7 @@ def frame_to_agents(
         np.zeros(1, dtype=bool),
     )
     yaw_rate = e.yaw_rate_radps if math.isfinite(e.yaw_rate_radps) else 0.0
-    row = np.array(
-        [e.x_m, e.y_m, yaw_rate, 0.0, params.scene.ego_length_m, params.scene.ego_width_m]
-    ).reshape(-1, 1)
+    row = np.array([e.x_m, e.y_m, yaw_rate, 0.0, e.length_m, e.width_m]).reshape(-1, 1)
     ego = UnstructuredAgents(
         object_id=np.array([EGO_OBJECT_ID], dtype=np.int64),
         object_type=np.array([ObjectType.EgoVehicle], dtype=np.int64),

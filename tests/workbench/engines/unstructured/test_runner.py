@@ -125,7 +125,7 @@ def test_agents_units_classes_and_headings():
     assert int(ego.object_type[0]) == ObjectType.EgoVehicle
     assert float(ego.speed_max_mps[0]) == 10.0
     assert float(ego.yaw_rate_radps[0]) == 0.05
-    assert float(ego.length_m[0]) == params.scene.ego_length_m
+    assert float(ego.length_m[0]) == frame.ego.length_m
 
 
 def test_reversing_ego_gets_heading_of_travel():
