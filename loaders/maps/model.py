@@ -21,7 +21,16 @@ from loaders.records import freeze
 if TYPE_CHECKING:
     from numpy.typing import NDArray
 
-__all__ = ["Lane", "LaneDirection", "LaneKind", "LaneMap", "LineType", "RightOfWay", "TrafficLight"]
+__all__ = [
+    "DRIVABLE_LANE_KINDS",
+    "Lane",
+    "LaneDirection",
+    "LaneKind",
+    "LaneMap",
+    "LineType",
+    "RightOfWay",
+    "TrafficLight",
+]
 
 
 class LaneDirection(enum.Enum):
@@ -43,6 +52,11 @@ class LaneKind(enum.Enum):
     TRACK = "track"
     BICYCLE = "bicycle"
     RAIL = "rail"
+
+
+#: Lanes a vehicle may drive on (RSS scene creation and unstructured checks use these; the
+#: reach-set road layout takes the motor-vehicle ones, without BICYCLE).
+DRIVABLE_LANE_KINDS = frozenset({LaneKind.ROAD, LaneKind.INTERSECTION, LaneKind.BICYCLE})
 
 
 class LineType(enum.Enum):
@@ -103,6 +117,11 @@ class Lane:
         """Freeze the border arrays."""
         for name in ("left_m", "right_m", "centre_m"):
             object.__setattr__(self, name, freeze(getattr(self, name), np.float64))
+
+    @property
+    def outline_m(self) -> NDArray[np.float64]:
+        """The lane's outline ring: left border forward, right border back, ``(L + R, 2)``."""
+        return np.vstack([self.left_m, self.right_m[::-1]])
 
     @property
     def length_m(self) -> float:

@@ -14,12 +14,13 @@ from typing import TYPE_CHECKING
 import numpy as np
 import shapely
 
-from loaders.maps.model import LaneDirection, LaneKind
+from loaders.maps.model import DRIVABLE_LANE_KINDS, LaneDirection, LaneKind
 from loaders.records import ObjectClass as FrameClass
-from rss.model import LaneDrivingDirection, ObjectType
+from rss.model import LaneDrivingDirection
 from rss.params import ObjectClass
 from rss.scene import LaneGraph, SceneEgo, SceneObjects
 from rss.scene.matching import match_route
+from workbench.engines.classes import adrss_type, dynamics_class
 from workbench.engines.ids import EGO_OBJECT_ID
 
 if TYPE_CHECKING:
@@ -31,20 +32,16 @@ if TYPE_CHECKING:
 
 __all__ = ["frame_to_scene", "lane_graph_from_map"]
 
-_DRIVABLE = (LaneKind.ROAD, LaneKind.INTERSECTION, LaneKind.BICYCLE)
 _OVERLAP_M2 = 1.0
 _DIRECTION = {
     LaneDirection.POSITIVE: LaneDrivingDirection.Positive,
     LaneDirection.NEGATIVE: LaneDrivingDirection.Negative,
     LaneDirection.BIDIRECTIONAL: LaneDrivingDirection.Bidirectional,
 }
-_TYPES = {FrameClass.PEDESTRIAN: ObjectType.Pedestrian, FrameClass.BICYCLE: ObjectType.Bicycle}
 
 
 def _overlapping(lanes: list[Lane], index: dict[str, int]) -> set[int]:
-    polys = shapely.make_valid(
-        np.array([shapely.Polygon(np.vstack([ln.left_m, ln.right_m[::-1]])) for ln in lanes])
-    )
+    polys = shapely.make_valid(np.array([shapely.Polygon(ln.outline_m) for ln in lanes]))
     a, b = shapely.STRtree(polys).query(polys, predicate="intersects")
     keep = a < b
     a, b = a[keep], b[keep]
@@ -63,7 +60,8 @@ def lane_graph_from_map(lane_map: LaneMap) -> LaneGraph:
     lanes = [
         ln
         for ln in lane_map.lanes.values()
-        if ln.kind in _DRIVABLE and min(len(ln.left_m), len(ln.right_m), len(ln.centre_m)) >= 2  # noqa: PLR2004
+        if ln.kind in DRIVABLE_LANE_KINDS
+        and min(len(ln.left_m), len(ln.right_m), len(ln.centre_m)) >= 2  # noqa: PLR2004
     ]
     index = {ln.id: i for i, ln in enumerate(lanes)}
 
@@ -137,9 +135,7 @@ def frame_to_scene(
     classes = [FrameClass(int(c)) for c in actors.object_class[valid]]
     objects = SceneObjects(
         ids=np.array([ids.to_int(str(a)) for a in actors.ids[valid]], dtype=np.int64),
-        object_type=np.array(
-            [_TYPES.get(c, ObjectType.OtherVehicle) for c in classes], dtype=np.int64
-        ),
+        object_type=np.array([adrss_type(c) for c in classes], dtype=np.int64),
         x_m=np.asarray(actors.x_m[valid]),
         y_m=np.asarray(actors.y_m[valid]),
         yaw_rad=np.asarray(actors.yaw_rad[valid]),
@@ -147,7 +143,7 @@ def frame_to_scene(
         vy_mps=np.asarray(actors.vy_mps[valid]),
         length_m=np.asarray(actors.length_m[valid]),
         width_m=np.asarray(actors.width_m[valid]),
-        dynamics=tuple(params.for_class(ObjectClass(c.label)) for c in classes),
+        dynamics=tuple(params.for_class(dynamics_class(c)) for c in classes),
     )
     invalid = tuple(str(a) for a in actors.ids[~valid])
     return scene_ego, objects, invalid

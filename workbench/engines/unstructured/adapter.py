@@ -31,14 +31,17 @@ from typing import TYPE_CHECKING
 import numpy as np
 import shapely
 
-from loaders.maps.model import LaneKind
+from loaders.maps.model import DRIVABLE_LANE_KINDS, LaneKind
 from loaders.records import ObjectClass as FrameClass
 from rss.model import ObjectType
-from rss.params import ConstellationCreationMode, ObjectClass
+from rss.params import ConstellationCreationMode
 from rss.unstructured import UnstructuredAgents
+from workbench.engines.classes import adrss_type, dynamics_class
 from workbench.engines.ids import EGO_OBJECT_ID
 
 if TYPE_CHECKING:
+    from collections.abc import Collection
+
     from numpy.typing import NDArray
 
     from loaders.maps.model import LaneMap
@@ -53,31 +56,20 @@ __all__ = [
     "FrameAgents",
     "UnstructuredScope",
     "frame_to_agents",
-    "object_type",
 ]
 
 #: An agent within this distance of a drivable lane polygon counts as on the lane [m].
 ON_LANE_TOLERANCE_M = 0.5
 #: Below this speed the heading stays the box yaw (velocity direction is noise) [m/s].
 MOVING_MIN_MPS = 0.1
-_DRIVABLE = (LaneKind.ROAD, LaneKind.INTERSECTION, LaneKind.BICYCLE)
 _MIN_POINTS = 2
 
 
-def object_type(object_class: FrameClass) -> ObjectType:
-    """ad-rss object type of a loader class (pedestrian, bicycle, else other vehicle)."""
-    if object_class == FrameClass.PEDESTRIAN:
-        return ObjectType.Pedestrian
-    if object_class == FrameClass.BICYCLE:
-        return ObjectType.Bicycle
-    return ObjectType.OtherVehicle
-
-
-def _polygons(lane_map: LaneMap | None, kinds: tuple[LaneKind, ...]) -> np.ndarray:
+def _polygons(lane_map: LaneMap | None, kinds: Collection[LaneKind]) -> np.ndarray:
     """``(L,)`` valid lane polygons of the given kinds."""
     lanes = [] if lane_map is None else lane_map.lanes.values()
     polys = [
-        shapely.Polygon(np.vstack([ln.left_m, ln.right_m[::-1]]))
+        shapely.Polygon(ln.outline_m)
         for ln in lanes
         if ln.kind in kinds and min(len(ln.left_m), len(ln.right_m)) >= _MIN_POINTS
     ]
@@ -110,7 +102,7 @@ class UnstructuredScope:
             mode: ``[scene] constellation_creation_mode``.
         """
         self.mode = mode
-        self._drivable = _polygons(lane_map, _DRIVABLE)
+        self._drivable = _polygons(lane_map, DRIVABLE_LANE_KINDS)
         self._parking = _polygons(lane_map, (LaneKind.PARKING,))
         aisle = _near(self._parking, self._drivable, ON_LANE_TOLERANCE_M)
         self._lot = np.concatenate([self._parking, self._drivable[aisle]])
@@ -213,7 +205,7 @@ def frame_to_agents(
     )
     agents = UnstructuredAgents(
         object_id=np.array([ids.to_int(str(i)) for i in a.ids[rows]], dtype=np.int64),
-        object_type=np.array([object_type(c) for c in classes], dtype=np.int64),
+        object_type=np.array([adrss_type(c) for c in classes], dtype=np.int64),
         x_m=a.x_m[rows],
         y_m=a.y_m[rows],
         yaw_rad=heading,
@@ -230,7 +222,7 @@ def frame_to_agents(
     return FrameAgents(
         ego=ego,
         agents=agents.take(keep),
-        dynamics=tuple(params.for_class(ObjectClass(classes[k].label)) for k in keep),
+        dynamics=tuple(params.for_class(dynamics_class(classes[k])) for k in keep),
         actor_ids=tuple(actor_ids[k] for k in keep),
         invalid=tuple(actor_ids[k] for k in np.flatnonzero(~ok)),
     )
