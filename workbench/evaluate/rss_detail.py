@@ -13,8 +13,8 @@ if TYPE_CHECKING:
 
     from numpy.typing import NDArray
 
-    from rss.engine import FrameResult
     from rss.scene import LaneGraph
+    from rss.structured.engine import FrameResult
 
 __all__ = ["RssFrameDetail", "road_area_outlines"]
 
