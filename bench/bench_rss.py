@@ -13,8 +13,6 @@ import time
 import numpy as np
 
 import rss  # noqa: F401  (must be imported before ad_rss: the binding registers a module "rss")
-from rss.batch import stack_constellations
-from rss.engine import check_frame, check_frames
 from rss.model import (
     Constellation,
     ConstellationType,
@@ -27,6 +25,8 @@ from rss.model import (
     SpeedInterval,
 )
 from rss.params import DEFAULT_EGO_DYNAMICS, DEFAULT_VEHICLE_DYNAMICS
+from rss.structured.engine import check_frame, check_frames
+from rss.structured.stacking import stack_constellations
 
 SIZES = (1, 10, 50, 200)
 ROAD_M = 1000.0
@@ -130,9 +130,10 @@ def run(quick: bool) -> str:  # noqa: FBT001
         (
             "Constellations per second (one ego, N other vehicles, 3-lane same-direction road). "
             "Binding: `RssCheck.calculateProperResponse` on a pre-built world, one call per "
-            "frame. Ours per frame: `rss.engine.check_frame`, one call per frame, memory "
-            "carried. Ours batched: `rss.engine.check_frames` over F consecutive frames in one "
-            "call (memory carried through them), as a replay of a recorded drive does."
+            "frame. Ours per frame: `rss.structured.engine.check_frame`, one call per frame, "
+            "memory carried. Ours batched: `rss.structured.engine.check_frames` over F "
+            "consecutive frames in one call (memory carried through them), as a replay of a "
+            "recorded drive does."
         ),
         "",
         (

@@ -30,8 +30,6 @@ from bench.scene_reference import reference_ms_per_frame, reference_unavailable,
 from loaders.maps.lanelet2 import read_lanelet2
 from loaders.maps.opendrive import read_opendrive
 from rss import compiled
-from rss.batch import stack_constellations
-from rss.engine import check_frame, check_frames
 from rss.params import DEFAULT_EGO_DYNAMICS, DEFAULT_VEHICLE_DYNAMICS, SceneSettings
 from rss.scene import (
     PreparedGraph,
@@ -43,6 +41,8 @@ from rss.scene import (
 )
 from rss.scene.chunked import match_frames
 from rss.scene.create import scene_boxes
+from rss.structured.engine import check_frame, check_frames
+from rss.structured.stacking import stack_constellations
 from workbench.driver import CHUNK_FRAMES, ENGINE_GC_THRESHOLD, engine_gc
 from workbench.engines.rss.adapter import lane_graph_from_map
 
@@ -50,7 +50,7 @@ if TYPE_CHECKING:
     from collections.abc import Callable
 
     from rss.arrays import FloatArray
-    from rss.memory import RssMemory
+    from rss.structured.memory import RssMemory
 
 Drives = list[list[tuple[SceneEgo, SceneObjects]]]
 Phases = dict[str, float]

@@ -9,7 +9,7 @@ every piece's hull, the geometry the viewer draws (ad-rss always computes its po
 "Batched frames" (:func:`run_frames`, after the per-call table of :func:`run_calls`): the
 pipeline's call. A random mixed scene advanced in time (0.1 s per frame, everyone along
 its heading at its top speed) gives 32 consecutive frames; ours evaluates them one call
-per frame and in one ``check_unstructured_frames`` call (what ``workbench evaluate`` /
+per frame and in one ``evaluate_frames`` call (what ``workbench evaluate`` /
 ``replay`` run, 32 frames per chunk); ad-rss evaluates them one call per frame (it has no
 batch call), timed on the first frames only (its time per agent-frame hardly depends on
 the frame).
@@ -25,8 +25,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 import rss  # noqa: F401  (must precede ad_rss: the binding registers a module named ``rss``)
-from rss.params import DEFAULT_EGO_DYNAMICS
-from rss.unstructured import FrameInputs, check_unstructured, check_unstructured_frames
+from rss.params import DEFAULT_EGO_DYNAMICS, RssParams
+from rss.unstructured import FrameInputs, check_unstructured, evaluate_frames
 
 if TYPE_CHECKING:
     from rss.unstructured import UnstructuredAgents
@@ -161,7 +161,7 @@ def run_frames(quick: bool) -> str:  # noqa: FBT001  (bench/run.py interface)
         agents0, dyn = random_frame(rng, n)
         frames = [
             FrameInputs(
-                _advanced(ego0, k * FRAME_DT_S), _advanced(agents0, k * FRAME_DT_S), d, dyn, d
+                _advanced(ego0, k * FRAME_DT_S), _advanced(agents0, k * FRAME_DT_S), dyn, d, d
             )
             for k in range(CHUNK)
         ]
@@ -172,7 +172,7 @@ def run_frames(quick: bool) -> str:  # noqa: FBT001  (bench/run.py interface)
                 _, memory = check_unstructured(f.ego, f.agents, d, f.agent_dynamics, d, memory)
 
         def batched(frames: list[FrameInputs] = frames) -> None:
-            check_unstructured_frames(frames)
+            evaluate_frames(frames, RssParams())
 
         oracle = UnstructuredOracle()
 

@@ -46,7 +46,8 @@ _LOG = logging.getLogger(__name__)
 
 #: The compiled modules (the per-object Python of scene creation).
 MODULES = (
-    "rss.batch",
+    "rss.structured.batch",
+    "rss.structured.stacking",
     "rss.scene.align",
     "rss.scene.cache",
     "rss.scene.connecting",

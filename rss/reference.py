@@ -1,4 +1,4 @@
-"""Slow, obvious scalar reference of the kernels in :mod:`rss.physics` and :mod:`rss.checks`.
+"""Slow, obvious scalar reference of the kernels of :mod:`rss.physics` and the structured checks.
 
 Plain floats, one value at a time.
 

@@ -1,8 +1,11 @@
 """Unstructured RSS (ad-rss 5.0 trajectory sets, conditions 22.1/22.2, drive-away).
 
-Entry points :func:`check_unstructured` (one frame) and :func:`check_unstructured_frames`
-(consecutive frames in one batch) on :class:`UnstructuredAgents` in the ENU map frame;
-memory is explicit (:class:`UnstructuredMemory`). See ``docs/rss_unstructured.md``.
+Entry point :func:`evaluate_frames` ``(frames, params, memory) -> (results, memory)``:
+``F`` consecutive :class:`FrameInputs` (the ego and ``(N,)`` agents as
+:class:`UnstructuredAgents` in the ENU map frame) in one batch, one
+:class:`UnstructuredResult` per frame, the memory explicit (:class:`UnstructuredMemory`)
+so a replay can restart at any frame. :func:`check_unstructured` is one frame with every
+dynamics given. See ``docs/rss_unstructured.md``.
 """
 
 from rss.unstructured.agents import MotionModel, UnstructuredAgents
@@ -11,7 +14,7 @@ from rss.unstructured.engine import (
     FrameInputs,
     UnstructuredResult,
     check_unstructured,
-    check_unstructured_frames,
+    evaluate_frames,
     trajectory_sets,
 )
 from rss.unstructured.errors import UnstructuredInputError
@@ -31,6 +34,6 @@ __all__ = [
     "UnstructuredResponse",
     "UnstructuredResult",
     "check_unstructured",
-    "check_unstructured_frames",
+    "evaluate_frames",
     "trajectory_sets",
 ]

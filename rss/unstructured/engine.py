@@ -1,13 +1,13 @@
-"""``check_unstructured``: trajectory sets, decisions and the proper response of a frame.
+"""Unstructured RSS of frames: trajectory sets, decisions and the proper response.
 
-Pure: ``(ego, agents, dynamics, memory) -> (UnstructuredResult, memory)``. The ego and the
-agents sharing its unstructured settings and motion model are computed in one batch (per-
-agent dynamics values); the ego's and the agents' convex pieces are paired by a numpy box
-test and the remaining pairs tested exactly with shapely (:func:`intersections`).
-
-:func:`check_unstructured_frames` does the same for consecutive frames: the sets of every
-frame in shared batches, the intersections in one go, then the decisions frame by frame
-(the only part that needs the memory). :func:`check_unstructured` is its one-frame case.
+Pure: ``evaluate_frames(frames, params, memory) -> (results, memory)`` over ``F``
+consecutive frames, the engine entry point (same shape as :func:`rss.evaluate_frames`):
+the sets of every frame in shared batches, the intersections in one go, then the
+decisions frame by frame (the only part that needs the memory). The ego and the agents
+sharing its unstructured settings and motion model are computed in one batch (per-agent
+dynamics values); the ego's and the agents' convex pieces are paired by a numpy box test
+and the remaining pairs tested exactly with shapely (:func:`intersections`).
+:func:`check_unstructured` is the one-frame case with every dynamics given explicitly.
 """
 
 from __future__ import annotations
@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from rss.params import ObjectClass
 from rss.unstructured.agents import MotionModel, UnstructuredAgents, motion_model
 from rss.unstructured.batch import AgentDynamics
 from rss.unstructured.decision import Decisions, UnstructuredResponse, decide
@@ -33,13 +34,14 @@ if TYPE_CHECKING:
 
     from rss.arrays import BoolArray, IntArray
     from rss.dynamics import RssDynamics, UnstructuredSettings
+    from rss.params import RssParams
 
 __all__ = [
     "FIRST_ROUND_MIN_PAIRS",
     "FrameInputs",
     "UnstructuredResult",
     "check_unstructured",
-    "check_unstructured_frames",
+    "evaluate_frames",
     "intersections",
     "trajectory_sets",
 ]
@@ -126,26 +128,27 @@ class FrameInputs:
     Attributes:
         ego: The ego (one row, ENU).
         agents: ``(N,)`` other participants, ENU.
-        ego_dynamics: Ego dynamics of the constellations.
         agent_dynamics: One dynamics per agent.
-        default_ego: Default ego dynamics of the frame.
+        ego_dynamics: Ego dynamics of the constellations (``None``: the ego class's
+            dynamics of the parameters of :func:`evaluate_frames`).
+        default_ego: Default ego dynamics of the frame (``None``: likewise).
     """
 
     ego: UnstructuredAgents
     agents: UnstructuredAgents
-    ego_dynamics: RssDynamics
     agent_dynamics: Sequence[RssDynamics]
-    default_ego: RssDynamics
+    ego_dynamics: RssDynamics | None = None
+    default_ego: RssDynamics | None = None
 
-    def check(self) -> None:
-        """Raise :class:`UnstructuredInputError` unless one ego and one dynamics per agent."""
-        if len(self.ego) != 1:
-            raise UnstructuredInputError("ego", f"must hold exactly one row, got {len(self.ego)}")
-        n = len(self.agents)
-        if len(self.agent_dynamics) != n:
-            raise UnstructuredInputError(
-                "agent_dynamics", f"needs {n} entries, got {len(self.agent_dynamics)}"
-            )
+    def resolved(self, ego: RssDynamics) -> _Frame:
+        """The frame with ``ego`` for the dynamics it does not give."""
+        return _Frame(
+            self.ego,
+            self.agents,
+            self.agent_dynamics,
+            ego if self.ego_dynamics is None else self.ego_dynamics,
+            ego if self.default_ego is None else self.default_ego,
+        )
 
 
 def check_unstructured(  # noqa: PLR0917  (one engine step)
@@ -177,24 +180,27 @@ def check_unstructured(  # noqa: PLR0917  (one engine step)
     Raises:
         UnstructuredInputError: ``ego`` is not one row or ``agent_dynamics`` mismatches.
     """
-    frame = FrameInputs(ego, agents, ego_dynamics, agent_dynamics, default_ego)
-    results, memory_out = check_unstructured_frames([frame], memory)
+    frame = FrameInputs(ego, agents, agent_dynamics, ego_dynamics, default_ego)
+    results, memory_out = _check_frames([frame.resolved(ego_dynamics)], memory)
     return results[0], memory_out
 
 
-def check_unstructured_frames(
-    frames: Sequence[FrameInputs], memory: UnstructuredMemory | None = None
+def evaluate_frames(
+    frames: Sequence[FrameInputs], params: RssParams, state: UnstructuredMemory | None = None
 ) -> tuple[list[UnstructuredResult], UnstructuredMemory]:
     """:func:`check_unstructured` on consecutive frames, the memory carried from each to the next.
 
     The sets do not depend on the memory: those of every ego and agent of every frame
     are built in shared batches (rows = the ego and the agents of each frame) and
     intersected in one go (pieces paired within their frame). Only the decisions run frame
-    by frame. The results equal ``F`` calls of :func:`check_unstructured` in order.
+    by frame. The results equal ``F`` calls of :func:`check_unstructured` in order, so a
+    replay can restart at any frame with the memory returned before it.
 
     Args:
-        frames: ``(F,)`` frames in time order.
-        memory: Memory before the first frame (``None`` = fresh).
+        frames: ``(F,)`` frames in time order (``N_f`` agents each).
+        params: Parameters: the ego class's dynamics serve as the ego and default ego
+            dynamics of frames that do not give their own.
+        state: Memory before the first frame (``None`` = fresh).
 
     Returns:
         ``(results (F,), memory after the last frame)``.
@@ -202,6 +208,35 @@ def check_unstructured_frames(
     Raises:
         UnstructuredInputError: A frame's ego is not one row or its dynamics mismatch.
     """
+    ego = params.for_class(ObjectClass.EGO)
+    return _check_frames([frame.resolved(ego) for frame in frames], state)
+
+
+@dataclass(frozen=True)
+class _Frame:
+    """A frame of :class:`FrameInputs` with all its dynamics."""
+
+    ego: UnstructuredAgents
+    agents: UnstructuredAgents
+    agent_dynamics: Sequence[RssDynamics]
+    ego_dynamics: RssDynamics
+    default_ego: RssDynamics
+
+    def check(self) -> None:
+        """Raise :class:`UnstructuredInputError` unless one ego and one dynamics per agent."""
+        if len(self.ego) != 1:
+            raise UnstructuredInputError("ego", f"must hold exactly one row, got {len(self.ego)}")
+        n = len(self.agents)
+        if len(self.agent_dynamics) != n:
+            raise UnstructuredInputError(
+                "agent_dynamics", f"needs {n} entries, got {len(self.agent_dynamics)}"
+            )
+
+
+def _check_frames(
+    frames: Sequence[_Frame], memory: UnstructuredMemory | None
+) -> tuple[list[UnstructuredResult], UnstructuredMemory]:
+    """:func:`evaluate_frames` of frames with all their dynamics."""
     memory = memory or _NO_MEMORY
     for frame in frames:
         frame.check()
@@ -235,7 +270,7 @@ class _FramesBatch:
     flags: tuple[BoolArray, BoolArray, BoolArray]  # (K,) each, the three conditions
 
     @staticmethod
-    def build(frames: Sequence[FrameInputs]) -> _FramesBatch:
+    def build(frames: Sequence[_Frame]) -> _FramesBatch:
         count = len(frames)
         sizes = np.array([1 + len(f.agents) for f in frames], dtype=np.int64)
         start = np.concatenate(([0], np.cumsum(sizes)))
@@ -286,7 +321,7 @@ class _FramesBatch:
         )
 
     def frame_result(
-        self, f: int, frame: FrameInputs, memory: UnstructuredMemory
+        self, f: int, frame: _Frame, memory: UnstructuredMemory
     ) -> tuple[UnstructuredResult, UnstructuredMemory]:
         """The result of frame ``f`` and the memory after it."""
         agents, ego = frame.agents, frame.ego

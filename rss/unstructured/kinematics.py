@@ -12,7 +12,7 @@ speed and a yaw rate (:class:`Points`). Vehicles move on circles of radius ``v /
             └────────▶ x
 
 Comparisons use ad-physics' tolerances (``rss.physics``). The scalar twins of these kernels
-are in :mod:`rss.unstructured.reference`.
+are in :mod:`rss.unstructured.reference_kinematics`.
 """
 
 from __future__ import annotations
@@ -45,10 +45,12 @@ Real = Any
 
 __all__ = [
     "ANGULAR_VELOCITY_PRECISION",
+    "CIRCLE_VERTICES",
     "ROW_LOOP_MIN_COLUMNS",
     "Phase",
     "Points",
     "Real",
+    "change_ratios",
     "footprints",
     "pedestrian_move",
     "pedestrian_move_timed",
@@ -64,6 +66,20 @@ __all__ = [
 ANGULAR_VELOCITY_PRECISION = 1e-3
 #: Pedestrian ratios with ``|ratio| <= radius / 1000 m`` move straight (ad-rss ``maxRadius``).
 PEDESTRIAN_MAX_RADIUS_M = 1000.0
+#: Vertices of a standing pedestrian's circle (ad-rss step 2π/20).
+CIRCLE_VERTICES = 20
+
+
+def change_ratios(steps: int) -> tuple[FloatArray, FloatArray]:
+    """Yaw-rate (vehicle) or heading (pedestrian) change ratios: right ``[-1, 0)``, left ``(0, 1]``.
+
+    ``steps + 1`` each.
+    """
+    diff = 2.0 / (2.0 * steps + 2.0)
+    k = np.arange(steps + 1)
+    return np.asarray(-1.0 + diff * k, dtype=np.float64), np.asarray(
+        diff * (k + 1), dtype=np.float64
+    )
 
 
 @dataclass(frozen=True)

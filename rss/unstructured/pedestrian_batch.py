@@ -1,8 +1,9 @@
 """Pedestrian trajectory sets, fast: every point of a batch in two kernel calls.
 
-Same model and pieces as the step-by-step :func:`rss.unstructured.pedestrian.pedestrian_sets`
-(its reference; ``tests/rss/unstructured/test_batch.py`` holds them equal), with per-agent
-dynamics values. Moving pedestrians: one :func:`pedestrian_move_timed` for the response
+Same model and pieces as the step-by-step
+:func:`rss.unstructured.reference_pedestrian.pedestrian_sets` (its reference;
+``tests/rss/unstructured/test_batch.py`` holds them equal), with per-agent dynamics values.
+Moving pedestrians: one :func:`pedestrian_move_timed` for the response
 time (front and back, every heading ratio) and one :func:`pedestrian_move` for everything
 after it; the rows of the footprint table (``R`` rows of ``N`` agents)::
 
@@ -31,13 +32,14 @@ from rss.physics import (
 )
 from rss.unstructured.batch import CORNERS, PiecePlan, RowPieces, constant, plan_sets, span
 from rss.unstructured.kinematics import (
+    CIRCLE_VERTICES,
     Points,
+    change_ratios,
     footprints,
     pedestrian_move,
     pedestrian_move_timed,
     time_to_stop,
 )
-from rss.unstructured.pedestrian import CIRCLE_VERTICES, heading_ratios
 from rss.unstructured.sets import TrajectorySets, front_and_sides
 
 if TYPE_CHECKING:
@@ -138,7 +140,7 @@ def _t_stop(agents: UnstructuredAgents, dyn: AgentDynamics) -> FloatArray:
 
 
 def _standing(agents: UnstructuredAgents, dyn: AgentDynamics) -> TrajectorySets:
-    """Circles around the centre (:func:`rss.unstructured.pedestrian._standing`)."""
+    """Circles around the centre (:func:`rss.unstructured.reference_pedestrian._standing`)."""
     rho, vcap = dyn.response_time_s, dyn.max_speed_mps
     t_stop = _t_stop(agents, dyn)
     t_rho = np.minimum(t_stop, rho)
@@ -175,9 +177,9 @@ class _Layout:
 def _layout(u: UnstructuredSettings) -> _Layout:
     nf, nb, sb, kc, ncf = _counts(u)
     rf, rb = 2 * nf + 1, 2 * nb + 1
-    f_right, f_left = heading_ratios(nf - 1)
-    b_right, b_left = heading_ratios(nb - 1)
-    cf_right, cf_left = heading_ratios(ncf - 1)
+    f_right, f_left = change_ratios(nf - 1)
+    b_right, b_left = change_ratios(nb - 1)
+    cf_right, cf_left = change_ratios(ncf - 1)
     start = rf + rb
     left, centre, right = 2 * nf - 1, rf - 1, 0
     front = list(range(rf))
@@ -214,7 +216,7 @@ def _layout(u: UnstructuredSettings) -> _Layout:
 
 
 def _moving(agents: UnstructuredAgents, dyn: AgentDynamics) -> TrajectorySets:
-    """Moving pedestrians (:func:`rss.unstructured.pedestrian._moving`)."""
+    """Moving pedestrians (:func:`rss.unstructured.reference_pedestrian._moving`)."""
     u, a = dyn.settings, agents
     nf, _, sb, kc, _ = _counts(u)
     lay = _layout(u)

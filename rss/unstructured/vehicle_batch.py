@@ -1,6 +1,6 @@
 """Vehicle trajectory sets, fast: every point of a batch in two (wide batches: three) kernel calls.
 
-Same model and pieces as the step-by-step :func:`rss.unstructured.vehicle.vehicle_sets`
+Same model and pieces as the step-by-step :func:`rss.unstructured.reference_vehicle.vehicle_sets`
 (its reference; ``tests/rss/unstructured/test_batch.py`` holds them equal), but the agents
 may have different dynamics values (one batch for the ego and every vehicle sharing the
 unstructured settings) and the points are computed in two stacked calls:
@@ -39,6 +39,7 @@ from rss.unstructured.batch import PiecePlan, RowPieces, constant, plan_sets, sp
 from rss.unstructured.kinematics import (
     Phase,
     Points,
+    change_ratios,
     footprints,
     time_in_movement,
     time_to_stop,
@@ -46,7 +47,6 @@ from rss.unstructured.kinematics import (
     vehicle_integrate,
 )
 from rss.unstructured.sets import front_and_sides
-from rss.unstructured.vehicle import ratio_pairs
 
 if TYPE_CHECKING:
     from rss.arrays import BoolArray, FloatArray, IntArray
@@ -66,7 +66,7 @@ __all__ = [
 def step_accelerations_batch(low: FloatArray, high: FloatArray, steps: int) -> FloatArray:
     """``(steps + 1, N)`` accelerations: ``low + k·Δ`` (k = 1..steps) below ``high``, then ``high``.
 
-    :func:`rss.unstructured.vehicle.step_accelerations` per agent, with dropped steps
+    :func:`rss.unstructured.reference_vehicle.step_accelerations` per agent, with dropped steps
     replaced by ``high`` (a repeated last step).
     """
     k = np.arange(1, steps + 1, dtype=np.float64)[:, None]
@@ -144,9 +144,9 @@ def _layout(u: UnstructuredSettings) -> _Layout:
     nf, nb, kb, kc, ncf = _counts(u)
     rf, rb = 2 * nf + 1, 2 * nb + 1
     n_extra = 2 * ncf + 2 * kc
-    f_right, f_left = ratio_pairs(nf - 1)
-    b_right, b_left = ratio_pairs(nb - 1)
-    cf_right, cf_left = ratio_pairs(ncf - 1)
+    f_right, f_left = change_ratios(nf - 1)
+    b_right, b_left = change_ratios(nb - 1)
+    cf_right, cf_left = change_ratios(ncf - 1)
     outer = [f_left[-1], f_right[0]]
     left, centre, right = 2 * nf - 1, rf - 1, 0
     front = list(range(rf))

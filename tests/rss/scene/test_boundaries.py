@@ -1,9 +1,9 @@
-from rss.batch import stack_constellations
-from rss.engine import check_frame
 from rss.model import ConstellationType, ObjectType
 from rss.params import DEFAULT_EGO_DYNAMICS, SceneSettings
 from rss.scene import create_scene, prepare
 from rss.scene.boundaries import LEFT_BOUNDARY_ID, RIGHT_BOUNDARY_ID
+from rss.structured.engine import check_frame
+from rss.structured.stacking import stack_constellations
 
 from .synthetic import WIDTH, ego, objects, straight_road
 

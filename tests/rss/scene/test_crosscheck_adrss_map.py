@@ -24,8 +24,6 @@ import shapely
 
 from loaders.maps.model import LaneKind, LaneMap
 from loaders.maps.opendrive import read_opendrive
-from rss.batch import stack_constellations
-from rss.engine import check_frame
 from rss.params import (
     DEFAULT_EGO_DYNAMICS,
     DEFAULT_VEHICLE_DYNAMICS,
@@ -35,6 +33,8 @@ from rss.params import (
 from rss.scene import PreparedGraph, SceneEgo, SceneObjects, create_scene, match_boxes, prepare
 from rss.scene.create import scene_boxes
 from rss.scene.intersection import Arm, intersection_arms, junction_list
+from rss.structured.engine import check_frame
+from rss.structured.stacking import stack_constellations
 from workbench.engines.rss.adapter import lane_graph_from_map
 
 ORACLE = Path(__file__).with_name("adrss_map_oracle.py")

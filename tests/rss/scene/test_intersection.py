@@ -1,11 +1,11 @@
 import numpy as np
 import pytest
 
-from rss.batch import stack_constellations
-from rss.engine import check_frame
 from rss.model import ConstellationType, RoadSegmentType
 from rss.params import DEFAULT_EGO_DYNAMICS, RestrictSpeedLimitMode, SceneSettings
 from rss.scene import LaneGraph, Scene, create_scene, prepare
+from rss.structured.engine import check_frame
+from rss.structured.stacking import stack_constellations
 
 from .synthetic import HALF, ego, objects, straight_lanes
 

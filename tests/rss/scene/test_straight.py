@@ -1,12 +1,12 @@
 import numpy as np
 import pytest
 
-from rss.batch import stack_constellations
-from rss.engine import FrameResult, check_frame
 from rss.model import ConstellationType, LaneDrivingDirection
 from rss.params import DEFAULT_EGO_DYNAMICS, RestrictSpeedLimitMode, SceneSettings
 from rss.scene import Scene, create_scene, prepare
-from rss.states import LongitudinalPosition
+from rss.structured.engine import FrameResult, check_frame
+from rss.structured.stacking import stack_constellations
+from rss.structured.states import LongitudinalPosition
 
 from .synthetic import WIDTH, ego, objects, straight_road
 

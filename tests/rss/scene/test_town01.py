@@ -6,10 +6,10 @@ import numpy as np
 import pytest
 
 from loaders.maps.opendrive import read_opendrive
-from rss.batch import stack_constellations
-from rss.engine import check_frame
 from rss.params import DEFAULT_EGO_DYNAMICS, DEFAULT_VEHICLE_DYNAMICS, SceneSettings
 from rss.scene import PreparedGraph, SceneEgo, SceneObjects, create_scene, prepare
+from rss.structured.engine import check_frame
+from rss.structured.stacking import stack_constellations
 from workbench.engines.rss.adapter import lane_graph_from_map
 
 

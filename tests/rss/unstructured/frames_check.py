@@ -7,7 +7,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 import shapely
 
-from rss.unstructured import UnstructuredMemory, check_unstructured, check_unstructured_frames
+from rss.params import ObjectClass, RssParams
+from rss.unstructured import UnstructuredMemory, check_unstructured, evaluate_frames
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -35,11 +36,14 @@ GEOMETRY_TOL_M = 1e-9
 def one_by_one(
     frames: Sequence[FrameInputs], memory: UnstructuredMemory | None = None
 ) -> tuple[list[UnstructuredResult], UnstructuredMemory | None]:
-    """``F`` calls of :func:`check_unstructured`, the memory carried."""
+    """``F`` calls of :func:`check_unstructured`, the memory carried (default ego dynamics)."""
+    ego = RssParams().for_class(ObjectClass.EGO)
     results = []
     for f in frames:
+        ego_dyn = ego if f.ego_dynamics is None else f.ego_dynamics
+        default_ego = ego if f.default_ego is None else f.default_ego
         result, memory = check_unstructured(
-            f.ego, f.agents, f.ego_dynamics, f.agent_dynamics, f.default_ego, memory
+            f.ego, f.agents, ego_dyn, f.agent_dynamics, default_ego, memory
         )
         results.append(result)
     return results, memory
@@ -97,7 +101,7 @@ def assert_frames_equal_one_by_one(
     frames: Sequence[FrameInputs], memory: UnstructuredMemory | None = None
 ) -> list[UnstructuredResult]:
     """One batched call equals ``F`` single calls; returns the batched results."""
-    batched, memory_after = check_unstructured_frames(frames, memory)
+    batched, memory_after = evaluate_frames(frames, RssParams(), memory)
     single, want_memory = one_by_one(frames, memory)
     assert len(batched) == len(single)
     for got, want in zip(batched, single, strict=True):

@@ -1,8 +1,8 @@
 """The batched set builders and the box-filtered intersections agree with their references.
 
-References: the step-by-step builders (:func:`rss.unstructured.vehicle.vehicle_sets`,
-:func:`rss.unstructured.pedestrian.pedestrian_sets`, one dynamics per call, one kernel call
-per step) and an all-pairs shapely test of every piece hull.
+References: the step-by-step builders (:func:`rss.unstructured.reference_vehicle.vehicle_sets`,
+:func:`rss.unstructured.reference_pedestrian.pedestrian_sets`, one dynamics per call, one kernel
+call per step) and an all-pairs shapely test of every piece hull.
 """
 
 from __future__ import annotations
@@ -18,9 +18,9 @@ from rss.params import DEFAULT_EGO_DYNAMICS, DEFAULT_PEDESTRIAN_DYNAMICS, DEFAUL
 from rss.unstructured.agents import MotionModel, UnstructuredAgents, motion_model
 from rss.unstructured.batch import AgentDynamics
 from rss.unstructured.engine import intersections, trajectory_sets
-from rss.unstructured.pedestrian import pedestrian_sets
 from rss.unstructured.pedestrian_batch import pedestrian_sets_batch
-from rss.unstructured.vehicle import vehicle_sets
+from rss.unstructured.reference_pedestrian import pedestrian_sets
+from rss.unstructured.reference_vehicle import vehicle_sets
 from rss.unstructured.vehicle_batch import vehicle_sets_batch
 from tests.rss.unstructured.generators import random_ego, random_frame
 

@@ -1,4 +1,4 @@
-"""``check_unstructured_frames`` (one batch of consecutive frames) equals one call per frame."""
+"""``evaluate_frames`` (one batch of consecutive frames) equals one call per frame."""
 
 from __future__ import annotations
 
@@ -8,10 +8,20 @@ from typing import TYPE_CHECKING
 import numpy as np
 import pytest
 
-from rss.params import DEFAULT_EGO_DYNAMICS
-from rss.unstructured import FrameInputs, UnstructuredAgents, UnstructuredResponse
+from rss.params import DEFAULT_EGO_DYNAMICS, ObjectClass, RssParams
+from rss.unstructured import (
+    FrameInputs,
+    UnstructuredAgents,
+    UnstructuredResponse,
+    evaluate_frames,
+)
 from rss.unstructured.kinematics import ROW_LOOP_MIN_COLUMNS, running_sum
-from tests.rss.unstructured.frames_check import assert_frames_equal_one_by_one, one_by_one
+from tests.rss.unstructured.frames_check import (
+    assert_frames_equal_one_by_one,
+    assert_same_memory,
+    assert_same_result,
+    one_by_one,
+)
 from tests.rss.unstructured.generators import random_ego, random_frame, random_sequence
 
 if TYPE_CHECKING:
@@ -23,7 +33,7 @@ EGO = DEFAULT_EGO_DYNAMICS
 def _frames(
     sequence: list[tuple[UnstructuredAgents, UnstructuredAgents, list[RssDynamics]]],
 ) -> list[FrameInputs]:
-    return [FrameInputs(ego, agents, EGO, dyn, EGO) for ego, agents, dyn in sequence]
+    return [FrameInputs(ego, agents, dyn, EGO, EGO) for ego, agents, dyn in sequence]
 
 
 def _with(agents: UnstructuredAgents, field: str, row: int, value: float) -> UnstructuredAgents:
@@ -66,7 +76,7 @@ def test_random_frames_with_invalid_rows_and_varying_counts(seed: int) -> None:
             agents = _with(agents, "speed_max_mps", int(rng.integers(len(agents))), np.nan)
         if f == 4:
             ego = _with(ego, "yaw_rad", 0, 7.0)
-        frames.append(FrameInputs(ego, agents, EGO, dyn, EGO))
+        frames.append(FrameInputs(ego, agents, dyn, EGO, EGO))
     _, start = one_by_one(frames[:3])
     assert_frames_equal_one_by_one(frames, start)
 
@@ -81,7 +91,7 @@ def test_dynamics_changing_between_frames() -> None:
     frames = []
     for f, (ego, agents, dyn) in enumerate(random_sequence(rng, 6, 4)):
         later = [dataclasses.replace(d, response_time_s=0.5 + f / 4) for d in dyn]
-        frames.append(FrameInputs(ego, agents, (EGO, slow, wide)[f % 3], later, EGO))
+        frames.append(FrameInputs(ego, agents, later, (EGO, slow, wide)[f % 3], EGO))
     assert_frames_equal_one_by_one(frames)
 
 
@@ -90,7 +100,7 @@ def test_empty_chunk_and_empty_frames() -> None:
     ego = random_ego(rng)
     none, _ = random_frame(rng, 0)
     assert_frames_equal_one_by_one([])
-    assert_frames_equal_one_by_one([FrameInputs(ego, none, EGO, [], EGO)] * 3)
+    assert_frames_equal_one_by_one([FrameInputs(ego, none, [], EGO, EGO)] * 3)
 
 
 @pytest.mark.parametrize("columns", [3, ROW_LOOP_MIN_COLUMNS + 5])
@@ -99,3 +109,18 @@ def test_running_sum_equals_cumsum_to_the_bit(columns: int) -> None:
     first, steps = rng.normal(size=columns), rng.normal(size=(17, columns)) * 1e3
     want = np.cumsum(np.concatenate((first[None], steps)), axis=0)
     np.testing.assert_array_equal(running_sum(first, steps), want)
+
+
+def test_ego_dynamics_from_params() -> None:
+    """Frames without ego dynamics take the ego class's of the parameters."""
+    rng = np.random.default_rng(8)
+    sequence = random_sequence(rng, 4, 3)
+    slow = dataclasses.replace(EGO, response_time_s=1.5)
+    params = RssParams(dynamics={**RssParams().dynamics, ObjectClass.EGO: slow})
+    implicit = [FrameInputs(ego, agents, dyn) for ego, agents, dyn in sequence]
+    explicit = [FrameInputs(ego, agents, dyn, slow, slow) for ego, agents, dyn in sequence]
+    got, got_memory = evaluate_frames(implicit, params)
+    want, want_memory = one_by_one(explicit)
+    for a, b in zip(got, want, strict=True):
+        assert_same_result(a, b)
+    assert_same_memory(got_memory, want_memory)

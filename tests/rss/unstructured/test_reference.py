@@ -14,7 +14,7 @@ from rss.unstructured.kinematics import (
     vehicle_arc,
     vehicle_integrate,
 )
-from rss.unstructured.reference import (
+from rss.unstructured.reference_kinematics import (
     Pose,
     ref_footprint,
     ref_pedestrian_move,

@@ -26,7 +26,7 @@ import numpy as np
 
 from rss.model import ConstellationType
 from rss.physics import DISTANCE_MAX_M
-from rss.states import LateralResponse, LongitudinalResponse
+from rss.structured.states import LateralResponse, LongitudinalResponse
 from workbench.replay.layout import pad_polylines, yaw_to_quaternion
 
 if TYPE_CHECKING:

@@ -12,7 +12,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 from rss.conformance import json_number
-from rss.states import LateralResponse, LongitudinalResponse
+from rss.structured.states import LateralResponse, LongitudinalResponse
 
 if TYPE_CHECKING:
     from workbench.engines.rss.verdict import RssVerdict

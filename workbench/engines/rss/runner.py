@@ -1,4 +1,4 @@
-"""Runner of structured RSS (scene creation from the lane map + ``rss.engine``) over frames."""
+"""Runner of structured RSS over frames (scene creation + checks: ``rss.evaluate_frames``)."""
 
 from __future__ import annotations
 
@@ -6,14 +6,11 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from rss.batch import stack_constellations
-from rss.engine import check_frames, select_frame
-from rss.params import ObjectClass, RssParams
-from rss.scene import create_scene, prepare
+from rss import evaluate_frames
+from rss.params import RssParams
+from rss.scene import prepare
 from rss.scene.boundaries import LEFT_BOUNDARY_ID, RIGHT_BOUNDARY_ID
-from rss.scene.chunked import match_frames
-from rss.scene.create import scene_boxes
-from rss.states import LongitudinalResponse
+from rss.structured.states import LongitudinalResponse
 from workbench.engines.ids import IdMap
 from workbench.engines.rss.adapter import frame_to_scene, lane_graph_from_map
 from workbench.engines.rss.outlines import road_area_outlines
@@ -24,9 +21,8 @@ if TYPE_CHECKING:
 
     from loaders.maps.model import LaneMap
     from loaders.records import Frame
+    from rss import FrameResult, RssMemory
     from rss.arrays import IntArray
-    from rss.engine import FrameResult
-    from rss.memory import RssMemory
     from rss.scene import PreparedGraph, Scene
 
 __all__ = ["RssRunner"]
@@ -73,46 +69,27 @@ class RssRunner:
     def step_many(self, frames: Sequence[Frame]) -> list[RssVerdict]:
         """Evaluate consecutive frames at once (as ``step`` on each in turn).
 
-        The boxes of all frames are map-matched in one call, the constellations of all
-        frames stacked once and checked in one ``check_frames`` call with the memory
-        carried through them; a frame without constellations forgets the memory (the
-        engine's runs of consecutive frames break there).
+        One :func:`rss.evaluate_frames` call: the boxes of all frames map-matched at
+        once, their constellations checked in one batch with the memory carried through
+        them; a frame without constellations forgets the memory.
         """
         prep = self._prep
         if prep is None:
             return [_safe(()) for _ in frames]
         inputs = [frame_to_scene(f, prep, self._params, self._ids) for f in frames]
-        matches = match_frames(prep, [scene_boxes(ego, objects) for ego, objects, _ in inputs])
-        scenes = [
-            create_scene(
-                prep,
-                ego,
-                objects,
-                self._params.scene,
-                road_boundaries=self._road_boundaries,
-                matches=m,
-            )
-            for (ego, objects, _), m in zip(inputs, matches, strict=True)
+        verdicts, self._memory = evaluate_frames(
+            [(ego, objects) for ego, objects, _ in inputs],
+            self._params,
+            self._memory,
+            graph=prep,
+            road_boundaries=self._road_boundaries,
+        )
+        return [
+            _safe(invalid)
+            if v.result is None
+            else self._output(v.scene, invalid, v.object_id, v.constellation_type, v.result)
+            for v, (_, _, invalid) in zip(verdicts, inputs, strict=True)
         ]
-        counts = [len(s.constellations) for s in scenes]
-        if not any(counts):
-            self._memory = None
-            return [_safe(invalid) for _, _, invalid in inputs]
-        batch = stack_constellations([c for s in scenes for c in s.constellations])
-        frame_of = np.repeat(np.arange(len(frames)), counts)
-        ego_dyn = self._params.for_class(ObjectClass.EGO)
-        result, memory = check_frames(batch, frame_of, len(frames), ego_dyn, self._memory)
-        self._memory = memory if counts[-1] else None
-        outputs: list[RssVerdict] = []
-        offsets = np.concatenate([[0], np.cumsum(counts)]).tolist()
-        for k, (scene, (_, _, invalid)) in enumerate(zip(scenes, inputs, strict=True)):
-            if not counts[k]:
-                outputs.append(_safe(invalid))
-                continue
-            rows = slice(offsets[k], offsets[k + 1])
-            ids, kinds = batch.other.object_id[rows], batch.constellation_type[rows]
-            outputs.append(self._output(scene, invalid, ids, kinds, select_frame(result, k)))
-        return outputs
 
     def _output(
         self,

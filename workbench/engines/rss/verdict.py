@@ -9,7 +9,7 @@ if TYPE_CHECKING:
     import numpy as np
     from numpy.typing import NDArray
 
-    from rss.engine import FrameResult
+    from rss import FrameResult
 
 __all__ = ["RssVerdict"]
 

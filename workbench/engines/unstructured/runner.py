@@ -6,7 +6,7 @@ from typing import TYPE_CHECKING
 
 from rss.params import ObjectClass, RssParams
 from rss.physics import ACCELERATION_LOWEST_MPS2
-from rss.unstructured import FrameInputs, UnstructuredResponse, check_unstructured_frames
+from rss.unstructured import FrameInputs, UnstructuredResponse, evaluate_frames
 from workbench.engines.ids import IdMap
 from workbench.engines.unstructured.adapter import UnstructuredScope, frame_to_agents
 from workbench.engines.unstructured.verdict import UnstructuredDetail, UnstructuredVerdict
@@ -39,7 +39,7 @@ class UnstructuredRunner:
 
     The memory (22.1b of the last safe step, drive-away state) is carried from frame to
     frame; a fresh runner starts a replay at any frame with empty memory. ``step_many``
-    evaluates consecutive frames in one batch (``rss.unstructured.check_unstructured_frames``)
+    evaluates consecutive frames in one batch (``rss.unstructured.evaluate_frames``)
     with the same results.
     """
 
@@ -60,7 +60,7 @@ class UnstructuredRunner:
     def step_many(self, frames: Sequence[Frame]) -> list[UnstructuredVerdict]:
         """Evaluate consecutive frames at once (as ``step`` on each in turn).
 
-        Each run of frames with unstructured pairs is one ``check_unstructured_frames``
+        Each run of frames with unstructured pairs is one ``evaluate_frames``
         call (sets and intersections of all its frames batched); a frame without pairs
         forgets the memory, as ad-rss forgets absent objects.
         """
@@ -84,10 +84,8 @@ class UnstructuredRunner:
         """Outputs of consecutive frames with pairs, the memory carried through them."""
         if not run:
             return []
-        ego_dyn = self._params.for_class(ObjectClass.EGO)
-        results, self._memory = check_unstructured_frames(
-            [FrameInputs(i.ego, i.agents, ego_dyn, i.dynamics, ego_dyn) for i in run],
-            self._memory,
+        results, self._memory = evaluate_frames(
+            [FrameInputs(i.ego, i.agents, i.dynamics) for i in run], self._params, self._memory
         )
         return [self._output(i, r) for i, r in zip(run, results, strict=True)]
 

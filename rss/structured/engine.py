@@ -1,0 +1,107 @@
+"""The structured RSS engine: ``(constellations, params, memory) -> (result, memory)``.
+
+One call evaluates all constellations of one frame — or of ``F`` consecutive frames at
+once — with numpy: extraction, checks, memory, response resolving. Invalid constellations
+(NaN, negative or out-of-range speeds, regions outside the road area, ...) are flagged and
+skipped instead of failing the whole frame as ad-rss does.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from rss.structured.batch import take_rows
+from rss.structured.checks import RawStates, check_all
+from rss.structured.extraction import Relative, extract
+from rss.structured.memory import RssMemory, apply_memory, is_dangerous
+from rss.structured.merge import merge_similar
+from rss.structured.response import ProperResponses, resolve
+from rss.structured.states import InvalidReason
+
+if TYPE_CHECKING:
+    from rss.arrays import BoolArray, IntArray
+    from rss.dynamics import RssDynamics
+    from rss.structured.batch import ConstellationBatch
+
+__all__ = ["FrameResult", "check_frame", "check_frames", "select_frame"]
+
+
+@dataclass(frozen=True)
+class FrameResult:
+    """Everything the engine decided for ``C`` constellations in ``F`` frames.
+
+    Attributes:
+        relative: Relative situation per constellation (``(C,)`` arrays).
+        states: Memory-adjusted states per constellation.
+        dangerous: ``(C,)`` dangerous (and valid) constellations.
+        invalid: ``(C,)`` :class:`InvalidReason` codes (0 = evaluated).
+        frame: ``(C,)`` frame number of each constellation.
+        responses: The ego's proper response per frame (``(F,)`` arrays).
+    """
+
+    relative: Relative
+    states: RawStates
+    dangerous: BoolArray
+    invalid: IntArray
+    frame: IntArray
+    responses: ProperResponses
+
+
+def check_frames(
+    batch: ConstellationBatch,
+    frame: IntArray,
+    n_frames: int,
+    default_ego: RssDynamics,
+    memory: RssMemory | None = None,
+) -> tuple[FrameResult, RssMemory]:
+    """Evaluate the constellations of ``F`` consecutive frames in one vectorised call.
+
+    Args:
+        batch: ``C`` constellations of all frames.
+        frame: ``(C,)`` frame number in ``0..F-1`` of each constellation.
+        n_frames: ``F`` (frames without constellations are safe).
+        default_ego: Default ego dynamics (seed of the acceleration restrictions).
+        memory: Memory before frame 0; ``None`` = fresh start.
+
+    Returns:
+        ``(result, memory)``: the result and the memory after frame ``F-1``.
+    """
+    frame = np.asarray(frame, dtype=np.int64)
+    batch, rel = merge_similar(batch, extract(batch), frame)
+    raw = check_all(batch, rel)
+    valid = rel.invalid == InvalidReason.Valid
+    states, new_memory = apply_memory(batch, rel, raw, valid, frame, memory or RssMemory.empty())
+    dangerous = is_dangerous(states) & valid
+    responses = resolve(batch, states, dangerous, frame, n_frames, default_ego)
+    return FrameResult(rel, states, dangerous, rel.invalid, frame, responses), new_memory
+
+
+def check_frame(
+    batch: ConstellationBatch, default_ego: RssDynamics, memory: RssMemory | None = None
+) -> tuple[FrameResult, RssMemory]:
+    """Evaluate all constellations of one frame (see :func:`check_frames`)."""
+    return check_frames(batch, np.zeros(batch.size, dtype=np.int64), 1, default_ego, memory)
+
+
+def select_frame(result: FrameResult, index: int) -> FrameResult:
+    """The result of frame ``index`` alone, as :func:`check_frame` returns it (``F = 1``).
+
+    Args:
+        result: Result of :func:`check_frames` over ``F`` frames.
+        index: Frame number in ``0..F-1``.
+
+    Returns:
+        Its constellations' rows (frame numbers 0) and its proper response (``(1,)``).
+    """
+    rows = np.flatnonzero(result.frame == index)
+    return FrameResult(
+        relative=take_rows(result.relative, rows),
+        states=take_rows(result.states, rows),
+        dangerous=result.dangerous[rows],
+        invalid=result.invalid[rows],
+        frame=np.zeros(rows.size, dtype=np.int64),
+        responses=take_rows(result.responses, np.array([index])),
+    )

@@ -1,0 +1,258 @@
+"""Situation extraction: relative positions of all pairs, vectorised.
+
+Implements ad-rss ``RssSituationExtraction`` for structured constellations: with the
+metric footprints of :mod:`rss.structured.footprint`, the ego is positioned relative to the other
+(longitudinally, laterally, or relative to their intersection entries), lane flags and
+distances to the intersection are derived and invalid objects flagged. All comparisons
+are ad-physics tolerant (1 mm).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from rss.model import ConstellationType, ObjectType
+from rss.physics import DISTANCE_PRECISION, gt, lt
+from rss.structured.batch import take_rows
+from rss.structured.footprint import Extents, LaneTable, lane_table, object_extents, place
+from rss.structured.states import InvalidReason, LateralPosition, LongitudinalPosition
+
+if TYPE_CHECKING:
+    from rss.arrays import BoolArray, FloatArray, IntArray
+    from rss.structured.batch import ConstellationBatch
+
+__all__ = ["Relative", "extract", "relative_position"]
+
+_P = DISTANCE_PRECISION
+#: Rounding slack of parametric region bounds.
+_PARAM_EPS = 1e-9
+#: ad-rss input range of lane-frame speeds [m/s].
+_SPEED_LIMIT_MPS = 100.0
+_IN_FRONT = int(LongitudinalPosition.InFront)
+_OVERLAP_FRONT = int(LongitudinalPosition.OverlapFront)
+_OVERLAP = int(LongitudinalPosition.Overlap)
+_OVERLAP_BACK = int(LongitudinalPosition.OverlapBack)
+_AT_BACK = int(LongitudinalPosition.AtBack)
+
+
+@dataclass(frozen=True)
+class Relative:
+    """Relative situation of every constellation (ad-rss ``RelativeConstellation``).
+
+    Attributes:
+        lon_position: ``(C,)`` :class:`LongitudinalPosition` of the ego w.r.t. the other.
+        lon_distance_m: ``(C,)`` gap, 0 when overlapping.
+        lat_position: ``(C,)`` :class:`LateralPosition`.
+        lat_distance_m: ``(C,)``.
+        ego_in_correct_lane: ``(C,)``.
+        other_in_correct_lane: ``(C,)``.
+        ego_dist_to_enter_m: ``(C,)`` intersection types: front bumper to entry (else 0).
+        ego_dist_to_leave_m: ``(C,)`` rear bumper to exit.
+        other_dist_to_enter_m: ``(C,)``.
+        other_dist_to_leave_m: ``(C,)``.
+        invalid: ``(C,)`` :class:`InvalidReason` codes (0 = valid).
+    """
+
+    lon_position: IntArray
+    lon_distance_m: FloatArray
+    lat_position: IntArray
+    lat_distance_m: FloatArray
+    ego_in_correct_lane: BoolArray
+    other_in_correct_lane: BoolArray
+    ego_dist_to_enter_m: FloatArray
+    ego_dist_to_leave_m: FloatArray
+    other_dist_to_enter_m: FloatArray
+    other_dist_to_leave_m: FloatArray
+    invalid: IntArray
+
+
+def relative_position(
+    ego_min: FloatArray, ego_max: FloatArray, other_min: FloatArray, other_max: FloatArray
+) -> tuple[IntArray, FloatArray]:
+    """Position of the ego interval relative to the other one.
+
+    Codes of :class:`LongitudinalPosition`; lateral uses the same codes (InFront <-> AtRight).
+
+    Args:
+        ego_min: ``(...)`` ego interval start (larger = further ahead / right).
+        ego_max: ``(...)`` ego interval end.
+        other_min: ``(...)``.
+        other_max: ``(...)``.
+
+    Returns:
+        ``(position, distance)``; distance 0 for overlaps.
+    """
+    ahead = gt(ego_min, other_max, _P)
+    behind = ~ahead & gt(other_min, ego_max, _P)
+    overlap_front = gt(ego_min, other_min, _P) & gt(ego_max, other_max, _P)
+    overlap_back = lt(ego_min, other_min, _P) & lt(ego_max, other_max, _P)
+    position = np.where(
+        ahead,
+        _IN_FRONT,
+        np.where(
+            behind,
+            _AT_BACK,
+            np.where(
+                overlap_front, _OVERLAP_FRONT, np.where(overlap_back, _OVERLAP_BACK, _OVERLAP)
+            ),
+        ),
+    ).astype(np.int64)
+    distance = np.where(ahead, ego_min - other_max, np.where(behind, other_min - ego_max, 0.0))
+    return position, distance
+
+
+_LAT_FROM_LON = np.array(
+    [
+        LateralPosition.AtRight,  # InFront: ego.min > other.max
+        LateralPosition.OverlapRight,
+        LateralPosition.Overlap,
+        LateralPosition.OverlapLeft,
+        LateralPosition.AtLeft,
+    ],
+    dtype=np.int64,
+)
+
+
+def _distances_to_intersection(ext: Extents) -> tuple[FloatArray, FloatArray]:
+    enter = np.where(
+        gt(ext.intersection_min_m, ext.lon_max_m, _P), ext.intersection_min_m - ext.lon_max_m, 0.0
+    )
+    leave = np.where(
+        gt(ext.intersection_max_m, ext.lon_min_m, _P), ext.intersection_max_m - ext.lon_min_m, 0.0
+    )
+    return enter, leave
+
+
+def _invalid_objects(batch: ConstellationBatch) -> IntArray:
+    reason = np.zeros(batch.size, dtype=np.int64)
+    for obj in (batch.other, batch.ego):
+        speeds = np.stack(
+            [
+                obj.speed_lon_min_mps,
+                obj.speed_lon_max_mps,
+                obj.speed_lat_min_mps,
+                obj.speed_lat_max_mps,
+            ]
+        )
+        used = obj.region_lane_id >= 0
+        params = np.stack(
+            [obj.region_lon_min, obj.region_lon_max, obj.region_lat_min, obj.region_lat_max]
+        )
+        params = np.where(used, params, 0.5)
+        with np.errstate(invalid="ignore"):
+            bad_speed = (
+                (obj.speed_lon_min_mps < 0.0)
+                | (obj.speed_lon_max_mps < obj.speed_lon_min_mps)
+                | (obj.speed_lon_max_mps > _SPEED_LIMIT_MPS)
+                | (obj.speed_lat_min_mps < -_SPEED_LIMIT_MPS)
+                | (obj.speed_lat_max_mps < obj.speed_lat_min_mps)
+                | (obj.speed_lat_max_mps > _SPEED_LIMIT_MPS)
+            )
+            bad_region = (
+                ((params < -_PARAM_EPS) | (params > 1.0 + _PARAM_EPS)).any(axis=0)
+                | (params[0] > params[1])
+                | (params[2] > params[3])
+            ).any(axis=1)
+        reason = np.where(bad_region, InvalidReason.RegionOutOfRange, reason)
+        reason = np.where(bad_speed, InvalidReason.SpeedOutOfRange, reason)
+        finite = np.isfinite(speeds).all(axis=0) & np.isfinite(params).all(axis=(0, 2))
+        reason = np.where(~finite, InvalidReason.NonFiniteValue, reason)
+    other_type = batch.other.object_type
+    bad_type = (
+        (batch.ego.object_type != ObjectType.EgoVehicle)
+        | (other_type == ObjectType.Invalid)
+        | (other_type == ObjectType.EgoVehicle)
+    )
+    reason = np.where(bad_type & (reason == 0), InvalidReason.InvalidObjectType, reason)
+    same = batch.ego.object_id == batch.other.object_id
+    return np.where(same & (reason == 0), InvalidReason.SameObjectIds, reason).astype(np.int64)
+
+
+def _other_extents(
+    batch: ConstellationBatch, intersection: BoolArray, ego_table: LaneTable
+) -> Extents:
+    """The other object in the ego road (non-intersection) or its own road (intersection).
+
+    The intersecting road areas are computed only for the constellations that need them.
+    """
+    if not intersection.any():
+        return place(batch.other, ego_table)
+    if intersection.all():
+        return object_extents(batch.other, batch.intersecting_road)
+    cross_rows = np.flatnonzero(intersection)
+    cross = object_extents(
+        take_rows(batch.other, cross_rows), take_rows(batch.intersecting_road, cross_rows)
+    )
+    same = place(batch.other, ego_table)  # row by row, so its cross rows can be replaced
+    fields = {}
+    for name in Extents.__dataclass_fields__:
+        merged = getattr(same, name).copy()
+        merged[cross_rows] = getattr(cross, name)
+        fields[name] = merged
+    return Extents(**fields)
+
+
+def extract(batch: ConstellationBatch) -> Relative:
+    """Relative situation of all constellations of a frame.
+
+    Args:
+        batch: ``C`` constellations.
+
+    Returns:
+        Relative positions, distances and lane flags; invalid constellations are flagged
+        (their other fields are meaningless).
+    """
+    ctype = batch.constellation_type
+    intersection = ctype >= ConstellationType.IntersectionEgoHasPriority
+    ego_table = lane_table(batch.ego_road)
+    ego = place(batch.ego, ego_table)
+    other = _other_extents(batch, intersection, ego_table)
+    # one call for all frames of reference: longitudinal, lateral and (intersection
+    # types) longitudinal relative to the own intersection entry, as rows of (n, C)
+    ego_min, ego_max = [ego.lon_min_m, ego.lat_min_m], [ego.lon_max_m, ego.lat_max_m]
+    other_min, other_max = [other.lon_min_m, other.lat_min_m], [other.lon_max_m, other.lat_max_m]
+    crossing = bool(intersection.any())
+    if crossing:
+        ego_min.append(ego.lon_min_m - ego.intersection_min_m)
+        ego_max.append(ego.lon_max_m - ego.intersection_min_m)
+        other_min.append(other.lon_min_m - other.intersection_min_m)
+        other_max.append(other.lon_max_m - other.intersection_min_m)
+    position, distance = relative_position(
+        np.stack(ego_min), np.stack(ego_max), np.stack(other_min), np.stack(other_max)
+    )
+    lon_pos, lon_dist = position[0], distance[0]
+    lat_pos, lat_dist = _LAT_FROM_LON[position[1]], distance[1]
+
+    ego_enter, ego_leave = _distances_to_intersection(ego)
+    other_enter, other_leave = _distances_to_intersection(other)
+    if crossing:
+        lon_pos = np.where(intersection, position[2], lon_pos)
+        lon_dist = np.where(intersection, distance[2], lon_dist)
+    lat_pos = np.where(intersection, LateralPosition.Overlap, lat_pos)
+    lat_dist = np.where(intersection, 0.0, lat_dist)
+    zero = np.zeros(batch.size)
+
+    invalid = _invalid_objects(batch)
+    not_found = ~(ego.found & other.found)
+    invalid = np.where((invalid == 0) & not_found, InvalidReason.NotInRoadArea, invalid)
+    no_area = intersection & ~(
+        np.isfinite(ego.intersection_min_m) & np.isfinite(other.intersection_min_m)
+    )
+    invalid = np.where((invalid == 0) & no_area, InvalidReason.NoIntersection, invalid)
+    opposite = ctype == ConstellationType.OppositeDirection
+    return Relative(
+        lon_position=lon_pos.astype(np.int64),
+        lon_distance_m=lon_dist,
+        lat_position=lat_pos.astype(np.int64),
+        lat_distance_m=lat_dist,
+        ego_in_correct_lane=~ego.on_negative_lane,
+        other_in_correct_lane=np.where(opposite, ~other.on_positive_lane, ~other.on_negative_lane),
+        ego_dist_to_enter_m=np.where(intersection, ego_enter, zero),
+        ego_dist_to_leave_m=np.where(intersection, ego_leave, zero),
+        other_dist_to_enter_m=np.where(intersection, other_enter, zero),
+        other_dist_to_leave_m=np.where(intersection, other_leave, zero),
+        invalid=invalid.astype(np.int64),
+    )
