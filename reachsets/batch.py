@@ -25,7 +25,7 @@ if TYPE_CHECKING:
     from reachsets.inputs import ReachInputs, RoadLayout, ZoneMap
     from reachsets.occupancy import EgoOccupancy
     from reachsets.params import ReachParams
-    from reachsets.rules_road import RoadGeometry
+    from reachsets.road import RoadGeometry
     from reachsets.track import TrackGeometry
 
 __all__ = ["FrameBatch", "stack_frames"]

@@ -30,7 +30,6 @@ road.speed_limit    H below_limit                              step k: the half-
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -39,22 +38,20 @@ import shapely
 from reachsets.footprints import body_to_map
 from reachsets.ltl import And, Atom, Historically, LtlMemory, Since, step
 from reachsets.patches import RuleContext, RulePatch
+from reachsets.road import RoadGeometry, prepare_road
 
 if TYPE_CHECKING:
     from collections.abc import Mapping
 
     from numpy.typing import NDArray
 
-    from reachsets.inputs import RoadLayout
 
 __all__ = [
     "RIGHT_OF_WAY",
     "STAY_ON_ROAD",
     "WITHIN_LIMIT",
-    "RoadGeometry",
     "evaluate_road",
     "max_travel_m",
-    "prepare_road",
 ]
 
 STAY_ON_ROAD = Historically(Atom("on_road"))
@@ -62,44 +59,6 @@ RIGHT_OF_WAY = Since(Atom("on_yield"), And((Atom("on_yield"), Atom("can_stop")))
 WITHIN_LIMIT = Historically(Atom("below_limit"))
 
 _FAR_M = 1000.0
-
-
-@dataclass(frozen=True, slots=True)
-class RoadGeometry:
-    """The static shapes of a road layout, built once per layout (``prepare_road``).
-
-    Attributes:
-        lane_polys: Lane polygons (made valid, prepared), ``(Lanes,)``.
-        drivable: Union of all lanes (prepared).
-        solid: Union of the solid lines, or ``None`` without any.
-        lanes_by_id: Lane id -> index into ``lane_polys``.
-    """
-
-    lane_polys: NDArray[np.object_]
-    drivable: Any
-    solid: Any
-    lanes_by_id: dict[str, int]
-
-
-def prepare_road(road: RoadLayout) -> RoadGeometry:
-    """Build the static shapes of ``road``."""
-    lane_polys = np.array(
-        [shapely.make_valid(shapely.polygons(ln.polygon_m)) for ln in road.lanes], dtype=object
-    )
-    drivable = shapely.union_all(lane_polys)
-    solid = (
-        shapely.union_all(shapely.linestrings(list(road.solid_lines_m)))
-        if road.solid_lines_m
-        else None
-    )
-    shapely.prepare(lane_polys)
-    shapely.prepare(drivable)
-    return RoadGeometry(
-        lane_polys=lane_polys,
-        drivable=drivable,
-        solid=solid,
-        lanes_by_id={ln.lane_id: k for k, ln in enumerate(road.lanes)},
-    )
 
 
 def max_travel_m(

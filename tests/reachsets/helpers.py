@@ -2,9 +2,16 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
+from reachsets import evaluate_frames
 from reachsets.inputs import EgoTrajectory, ObjectStates, ReachInputs, TrackBounds
+
+if TYPE_CHECKING:
+    from reachsets.engine import ReachResult, RuleState
+    from reachsets.params import ReachParams
 
 
 def objects(*rows: tuple[float, float, float, float], length=4.7, width=2.0) -> ObjectStates:
@@ -45,3 +52,11 @@ def straight_track(length=600.0, half_width=6.0, x0=-100.0) -> TrackBounds:
 
 def inputs(ego: EgoTrajectory, objs: ObjectStates, track: TrackBounds | None = None) -> ReachInputs:
     return ReachInputs(ego=ego, objects=objs, track=track)
+
+
+def evaluate_one(
+    inp: ReachInputs, params: ReachParams, state: RuleState | None = None
+) -> tuple[ReachResult, RuleState]:
+    """One frame through ``evaluate_frames`` (frame by frame, as an online supervisor calls it)."""
+    results, state = evaluate_frames([inp], params, state)
+    return results[0], state
