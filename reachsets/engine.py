@@ -119,6 +119,8 @@ class ReachResult:
         occupancy: Ego footprints.
         sets: The reduced sets as ``(M, T)`` geometries (full geometry), or the unreduced
             ``simple`` sets as ``(M, T, 6, 2)`` vertices (verdict only); see ``reach_sets``.
+        skipped_road: Lanes and solid lines of the road layout left out for unusable
+            geometry (``RoadGeometry.skipped``); the rules ran on the rest.
     """
 
     is_safe: bool
@@ -128,6 +130,7 @@ class ReachResult:
     skipped_ids: tuple[str, ...]
     occupancy: EgoOccupancy
     sets: NDArray[Any]
+    skipped_road: tuple[str, ...] = ()
 
     @cached_property
     def reach_sets(self) -> NDArray[np.object_]:
@@ -264,6 +267,8 @@ def _split(
         applied[int(batch.frame[p.object_index])].append(
             AppliedPatch(str(ids[p.object_index]), p.rule, p.step, p.geometry)
         )
+    geo = batch.road_geometry
+    skipped_road = geo.skipped if geo is not None else ()
     out = []
     for f in range(batch.n_frames):
         lo, hi = int(batch.offsets[f]), int(batch.offsets[f + 1])
@@ -281,6 +286,7 @@ def _split(
                 skipped_ids=batch.skipped_ids[f],
                 occupancy=batch.occupancy.frame(f),
                 sets=sets[lo:hi],
+                skipped_road=skipped_road,
             )
         )
     return out

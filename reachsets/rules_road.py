@@ -105,28 +105,31 @@ def evaluate_road(
     n = len(ctx.objects)
     if road is None or n == 0 or not road.lanes:
         return [], {}
+    geo = ctx.road_geometry if ctx.road_geometry is not None else prepare_road(road)
+    lanes, lane_polys = geo.lanes, geo.lane_polys
+    lanes_by_id, drivable = geo.lanes_by_id, geo.drivable
+    if not lanes:
+        return [], {}
     p = ctx.params.road
     objs = ctx.objects
     ids = [str(i) for i in objs.ids]
-    geo = ctx.road_geometry if ctx.road_geometry is not None else prepare_road(road)
-    lane_polys, lanes_by_id, drivable = geo.lane_polys, geo.lanes_by_id, geo.drivable
     centres = shapely.points(objs.x_m, objs.y_m)
     contains = np.asarray(shapely.contains(lane_polys[None, :], centres[:, None]))  # (N, Lanes)
     heading = np.stack([np.cos(objs.yaw_rad), np.sin(objs.yaw_rad)], axis=1)
     cos_dir = np.stack(
         [
             np.sum(heading * _lane_directions(ln.centre_m, objs.x_m, objs.y_m), axis=1)
-            for ln in road.lanes
+            for ln in lanes
         ],
         axis=1,
-    ).reshape(n, len(road.lanes))
+    ).reshape(n, len(lanes))
     aligned = contains & (cos_dir > 0)
     shrunk = shapely.buffer(ctx.footprints, -p.on_road_margin_m)
     atoms: dict[str, NDArray[np.bool_]] = {
         "on_road": np.asarray(shapely.covered_by(shrunk, drivable), dtype=bool),
         "in_lane": np.asarray(aligned.any(axis=1), dtype=bool),
     }
-    limits = np.array([ln.speed_limit_mps for ln in road.lanes])
+    limits = np.array([ln.speed_limit_mps for ln in lanes])
     lane_limit = np.where(aligned, limits[None, :], np.nan)
     limit = np.array([np.nanmin(r) if np.isfinite(r).any() else np.nan for r in lane_limit])
     atoms["below_limit"] = np.isfinite(limit) & (

@@ -20,7 +20,14 @@ from reachsets.inputs import (
 from reachsets.params import ReachMethod, ReachParams
 from reachsets.patches import RulePatch, keep_largest_part, patch_grid, subtract_patches
 from reachsets.rules_roborace import zones_from_json
-from tests.reachsets.helpers import evaluate_one, inputs, objects, straight_ego, straight_track
+from tests.reachsets.helpers import (
+    evaluate_one,
+    inputs,
+    objects,
+    straight_ego,
+    straight_track,
+    two_lane_road,
+)
 
 
 def test_empty_scene_is_safe():
@@ -58,6 +65,13 @@ def test_invalid_object_rows_are_skipped_not_fatal():
     inp = inputs(straight_ego(), objects((np.nan, 0.0, 0.0, 5.0), (30.0, 0.0, 0.0, 0.0)))
     res, _ = evaluate_one(inp, ReachParams())
     assert "o0" in res.skipped_ids
+    assert list(res.object_ids) == ["o1"]
+
+
+def test_infinite_speed_object_is_skipped_not_fatal():
+    inp = inputs(straight_ego(), objects((30.0, 0.0, 0.0, np.inf), (30.0, 5.0, 0.0, 0.0)))
+    res, _ = evaluate_one(inp, ReachParams())
+    assert res.skipped_ids == ("o0",)
     assert list(res.object_ids) == ["o1"]
 
 
@@ -144,30 +158,8 @@ def test_roborace_zones_replace_f1_and_patch_the_offence_side():
     assert not shapely.intersects(res.reach_sets[0, 10], shapely.box(100, -5, 110, -1))
 
 
-def _two_lane_road() -> RoadLayout:
-    x = np.linspace(-50, 300, 36)
-    right_lane = RoadLane(
-        "r",
-        np.concatenate(
-            [np.stack([x, np.zeros_like(x)], 1), np.stack([x[::-1], np.full_like(x, -4.0)], 1)]
-        ),
-        np.stack([x, np.full_like(x, -2.0)], 1),
-        speed_limit_mps=15.0,
-    )
-    left_lane = RoadLane(
-        "l",
-        np.concatenate(
-            [np.stack([x, np.full_like(x, 4.0)], 1), np.stack([x[::-1], np.zeros_like(x)], 1)]
-        ),
-        np.stack([x[::-1], np.full_like(x, 2.0)], 1),
-        speed_limit_mps=15.0,
-    )
-    solid = (np.stack([x, np.zeros_like(x)], 1),)
-    return RoadLayout(lanes=(right_lane, left_lane), solid_lines_m=solid)
-
-
 def test_road_rules_fire_and_patch():
-    road = _two_lane_road()
+    road = two_lane_road()
     objs = objects((20.0, -2.0, 0.0, 14.0))
     inp = ReachInputs(ego=straight_ego(x0=0.0, y0=-2.0, speed=10.0), objects=objs, road=road)
     res, state = evaluate_one(inp, ReachParams())
@@ -298,7 +290,7 @@ _FIELDS = ("x_m", "y_m", "yaw_rad", "speed_mps", "length_m", "width_m")
 @pytest.mark.parametrize("method", list(ReachMethod))
 @pytest.mark.parametrize("where", ["road", "track"])
 def test_batched_frames_equal_frame_by_frame(where, method, full):
-    road, track = (_two_lane_road(), None) if where == "road" else (None, straight_track())
+    road, track = (two_lane_road(), None) if where == "road" else (None, straight_track())
     frames = _drive(road, track)
     params = ReachParams(method=method, full_geometry=full)
     state = None
