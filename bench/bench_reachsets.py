@@ -18,8 +18,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from loaders.scenario_architect import open_scenario_architect
+from reachsets import evaluate_frames
 from reachsets.adapter import reach_inputs_from_arrays
-from reachsets.engine import RuleState, evaluate, evaluate_many
 from reachsets.params import ReachMethod, ReachParams
 from workbench.driver import CHUNK_FRAMES
 from workbench.engines.reachsets.adapter import frame_to_reach_inputs, prepare_map
@@ -30,6 +30,7 @@ if TYPE_CHECKING:
 
     from numpy.typing import NDArray
 
+    from reachsets.engine import RuleState
     from reachsets.inputs import ReachInputs
 
 #: Mean ms per ``calc_score`` call (1 object, trimmed, F1 on) on shapely 2.2 + numpy 2.4,
@@ -103,20 +104,20 @@ def run(quick: bool) -> str:  # noqa: FBT001
         def replay(params: ReachParams = params) -> None:
             state = None
             for inp in single:
-                _, state = evaluate(inp, params, state)
+                _, state = evaluate_frames([inp], params, state)
 
         def batched(params: ReachParams = params) -> None:
             state = None
             for chunk in chunks:
-                _, state = evaluate_many(chunk, params, state)
+                _, state = evaluate_frames(chunk, params, state)
 
         one = _time_ms(replay, 1 if quick else 3) / len(single)
         many = _time_ms(batched, 2 if quick else 10) / len(single)
-        _, state = evaluate(crowd, params)
-        checked = len(evaluate(crowd, params, state)[0].object_ids)
+        _, state = evaluate_frames([crowd], params, None)
+        checked = len(evaluate_frames([crowd], params, state)[0][0].object_ids)
 
         def crowded(params: ReachParams = params, state: RuleState = state) -> None:
-            evaluate(crowd, params, state)
+            evaluate_frames([crowd], params, state)
 
         per_obj = _time_ms(crowded, 2 if quick else 10)
         per_obj /= max(checked, 1)
@@ -134,8 +135,8 @@ def run(quick: bool) -> str:  # noqa: FBT001
             (
                 "Racing sample (`racing_overtake.saa`, 1 object, emergency plan, trimming and "
                 f"F1 rules on, 21 stamps, {len(single)} frames) replayed frame by frame "
-                "(`evaluate`, the online latency) and in batches of "
-                f"{CHUNK_FRAMES} consecutive frames (`evaluate_many`, what `workbench "
+                "(`evaluate_frames` on one frame at a time, the online latency) and in batches of "
+                f"{CHUNK_FRAMES} consecutive frames (one `evaluate_frames` call, what `workbench "
                 "evaluate` and the replay run), and one crowded frame with "
                 f"{n_crowd} objects on the same track (objects outside the plan's s-span are "
                 "not checked, as in the reference). *full sets* reduces every reachable set "

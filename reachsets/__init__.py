@@ -1,10 +1,11 @@
 """Rule-based reachable-set supervisor (pure: numpy/shapely in, verdicts out).
 
-Entry point: ``evaluate(inputs, params, state) -> (result, state)``; see ``docs/reachsets.md``.
+Entry point: ``evaluate_frames(inputs, params, state) -> (results, state)`` over consecutive
+frames with the rule memory as explicit state; see ``docs/reachsets.md``.
 """
 
 from reachsets.adapter import reach_inputs_from_arrays
-from reachsets.engine import AppliedPatch, Collision, ReachResult, RuleState, evaluate
+from reachsets.engine import AppliedPatch, Collision, ReachResult, RuleState, evaluate_frames
 from reachsets.errors import InputShapeError, ParamsError, ReachSetError, ZoneFileError
 from reachsets.inputs import (
     EgoTrajectory,
@@ -45,7 +46,7 @@ __all__ = [
     "ZoneFileError",
     "ZoneKind",
     "ZoneMap",
-    "evaluate",
+    "evaluate_frames",
     "reach_inputs_from_arrays",
     "zones_from_json",
 ]

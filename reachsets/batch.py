@@ -25,7 +25,7 @@ if TYPE_CHECKING:
     from reachsets.inputs import ReachInputs, RoadLayout, ZoneMap
     from reachsets.occupancy import EgoOccupancy
     from reachsets.params import ReachParams
-    from reachsets.rules_road import RoadGeometry
+    from reachsets.road import RoadGeometry
     from reachsets.track import TrackGeometry
 
 __all__ = ["FrameBatch", "stack_frames"]
@@ -124,8 +124,8 @@ def stack_frames(
 
     On a track, an object is evaluated when its arc length lies in ``[s_ego_start,
     s_ego_end + L_ego]`` of its frame's plan (followers are responsible for the gap);
-    without a track, when it is not entirely behind the ego. Rows with non-finite pose or
-    size are skipped.
+    without a track, when it is not entirely behind the ego. Rows with non-finite pose, speed
+    or size are skipped.
 
     Args:
         inputs: The frames, in time order.
@@ -150,7 +150,7 @@ def stack_frames(
     ego_len = np.array([e.length_m for e in egos])
     x, y, length = cols["x_m"], cols["y_m"], cols["length_m"]
     valid = (
-        np.isfinite(x + y + cols["yaw_rad"] + length + cols["width_m"])
+        np.isfinite(x + y + cols["yaw_rad"] + cols["speed_mps"] + length + cols["width_m"])
         & (length > 0)
         & (cols["width_m"] > 0)
     )

@@ -1,4 +1,4 @@
-"""The reach-set supervisor engine: ``evaluate(inputs, params, state) -> (result, state)``.
+"""The reach-set supervisor: ``evaluate_frames(inputs, params, state) -> (results, state)``.
 
 Per frame:
 
@@ -32,8 +32,9 @@ from reachsets.patches import (
     subtract_patches,
 )
 from reachsets.reachable import deletion_polygons, reachable_sets, simple_vertices
+from reachsets.road import prepare_road
 from reachsets.rules_f1 import evaluate_f1
-from reachsets.rules_road import evaluate_road, prepare_road
+from reachsets.rules_road import evaluate_road
 from reachsets.rules_roborace import evaluate_roborace
 from reachsets.track import TrackGeometry, build_track
 from reachsets.verdict import first_hits
@@ -47,9 +48,9 @@ if TYPE_CHECKING:
     from reachsets.ltl import LtlMemory
     from reachsets.occupancy import EgoOccupancy
     from reachsets.params import ReachParams
-    from reachsets.rules_road import RoadGeometry
+    from reachsets.road import RoadGeometry
 
-__all__ = ["AppliedPatch", "Collision", "ReachResult", "RuleState", "evaluate", "evaluate_many"]
+__all__ = ["AppliedPatch", "Collision", "ReachResult", "RuleState", "evaluate_frames"]
 
 _log = logging.getLogger(__name__)
 
@@ -118,6 +119,8 @@ class ReachResult:
         occupancy: Ego footprints.
         sets: The reduced sets as ``(M, T)`` geometries (full geometry), or the unreduced
             ``simple`` sets as ``(M, T, 6, 2)`` vertices (verdict only); see ``reach_sets``.
+        skipped_road: Lanes and solid lines of the road layout left out for unusable
+            geometry (``RoadGeometry.skipped``); the rules ran on the rest.
     """
 
     is_safe: bool
@@ -127,6 +130,7 @@ class ReachResult:
     skipped_ids: tuple[str, ...]
     occupancy: EgoOccupancy
     sets: NDArray[Any]
+    skipped_road: tuple[str, ...] = ()
 
     @cached_property
     def reach_sets(self) -> NDArray[np.object_]:
@@ -210,39 +214,24 @@ def _rule_patches(
     return patches, mem
 
 
-def evaluate(
-    inputs: ReachInputs, params: ReachParams, state: RuleState | None = None
-) -> tuple[ReachResult, RuleState]:
-    """Rate the ego plan of one frame against the rule-conform reachable sets of the others.
-
-    Args:
-        inputs: Ego plan, objects and map geometry of the frame.
-        params: Engine parameters.
-        state: State returned for the previous frame (``None`` at the start of a replay).
-
-    Returns:
-        The frame's result and the state for the next frame.
-    """
-    results, state = evaluate_many([inputs], params, state)
-    return results[0], state
-
-
-def evaluate_many(
-    inputs: Sequence[ReachInputs], params: ReachParams, state: RuleState | None = None
+def evaluate_frames(
+    inputs: Sequence[ReachInputs], params: ReachParams, state: RuleState | None
 ) -> tuple[list[ReachResult], RuleState]:
-    """``evaluate`` over consecutive frames of one drive at once (same results and state).
+    """Rate the ego plan of each of consecutive frames against the rule-conform reachable sets.
 
     Frames that share a map are stacked into one batch: every geometric step runs once
     over all their objects, and the rules' past-time LTL memory is carried along each
-    object's frames exactly as frame by frame.
+    object's frames exactly as frame by frame (one frame is the batch of one; the results
+    and the state do not depend on how a drive is cut into calls).
 
     Args:
-        inputs: The frames, in time order.
+        inputs: The frames, in time order: ego plan, objects and map geometry of each.
         params: Engine parameters.
-        state: State returned for the frame before the first one (``None`` at the start).
+        state: State returned for the frame before the first one (``None`` at the start of a
+            replay).
 
     Returns:
-        One result per frame and the state after the last frame.
+        One result per frame and the state for the frame after the last one.
     """
     state = state or RuleState()
     results: list[ReachResult] = []
@@ -278,6 +267,8 @@ def _split(
         applied[int(batch.frame[p.object_index])].append(
             AppliedPatch(str(ids[p.object_index]), p.rule, p.step, p.geometry)
         )
+    geo = batch.road_geometry
+    skipped_road = geo.skipped if geo is not None else ()
     out = []
     for f in range(batch.n_frames):
         lo, hi = int(batch.offsets[f]), int(batch.offsets[f + 1])
@@ -295,6 +286,7 @@ def _split(
                 skipped_ids=batch.skipped_ids[f],
                 occupancy=batch.occupancy.frame(f),
                 sets=sets[lo:hi],
+                skipped_road=skipped_road,
             )
         )
     return out

@@ -111,7 +111,8 @@ class ObjectStates:
         x_m: Centre x.
         y_m: Centre y.
         yaw_rad: Heading (ENU).
-        speed_mps: Speed along the heading (``>= 0``; negative values are clipped to 0).
+        speed_mps: Speed along the heading (``>= 0``; negative values are clipped to 0, NaN
+            reads as 0; an infinite speed is kept, and the engine skips that object).
         length_m: Body length.
         width_m: Body width.
     """
@@ -125,7 +126,7 @@ class ObjectStates:
     width_m: NDArray[np.float64]
 
     def __post_init__(self) -> None:
-        """Freeze arrays, check lengths and clip negative speeds."""
+        """Freeze arrays, check lengths and clip negative and NaN speeds to 0."""
         for f in fields(self):
             if f.name == "ids":
                 ids = np.array([str(i) for i in self.ids], dtype=np.str_)
@@ -133,7 +134,7 @@ class ObjectStates:
             else:
                 object.__setattr__(self, f.name, as_frozen(getattr(self, f.name), f.name, 1))
         _check_rows(self, tuple(f.name for f in fields(self)))
-        speed = np.clip(np.nan_to_num(self.speed_mps), 0.0, None)
+        speed = np.clip(np.nan_to_num(self.speed_mps, posinf=np.inf, neginf=0.0), 0.0, None)
         object.__setattr__(self, "speed_mps", as_frozen(speed, "speed_mps", 1))
 
     def __len__(self) -> int:

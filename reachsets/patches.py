@@ -19,7 +19,7 @@ if TYPE_CHECKING:
     from reachsets.inputs import ObjectStates, RoadLayout, ZoneMap
     from reachsets.occupancy import EgoOccupancy
     from reachsets.params import ReachParams
-    from reachsets.rules_road import RoadGeometry
+    from reachsets.road import RoadGeometry
     from reachsets.track import TrackGeometry
 
 __all__ = [

@@ -30,7 +30,6 @@ road.speed_limit    H below_limit                              step k: the half-
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -39,22 +38,20 @@ import shapely
 from reachsets.footprints import body_to_map
 from reachsets.ltl import And, Atom, Historically, LtlMemory, Since, step
 from reachsets.patches import RuleContext, RulePatch
+from reachsets.road import RoadGeometry, prepare_road
 
 if TYPE_CHECKING:
     from collections.abc import Mapping
 
     from numpy.typing import NDArray
 
-    from reachsets.inputs import RoadLayout
 
 __all__ = [
     "RIGHT_OF_WAY",
     "STAY_ON_ROAD",
     "WITHIN_LIMIT",
-    "RoadGeometry",
     "evaluate_road",
     "max_travel_m",
-    "prepare_road",
 ]
 
 STAY_ON_ROAD = Historically(Atom("on_road"))
@@ -62,44 +59,6 @@ RIGHT_OF_WAY = Since(Atom("on_yield"), And((Atom("on_yield"), Atom("can_stop")))
 WITHIN_LIMIT = Historically(Atom("below_limit"))
 
 _FAR_M = 1000.0
-
-
-@dataclass(frozen=True, slots=True)
-class RoadGeometry:
-    """The static shapes of a road layout, built once per layout (``prepare_road``).
-
-    Attributes:
-        lane_polys: Lane polygons (made valid, prepared), ``(Lanes,)``.
-        drivable: Union of all lanes (prepared).
-        solid: Union of the solid lines, or ``None`` without any.
-        lanes_by_id: Lane id -> index into ``lane_polys``.
-    """
-
-    lane_polys: NDArray[np.object_]
-    drivable: Any
-    solid: Any
-    lanes_by_id: dict[str, int]
-
-
-def prepare_road(road: RoadLayout) -> RoadGeometry:
-    """Build the static shapes of ``road``."""
-    lane_polys = np.array(
-        [shapely.make_valid(shapely.polygons(ln.polygon_m)) for ln in road.lanes], dtype=object
-    )
-    drivable = shapely.union_all(lane_polys)
-    solid = (
-        shapely.union_all(shapely.linestrings(list(road.solid_lines_m)))
-        if road.solid_lines_m
-        else None
-    )
-    shapely.prepare(lane_polys)
-    shapely.prepare(drivable)
-    return RoadGeometry(
-        lane_polys=lane_polys,
-        drivable=drivable,
-        solid=solid,
-        lanes_by_id={ln.lane_id: k for k, ln in enumerate(road.lanes)},
-    )
 
 
 def max_travel_m(
@@ -146,28 +105,31 @@ def evaluate_road(
     n = len(ctx.objects)
     if road is None or n == 0 or not road.lanes:
         return [], {}
+    geo = ctx.road_geometry if ctx.road_geometry is not None else prepare_road(road)
+    lanes, lane_polys = geo.lanes, geo.lane_polys
+    lanes_by_id, drivable = geo.lanes_by_id, geo.drivable
+    if not lanes:
+        return [], {}
     p = ctx.params.road
     objs = ctx.objects
     ids = [str(i) for i in objs.ids]
-    geo = ctx.road_geometry if ctx.road_geometry is not None else prepare_road(road)
-    lane_polys, lanes_by_id, drivable = geo.lane_polys, geo.lanes_by_id, geo.drivable
     centres = shapely.points(objs.x_m, objs.y_m)
     contains = np.asarray(shapely.contains(lane_polys[None, :], centres[:, None]))  # (N, Lanes)
     heading = np.stack([np.cos(objs.yaw_rad), np.sin(objs.yaw_rad)], axis=1)
     cos_dir = np.stack(
         [
             np.sum(heading * _lane_directions(ln.centre_m, objs.x_m, objs.y_m), axis=1)
-            for ln in road.lanes
+            for ln in lanes
         ],
         axis=1,
-    ).reshape(n, len(road.lanes))
+    ).reshape(n, len(lanes))
     aligned = contains & (cos_dir > 0)
     shrunk = shapely.buffer(ctx.footprints, -p.on_road_margin_m)
     atoms: dict[str, NDArray[np.bool_]] = {
         "on_road": np.asarray(shapely.covered_by(shrunk, drivable), dtype=bool),
         "in_lane": np.asarray(aligned.any(axis=1), dtype=bool),
     }
-    limits = np.array([ln.speed_limit_mps for ln in road.lanes])
+    limits = np.array([ln.speed_limit_mps for ln in lanes])
     lane_limit = np.where(aligned, limits[None, :], np.nan)
     limit = np.array([np.nanmin(r) if np.isfinite(r).any() else np.nan for r in lane_limit])
     atoms["below_limit"] = np.isfinite(limit) & (

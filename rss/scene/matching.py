@@ -406,7 +406,7 @@ def match_route(
         yaw_rad: ``(K,)`` waypoint headings.
 
     Each waypoint picks, among the lanes containing it, the one whose direction agrees
-    best with the waypoint heading; repeated lanes are dropped.
+    best with the waypoint heading; no lane appears twice (a return to a lane drops the detour).
     """
     if len(xy_m) == 0:
         return []
@@ -424,6 +424,6 @@ def match_route(
             continue
         last = int(point_idx[k])
         step = (int(lane_idx[k]), bool(agree[k] >= 0.0))
-        if not steps or steps[-1][0] != step[0]:
-            steps.append(step)
+        lanes = [lane for lane, _ in steps]  # back on a lane passed before: drop the detour
+        steps = steps[: lanes.index(step[0]) + 1] if step[0] in lanes else [*steps, step]
     return steps

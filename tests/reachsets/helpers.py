@@ -2,9 +2,23 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
-from reachsets.inputs import EgoTrajectory, ObjectStates, ReachInputs, TrackBounds
+from reachsets import evaluate_frames
+from reachsets.inputs import (
+    EgoTrajectory,
+    ObjectStates,
+    ReachInputs,
+    RoadLane,
+    RoadLayout,
+    TrackBounds,
+)
+
+if TYPE_CHECKING:
+    from reachsets.engine import ReachResult, RuleState
+    from reachsets.params import ReachParams
 
 
 def objects(*rows: tuple[float, float, float, float], length=4.7, width=2.0) -> ObjectStates:
@@ -45,3 +59,34 @@ def straight_track(length=600.0, half_width=6.0, x0=-100.0) -> TrackBounds:
 
 def inputs(ego: EgoTrajectory, objs: ObjectStates, track: TrackBounds | None = None) -> ReachInputs:
     return ReachInputs(ego=ego, objects=objs, track=track)
+
+
+def evaluate_one(
+    inp: ReachInputs, params: ReachParams, state: RuleState | None = None
+) -> tuple[ReachResult, RuleState]:
+    """One frame through ``evaluate_frames`` (frame by frame, as an online supervisor calls it)."""
+    results, state = evaluate_frames([inp], params, state)
+    return results[0], state
+
+
+def two_lane_road() -> RoadLayout:
+    """Two 4 m lanes along x in opposite directions, split by one solid line at y = 0."""
+    x = np.linspace(-50, 300, 36)
+    right_lane = RoadLane(
+        "r",
+        np.concatenate(
+            [np.stack([x, np.zeros_like(x)], 1), np.stack([x[::-1], np.full_like(x, -4.0)], 1)]
+        ),
+        np.stack([x, np.full_like(x, -2.0)], 1),
+        speed_limit_mps=15.0,
+    )
+    left_lane = RoadLane(
+        "l",
+        np.concatenate(
+            [np.stack([x, np.full_like(x, 4.0)], 1), np.stack([x[::-1], np.zeros_like(x)], 1)]
+        ),
+        np.stack([x[::-1], np.full_like(x, 2.0)], 1),
+        speed_limit_mps=15.0,
+    )
+    solid = (np.stack([x, np.zeros_like(x)], 1),)
+    return RoadLayout(lanes=(right_lane, left_lane), solid_lines_m=solid)

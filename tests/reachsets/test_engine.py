@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 import shapely
 
-from reachsets.engine import RuleState, evaluate, evaluate_many
+from reachsets import evaluate_frames
+from reachsets.engine import RuleState
 from reachsets.errors import InputShapeError, ParamsError, ReachSetError, ZoneFileError
 from reachsets.inputs import (
     EgoTrajectory,
@@ -19,11 +20,18 @@ from reachsets.inputs import (
 from reachsets.params import ReachMethod, ReachParams
 from reachsets.patches import RulePatch, keep_largest_part, patch_grid, subtract_patches
 from reachsets.rules_roborace import zones_from_json
-from tests.reachsets.helpers import inputs, objects, straight_ego, straight_track
+from tests.reachsets.helpers import (
+    evaluate_one,
+    inputs,
+    objects,
+    straight_ego,
+    straight_track,
+    two_lane_road,
+)
 
 
 def test_empty_scene_is_safe():
-    res, state = evaluate(inputs(straight_ego(), objects()), ReachParams())
+    res, state = evaluate_one(inputs(straight_ego(), objects()), ReachParams())
     assert res.is_safe
     assert res.collisions == ()
     assert isinstance(state, RuleState)
@@ -32,7 +40,7 @@ def test_empty_scene_is_safe():
 @pytest.mark.parametrize("method", list(ReachMethod))
 def test_standing_car_ahead_in_lane_collides(method):
     inp = inputs(straight_ego(speed=20.0), objects((40.0, 0.0, 0.0, 0.0)), straight_track())
-    res, _ = evaluate(inp, ReachParams(method=method))
+    res, _ = evaluate_one(inp, ReachParams(method=method))
     assert not res.is_safe
     (col,) = res.collisions
     assert col.object_id == "o0"
@@ -42,21 +50,28 @@ def test_standing_car_ahead_in_lane_collides(method):
 @pytest.mark.parametrize("method", list(ReachMethod))
 def test_car_far_ahead_and_faster_is_safe(method):
     inp = inputs(straight_ego(speed=10.0), objects((150.0, 0.0, 0.0, 40.0)), straight_track())
-    res, _ = evaluate(inp, ReachParams(method=method, rules_enabled=False))
+    res, _ = evaluate_one(inp, ReachParams(method=method, rules_enabled=False))
     assert res.is_safe
 
 
 def test_follower_is_ignored_on_track():
     inp = inputs(straight_ego(speed=10.0), objects((-20.0, 0.0, 0.0, 30.0)), straight_track())
-    res, _ = evaluate(inp, ReachParams())
+    res, _ = evaluate_one(inp, ReachParams())
     assert res.skipped_ids == ("o0",)
     assert res.is_safe
 
 
 def test_invalid_object_rows_are_skipped_not_fatal():
     inp = inputs(straight_ego(), objects((np.nan, 0.0, 0.0, 5.0), (30.0, 0.0, 0.0, 0.0)))
-    res, _ = evaluate(inp, ReachParams())
+    res, _ = evaluate_one(inp, ReachParams())
     assert "o0" in res.skipped_ids
+    assert list(res.object_ids) == ["o1"]
+
+
+def test_infinite_speed_object_is_skipped_not_fatal():
+    inp = inputs(straight_ego(), objects((30.0, 0.0, 0.0, np.inf), (30.0, 5.0, 0.0, 0.0)))
+    res, _ = evaluate_one(inp, ReachParams())
+    assert res.skipped_ids == ("o0",)
     assert list(res.object_ids) == ["o1"]
 
 
@@ -84,8 +99,8 @@ def test_patch_never_removes_own_footprint():
 
 def test_state_carries_track_geometry():
     inp = inputs(straight_ego(), objects((30.0, 0.0, 0.0, 5.0)), straight_track())
-    _, s1 = evaluate(inp, ReachParams())
-    _, s2 = evaluate(inp, ReachParams(), s1)
+    _, s1 = evaluate_one(inp, ReachParams())
+    _, s2 = evaluate_one(inp, ReachParams(), s1)
     assert s2.track is s1.track
 
 
@@ -107,7 +122,7 @@ def _alongside_scene(ego_y: float, obj_y: float, gap: float) -> ReachInputs:
 
 def test_f1_alongside_leaves_the_ego_room():
     params = ReachParams()
-    res, _ = evaluate(_alongside_scene(-3.0, 2.5, 1.0), params)
+    res, _ = evaluate_one(_alongside_scene(-3.0, 2.5, 1.0), params)
     assert any(p.rule == "f1.alongside" for p in res.patches)
     # the patch keeps the right-hand strip (ego side) free at every later step
     strip = shapely.box(20, -6.0, 60, -4.5)
@@ -116,7 +131,7 @@ def test_f1_alongside_leaves_the_ego_room():
 
 
 def test_f1_not_alongside_without_overlap():
-    res, _ = evaluate(_alongside_scene(-3.0, 2.5, 15.0), ReachParams())
+    res, _ = evaluate_one(_alongside_scene(-3.0, 2.5, 15.0), ReachParams())
     assert not any(p.rule == "f1.alongside" for p in res.patches)
 
 
@@ -135,7 +150,7 @@ def test_roborace_zones_replace_f1_and_patch_the_offence_side():
     # o0 closes in on the slower o1 inside the trigger zone -> offence
     objs = objects((30.0, 0.0, 0.0, 30.0), (60.0, 0.0, 0.0, 10.0))
     inp = ReachInputs(ego=straight_ego(speed=20.0), objects=objs, track=track, zones=zones)
-    res, _ = evaluate(inp, ReachParams())
+    res, _ = evaluate_one(inp, ReachParams())
     rules = {(p.object_id, p.rule) for p in res.patches}
     assert ("o0", "roborace.offence") in rules
     assert not any(r.startswith("f1.") for _, r in rules)
@@ -143,33 +158,11 @@ def test_roborace_zones_replace_f1_and_patch_the_offence_side():
     assert not shapely.intersects(res.reach_sets[0, 10], shapely.box(100, -5, 110, -1))
 
 
-def _two_lane_road() -> RoadLayout:
-    x = np.linspace(-50, 300, 36)
-    right_lane = RoadLane(
-        "r",
-        np.concatenate(
-            [np.stack([x, np.zeros_like(x)], 1), np.stack([x[::-1], np.full_like(x, -4.0)], 1)]
-        ),
-        np.stack([x, np.full_like(x, -2.0)], 1),
-        speed_limit_mps=15.0,
-    )
-    left_lane = RoadLane(
-        "l",
-        np.concatenate(
-            [np.stack([x, np.full_like(x, 4.0)], 1), np.stack([x[::-1], np.zeros_like(x)], 1)]
-        ),
-        np.stack([x[::-1], np.full_like(x, 2.0)], 1),
-        speed_limit_mps=15.0,
-    )
-    solid = (np.stack([x, np.zeros_like(x)], 1),)
-    return RoadLayout(lanes=(right_lane, left_lane), solid_lines_m=solid)
-
-
 def test_road_rules_fire_and_patch():
-    road = _two_lane_road()
+    road = two_lane_road()
     objs = objects((20.0, -2.0, 0.0, 14.0))
     inp = ReachInputs(ego=straight_ego(x0=0.0, y0=-2.0, speed=10.0), objects=objs, road=road)
-    res, state = evaluate(inp, ReachParams())
+    res, state = evaluate_one(inp, ReachParams())
     rules = {p.rule for p in res.patches}
     assert {"road.stay_on_road", "road.no_opposite", "road.speed_limit"} <= rules
     late = res.reach_sets[0, -1]
@@ -178,8 +171,8 @@ def test_road_rules_fire_and_patch():
     assert shapely.bounds(late)[2] < 20 + 4 * 16.5 + 10  # speed cap 16.5 m/s
     # once over the limit, never again assumed compliant (H below_limit)
     fast = ReachInputs(ego=inp.ego, objects=objects((20.0, -2.0, 0.0, 30.0)), road=road)
-    _res2, state = evaluate(fast, ReachParams(), state)
-    res3, _ = evaluate(inp, ReachParams(), state)
+    _res2, state = evaluate_one(fast, ReachParams(), state)
+    res3, _ = evaluate_one(inp, ReachParams(), state)
     assert "road.speed_limit" not in {p.rule for p in res3.patches}
 
 
@@ -203,7 +196,7 @@ def test_right_of_way_keeps_yielding_vehicle_out():
     road = RoadLayout(lanes=(main, side), right_of_way=(RightOfWayRule(("main",), ("side",)),))
     objs = objects((40.0, -40.0, np.pi / 2, 8.0))
     inp = ReachInputs(ego=straight_ego(speed=15.0), objects=objs, road=road)
-    res, _ = evaluate(inp, ReachParams())
+    res, _ = evaluate_one(inp, ReachParams())
     assert "road.right_of_way" in {p.rule for p in res.patches}
     assert res.is_safe
 
@@ -216,8 +209,8 @@ def test_verdict_mode_matches_full_geometry(method, gap, obj_y, speed):
     inp = inputs(
         straight_ego(y0=-2.0, speed=25.0), objects((gap, obj_y, 0.0, speed)), straight_track()
     )
-    full, _ = evaluate(inp, ReachParams(method=method))
-    fast, _ = evaluate(inp, ReachParams(method=method, full_geometry=False))
+    full, _ = evaluate_one(inp, ReachParams(method=method))
+    fast, _ = evaluate_one(inp, ReachParams(method=method, full_geometry=False))
     assert full.collisions == fast.collisions
 
 
@@ -240,7 +233,9 @@ def test_closed_track_wraps_around_the_start():
         t_s=t,
     )
     objs = objects((100 * np.cos(0.1), 100 * np.sin(0.1), 0.1 + np.pi / 2, 0.0))
-    res, state = evaluate(ReachInputs(ego=ego, objects=objs, track=_ring_track()), ReachParams())
+    res, state = evaluate_one(
+        ReachInputs(ego=ego, objects=objs, track=_ring_track()), ReachParams()
+    )
     assert state.track is not None
     assert state.track.closed
     assert list(res.object_ids) == ["o0"]
@@ -257,7 +252,7 @@ def test_standing_vehicle_never_triggers_roborace():
     inp = ReachInputs(
         ego=straight_ego(speed=0.0), objects=objs, track=straight_track(), zones=zones
     )
-    res, _ = evaluate(inp, ReachParams())
+    res, _ = evaluate_one(inp, ReachParams())
     assert res.patches == ()
 
 
@@ -295,19 +290,19 @@ _FIELDS = ("x_m", "y_m", "yaw_rad", "speed_mps", "length_m", "width_m")
 @pytest.mark.parametrize("method", list(ReachMethod))
 @pytest.mark.parametrize("where", ["road", "track"])
 def test_batched_frames_equal_frame_by_frame(where, method, full):
-    road, track = (_two_lane_road(), None) if where == "road" else (None, straight_track())
+    road, track = (two_lane_road(), None) if where == "road" else (None, straight_track())
     frames = _drive(road, track)
     params = ReachParams(method=method, full_geometry=full)
     state = None
     one_by_one = []
     for inp in frames:
-        res, state = evaluate(inp, params, state)
+        res, state = evaluate_one(inp, params, state)
         one_by_one.append(res)
     assert state is not None
     # the batch starts from the state after the first two frames
-    _, start = evaluate(frames[0], params)
-    _, start = evaluate(frames[1], params, start)
-    batched, end = evaluate_many(frames[2:], params, start)
+    _, start = evaluate_one(frames[0], params)
+    _, start = evaluate_one(frames[1], params, start)
+    batched, end = evaluate_frames(frames[2:], params, start)
     assert [r.collisions for r in batched] == [r.collisions for r in one_by_one[2:]]
     assert [[(p.object_id, p.rule, p.step) for p in r.patches] for r in batched] == [
         [(p.object_id, p.rule, p.step) for p in r.patches] for r in one_by_one[2:]

@@ -10,12 +10,15 @@ from typing import TYPE_CHECKING
 import pytest
 
 from loaders.scenario_architect import open_scenario_architect
-from reachsets.engine import ReachResult, evaluate, evaluate_many
+from reachsets import evaluate_frames
 from reachsets.params import F1Params, ReachMethod, ReachParams
+from tests.reachsets.helpers import evaluate_one
 from workbench.engines.reachsets.adapter import frame_to_reach_inputs
 
 if TYPE_CHECKING:
     from pathlib import Path
+
+    from reachsets.engine import ReachResult
 
 pytestmark = pytest.mark.external
 
@@ -49,7 +52,7 @@ def _verdicts(
     state = None
     out = []
     for frame in drive.frames():
-        result, state = evaluate(frame_to_reach_inputs(frame, drive.lane_map), params, state)
+        result, state = evaluate_one(frame_to_reach_inputs(frame, drive.lane_map), params, state)
         out.append((round(frame.t_ns / 1e9, 2), frame.extras["labels"]["safety_dyn"], result))
     return tuple(out)
 
@@ -121,7 +124,7 @@ def test_verdict_only_mode_matches_full_geometry(external_dir, name, method):
     state = None
     got = []
     for frame in drive.frames():
-        result, state = evaluate(frame_to_reach_inputs(frame, drive.lane_map), fast, state)
+        result, state = evaluate_one(frame_to_reach_inputs(frame, drive.lane_map), fast, state)
         got.append(result.collisions)
     full = _verdicts(external_dir / "trajectory_supervisor" / name, method)
     assert got == [r.collisions for _, _, r in full]
@@ -130,10 +133,10 @@ def test_verdict_only_mode_matches_full_geometry(external_dir, name, method):
 @pytest.mark.parametrize("method", list(ReachMethod))
 @pytest.mark.parametrize("name", [T1, T34])
 def test_batched_replay_matches_frame_by_frame(external_dir, name, method):
-    """``evaluate_many`` over the whole log (verdict only) gives the frame-by-frame results."""
+    """``evaluate_frames`` over the whole log (verdict only) gives the frame-by-frame results."""
     drive = open_scenario_architect(external_dir / "trajectory_supervisor" / name)
     frames = [frame_to_reach_inputs(f, drive.lane_map) for f in drive.frames()]
-    results, _ = evaluate_many(frames, ReachParams(method=method, full_geometry=False))
+    results, _ = evaluate_frames(frames, ReachParams(method=method, full_geometry=False), None)
     full = _verdicts(external_dir / "trajectory_supervisor" / name, method)
     assert [r.collisions for r in results] == [r.collisions for _, _, r in full]
     assert [[p.rule for p in r.patches] for r in results] == [

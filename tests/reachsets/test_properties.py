@@ -9,12 +9,11 @@ import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from reachsets.engine import evaluate
 from reachsets.footprints import rectangles
 from reachsets.params import ReachMethod, ReachParams
 from reachsets.reach_simple import simple_reach_polygons
 from reachsets.reachable import reachable_sets
-from tests.reachsets.helpers import inputs, objects, straight_ego, straight_track
+from tests.reachsets.helpers import evaluate_one, inputs, objects, straight_ego, straight_track
 
 TIMES = np.asarray(ReachParams().times_s)
 SLACK = 1e-6
@@ -92,11 +91,11 @@ def test_patches_never_remove_the_objects_footprint(obj_y, ego_y, gap, speed):
     objs = objects((gap, obj_y, 0.0, speed))
     inp = inputs(straight_ego(y0=ego_y, speed=speed), objs, straight_track())
     params = ReachParams(trim_to_drivable=False)
-    res, _ = evaluate(inp, params)
+    res, _ = evaluate_one(inp, params)
     if len(res.object_ids) == 0:
         return
     foot = rectangles(objs.x_m, objs.y_m, objs.yaw_rad, objs.length_m, objs.width_m)[0]
-    plain, _ = evaluate(inp, dataclasses.replace(params, rules_enabled=False))
+    plain, _ = evaluate_one(inp, dataclasses.replace(params, rules_enabled=False))
     # whatever of the footprint the unruled set holds, the ruled set still holds
     before = shapely.intersection(plain.reach_sets[0, 1], foot)
     after = shapely.intersection(res.reach_sets[0, 1], foot)

@@ -3,7 +3,8 @@
 Keys: ``is_safe``; ``collisions`` (``[{"object_id": str, "t_offset_s": float}]``, the first
 collision in time per object, offsets rounded to 1 µs); ``patches`` (``"<rule>:<object>"``
 of every deletion patch applied, sorted); ``skipped_objects`` (ids that could not be
-evaluated).
+evaluated); ``skipped_road`` (map elements left out as unusable, e.g. ``"lane 13"``), only
+when there are any.
 """
 
 from __future__ import annotations
@@ -19,7 +20,7 @@ __all__ = ["reach_record"]
 def reach_record(verdict: ReachVerdict) -> dict[str, Any]:
     """The JSON-ready record of one frame."""
     result = verdict.result
-    return {
+    record: dict[str, Any] = {
         "is_safe": result.is_safe,
         "collisions": [
             {"object_id": c.object_id, "t_offset_s": round(c.t_offset_s, 6)}
@@ -28,3 +29,6 @@ def reach_record(verdict: ReachVerdict) -> dict[str, Any]:
         "patches": sorted({f"{p.rule}:{p.object_id}" for p in result.patches}),
         "skipped_objects": list(result.skipped_ids),
     }
+    if result.skipped_road:
+        record["skipped_road"] = list(result.skipped_road)
+    return record

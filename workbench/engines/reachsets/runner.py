@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from reachsets.engine import evaluate_many
+from reachsets import evaluate_frames
 from reachsets.params import ReachMethod, ReachParams
 from workbench.engines.reachsets.adapter import frame_to_reach_inputs, prepare_map
 from workbench.engines.reachsets.verdict import ReachVerdict, reach_verdict
@@ -24,7 +24,7 @@ class ReachRunner:
 
     The rule memory (past-time LTL state) is carried from frame to frame; a fresh runner
     starts a replay at any frame with empty memory. ``step_many`` evaluates consecutive
-    frames in one batch (``reachsets.engine.evaluate_many``) with the same results.
+    frames in one batch (``reachsets.evaluate_frames``) with the same results.
     """
 
     name = "reachsets"
@@ -51,5 +51,5 @@ class ReachRunner:
     def step_many(self, frames: Sequence[Frame]) -> list[ReachVerdict]:
         """Evaluate consecutive frames at once (as ``step`` on each in turn)."""
         inputs = [frame_to_reach_inputs(f, self._map) for f in frames]
-        results, self._state = evaluate_many(inputs, self._params, self._state)
+        results, self._state = evaluate_frames(inputs, self._params, self._state)
         return [reach_verdict(r) for r in results]
