@@ -13,10 +13,10 @@ import sqlite3
 from typing import TYPE_CHECKING
 
 import pytest
-from workbench.reach_adapter import frame_to_reach_inputs, prepare_map
 
 from loaders.open import open_drive
 from reachsets import ReachParams, evaluate_frames
+from workbench.engines.reachsets.adapter import frame_to_reach_inputs, prepare_map
 
 if TYPE_CHECKING:
     from pathlib import Path

@@ -13,14 +13,15 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 import pytest
-from rss.batch import stack_constellations
-from workbench.rss_adapter import IdMap, frame_to_scene, lane_graph_from_map
 
 from loaders.open import open_drive
 from rss.params import RssParams
 from rss.scene import create_scene, prepare
 from rss.scene.matching import match_route
+from rss.structured.stacking import stack_constellations
 from tests.rss.scene.synthetic import straight_road
+from workbench.engines.ids import IdMap
+from workbench.engines.rss.adapter import frame_to_scene, lane_graph_from_map
 
 if TYPE_CHECKING:
     from rss.model import Constellation
