@@ -10,7 +10,7 @@ from rss.batch import stack_constellations
 from rss.conformance import response_record
 from rss.engine import check_frames, select_frame
 from rss.params import ObjectClass, RssParams
-from rss.scene import create_scene, prepare
+from rss.scene import SceneMemo, create_scene, prepare
 from rss.scene.boundaries import LEFT_BOUNDARY_ID, RIGHT_BOUNDARY_ID
 from rss.scene.chunked import match_frames
 from rss.scene.create import scene_boxes
@@ -68,6 +68,7 @@ class RssRunner:
         if lane_map is not None and lane_map.format != "track":
             graph = lane_graph_from_map(lane_map)
             self._prep = prepare(graph) if len(graph) else None
+        self._scene_memo = SceneMemo()  # per map, kept across frames (rss.scene.memo)
         self._ids = IdMap()
         self._memory: RssMemory | None = None
 
@@ -96,6 +97,7 @@ class RssRunner:
                 self._params.scene,
                 road_boundaries=self._road_boundaries,
                 matches=m,
+                memo=self._scene_memo,
             )
             for (ego, objects, _), m in zip(inputs, matches, strict=True)
         ]
