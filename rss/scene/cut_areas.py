@@ -11,7 +11,7 @@ drives on its conflict lane, and measures the part of each conflict lane inside 
                                                     it is no longer common area
 
 The default mode keeps intersection road areas whole and measures on the whole lanes
-(``rss.scene.intersection.area_span``).
+(``rss.scene.junction_pairs.area_span``).
 """
 
 from __future__ import annotations
