@@ -34,6 +34,7 @@ from rss.params import DEFAULT_EGO_DYNAMICS, DEFAULT_VEHICLE_DYNAMICS, SceneSett
 from rss.scene import (
     PreparedGraph,
     SceneEgo,
+    SceneMemo,
     SceneObjects,
     create_scene,
     match_boxes,
@@ -133,14 +134,16 @@ def _drives(prep: PreparedGraph, scenes: int, frames: int) -> Drives:
     return out
 
 
-def _per_frame(prep: PreparedGraph, drives: Drives, settings: SceneSettings) -> Phases:
+def _per_frame(
+    prep: PreparedGraph, memo: SceneMemo, drives: Drives, settings: SceneSettings
+) -> Phases:
     """One call per frame: ``create_scene``, ``stack_constellations``, ``check_frame``."""
     t = dict.fromkeys(("match", "scene", "stack", "check"), 0.0)
     for drive in drives:
         memory = None
         for ego, objects in drive:
             a = time.process_time()
-            scene = create_scene(prep, ego, objects, settings)
+            scene = create_scene(prep, ego, objects, settings, memo=memo)
             b = time.process_time()
             if scene.constellations:
                 batch = stack_constellations(scene.constellations)
@@ -155,7 +158,9 @@ def _per_frame(prep: PreparedGraph, drives: Drives, settings: SceneSettings) -> 
     return t
 
 
-def _batched(prep: PreparedGraph, drives: Drives, settings: SceneSettings) -> Phases:
+def _batched(
+    prep: PreparedGraph, memo: SceneMemo, drives: Drives, settings: SceneSettings
+) -> Phases:
     """Each drive as the pipeline runs ``RssRunner.step_many`` on it: under its GC
     threshold (``engine_gc``), chunks of ``CHUNK_FRAMES`` frames, each with one
     ``match_frames``, ``create_scene`` per frame on its matches, one stacking and one
@@ -165,14 +170,16 @@ def _batched(prep: PreparedGraph, drives: Drives, settings: SceneSettings) -> Ph
         memory = None
         with engine_gc():
             for lo in range(0, len(drive), CHUNK_FRAMES):
-                memory = _chunk(prep, drive[lo : lo + CHUNK_FRAMES], settings, memory, t)
+                chunk = drive[lo : lo + CHUNK_FRAMES]
+                memory = _chunk(prep, memo, chunk, settings, memory, t)
             e = time.process_time()
         t["check"] += time.process_time() - e
     return t
 
 
-def _chunk(
+def _chunk(  # noqa: PLR0917 - the map, its memos, the frames and the tallies
     prep: PreparedGraph,
+    memo: SceneMemo,
     chunk: list[tuple[SceneEgo, SceneObjects]],
     settings: SceneSettings,
     memory: RssMemory | None,
@@ -183,7 +190,7 @@ def _chunk(
     matches = match_frames(prep, [scene_boxes(ego, objects) for ego, objects in chunk])
     b = time.process_time()
     scenes = [
-        create_scene(prep, ego, objects, settings, matches=m)
+        create_scene(prep, ego, objects, settings, matches=m, memo=memo)
         for (ego, objects), m in zip(chunk, matches, strict=True)
     ]
     c = time.process_time()
@@ -229,8 +236,9 @@ def pure_phases(quick: bool) -> Phases:  # noqa: FBT001 - bench interface
     """Batched phases per frame [ms] of this interpreter (run with the pure-Python sources)."""
     _, prep, _, drives = _setup(quick)
     n = sum(len(d) for d in drives)
-    _batched(prep, drives, SceneSettings())  # warm the per-map memos, as in :func:`run`
-    return {k: v / n * 1e3 for k, v in _batched(prep, drives, SceneSettings()).items()}
+    memo = SceneMemo()
+    _batched(prep, memo, drives, SceneSettings())  # warm the per-map memos, as in :func:`run`
+    return {k: v / n * 1e3 for k, v in _batched(prep, memo, drives, SceneSettings()).items()}
 
 
 def _pure_phases(quick: bool) -> Phases:  # noqa: FBT001
@@ -248,19 +256,20 @@ def run(quick: bool) -> str:  # noqa: FBT001 - bench interface
     name, prep, prep_ms, drives = _setup(quick)
     settings = SceneSettings()
     n = sum(len(d) for d in drives)
+    memo = SceneMemo()
     constellations = sum(
-        len(create_scene(prep, ego, objects, settings).constellations)
+        len(create_scene(prep, ego, objects, settings, memo=memo).constellations)
         for drive in drives
         for ego, objects in drive
     )
-    one = _best_of(lambda: _per_frame(prep, drives, settings))
+    one = _best_of(lambda: _per_frame(prep, memo, drives, settings))
     fast, why = compiled.status()
     # compiled (this process) and pure Python (a fresh one) alternate, so both see the
     # same phases of the shared machine; the fastest run of each counts
     runs: list[Phases] = []
     pure_runs: list[Phases] = []
     for _ in range(RUNS):
-        runs.append(_batched(prep, drives, settings))
+        runs.append(_batched(prep, memo, drives, settings))
         if fast:
             pure_runs.append(_pure_phases(quick))
     many = min(runs, key=_total)

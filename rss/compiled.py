@@ -1,4 +1,4 @@
-"""Compiled twins of the per-object Python of scene creation (mypyc), used when fresh.
+"""Compiled twins of the per-object Python of scene creation (mypyc), used when asked and fresh.
 
 Scene creation (``rss.scene``) is plain Python over dicts, tuples and small records: about
 0.1 ms per object and frame. mypyc (the compiler that ships with mypy, which type-checks
@@ -8,12 +8,16 @@ same floats in the same order, about 1.7x faster. They are optional:
 * ``make`` builds them with ``tools/build_compiled.py`` into ``build/compiled/`` (outside
   the source tree, git-ignored), with a manifest of each source's sha256, the interpreter's
   extension suffix and the module list.
-* On import, ``rss.scene`` calls :func:`activate`: only if every listed source still has
-  the hash it was compiled from (and the interpreter matches) is the compiled directory
-  put in front of the package's ``__path__``, so the extensions shadow their sources.
-  Otherwise, or with ``RSS_WORKBENCH_PURE_PYTHON=1``, everything runs from the sources;
-  a stale build is logged once (``make`` rebuilds it). All modules or none: compiled
-  modules call each other natively, so a mix could run stale code.
+* Nothing happens on import. An application switches them on with one explicit call of
+  :func:`activate` at its start, before anything imports the listed modules (the
+  ``workbench`` package does it in ``workbench/__init__.py``; benchmarks in
+  ``bench/__init__.py``; the test suite in ``tests/conftest.py``). Only if every listed
+  source still has the hash it was compiled from (and the interpreter matches) does it
+  install an import hook that loads the extensions in place of their sources. Otherwise,
+  or with ``RSS_WORKBENCH_PURE_PYTHON=1``, or without the call, everything runs from the
+  sources; a stale build is logged once (``make`` rebuilds it). All modules or none:
+  compiled modules call each other natively, so a mix could run stale code; a call made
+  after one of them was imported from its source switches nothing on.
 
 ``tests/rss/scene/test_compiled.py`` checks that both ways give bit-identical scenes.
 """
@@ -21,6 +25,7 @@ same floats in the same order, about 1.7x faster. They are optional:
 from __future__ import annotations
 
 import hashlib
+import importlib.abc
 import importlib.machinery
 import importlib.util
 import json
@@ -29,7 +34,11 @@ import os
 import sys
 import sysconfig
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+    from types import ModuleType
 
 __all__ = [
     "BUILD_DIR",
@@ -49,15 +58,21 @@ MODULES = (
     "rss.structured.batch",
     "rss.structured.stacking",
     "rss.scene.align",
-    "rss.scene.cache",
+    "rss.scene.border_stations",
     "rss.scene.connecting",
     "rss.scene.corridor",
     "rss.scene.create",
     "rss.scene.frame",
-    "rss.scene.intersection",
+    "rss.scene.graph_scalars",
+    "rss.scene.junction_arms",
+    "rss.scene.junction_pairs",
+    "rss.scene.junction_relations",
+    "rss.scene.lane_segments",
+    "rss.scene.memo",
     "rss.scene.pairs",
     "rss.scene.roadarea",
     "rss.scene.routes",
+    "rss.scene.segment_plans",
 )
 #: Name of mypyc's shared library of the group (``<GROUP>__mypyc``).
 GROUP = "rss_workbench_compiled"
@@ -104,17 +119,42 @@ def stale_reason(build_dir: Path = BUILD_DIR, root: Path = _ROOT) -> str | None:
     return reason
 
 
-def activate(package: str, path: list[str], build_dir: Path = BUILD_DIR) -> bool:
-    """Let ``package`` (``__name__``, ``__path__``) import the compiled modules if fresh.
+class _CompiledFinder(importlib.abc.MetaPathFinder):
+    """Finds the extensions of :data:`MODULES` in the build directory."""
 
-    Decided once per process, by the first package that asks (``rss``, then ``rss.scene``).
+    def __init__(self, build_dir: Path) -> None:
+        self._build_dir = build_dir
+        self._suffix = str(sysconfig.get_config_var("EXT_SUFFIX"))
+
+    def find_spec(
+        self,
+        fullname: str,
+        path: Sequence[str] | None,  # noqa: ARG002 - the finder protocol
+        target: ModuleType | None = None,  # noqa: ARG002
+    ) -> importlib.machinery.ModuleSpec | None:
+        """The extension's spec for a listed module, else ``None`` (the next finder's)."""
+        if fullname not in MODULES:
+            return None
+        where = str(self._build_dir / (fullname.replace(".", "/") + self._suffix))
+        loader = importlib.machinery.ExtensionFileLoader(fullname, where)
+        return importlib.util.spec_from_file_location(fullname, where, loader=loader)
+
+
+def activate(build_dir: Path = BUILD_DIR) -> bool:
+    """Switch the compiled modules on if the build is fresh (once per process).
+
+    Call it at the start of an application, before anything imports a module of
+    :data:`MODULES`; later calls return the first decision.
+
+    Returns:
+        Whether the compiled modules are used (:func:`status` says why not).
     """
-    if _STATE["active"]:
-        _add_path(package, path, build_dir)
-        return True
-    if _STATE["reason"] != "not requested":
-        return False
+    if _STATE["active"] or _STATE["reason"] != "not requested":
+        return bool(_STATE["active"])
     reason = stale_reason(build_dir)
+    imported = sorted(m for m in MODULES if m in sys.modules)
+    if reason is None and imported:
+        reason = f"{', '.join(imported)} already imported from the sources"
     if reason is not None:
         if (build_dir / "manifest.json").exists() and not os.environ.get(PURE_ENV):
             _LOG.warning("compiled scene modules not used (%s); running from the sources", reason)
@@ -130,15 +170,9 @@ def activate(package: str, path: list[str], build_dir: Path = BUILD_DIR) -> bool
             _STATE["reason"] = f"cannot load {lib}"
             return False
         sys.modules[name] = importlib.util.module_from_spec(spec)
+    sys.meta_path.insert(0, _CompiledFinder(build_dir))
     _STATE.update(active=True, reason="")
-    _add_path(package, path, build_dir)
     return True
-
-
-def _add_path(package: str, path: list[str], build_dir: Path) -> None:
-    where = str(build_dir / package.replace(".", "/"))
-    if where not in path:
-        path.insert(0, where)
 
 
 def status() -> tuple[bool, str]:

@@ -23,7 +23,7 @@ import numpy as np
 
 from rss.arrays import IntArray  # noqa: TC001 - dataclass field type
 from rss.params import ObjectClass
-from rss.scene import create_scene
+from rss.scene import SceneMemo, create_scene
 from rss.scene.chunked import match_frames
 from rss.scene.create import scene_boxes
 from rss.structured.engine import FrameResult, check_frames, select_frame
@@ -68,6 +68,7 @@ def evaluate_frames(
     state: RssMemory | None,
     *,
     graph: PreparedGraph,
+    memo: SceneMemo | None = None,
     road_boundaries: bool = False,
 ) -> tuple[list[FrameVerdict], RssMemory | None]:
     """Create the scenes of ``F`` consecutive frames and check them in one call.
@@ -83,6 +84,8 @@ def evaluate_frames(
             and scene settings.
         state: Memory before the first frame (``None`` = fresh start).
         graph: The prepared lane graph of the drive's map.
+        memo: The map's scene memo, kept by the caller across calls (``None``: a fresh one
+            for this call; same results, slower).
         road_boundaries: Also check the ego against the road boundaries along its route.
 
     Returns:
@@ -90,8 +93,17 @@ def evaluate_frames(
         when the last frame has no constellation.
     """
     matches = match_frames(graph, [scene_boxes(ego, objects) for ego, objects in frames])
+    memo = memo if memo is not None else SceneMemo()
     scenes = [
-        create_scene(graph, ego, objects, params.scene, road_boundaries=road_boundaries, matches=m)
+        create_scene(
+            graph,
+            ego,
+            objects,
+            params.scene,
+            road_boundaries=road_boundaries,
+            matches=m,
+            memo=memo,
+        )
         for (ego, objects), m in zip(frames, matches, strict=True)
     ]
     counts = [len(s.constellations) for s in scenes]

@@ -12,6 +12,12 @@ from pathlib import Path
 
 import pytest
 
+from rss import compiled
+
+# As the workbench at its start: the compiled scene modules (``rss.compiled``), when
+# fresh, before any test imports ``rss`` submodules.
+compiled.activate()
+
 EXTERNAL_DIR = (Path(__file__).resolve().parents[1] / ".." / "shared" / "external").resolve()
 
 

@@ -31,10 +31,10 @@ sys.path.insert(0, str(ROOT))
 from bench.bench_scene import TOWN01, _drives  # noqa: E402
 from loaders.maps.opendrive import read_opendrive  # noqa: E402
 from rss.params import SceneSettings  # noqa: E402
-from rss.scene import PreparedGraph, create_scene, match_boxes, prepare  # noqa: E402
+from rss.scene import PreparedGraph, SceneMemo, create_scene, match_boxes, prepare  # noqa: E402
 from rss.scene.chunked import match_frames  # noqa: E402
 from rss.scene.create import scene_boxes  # noqa: E402
-from rss.scene.matching import BoxArrays  # noqa: E402
+from rss.scene.match_records import BoxArrays  # noqa: E402
 from tests.rss.scene.test_crosscheck_adrss_map import (  # noqa: E402
     N_PAIRS,
     SETTINGS,
@@ -79,6 +79,7 @@ def bench_digest(prep: PreparedGraph, quick: bool) -> str:  # noqa: FBT001
     """Digest of the bench frames (see module docstring)."""
     h = hashlib.sha256()
     settings = SceneSettings()
+    memo = SceneMemo()
     for drive in _drives(prep, *((3, 10) if quick else (10, 40))):
         for ego, objects in drive:
             _add_matches(h, match_boxes(prep, scene_boxes(ego, objects)))
@@ -87,7 +88,7 @@ def bench_digest(prep: PreparedGraph, quick: bool) -> str:  # noqa: FBT001
             matches = match_frames(prep, [scene_boxes(e, o) for e, o in chunk])
             for (ego, objects), m in zip(chunk, matches, strict=True):
                 _add_matches(h, m)
-                _add_scene(h, create_scene(prep, ego, objects, settings, matches=m))
+                _add_scene(h, create_scene(prep, ego, objects, settings, matches=m, memo=memo))
     return h.hexdigest()
 
 

@@ -33,7 +33,7 @@ from typing import TYPE_CHECKING
 from rss.model import LaneDrivingDirection
 
 if TYPE_CHECKING:
-    from rss.scene.lanegraph import PreparedGraph
+    from rss.scene.prepared import PreparedGraph
 
 __all__ = ["defective_enu_heading", "lane_chord_heading"]
 

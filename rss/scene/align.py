@@ -33,7 +33,7 @@ from typing import TYPE_CHECKING
 from rss.scene.admap_nearest import DISTANCE_TOL_M
 
 if TYPE_CHECKING:
-    from rss.scene.lanegraph import PreparedGraph
+    from rss.scene.border_index import BorderIndex
 
 __all__ = ["Aligner"]
 
@@ -47,21 +47,22 @@ _REACH_SHARE = 0.1
 class Aligner:
     """ad-map's aligned cuts on one prepared graph (see module docstring).
 
-    Holds the borders of ``prep.borders`` as Python lists for scalar access:
-    line ``l`` is the left border of lane ``l``, line ``L + l`` its right border.
+    Holds the borders of a :class:`~rss.scene.border_index.BorderIndex` as Python lists
+    for scalar access: line ``l`` is the left border of lane ``l``, line ``L + l`` its
+    right border. Built once per map by ``prepare``.
     """
 
-    def __init__(self, prep: PreparedGraph) -> None:
-        """Convert the borders of ``prep`` once."""
-        borders = prep.borders
-        self._n = len(prep.straight)
+    def __init__(self, index: BorderIndex) -> None:
+        """Convert the borders of ``index`` once."""
+        borders = index.lines
+        self._n = len(borders.length_m) // 2
         self._x: list[float] = borders.xy_m[:, 0].tolist()
         self._y: list[float] = borders.xy_m[:, 1].tolist()
         self._s: list[float] = borders.s_at_m.tolist()
         self._seg: list[float] = borders.segment_m.tolist()
         self._start: list[int] = borders.start.tolist()
         self._length: list[float] = borders.length_m.tolist()
-        self._backwards: list[bool] = prep.line_backwards.tolist()
+        self._backwards: list[bool] = index.backwards.tolist()
         self._reach: list[float] = [_REACH_M + _REACH_SHARE * v for v in self._length]
 
     def aligned(self, lane: int, t: float, other: int, guess: float) -> float:

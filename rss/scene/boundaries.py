@@ -27,12 +27,13 @@ from rss.model import (
     OccupiedRegion,
     SpeedInterval,
 )
-from rss.scene.roadarea import SegmentPlan, build_road, cut_window, place_object
+from rss.scene.roadarea import build_road, place_object
 from rss.scene.routes import lateral
+from rss.scene.segment_plans import SegmentPlan, cut_window
 
 if TYPE_CHECKING:
     from rss.scene.frame import FrameContext
-    from rss.scene.routes import Step
+    from rss.scene.lanegraph import Step
 
 __all__ = ["BOUNDARY_DYNAMICS", "LEFT_BOUNDARY_ID", "RIGHT_BOUNDARY_ID", "boundary_constellations"]
 
@@ -75,7 +76,7 @@ def boundary_constellations(f: FrameContext, route: tuple[Step, ...]) -> list[Co
     """The two boundary constellations along ``route`` (empty if the ego is not on it)."""
     plans = [SegmentPlan(lanes=_same_direction_section(f, step)) for step in route]
     cut_window(plans, f.matches, (0,), cut_end=False)
-    road, placed, _ = build_road(f.prep, plans)
+    road, placed, _ = build_road(f.prep, f.memo, plans)
     ego = place_object(
         f.matches,
         0,

@@ -19,12 +19,13 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from rss.scene.matching import BoxArrays, Matches, match_boxes
+from rss.scene.match_records import BoxArrays, Matches
+from rss.scene.matching import match_boxes
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
 
-    from rss.scene.lanegraph import PreparedGraph
+    from rss.scene.prepared import PreparedGraph
 
 __all__ = ["match_frames", "split_matches"]
 

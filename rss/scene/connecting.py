@@ -25,15 +25,15 @@ import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from rss.scene.cache import memoised
-from rss.scene.intersection import conflict
+from rss.scene.junction_pairs import conflict
+from rss.scene.memo import memoised
 from rss.scene.roadarea import lane_heading
-from rss.scene.routes import predict_routes
 
 if TYPE_CHECKING:
     from rss.scene.frame import FrameContext
-    from rss.scene.lanegraph import PreparedGraph
-    from rss.scene.routes import Step
+    from rss.scene.lanegraph import Step
+    from rss.scene.memo import SceneMemo
+    from rss.scene.prepared import PreparedGraph
 
 __all__ = [
     "MIN_FEASIBILITY",
@@ -102,10 +102,10 @@ def feasibility(f: FrameContext, box: int, target: int, *, first: int, last: int
     ego_lane = m.anchors[0]
     reg = next(r for r in m.regions(0) if r.lane == ego_lane)
     ahead = (first > 0) == f.forward(0)
-    ego_road = lane_heading(prep, ego_lane, reg.lon_max if ahead else reg.lon_min)
+    ego_road = lane_heading(prep, f.memo, ego_lane, reg.lon_max if ahead else reg.lon_min)
     reg = next(r for r in m.regions(box) if r.lane == target)
     along = (last > 0) == f.tree.forward[target]
-    obj_road = lane_heading(prep, target, reg.lon_min if along else reg.lon_max)
+    obj_road = lane_heading(prep, f.memo, target, reg.lon_min if along else reg.lon_max)
     yaw = float(f.objects.yaw_rad[box - 1])
     return heading_rating(f.ego.yaw_rad, ego_road) * heading_rating(yaw, obj_road)
 
@@ -200,7 +200,7 @@ def _drop_longer(f: FrameContext, routes: list[Connecting]) -> list[Connecting]:
 
 
 def _meet(
-    prep: PreparedGraph, er: tuple[Step, ...], orr: tuple[Step, ...]
+    prep: PreparedGraph, memo: SceneMemo, er: tuple[Step, ...], orr: tuple[Step, ...]
 ) -> tuple[int, int, bool] | None:
     """Where an ego route and an object route meet, or ``None``.
 
@@ -214,7 +214,7 @@ def _meet(
     else:
         # our graph has no links between overlapping intersection lanes (ad-map's
         # OVERLAP contacts): crossing routes meet where their lanes overlap
-        hit = conflict(prep, er, orr)
+        hit = conflict(prep, memo, er, orr)
         if hit is None:
             return None
         lane, lane_o = er[hit[0]][0], orr[hit[1]][0]
@@ -231,21 +231,18 @@ def _meet(
 
 def _merging(f: FrameContext, box: int, max_m: float) -> Connecting | None:
     """The shortest merge of an ego and an object route within ``max_m``, if any."""
-    prep = f.prep
     best: tuple[float, Connecting] | None = None
     ego, obj = (
         [
             (r, f.reach_along(r, behind))
             for lane, fwd, behind in f.starts(b)
-            for r in predict_routes(
-                prep, lane, forward=fwd, horizon_m=max_m, travelled_m=behind, memo=f.route_memo
-            )
+            for r in f.predict(lane, forward=fwd, horizon_m=max_m, travelled_m=behind)
         ]
         for b in (0, box)
     )
     for er, e_at in ego:
         for orr, o_at in obj:
-            meet = memoised(prep, _meet, er, orr)
+            meet = memoised(f.prep, f.memo, _meet, er, orr)
             if meet is None:
                 continue
             lane_e, lane_o, through = meet

@@ -17,7 +17,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from rss.scene.roadarea import (
+from rss.scene.routes import lateral
+from rss.scene.segment_plans import (
     SegmentPlan,
     between,
     cut_at,
@@ -25,12 +26,13 @@ from rss.scene.roadarea import (
     fresh_ends,
     plan_lanes,
 )
-from rss.scene.routes import lateral
 
 if TYPE_CHECKING:
-    from rss.scene.lanegraph import PreparedGraph
-    from rss.scene.matching import Matches
-    from rss.scene.routes import RouteTree, Step
+    from rss.scene.lanegraph import Step
+    from rss.scene.match_records import Matches
+    from rss.scene.memo import SceneMemo
+    from rss.scene.prepared import PreparedGraph
+    from rss.scene.routes import RouteTree
 
 __all__ = ["corridor_plans"]
 
@@ -49,15 +51,20 @@ def _cross_section(prep: PreparedGraph, base: Step, j: int, j_lo: int, j_hi: int
     return [s for jj, s in sorted(out, key=lambda item: item[0]) if j_lo <= jj <= j_hi]
 
 
-def corridor_plans(
-    prep: PreparedGraph, tree: RouteTree, target: int, matches: Matches, boxes: tuple[int, int]
+def corridor_plans(  # noqa: PLR0917 - the tree, its target and the two boxes
+    prep: PreparedGraph,
+    memo: SceneMemo,
+    tree: RouteTree,
+    target: int,
+    matches: Matches,
+    boxes: tuple[int, int],
 ) -> tuple[list[SegmentPlan], dict[int, tuple[int, float]] | None]:
     """Segment plans from the ego's lane to ``target`` for the two ``boxes`` (ego first).
 
     Also returns where the connecting route touches each box (:func:`cut_between`). The
     uncut layout is a function of the tree path, the occupied tree lanes (in set order) and
-    their tree indices; it is memoised per map under exactly those (it repeats from frame
-    to frame), only the cuts are made anew.
+    their tree indices; it is memoised per map (``memo``) under exactly those (it repeats
+    from frame to frame), only the cuts are made anew.
     """
     path = tree.path(target)
     occupied = tuple({r.lane for box in boxes for r in matches.regions(box) if r.lane in tree.k})
@@ -68,14 +75,14 @@ def corridor_plans(
         tuple((k[lane], j[lane], fwd[lane]) for lane in path),
         tuple((k[lane], j[lane], fwd[lane]) for lane in occupied),
     )
-    memo = prep.lane_segments.corridor_layouts
-    known = memo.get(key)
+    layouts = memo.corridor_layouts
+    known = layouts.get(key)
     if known is None:
-        if len(memo) >= _MAX_LAYOUTS:
-            memo.clear()
+        if len(layouts) >= _MAX_LAYOUTS:
+            layouts.clear()
         layout = _layout(prep, tree, path, occupied)
         uncut = tuple(SegmentPlan(lanes=list(lanes)) for lanes in layout)
-        memo[key] = known = (uncut, plan_lanes(layout))
+        layouts[key] = known = (uncut, plan_lanes(layout))
     uncut, where = known
     cut = between(where, matches, boxes)
     if cut is None:

@@ -19,7 +19,9 @@ import numpy as np
 from rss.scene.boundaries import boundary_constellations
 from rss.scene.frame import FrameContext, ego_routes, lane_headings
 from rss.scene.inputs import Scene, conservative_stop_m
-from rss.scene.matching import BoxArrays, match_boxes
+from rss.scene.match_records import BoxArrays
+from rss.scene.matching import match_boxes
+from rss.scene.memo import SceneMemo
 from rss.scene.pairs import object_constellations
 from rss.scene.routes import RouteTree, connect
 
@@ -27,8 +29,8 @@ if TYPE_CHECKING:
     from rss.model import Constellation
     from rss.params import SceneSettings
     from rss.scene.inputs import SceneEgo, SceneObjects
-    from rss.scene.lanegraph import PreparedGraph
-    from rss.scene.matching import Matches
+    from rss.scene.match_records import Matches
+    from rss.scene.prepared import PreparedGraph
 
 __all__ = ["create_scene", "scene_boxes"]
 
@@ -55,6 +57,7 @@ def create_scene(
     *,
     road_boundaries: bool = False,
     matches: Matches | None = None,
+    memo: SceneMemo | None = None,
 ) -> Scene:
     """Constellations between the ego and every object (see module docstring).
 
@@ -68,6 +71,9 @@ def create_scene(
             route (``rss.scene.boundaries``).
         matches: The map matching of ``scene_boxes(ego, objects)`` when already done
             (e.g. for many frames at once, ``rss.scene.chunked.match_frames``).
+        memo: The map's memos: pass the same :class:`~rss.scene.memo.SceneMemo` to every
+            frame of one prepared graph (``None``: a fresh one for this call; same
+            results, slower).
     """
     n = len(objects.ids)
     if matches is None:
@@ -88,26 +94,31 @@ def create_scene(
     relevant = (gap <= reach) & (matches.anchor[1:] >= 0)
     horizon = float(reach[relevant].max()) + ego.length_m if relevant.any() else 0.0
     velocity = (ego.speed_mps * np.cos(ego.yaw_rad), ego.speed_mps * np.sin(ego.yaw_rad))
+    if memo is None:
+        memo = SceneMemo()
+    headings = lane_headings(matches, n + 1)
     frame = FrameContext(
-        prep, ego, objects, settings, matches, RouteTree(), lane_headings(matches, n + 1), velocity
+        prep, memo, ego, objects, settings, matches, RouteTree(), headings, velocity
     )
     frame.tree = connect(
         prep,
+        memo,
         int(matches.anchor[0]),
         forward=frame.forward(0),
         horizon_m=horizon,
         start=float(matches.anchor_s[0]),
     )
     out: list[Constellation] = []
+    areas: list[tuple[tuple[int, float, float], ...]] = []
     if road_boundaries:
         out = boundary_constellations(frame, ego_routes(frame, max(horizon, _MIN_RELEVANT_M))[0])
+        areas = [()] * len(out)
     skipped: list[int] = []
     for i in np.flatnonzero(relevant):
         found = object_constellations(frame, int(i), float(reach[i]), green_lights)
-        out.extend(found)
+        out.extend(c.constellation for c in found)
+        areas.extend(c.road_area for c in found)
         if not found:
             skipped.append(ids[i])
     skipped.extend(ids[i] for i in np.flatnonzero(~relevant))
-    built = frame.road_areas
-    areas = tuple(built[id(c)][1] if id(c) in built and built[id(c)][0] is c else () for c in out)
-    return Scene(tuple(out), tuple(sorted(skipped)), ego_on_map=True, road_areas=areas)
+    return Scene(tuple(out), tuple(sorted(skipped)), ego_on_map=True, road_areas=tuple(areas))

@@ -1,9 +1,10 @@
 """What the constellations of one frame share: :class:`FrameContext`, the ego's routes.
 
-One :class:`FrameContext` per frame holds the prepared graph, the ego and the objects,
-the map matching, the route tree from the ego and the lane headings at each box, and
-builds single constellations from segment plans (speed-limit modes applied to both
-dynamics).
+One :class:`FrameContext` per frame holds the prepared graph and the map's memos, the ego
+and the objects, the map matching, the route tree from the ego and the lane headings at
+each box, and builds single constellations from segment plans (speed-limit modes applied
+to both dynamics). What it computes once per frame is kept in its :class:`FrameMemo`,
+keyed by value (boxes, lanes, routes).
 """
 
 from __future__ import annotations
@@ -12,24 +13,26 @@ import dataclasses
 import functools
 import math
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
 from rss.dynamics import RssDynamics  # noqa: TC001 - dataclass field types, read at run time when compiled (mypyc)
-from rss.model import Constellation, LaneObject, ObjectType
+from rss.model import Constellation, ConstellationType, LaneObject, ObjectType, RoadSegment
 from rss.params import RestrictSpeedLimitMode, SceneSettings
 from rss.scene.inputs import SceneEgo, SceneObjects  # noqa: TC001 - dataclass field types, read at run time when compiled (mypyc)
-from rss.scene.lanegraph import PreparedGraph  # noqa: TC001 - dataclass field types, read at run time when compiled (mypyc)
-from rss.scene.matching import Matches  # noqa: TC001 - dataclass field types, read at run time when compiled (mypyc)
-from rss.scene.roadarea import BuiltSegment, build_road, lane_heading, place_object
-from rss.scene.routes import RouteMemo, RouteTree, Step, follows_traffic, predict_routes
+from rss.scene.lanegraph import Step  # noqa: TC001 - dataclass field types, read at run time when compiled (mypyc)
+from rss.scene.match_records import Matches  # noqa: TC001 - dataclass field types, read at run time when compiled (mypyc)
+from rss.scene.memo import SceneMemo  # noqa: TC001 - dataclass field types, read at run time when compiled (mypyc)
+from rss.scene.prepared import PreparedGraph  # noqa: TC001 - dataclass field types, read at run time when compiled (mypyc)
+from rss.scene.roadarea import build_road, lane_heading, place_object
+from rss.scene.routes import RouteMemo, RouteTree, follows_traffic, predict_routes
+from rss.scene.segment_plans import BuiltSegment  # noqa: TC001 - dataclass field types, read at run time when compiled (mypyc)
 
 if TYPE_CHECKING:
-    from rss.model import ConstellationType, RoadSegment
-    from rss.scene.roadarea import PlacedLane, SegmentPlan
+    from rss.scene.segment_plans import PlacedLane, SegmentPlan
 
-__all__ = ["FrameContext", "ego_routes", "lane_headings"]
+__all__ = ["BuiltConstellation", "FrameContext", "FrameMemo", "ego_routes", "lane_headings"]
 
 #: A touched lane is a start of a vehicle's routes when the vehicle heads along its traffic
 #: direction, as ad-map predicts from every occupied region (within 90 degrees); a lane
@@ -52,12 +55,53 @@ def _limited(dyn: RssDynamics, limit: float, mode: RestrictSpeedLimitMode) -> Rs
     return dataclasses.replace(dyn, max_speed_on_acceleration_mps=limit * factor)
 
 
+class BuiltConstellation(NamedTuple):
+    """A constellation with its road area as lane windows (``Scene.road_areas``).
+
+    Attributes:
+        constellation: The constellation.
+        road_area: Its road-area lanes ``(lane, start, end)`` along each lane's point order.
+    """
+
+    constellation: Constellation
+    road_area: tuple[tuple[int, float, float], ...]
+
+
+@dataclass(slots=True)
+class FrameMemo:
+    """What one frame computes once (all keyed by value; do not modify the entries).
+
+    Attributes:
+        routes: Predicted routes of this frame (``rss.scene.routes.predict_routes``).
+        cut_segments: Cut road segments of this frame (``build_road``'s ``cut_memo``).
+        placed_objects: Objects placed in road areas, by box, route heading and the placed
+            lanes the box touches (the same window gives the same object).
+        limited_dynamics: Dynamics of a box under the speed-limit mode by (box, limit).
+        start_lanes: :meth:`FrameContext.starts` by box.
+        box_lanes: :meth:`FrameContext.lanes_of` by box.
+        box_forward: :meth:`FrameContext.forward` by box.
+        route_reach: :meth:`FrameContext.reach_along` by (route, start).
+    """
+
+    routes: RouteMemo = field(default_factory=dict)
+    cut_segments: dict[tuple[object, ...], BuiltSegment] = field(default_factory=dict)
+    placed_objects: dict[tuple[object, ...], LaneObject | None] = field(default_factory=dict)
+    limited_dynamics: dict[tuple[int, float], RssDynamics] = field(default_factory=dict)
+    start_lanes: dict[int, list[tuple[int, bool, float]]] = field(default_factory=dict)
+    box_lanes: dict[int, list[int]] = field(default_factory=dict)
+    box_forward: dict[int, bool] = field(default_factory=dict)
+    route_reach: dict[tuple[tuple[Step, ...], float], dict[int, float]] = field(
+        default_factory=dict
+    )
+
+
 @dataclass(slots=True)
 class FrameContext:
     """What the constellations of one frame share.
 
     Attributes:
         prep: The prepared lane graph.
+        memo: The map's memos (``rss.scene.memo``).
         ego: The ego.
         objects: The other objects (box ``i + 1`` is object ``i``; box 0 is the ego).
         settings: Scene settings.
@@ -65,23 +109,11 @@ class FrameContext:
         tree: Connecting routes from the ego's anchor lane.
         headings: Per box, the heading of each touched lane's point order at its centre.
         ego_velocity: ``(vx, vy)`` of the ego in the map frame.
-        road_areas: Each built constellation with its road-area lanes ``(lane, p0, p1)``,
-            by ``id()`` (the constellation is held, so its id cannot be reused within the
-            frame; see ``Scene.road_areas``).
-        route_memo: Predicted routes of this frame (``rss.scene.routes.predict_routes``).
-        cut_segments: Cut road segments of this frame (``build_road``'s ``cut_memo``).
-        placed_objects: Objects placed in road areas this frame, by box, route heading and
-            the placed lanes the box touches (the same window gives the same object).
-        limited_dynamics: Dynamics under the speed-limit mode by (``id()`` of the frame's
-            dynamics object, which the frame holds, speed limit).
-        start_lanes: :meth:`starts` by box (do not modify).
-        box_lanes: :meth:`lanes_of` by box.
-        box_forward: :meth:`forward` by box.
-        route_reach: :meth:`reach_along` by (``id()`` of the route, start); each entry
-            holds its route, so the id is not reused within the frame.
+        once: What this frame computes once.
     """
 
     prep: PreparedGraph
+    memo: SceneMemo
     ego: SceneEgo
     objects: SceneObjects
     settings: SceneSettings
@@ -89,27 +121,15 @@ class FrameContext:
     tree: RouteTree
     headings: dict[int, dict[int, float]]
     ego_velocity: tuple[float, float]
-    road_areas: dict[int, tuple[Constellation, tuple[tuple[int, float, float], ...]]] = field(
-        default_factory=dict
-    )
-    route_memo: RouteMemo = field(default_factory=dict)
-    cut_segments: dict[tuple[object, ...], BuiltSegment] = field(default_factory=dict)
-    placed_objects: dict[tuple[object, ...], LaneObject | None] = field(default_factory=dict)
-    limited_dynamics: dict[tuple[int, float], RssDynamics] = field(default_factory=dict)
-    start_lanes: dict[int, list[tuple[int, bool, float]]] = field(default_factory=dict)
-    box_lanes: dict[int, list[int]] = field(default_factory=dict)
-    box_forward: dict[int, bool] = field(default_factory=dict)
-    route_reach: dict[tuple[int, float], tuple[tuple[Step, ...], dict[int, float]]] = field(
-        default_factory=dict
-    )
+    once: FrameMemo = field(default_factory=FrameMemo)
 
     def forward(self, box: int) -> bool:
         """Whether the box heads along its anchor lane's point order (once per box)."""
-        known = self.box_forward.get(box)
+        known = self.once.box_forward.get(box)
         if known is None:
             yaw = self.ego.yaw_rad if box == 0 else float(self.objects.yaw_rad[box - 1])
             known = bool(np.cos(yaw - self.matches.anchor_heading_rad[box]) >= 0.0)
-            self.box_forward[box] = known
+            self.once.box_forward[box] = known
         return known
 
     def starts(self, box: int) -> list[tuple[int, bool, float]]:
@@ -123,7 +143,7 @@ class FrameContext:
         Town01, measured with the oracle). Lanes at right angles to the heading are left
         out. Computed once per box.
         """
-        known = self.start_lanes.get(box)
+        known = self.once.start_lanes.get(box)
         if known is not None:
             return known
         m = self.matches
@@ -147,23 +167,28 @@ class FrameContext:
             behind = lengths[lane] * (p if fwd else 1.0 - p)
             out.append((lane, fwd, behind))
         out.sort(key=lambda item: item[0] != anchor)
-        self.start_lanes[box] = out
+        self.once.start_lanes[box] = out
         return out
+
+    def predict(
+        self, lane: int, *, forward: bool, horizon_m: float, travelled_m: float
+    ) -> list[tuple[Step, ...]]:
+        """``predict_routes`` from ``lane`` with the map's and this frame's memos."""
+        return predict_routes(
+            self.prep,
+            self.memo,
+            lane,
+            forward=forward,
+            horizon_m=horizon_m,
+            travelled_m=travelled_m,
+            frame_routes=self.once.routes,
+        )
 
     def routes(self, box: int, horizon_m: float) -> list[tuple[Step, ...]]:
         """Predicted routes from every lane in :meth:`starts`."""
         out: list[tuple[Step, ...]] = []
         for lane, fwd, behind in self.starts(box):
-            out.extend(
-                predict_routes(
-                    self.prep,
-                    lane,
-                    forward=fwd,
-                    horizon_m=horizon_m,
-                    travelled_m=behind,
-                    memo=self.route_memo,
-                )
-            )
+            out.extend(self.predict(lane, forward=fwd, horizon_m=horizon_m, travelled_m=behind))
         return out
 
     def constellation(
@@ -175,7 +200,7 @@ class FrameContext:
         ends: dict[int, tuple[int, float]] | None = None,
         *,
         swap_headings: bool = False,
-    ) -> Constellation | None:
+    ) -> BuiltConstellation | None:
         """Build one constellation of object ``i`` (``obj_plans`` only for intersections).
 
         ``ends`` (from :func:`cut_between`): where the connecting route touches each box;
@@ -190,17 +215,18 @@ class FrameContext:
             along = {s[0] for p in ego_plans for s in p.lanes if s[1]}
             for box, (lane, at) in ends.items():
                 turn = 0.0 if lane in along else np.pi
-                route_heading[box] = lane_heading(self.prep, lane, at) + turn
+                route_heading[box] = lane_heading(self.prep, self.memo, lane, at) + turn
             if swap_headings:
                 route_heading[0], route_heading[i + 1] = route_heading[i + 1], route_heading[0]
-        memo = self.cut_segments
+        cut = self.once.cut_segments
         windows: list[tuple[int, float, float]] = []
-        ego_road, ego_placed, limit = build_road(self.prep, ego_plans, 0, memo, windows)
+        ego_road, ego_placed, limit = build_road(self.prep, self.memo, ego_plans, 0, cut, windows)
         obj_road: tuple[RoadSegment, ...] = ()
         obj_placed = ego_placed
         if obj_plans is not None:
+            offset = len(self.prep.graph)
             obj_road, obj_placed, limit2 = build_road(
-                self.prep, obj_plans, len(self.prep.graph), memo, windows
+                self.prep, self.memo, obj_plans, offset, cut, windows
             )
             limit = limit2 if (math.isnan(limit) or limit2 > limit) else limit
         o = self.objects
@@ -212,47 +238,46 @@ class FrameContext:
             constellation_type=kind,
             ego=ego,
             other=other,
-            ego_dynamics=self._limited(self.ego.dynamics, float(limit)),
-            other_dynamics=self._limited(o.dynamics[i], float(limit)),
+            ego_dynamics=self._limited(0, self.ego.dynamics, float(limit)),
+            other_dynamics=self._limited(i + 1, o.dynamics[i], float(limit)),
             ego_road=ego_road,
             intersecting_road=obj_road,
         )
-        self.road_areas[id(built)] = (built, tuple(windows))
-        return built
+        return BuiltConstellation(built, tuple(windows))
 
     def lanes_of(self, box: int) -> list[int]:
         """Lanes the box touches, in pair order (computed once per box; do not modify)."""
-        known = self.box_lanes.get(box)
+        known = self.once.box_lanes.get(box)
         if known is None:
-            self.box_lanes[box] = known = [r.lane for r in self.matches.regions(box)]
+            self.once.box_lanes[box] = known = [r.lane for r in self.matches.regions(box)]
         return known
 
     def reach_along(self, route: tuple[Step, ...], start_m: float) -> dict[int, float]:
         """Distance along ``route`` to the start of each of its lanes [m].
 
         ``start_m`` is the part of its first lane already behind; computed once per frame
-        for a route of the route memo (do not modify).
+        for each route and start (do not modify).
         """
-        key = (id(route), start_m)
-        entry = self.route_reach.get(key)
-        if entry is not None:
-            return entry[1]
+        key = (route, start_m)
+        known = self.once.route_reach.get(key)
+        if known is not None:
+            return known
         lengths = self.prep.scalars.centre_length_m
         out: dict[int, float] = {}
         dist = -start_m
         for lane, _ in route:
             out.setdefault(lane, max(0.0, dist))
             dist += lengths[lane]
-        self.route_reach[key] = (route, out)
+        self.once.route_reach[key] = out
         return out
 
-    def _limited(self, dyn: RssDynamics, limit: float) -> RssDynamics:
-        """``dyn`` under the speed-limit mode, once per frame for each dynamics object."""
-        key = (id(dyn), limit)
-        out = self.limited_dynamics.get(key)
+    def _limited(self, box: int, dyn: RssDynamics, limit: float) -> RssDynamics:
+        """``dyn`` (the dynamics of ``box``) under the speed-limit mode, once per frame."""
+        key = (box, limit)
+        out = self.once.limited_dynamics.get(key)
         if out is None:
             mode = self.settings.restrict_speed_limit_mode
-            self.limited_dynamics[key] = out = _limited(dyn, limit, mode)
+            self.once.limited_dynamics[key] = out = _limited(dyn, limit, mode)
         return out
 
     def _place(
@@ -260,8 +285,9 @@ class FrameContext:
     ) -> LaneObject | None:
         """``place_object`` of a box, once per frame for the same window of its lanes."""
         key = (box, route_heading_rad, *map(placed.get, self.lanes_of(box)))
-        if key in self.placed_objects:
-            return self.placed_objects[key]
+        known = self.once.placed_objects
+        if key in known:
+            return known[key]
         if box == 0:
             identity = (self.ego.object_id, ObjectType.EgoVehicle, self.ego_velocity)
         else:
@@ -274,7 +300,7 @@ class FrameContext:
         out = place_object(
             self.matches, box, placed, *identity, self.headings[box], route_heading_rad
         )
-        self.placed_objects[key] = out
+        known[key] = out
         return out
 
 
@@ -289,12 +315,10 @@ def ego_routes(f: FrameContext, horizon_m: float) -> list[tuple[Step, ...]]:
         return f.routes(0, horizon_m)
     lane, fwd, behind = f.starts(0)[0]
     base = ((lane, fwd), *(s for s in f.ego.route if s[0] != lane))
-    tails = predict_routes(
-        f.prep,
+    tails = f.predict(
         base[-1][0],
         forward=base[-1][1],
         horizon_m=horizon_m,
         travelled_m=behind if len(base) == 1 else 0.0,
-        memo=f.route_memo,
     )
     return [base + tail[1:] for tail in tails]

@@ -9,7 +9,7 @@ if TYPE_CHECKING:
     from rss.arrays import FloatArray, IntArray
     from rss.dynamics import RssDynamics
     from rss.model import Constellation
-    from rss.scene.routes import Step
+    from rss.scene.lanegraph import Step
 
 __all__ = ["Scene", "SceneEgo", "SceneObjects", "conservative_stop_m"]
 

@@ -24,12 +24,12 @@ from typing import TYPE_CHECKING, NamedTuple
 import numpy as np
 
 from rss.scene.admap_nearest import DISTANCE_TOL_M, columns, flat_runs
-from rss.scene.lanegraph import MATCH_DISTANCE_M
+from rss.scene.prepared import MATCH_DISTANCE_M
 
 if TYPE_CHECKING:
     from rss.arrays import BoolArray, FloatArray, IntArray
-    from rss.scene.lanegraph import PreparedGraph
-    from rss.scene.matching import BoxArrays
+    from rss.scene.match_records import BoxArrays
+    from rss.scene.prepared import PreparedGraph
 
 __all__ = [
     "DISTANCE_TOL_M",
@@ -75,7 +75,7 @@ def ad_map_positions(
     q = len(lanes)
     both = np.concatenate([lanes, lanes + len(graph.straight)])  # left, then right borders
     hint = None if near_m is None else near_m.reshape(-1)
-    s, feet = graph.nearest_on_borders(both, np.concatenate([points, points]), hint, reach_m)
+    s, feet = graph.border_index.nearest(both, np.concatenate([points, points]), hint, reach_m)
     s_l, s_r, l_xy, r_xy = s[:q], s[q:], feet[:q], feet[q:]
     d = r_xy - l_xy
     dd = d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1]

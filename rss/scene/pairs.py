@@ -26,20 +26,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rss.model import Constellation, ConstellationType
+from rss.model import ConstellationType
 from rss.scene.connecting import Connecting, Kind, connecting_routes
 from rss.scene.corridor import corridor_plans
 from rss.scene.cut_areas import cut_area_spans
-from rss.scene.frame import FrameContext, ego_routes
-from rss.scene.intersection import (
-    IntersectionPair,
-    Relation,
-    intersection_pair,
-    junctions_on,
-    relation,
-)
-from rss.scene.roadarea import SegmentPlan, cut_between, cut_window, fresh_ends
-from rss.scene.routes import Step, cross_section, follows_traffic
+from rss.scene.frame import BuiltConstellation, FrameContext, ego_routes
+from rss.scene.junction_pairs import IntersectionPair, intersection_pair
+from rss.scene.junction_relations import Relation, junctions_on, relation
+from rss.scene.lanegraph import Step  # noqa: TC001 - dataclass field types, read at run time when compiled (mypyc)
+from rss.scene.routes import cross_section, follows_traffic
+from rss.scene.segment_plans import SegmentPlan, cut_between, cut_window, fresh_ends
 
 __all__ = ["object_constellations"]
 
@@ -51,7 +47,7 @@ _FOLLOWING_COS = float(np.cos(np.pi / 4))
 
 def _intersection(
     f: FrameContext, i: int, pair: IntersectionPair, kind: ConstellationType | None = None
-) -> Constellation | None:
+) -> BuiltConstellation | None:
     """The intersection constellation of one (ego route, object route) pair.
 
     The conflict is the first pair of overlapping / merging intersection lanes (else the
@@ -63,7 +59,7 @@ def _intersection(
     obj_plans = fresh_ends(pair.obj_plans, last=compat)
     cut_window(ego_plans, f.matches, (0,), cut_end=False, cut_intersection=compat)
     cut_window(obj_plans, f.matches, (i + 1,), cut_end=False, cut_intersection=compat)
-    if compat and not cut_area_spans(f.prep, ego_plans[-1], obj_plans[-1]):
+    if compat and not cut_area_spans(f.prep, f.memo, ego_plans[-1], obj_plans[-1]):
         return None
     return f.constellation(pair.priority if kind is None else kind, i, ego_plans, obj_plans)
 
@@ -78,7 +74,7 @@ def _on_routes(f: FrameContext, box: int, routes: list[tuple[Step, ...]]) -> boo
         lane in lanes
         for route in routes
         for step in route
-        for lane, fwd in cross_section(f.prep, step)
+        for lane, fwd in cross_section(f.prep, f.memo, step)
         if follows_traffic(f.prep, lane, forward=fwd)
     )
 
@@ -97,7 +93,7 @@ def _route_to(routes: list[tuple[Step, ...]], lane: int) -> tuple[Step, ...] | N
 
 def _following(
     f: FrameContext, i: int, ego_routes: list[tuple[Step, ...]], obj_routes: list[tuple[Step, ...]]
-) -> Constellation | None:
+) -> BuiltConstellation | None:
     """SameDirection along a route if one vehicle is on the other's predicted route."""
     box = i + 1
     candidates = []
@@ -125,13 +121,13 @@ def _following(
 
 def _corridor(
     f: FrameContext, i: int, cr: Connecting, kind: ConstellationType
-) -> Constellation | None:
+) -> BuiltConstellation | None:
     """A same/opposite-direction constellation along the connecting route ``cr``.
 
     ad-rss 5.0 swaps the two vehicles' route headings on a route of an object following
     the ego; reproduced under ``[scene] reproduce_adrss_5_0_defects``.
     """
-    plans, ends = corridor_plans(f.prep, f.tree, cr.target, f.matches, (0, i + 1))
+    plans, ends = corridor_plans(f.prep, f.memo, f.tree, cr.target, f.matches, (0, i + 1))
     swap = cr.kind == Kind.OBJECT_FOLLOWS and f.settings.reproduce_adrss_5_0_defects
     return f.constellation(kind, i, plans, None, ends, swap_headings=swap)
 
@@ -146,7 +142,9 @@ class _Pair:
     obj_routes: list[tuple[Step, ...]]
     green: frozenset[int]
     reach_m: float
-    out: dict[tuple[object, ...], Constellation | None] = dataclasses.field(default_factory=dict)
+    out: dict[tuple[object, ...], BuiltConstellation | None] = dataclasses.field(
+        default_factory=dict
+    )
 
     def add_corridor(self, cr: Connecting, kind: ConstellationType) -> None:
         """A same/opposite-direction constellation along the connecting route.
@@ -166,7 +164,7 @@ class _Pair:
     def add_intersection(
         self, routes: tuple[tuple[Step, ...], tuple[Step, ...]], kind: ConstellationType | None
     ) -> None:
-        pair = intersection_pair(self.f.prep, *routes, self.green)
+        pair = intersection_pair(self.f.prep, self.f.memo, *routes, self.green)
         if pair is None:
             return
         key = (kind, pair.ego_lane, pair.obj_lane)
@@ -176,9 +174,8 @@ class _Pair:
 
 def _through(p: _Pair, cr: Connecting) -> None:
     """ad-rss' analysis of a connecting route through intersections (per route pair)."""
-    prep = p.f.prep
     for er in p.ego_routes:
-        spans = junctions_on(prep, er)
+        spans = junctions_on(p.f.prep, p.f.memo, er)
         if not spans and cr.kind == Kind.MERGING:
             for orr in p.obj_routes:
                 p.add_intersection((er, orr), ConstellationType.IntersectionSamePriority)
@@ -201,7 +198,7 @@ def _route_pair(
     """
     base, other = routes
     if not spans:
-        spans = junctions_on(p.f.prep, other)
+        spans = junctions_on(p.f.prep, p.f.memo, other)
         if not spans:
             p.add_corridor(cr, ConstellationType.OppositeDirection)
             return
@@ -209,6 +206,7 @@ def _route_pair(
     for span in spans:
         rel = relation(
             p.f.prep,
+            p.f.memo,
             base,
             span,
             other,
@@ -248,7 +246,7 @@ def object_constellations(
     i: int,
     horizon_m: float,
     green: frozenset[int],
-) -> list[Constellation]:
+) -> list[BuiltConstellation]:
     """All constellations between the ego and object ``i`` (see module docstring)."""
     box = i + 1
     routes = connecting_routes(f, box, horizon_m)

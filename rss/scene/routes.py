@@ -24,15 +24,16 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 from rss.model import LaneDrivingDirection
-from rss.scene.cache import memoised
+from rss.scene.lanegraph import Step
+from rss.scene.memo import memoised
 
 if TYPE_CHECKING:
-    from rss.scene.lanegraph import PreparedGraph
+    from rss.scene.memo import SceneMemo
+    from rss.scene.prepared import PreparedGraph
 
 __all__ = [
     "RouteMemo",
     "RouteTree",
-    "Step",
     "connect",
     "cross_section",
     "follows_traffic",
@@ -42,9 +43,6 @@ __all__ = [
 #: Smallest cost of a lateral step (ad-map's ``cMinimumNeighborDistance``).
 _LATERAL_COST_M = 0.1
 _MAX_ROUTES = 16
-
-#: One lane of a route: ``(lane index, forward)``.
-Step = tuple[int, bool]
 
 
 @dataclass
@@ -90,13 +88,13 @@ def lateral(prep: PreparedGraph, lane: int, *, forward: bool, right: bool) -> St
     return nb, forward != opposite
 
 
-def cross_section(prep: PreparedGraph, step: Step) -> tuple[Step, ...]:
+def cross_section(prep: PreparedGraph, memo: SceneMemo, step: Step) -> tuple[Step, ...]:
     """All lanes side by side with ``step`` (itself included), orientations relative to it.
 
-    Memoised per prepared graph (``prep.scalars.cross_sections``).
+    Memoised per map (``memo.cross_sections``).
     """
-    memo = prep.scalars.cross_sections
-    found = memo.get(step)
+    sections = memo.cross_sections
+    found = sections.get(step)
     if found is not None:
         return found
     out = [step]
@@ -108,7 +106,7 @@ def cross_section(prep: PreparedGraph, step: Step) -> tuple[Step, ...]:
                 out.append(cur)
             else:
                 break
-    memo[step] = result = tuple(out)
+    sections[step] = result = tuple(out)
     return result
 
 
@@ -120,7 +118,13 @@ def longitudinal(prep: PreparedGraph, lane: int, *, forward: bool, ahead: bool) 
 
 
 def connect(
-    prep: PreparedGraph, root: int, *, forward: bool, horizon_m: float, start: float = 0.5
+    prep: PreparedGraph,
+    memo: SceneMemo,
+    root: int,
+    *,
+    forward: bool,
+    horizon_m: float,
+    start: float = 0.5,
 ) -> RouteTree:
     """Dijkstra from ``root`` over all links, ignoring driving directions.
 
@@ -135,6 +139,7 @@ def connect(
 
     Args:
         prep: The prepared lane graph.
+        memo: The map's memos.
         root: The ego's lane.
         forward: The root's point order runs along the ego's driving direction.
         horizon_m: Largest route length searched.
@@ -159,7 +164,7 @@ def connect(
         for right, dj in ((True, 1), (False, -1)):
             step = lateral(prep, lane, forward=fwd, right=right)
             if step is not None:
-                gap = _centre_gap(prep, (lane, fwd), step, pos)
+                gap = _centre_gap(prep, memo, (lane, fwd), step, pos)
                 moves.append((step, k, j + dj, max(gap, _LATERAL_COST_M), pos, last))
         length = float(lengths[lane])
         for ahead, dk in ((True, 1), (False, -1)):
@@ -190,18 +195,18 @@ def _centre_point(prep: PreparedGraph, lane: int, t: float) -> tuple[float, floa
     return x0 + u * (x1 - x0), y0 + u * (y1 - y0)
 
 
-def _centre_gap(prep: PreparedGraph, a: Step, b: Step, pos: float) -> float:
+def _centre_gap(prep: PreparedGraph, memo: SceneMemo, a: Step, b: Step, pos: float) -> float:
     """Distance between the centre lines of ``a`` and ``b`` at road-area position ``pos`` [m].
 
-    Memoised per map (:func:`~rss.scene.cache.memoised`) at the lane ends (``pos`` 0 or
+    Memoised per map (:func:`~rss.scene.memo.memoised`) at the lane ends (``pos`` 0 or
     1, where most lateral steps start: a finite set of keys per map).
     """
     if pos in (0.0, 1.0):
-        return memoised(prep, _centre_distance, a, b, pos)
-    return _centre_distance(prep, a, b, pos)
+        return memoised(prep, memo, _centre_distance, a, b, pos)
+    return _centre_distance(prep, memo, a, b, pos)
 
 
-def _centre_distance(prep: PreparedGraph, a: Step, b: Step, pos: float) -> float:
+def _centre_distance(prep: PreparedGraph, _memo: SceneMemo, a: Step, b: Step, pos: float) -> float:
     """:func:`_centre_gap`, computed."""
     xa, ya = _centre_point(prep, a[0], pos if a[1] else 1.0 - pos)
     xb, yb = _centre_point(prep, b[0], pos if b[1] else 1.0 - pos)
@@ -229,12 +234,13 @@ _KEPT_SEARCHES = 4
 
 def predict_routes(
     prep: PreparedGraph,
+    memo: SceneMemo,
     start: int,
     *,
     forward: bool,
     horizon_m: float,
     travelled_m: float = 0.0,
-    memo: RouteMemo | None = None,
+    frame_routes: RouteMemo | None = None,
 ) -> list[tuple[Step, ...]]:
     """Routes a vehicle on ``start`` may take in its driving direction, up to ``horizon_m``.
 
@@ -242,20 +248,20 @@ def predict_routes(
     the horizon or where the map ends. ``travelled_m`` is the part of ``start`` already
     behind the vehicle.
 
-    With ``memo``, a search also records the horizon interval ``[lo, hi)`` in which every
-    horizon comparison it made comes out the same; a later call from the same start with
-    a horizon inside it returns the stored routes (the search would run identically).
-    Across frames, the last searches from each start are kept per map with their
-    comparisons; one whose comparisons all come out the same again (recomputed with the
-    same arithmetic) is reused: the search would run identically.
+    With ``frame_routes``, a search also records the horizon interval ``[lo, hi)`` in
+    which every horizon comparison it made comes out the same; a later call from the same
+    start with a horizon inside it returns the stored routes (the search would run
+    identically). Across frames, the last searches from each start are kept in ``memo``
+    with their comparisons; one whose comparisons all come out the same again (recomputed
+    with the same arithmetic) is reused: the search would run identically.
     """
     key = (start, forward, travelled_m)
-    if memo is not None:
-        for lo, hi, found in memo.get(key, ()):
+    if frame_routes is not None:
+        for lo, hi, found in frame_routes.get(key, ()):
             if lo <= horizon_m < hi:
                 return list(found)
     lengths = prep.scalars.centre_length_m
-    recent = prep.scalars.route_searches.setdefault((start, forward), [])
+    recent = memo.route_searches.setdefault((start, forward), [])
     for k, (stored, checks) in enumerate(recent):
         span = _replay(lengths, checks, horizon_m, travelled_m)
         if span is not None:
@@ -267,8 +273,8 @@ def predict_routes(
         routes, lo, hi, checks = _search(prep, (start, forward), horizon_m, travelled_m)
         recent.insert(0, (tuple(routes), checks))
         del recent[_KEPT_SEARCHES:]
-    if memo is not None:
-        memo.setdefault(key, []).append((lo, hi, tuple(routes)))
+    if frame_routes is not None:
+        frame_routes.setdefault(key, []).append((lo, hi, tuple(routes)))
     return routes
 
 

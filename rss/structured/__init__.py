@@ -5,17 +5,14 @@ arrays, :class:`ConstellationBatch`) -> :func:`check_frames` (extraction, mergin
 similar constellations, checks, memory, proper response) over ``F`` consecutive frames,
 the :class:`RssMemory` passed in and out. Scene creation from a lane map, which produces
 the constellations, is :mod:`rss.scene`; both together are :func:`rss.evaluate_frames`.
-The batch modules run compiled (mypyc) when a fresh build exists (``rss.compiled``).
+The batch modules run compiled (mypyc) when the application switched the fresh build on
+(``rss.compiled.activate``).
 """
 
-from rss.compiled import activate
-
-activate(__name__, __path__)  # before any submodule import: the batch modules may run compiled
-
-from rss.structured.batch import ConstellationBatch  # noqa: E402
-from rss.structured.engine import FrameResult, check_frame, check_frames, select_frame  # noqa: E402
-from rss.structured.memory import RssMemory  # noqa: E402
-from rss.structured.stacking import stack_constellations  # noqa: E402
+from rss.structured.batch import ConstellationBatch
+from rss.structured.engine import FrameResult, check_frame, check_frames, select_frame
+from rss.structured.memory import RssMemory
+from rss.structured.stacking import stack_constellations
 
 __all__ = [
     "ConstellationBatch",

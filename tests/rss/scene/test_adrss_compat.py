@@ -20,17 +20,16 @@ import pytest
 
 from rss.model import ConstellationType, LaneDrivingDirection, RoadSegmentType
 from rss.params import RestrictSpeedLimitMode, SceneSettings
-from rss.scene import create_scene, prepare
+from rss.scene import SceneMemo, create_scene, prepare
 from rss.scene.admap_heading import defective_enu_heading, lane_chord_heading
 from rss.scene.cut_areas import cut_area_spans
-from rss.scene.intersection import (
+from rss.scene.junction_arms import (
     Arm,
     _bucket,
     _bucket_wrapped_once,
     intersection_arms,
-    junction_list,
 )
-from rss.scene.roadarea import SegmentPlan
+from rss.scene.segment_plans import SegmentPlan
 
 from .synthetic import ego, objects, straight_lanes
 from .test_intersection import crossing
@@ -111,14 +110,14 @@ def test_left_turn_far_from_the_origin_becomes_a_u_turn() -> None:
         junction=(1, 2, 3),
     )
     prep = prepare(graph)
-    j = junction_list(prep)[1]
-    assert intersection_arms(prep, j, 0) == {
+    j = prep.junction_list[1]
+    assert intersection_arms(prep, SceneMemo(), j, 0) == {
         0: Arm.UTURN,
         4: Arm.LEFT,
         5: Arm.STRAIGHT,
         6: Arm.RIGHT,
     }
-    assert intersection_arms(prep, j, 0, admap_defects=True) == {
+    assert intersection_arms(prep, SceneMemo(), j, 0, admap_defects=True) == {
         0: Arm.UTURN,
         4: Arm.UTURN,
         5: Arm.STRAIGHT,
@@ -177,21 +176,21 @@ def test_intersecting_area_is_measured_within_the_cut_windows() -> None:
         )
 
     ego_plan, obj_plan = plans(0.0)
-    assert cut_area_spans(prep, ego_plan, obj_plan)
+    assert cut_area_spans(prep, SceneMemo(), ego_plan, obj_plan)
     assert (ego_plan.before_m, ego_plan.after_m) == pytest.approx((3.25, 3.25), abs=1e-6)
     assert (obj_plan.before_m, obj_plan.after_m) == pytest.approx((0.0, 3.25), abs=1e-6)
     ego_plan, obj_plan = plans(0.45)
-    cut_area_spans(prep, ego_plan, obj_plan)
+    cut_area_spans(prep, SceneMemo(), ego_plan, obj_plan)
     assert (ego_plan.before_m, ego_plan.after_m) == pytest.approx((0.0, 3.25), abs=1e-6)
     assert (obj_plan.before_m, obj_plan.after_m) == pytest.approx((0.0, 3.25), abs=1e-6)
     # lane 1 run against its point order (south, from y = 5) and kept down to y = -0.5:
     # 5 - 1.75 = 3.25 m before the common part, which reaches the window's end
     ego_plan = SegmentPlan([(1, False)], RoadSegmentType.Intersection, p0=0.0, p1=0.55)
     obj_plan = SegmentPlan([(4, True)], RoadSegmentType.Intersection, p0=0.55)
-    cut_area_spans(prep, ego_plan, obj_plan)
+    cut_area_spans(prep, SceneMemo(), ego_plan, obj_plan)
     assert (ego_plan.before_m, ego_plan.after_m) == pytest.approx((3.25, 0.0), abs=1e-6)
     # the object's rear at x = 2 (fraction 0.7), past lane 1 (|x| <= 1.75): the windows no
     # longer intersect, and ad-rss gives the pair no intersection constellation
     ego_plan, obj_plan = plans(0.0)
     obj_plan.p0 = 0.7
-    assert not cut_area_spans(prep, ego_plan, obj_plan)
+    assert not cut_area_spans(prep, SceneMemo(), ego_plan, obj_plan)

@@ -15,8 +15,10 @@ import pytest
 from loaders.maps.opendrive import read_opendrive
 from rss.model import LaneDrivingDirection, RoadSegmentType
 from rss.scene import LaneGraph, PreparedGraph, prepare
+from rss.scene.memo import SceneMemo
 from rss.scene.polylines import interpolate
-from rss.scene.roadarea import SegmentPlan, build_road
+from rss.scene.roadarea import build_road
+from rss.scene.segment_plans import SegmentPlan
 from workbench.engines.rss.adapter import lane_graph_from_map
 
 
@@ -67,7 +69,7 @@ def test_cut_plan_keeps_the_anchor_and_aligns_the_other_lanes():
     prep = prepare(_skewed_pair())
     plan = SegmentPlan(lanes=[(0, True), (1, True)], p0=0.5, p1=0.9, anchors=(1, 0))
     windows: list[tuple[int, float, float]] = []
-    road, placed, _ = build_road(prep, [plan], 0, None, windows)
+    road, placed, _ = build_road(prep, SceneMemo(), [plan], 0, None, windows)
     at_p0 = 0.5 * (0.5 + 0.25)  # skewed lane aligned to the straight one at 0.5
     # straight lane aligned to the skewed one at 0.9: c = (10.9, 1), feet (10.9, 2) and
     # (10, 0), P = (10.45, 1) beyond the straight lane's end: fraction 1
@@ -83,7 +85,9 @@ def test_cut_plan_keeps_the_anchor_and_aligns_the_other_lanes():
 
 def test_plans_without_anchors_cut_every_lane_at_the_same_fraction():
     prep = prepare(_skewed_pair())
-    _, placed, _ = build_road(prep, [SegmentPlan(lanes=[(0, True), (1, True)], p0=0.5)])
+    _, placed, _ = build_road(
+        prep, SceneMemo(), [SegmentPlan(lanes=[(0, True), (1, True)], p0=0.5)]
+    )
     assert placed[0].p0 == placed[1].p0 == 0.5
 
 
@@ -129,10 +133,10 @@ def _slow_aligned(prep: PreparedGraph, lane: int, t: float, other: int) -> float
     both = np.array([lane, lane + n])
     ends = interpolate(borders, both, t * borders.length_m[both])
     centre = ends.mean(axis=0)
-    s, feet = prep.nearest_on_borders(both, np.stack([centre, centre]))
+    s, feet = prep.border_index.nearest(both, np.stack([centre, centre]))
     p = feet.mean(axis=0)
     lines = np.array([other, other + n])
-    s, _ = prep.nearest_on_borders(lines, np.stack([p, p]))
+    s, _ = prep.border_index.nearest(lines, np.stack([p, p]))
     return float(np.mean(s / borders.length_m[lines]))
 
 

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import json
 import os
+import sys
 import sysconfig
 from pathlib import Path
 
@@ -25,23 +26,25 @@ ROOT = Path(__file__).resolve().parents[3]
 _SCRIPT = """
 import hashlib, json
 from pathlib import Path
+from rss import compiled
+compiled.activate()
 from bench.bench_scene import _drives
 from loaders.maps.lanelet2 import read_lanelet2
 from bench.child import run_json
-from rss import compiled
 from rss.params import SceneSettings
-from rss.scene import create_scene, prepare
+from rss.scene import SceneMemo, create_scene, prepare
 from rss.scene.chunked import match_frames
 from rss.scene.create import scene_boxes
 from workbench.engines.rss.adapter import lane_graph_from_map
 
 prep = prepare(lane_graph_from_map(read_lanelet2(Path("sample_logs/urban_intersection.osm"))))
 digest = hashlib.sha256()
+memo = SceneMemo()
 count = 0
 for drive in _drives(prep, 3, 12):
     matches = match_frames(prep, [scene_boxes(e, o) for e, o in drive])
     for (ego, objects), m in zip(drive, matches):
-        scene = create_scene(prep, ego, objects, SceneSettings(), matches=m)
+        scene = create_scene(prep, ego, objects, SceneSettings(), matches=m, memo=memo)
         digest.update(repr(scene).encode())
         count += len(scene.constellations)
 import rss.scene.pairs as pairs
@@ -104,17 +107,32 @@ def test_stale_builds_are_not_used(tmp_path: Path, monkeypatch: pytest.MonkeyPat
     assert compiled.stale_reason(tmp_path / "fresh") == f"{compiled.PURE_ENV} is set"
 
 
-def test_a_stale_build_leaves_the_package_path_alone(
+def test_a_stale_build_installs_no_import_hook(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     monkeypatch.delenv(compiled.PURE_ENV, raising=False)
     monkeypatch.setattr(compiled, "_STATE", {"active": False, "reason": "not requested"})
     edited = dict(compiled.source_digests(), **{"rss.scene.routes": ""})
     _manifest(tmp_path, sha256=edited)
-    path = ["src"]
-    assert not compiled.activate("rss.scene", path, tmp_path)
-    assert path == ["src"]
+    hooks = list(sys.meta_path)
+    assert not compiled.activate(tmp_path)
+    assert sys.meta_path == hooks
     assert compiled.status() == (False, "sources changed since the build: rss.scene.routes")
-    _manifest(tmp_path)  # fresh now, but the process has decided (rss, then rss.scene)
-    assert not compiled.activate("rss.scene", path, tmp_path)
-    assert path == ["src"]
+    _manifest(tmp_path)  # fresh now, but the process has decided
+    assert not compiled.activate(tmp_path)
+    assert sys.meta_path == hooks
+
+
+def test_a_late_call_switches_nothing_on(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Modules imported from their sources before the call keep the process pure."""
+    monkeypatch.delenv(compiled.PURE_ENV, raising=False)
+    monkeypatch.setattr(compiled, "_STATE", {"active": False, "reason": "not requested"})
+    monkeypatch.setitem(sys.modules, "rss.scene.pairs", sys.modules.get("rss.scene.pairs"))
+    _manifest(tmp_path)
+    hooks = list(sys.meta_path)
+    assert not compiled.activate(tmp_path)
+    assert sys.meta_path == hooks
+    active, reason = compiled.status()
+    assert not active
+    assert reason.endswith(" already imported from the sources")
+    assert "rss.scene.pairs" in reason.split(" already")[0].split(", ")

@@ -30,9 +30,17 @@ from rss.params import (
     RestrictSpeedLimitMode,
     SceneSettings,
 )
-from rss.scene import PreparedGraph, SceneEgo, SceneObjects, create_scene, match_boxes, prepare
+from rss.scene import (
+    PreparedGraph,
+    SceneEgo,
+    SceneMemo,
+    SceneObjects,
+    create_scene,
+    match_boxes,
+    prepare,
+)
 from rss.scene.create import scene_boxes
-from rss.scene.intersection import Arm, intersection_arms, junction_list
+from rss.scene.junction_arms import Arm, intersection_arms
 from rss.structured.engine import check_frame
 from rss.structured.stacking import stack_constellations
 from workbench.engines.rss.adapter import lane_graph_from_map
@@ -159,18 +167,18 @@ def turn_defect(prep: PreparedGraph, pair: dict[str, Any], answer: dict[str, Any
 
     ad-map 5.0 takes some left turns for U-turns (docs/rss_scene.md, deviations). A pair
     is affected when the oracle reports, on one of the ego's predicted routes, a turn that
-    differs from the geometric one (:func:`rss.scene.intersection.intersection_arms`) at a
+    differs from the geometric one (:func:`rss.scene.junction_arms.intersection_arms`) at a
     junction the other vehicle touches or is next to.
     """
     lane_of = {admap_lane_id(prep, lane): lane for lane in range(len(prep.graph))}
-    jid = junction_list(prep)
+    jid = prep.junction_list
     ego, objects = pair_inputs(pair)
     touched = set(match_boxes(prep, scene_boxes(ego, objects)).lanes_of(1).tolist())
     for incoming, outgoing, turn in answer.get("turns", []):
         lane_in, lane_out = lane_of[incoming[0]], lane_of[outgoing[0]]
         ends = (*prep.graph.successors[lane_in], *prep.graph.predecessors[lane_in])
         for j in {jid[b] for b in ends if jid[b] >= 0}:
-            arms = intersection_arms(prep, j, lane_in)
+            arms = intersection_arms(prep, SceneMemo(), j, lane_in)
             arm = arms.get(lane_out)
             if arm is None or _TURN_NAMES[arm] == turn:
                 continue

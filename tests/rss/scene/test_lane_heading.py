@@ -18,7 +18,7 @@ import math
 import numpy as np
 import pytest
 
-from rss.scene import LaneGraph, prepare
+from rss.scene import LaneGraph, SceneMemo, prepare
 from rss.scene.roadarea import lane_heading
 
 HALF_WIDTH = 2.0
@@ -78,7 +78,7 @@ def _admap_heading(t: float) -> float:
 @pytest.mark.parametrize("t", [0.0, 0.2, 0.45, 0.5, 0.7, 0.9, 1.0])
 def test_heading_is_ad_maps(t):
     prep = prepare(_graph())
-    assert lane_heading(prep, 0, t) == pytest.approx(_admap_heading(t), abs=1e-9)
+    assert lane_heading(prep, SceneMemo(), 0, t) == pytest.approx(_admap_heading(t), abs=1e-9)
 
 
 def test_on_the_curve_it_is_not_the_centre_lines():
@@ -87,4 +87,4 @@ def test_on_the_curve_it_is_not_the_centre_lines():
     c0, c1 = _at(centre, 0.4 - 0.002), _at(centre, 0.4 + 0.002)
     along_centre = math.atan2(c1[1] - c0[1], c1[0] - c0[0])
     # 0.4: the inner border is already on the arc, the centre line not yet
-    assert abs(lane_heading(prep, 0, 0.4) - along_centre) > 0.04
+    assert abs(lane_heading(prep, SceneMemo(), 0, 0.4) - along_centre) > 0.04

@@ -19,7 +19,7 @@ import shapely
 
 from loaders.maps.opendrive import read_opendrive
 from rss.scene import BoxArrays, PreparedGraph, match_boxes, prepare
-from rss.scene.matching import box_polygons
+from rss.scene.match_records import box_polygons
 from rss.scene.matching_points import ad_map_positions
 from workbench.engines.rss.adapter import lane_graph_from_map
 

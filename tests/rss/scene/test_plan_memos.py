@@ -7,9 +7,9 @@ import dataclasses
 import pytest
 
 from rss.model import RoadSegmentType
-from rss.scene import prepare
+from rss.scene import SceneMemo, prepare
 from rss.scene.create import scene_boxes
-from rss.scene.intersection import (
+from rss.scene.junction_pairs import (
     conflict,
     intersection_pair,
     intersection_plans,
@@ -17,10 +17,10 @@ from rss.scene.intersection import (
     route_priority,
 )
 from rss.scene.matching import match_boxes
-from rss.scene.roadarea import (
+from rss.scene.roadarea import build_road
+from rss.scene.segment_plans import (
     SegmentPlan,
     between,
-    build_road,
     cut_at,
     cut_between,
     fresh_ends,
@@ -41,15 +41,17 @@ def _plans() -> list[SegmentPlan]:
 
 def test_uncut_conversion_kept_on_the_plan_equals_a_fresh_one(prep) -> None:
     plans = _plans()
-    first = build_road(prep, plans, 5)
+    memo = SceneMemo()
+    first = build_road(prep, memo, plans, 5)
     assert all(plan.whole is not None and plan.whole[0] == 5 for plan in plans)
-    assert build_road(prep, plans, 5) == first == build_road(prep, _plans(), 5)
-    other = build_road(prep, plans, 0)
-    assert other == build_road(prep, _plans(), 0)
+    assert build_road(prep, memo, plans, 5) == first == build_road(prep, memo, _plans(), 5)
+    other = build_road(prep, memo, plans, 0)
+    assert other == build_road(prep, memo, _plans(), 0)
     assert [lane.lane_id for lane in other[0][0].lanes] == [1, 2]
     plans[0].p0 = 0.5
-    cut = build_road(prep, plans, 0, {})
-    assert cut == build_road(prep, [dataclasses.replace(_plans()[0], p0=0.5), _plans()[1]], 0)
+    cut = build_road(prep, memo, plans, 0, {})
+    fresh = [dataclasses.replace(_plans()[0], p0=0.5), _plans()[1]]
+    assert cut == build_road(prep, SceneMemo(), fresh, 0)
     assert cut[0][0].lanes[0].length_min_m == pytest.approx(0.5 * other[0][0].lanes[0].length_min_m)
 
 
@@ -91,16 +93,17 @@ def test_between_and_cut_at_equal_cut_between(prep) -> None:
 def test_intersection_pair_equals_its_parts(green: frozenset[int]) -> None:
     prep = prepare(crossing(1, -1, light_on_ego=True))
     ego_route, obj_route = ((0, True), (1, True), (2, True)), ((3, True), (4, True), (5, True))
-    pair = intersection_pair(prep, ego_route, obj_route, green)
+    memo = SceneMemo()
+    pair = intersection_pair(prep, memo, ego_route, obj_route, green)
     assert pair is not None
-    assert intersection_pair(prep, ego_route, obj_route, green) is pair
-    ie, io = conflict(prep, ego_route, obj_route) or (-1, -1)
+    assert intersection_pair(prep, memo, ego_route, obj_route, green) is pair
+    ie, io = conflict(prep, memo, ego_route, obj_route) or (-1, -1)
     assert (pair.ego_lane, pair.obj_lane) == (1, 4)
-    assert list(pair.ego_plans) == intersection_plans(prep, ego_route, ie, 4)
-    assert list(pair.obj_plans) == intersection_plans(prep, obj_route, io, 1)
+    assert list(pair.ego_plans) == intersection_plans(prep, memo, ego_route, ie, 4)
+    assert list(pair.obj_plans) == intersection_plans(prep, memo, obj_route, io, 1)
     assert pair.ego_plans[-1].segment_type == RoadSegmentType.Intersection
     assert pair.priority == intersection_type(
         route_priority(prep, ego_route[: ie + 1], green),
         route_priority(prep, obj_route[: io + 1], green),
     )
-    assert intersection_pair(prep, ego_route, ((5, False),), green) is None
+    assert intersection_pair(prep, memo, ego_route, ((5, False),), green) is None

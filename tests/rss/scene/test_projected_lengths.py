@@ -1,4 +1,4 @@
-"""Lengths of cut lane segments: ad-map's projected border pieces (``rss.scene.cache``).
+"""Lengths of cut lane segments: ad-map's projected border pieces (``rss.scene.border_stations``).
 
 ad-map (``route::getMetricRanges``) measures a lane interval ``[lo, hi]`` on each border
 between the nearest border points of the centre points ``c(lo)`` and ``c(hi)``; a centre
@@ -16,12 +16,12 @@ import numpy as np
 import pytest
 import shapely
 
-from rss.scene import LaneGraph, prepare
+from rss.scene import LaneGraph, SceneMemo, prepare
 
 from .synthetic import lone_lane, straight_road
 
 if TYPE_CHECKING:
-    from rss.scene.lanegraph import PreparedGraph
+    from rss.scene.prepared import PreparedGraph
 
 TIE_M = 1e-3
 #: Table lookups against the slow reference (the table is exact between its stations).
@@ -97,7 +97,7 @@ def test_cut_lengths_are_the_projected_border_pieces(turn: PreparedGraph, forwar
     shares = []
     for lo, hi in _windows(seed=3 if forward else 4):
         p0, p1 = (lo, hi) if forward else (1.0 - hi, 1.0 - lo)
-        got = segments.lane_segment(0, forward=forward, id_offset=7, p0=p0, p1=p1)
+        got = segments.lane_segment({}, 0, forward=forward, id_offset=7, p0=p0, p1=p1)
         left, right = reference_lengths(turn.graph, 0, lo, hi)
         assert got.lane_id == 7
         assert got.length_min_m == pytest.approx(min(left, right), abs=TOL_M)
@@ -110,31 +110,32 @@ def test_cut_lengths_are_the_projected_border_pieces(turn: PreparedGraph, forwar
 
 def test_whole_lane_keeps_the_border_lengths(turn: PreparedGraph) -> None:
     segments = turn.lane_segments
+    memo = SceneMemo()
     for forward in (True, False):
-        whole = segments.lane_segment(0, forward=forward, id_offset=3)
-        assert segments.lane_segment(0, forward=forward, id_offset=3) is whole
+        whole = segments.lane_segment(memo.whole_lanes, 0, forward=forward, id_offset=3)
+        assert segments.lane_segment(memo.whole_lanes, 0, forward=forward, id_offset=3) is whole
         lengths = [
             float(np.sum(np.hypot(*np.diff(b[0], axis=0).T)))
             for b in (turn.graph.left_m, turn.graph.right_m)
         ]
         assert (whole.length_min_m, whole.length_max_m) == (min(lengths), max(lengths))
         assert (whole.width_min_m, whole.width_max_m) == (
-            min(turn.width_rows[0]),
-            max(turn.width_rows[0]),
+            min(segments.width_rows[0]),
+            max(segments.width_rows[0]),
         )
 
 
 def test_straight_lanes_keep_the_parametric_share() -> None:
     prep = prepare(straight_road(n_lanes=2, length=120.0))
     for lo, hi in _windows(seed=5):
-        got = prep.lane_segments.lane_segment(1, forward=True, p0=lo, p1=hi)
+        got = prep.lane_segments.lane_segment({}, 1, forward=True, p0=lo, p1=hi)
         assert got.length_min_m == pytest.approx(120.0 * (hi - lo), abs=1e-9)
         assert got.length_max_m == pytest.approx(120.0 * (hi - lo), abs=1e-9)
 
 
 def test_stations_are_increasing_from_zero_to_one(turn: PreparedGraph) -> None:
     segments = turn.lane_segments
-    t = np.array(segments._stations[0])
+    t = np.array(segments.stations[0])
     assert t[0] == 0.0
     assert t[-1] == 1.0
     assert np.all(np.diff(t) > 0.0)
@@ -149,7 +150,7 @@ def test_cuts_are_measured_on_every_given_vertex() -> None:
     left = np.array([[0.0, 0.0], [20.0, 0.0], [20.02, 0.008]])
     right = np.array([[0.0, -3.0], [20.02, -3.0]])
     graph = lone_lane(left, right, (left[[0, 2]] + right) / 2, "kinked")
-    seg = prepare(graph).lane_segments.lane_segment(0, forward=True, p0=0.5, p1=1.0)
+    seg = prepare(graph).lane_segments.lane_segment({}, 0, forward=True, p0=0.5, p1=1.0)
     # c(0.5): halfway along each border, (x_l + x_r) / 2 with y = -1.5; its nearest left
     # point lies straight above it, its nearest right point straight below
     x_mid = (0.5 * (20.0 + np.hypot(0.02, 0.008)) + 0.5 * 20.02) / 2

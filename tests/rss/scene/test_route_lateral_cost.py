@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING
 import pytest
 
 from loaders.maps.opendrive import read_opendrive
-from rss.scene import prepare
+from rss.scene import SceneMemo, prepare
 from rss.scene.routes import connect
 from tests.rss.scene.synthetic import WIDTH, straight_road
 from workbench.engines.rss.adapter import lane_graph_from_map
@@ -26,7 +26,7 @@ if TYPE_CHECKING:
 
 def test_lateral_step_costs_the_lane_width():
     prep = prepare(straight_road(3, 200.0))
-    tree = connect(prep, 0, forward=True, horizon_m=50.0, start=0.5)
+    tree = connect(prep, SceneMemo(), 0, forward=True, horizon_m=50.0, start=0.5)
     # centre lines of neighbouring lanes lie WIDTH apart on the straight road
     assert tree.cost_m[1] == pytest.approx(WIDTH)
     assert tree.cost_m[2] == pytest.approx(2 * WIDTH)
@@ -35,7 +35,7 @@ def test_lateral_step_costs_the_lane_width():
 
 def test_lateral_step_into_an_opposite_lane_costs_the_lane_width():
     prep = prepare(straight_road(2, 200.0, opposite_left=True))
-    tree = connect(prep, 1, forward=True, horizon_m=50.0, start=0.25)
+    tree = connect(prep, SceneMemo(), 1, forward=True, horizon_m=50.0, start=0.25)
     assert tree.cost_m[0] == pytest.approx(WIDTH)
     assert not tree.forward[0]
 
@@ -52,7 +52,7 @@ def test_route_keeps_the_junction_lane_rather_than_the_shorter_parallel_one(town
     # lane changes of one lane width (4 m in Town01) each cost more than that.
     ids = list(town01.graph.ids)
     root = ids.index("21_0_-1")
-    tree = connect(town01, root, forward=True, horizon_m=60.0, start=0.03)
+    tree = connect(town01, SceneMemo(), root, forward=True, horizon_m=60.0, start=0.03)
     path = [ids[lane] for lane in tree.path(ids.index("2_0_-1"))]
     assert path == ["21_0_-1", "128_0_-1", "2_0_-1"]
     assert tree.cost_m[ids.index("21_0_1")] == pytest.approx(4.0, abs=1e-6)

@@ -26,6 +26,7 @@ from rss.scene import LaneGraph, create_scene, prepare
 from rss.scene.create import scene_boxes
 from rss.scene.frame import FrameContext, lane_headings
 from rss.scene.matching import match_boxes
+from rss.scene.memo import SceneMemo
 from rss.scene.routes import RouteTree
 
 from .synthetic import ego, objects
@@ -66,7 +67,8 @@ def _frame(graph: LaneGraph, other: tuple[float, float, float, float]) -> FrameC
     prep = prepare(graph)
     e, o = ego(0.0, -30.0, np.pi / 2, 10.0), objects(other)
     m = match_boxes(prep, scene_boxes(e, o))
-    return FrameContext(prep, e, o, SETTINGS, m, RouteTree(), lane_headings(m, 2), (0.0, 10.0))
+    headings = lane_headings(m, 2)
+    return FrameContext(prep, SceneMemo(), e, o, SETTINGS, m, RouteTree(), headings, (0.0, 10.0))
 
 
 def test_lanes_within_90_degrees_along_traffic_start_routes():

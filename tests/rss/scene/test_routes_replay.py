@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from loaders.maps.opendrive import read_opendrive
-from rss.scene import prepare
+from rss.scene import SceneMemo, prepare
 from rss.scene.routes import _search, predict_routes
 from workbench.engines.rss.adapter import lane_graph_from_map
 
@@ -17,6 +17,7 @@ def town01(external_dir):
 def test_replayed_searches_equal_fresh_ones(town01):
     rng = np.random.default_rng(5)
     replayed = 0
+    memo = SceneMemo()
     for _ in range(40):
         lane = int(rng.integers(0, len(town01.graph)))
         forward = bool(rng.integers(0, 2))
@@ -25,14 +26,14 @@ def test_replayed_searches_equal_fresh_ones(town01):
         for _ in range(6):  # a vehicle moving along: travelled and horizon drift
             travelled += float(rng.uniform(0.0, 1.5))
             horizon += float(rng.uniform(-3.0, 3.0))
-            searches = town01.scalars.route_searches.get((lane, forward), [])
+            searches = memo.route_searches.get((lane, forward), [])
             known = [entry[0] for entry in searches]
             got = predict_routes(
-                town01, lane, forward=forward, horizon_m=horizon, travelled_m=travelled
+                town01, memo, lane, forward=forward, horizon_m=horizon, travelled_m=travelled
             )
             fresh, *_ = _search(town01, (lane, forward), horizon, travelled)
             assert got == fresh
-            newest = town01.scalars.route_searches[lane, forward][0][0]
+            newest = memo.route_searches[lane, forward][0][0]
             replayed += any(newest is routes for routes in known)
     assert replayed > 0  # kept searches were actually reused
-    assert all(len(v) <= 4 for v in town01.scalars.route_searches.values())
+    assert all(len(v) <= 4 for v in memo.route_searches.values())

@@ -9,7 +9,7 @@ import pytest
 import shapely
 
 from loaders.maps.opendrive import read_opendrive
-from rss.scene import BoxArrays, lanegraph, match_boxes, prepare
+from rss.scene import BoxArrays, border_index, match_boxes, prepare
 from rss.scene.admap_nearest import nearest_in_windows, segment_window, segments
 from rss.scene.polylines import Polylines, polylines
 from rss.scene.segment_cells import narrowed, segment_cells
@@ -160,8 +160,8 @@ def test_town01_matching_is_the_same_without_cells(external_dir, monkeypatch) ->
         width_m=rng.uniform(0.3, 3.0, n),
     )
     ours = match_boxes(prep, boxes)
-    assert len(prep.border_cells.first) > 0
-    monkeypatch.setattr(lanegraph, "narrowed", lambda _cells, _which, _points, *window: window)
+    assert len(prep.border_index.cells.first) > 0
+    monkeypatch.setattr(border_index, "narrowed", lambda _cells, _which, _points, *window: window)
     reference = match_boxes(prep, boxes)
     assert len(ours.box) > n  # boxes do touch lanes, some several
     for field in dataclasses.fields(ours):

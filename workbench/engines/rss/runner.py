@@ -8,7 +8,7 @@ import numpy as np
 
 from rss import evaluate_frames
 from rss.params import RssParams
-from rss.scene import prepare
+from rss.scene import SceneMemo, prepare
 from rss.scene.boundaries import LEFT_BOUNDARY_ID, RIGHT_BOUNDARY_ID
 from rss.structured.states import LongitudinalResponse
 from workbench.engines.ids import IdMap
@@ -63,6 +63,7 @@ class RssRunner:
         if lane_map is not None and lane_map.format != "track":
             graph = lane_graph_from_map(lane_map)
             self._prep = prepare(graph) if len(graph) else None
+        self._scene_memo = SceneMemo()  # per map, kept across frames (rss.scene.memo)
         self._ids = IdMap()
         self._memory: RssMemory | None = None
 
@@ -82,6 +83,7 @@ class RssRunner:
             self._params,
             self._memory,
             graph=prep,
+            memo=self._scene_memo,
             road_boundaries=self._road_boundaries,
         )
         return [

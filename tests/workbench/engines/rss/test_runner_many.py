@@ -13,7 +13,7 @@ from loaders import open_drive
 from loaders.maps.opendrive import read_opendrive
 from loaders.records import ActorTable, EgoState, Frame, ObjectClass
 from rss.params import RssParams
-from rss.scene import create_scene, prepare
+from rss.scene import SceneMemo, create_scene, prepare
 from tests.equality import assert_same
 from tests.workbench.engines.helpers import record, step
 from tests.workbench.engines.rss.test_runner import SCENARIOS
@@ -140,19 +140,20 @@ def test_step_many_equals_step_on_a_moving_town01_scene(town01, chunk):
 
 
 def test_scene_memos_kept_across_frames_change_nothing(town01):
-    """Scenes from a graph whose per-map memos (corridor layouts, whole segments, routes
-    typing) were filled by earlier frames equal scenes from a fresh graph per frame."""
+    """Scenes with per-map memos (corridor layouts, whole segments, routes typing) filled
+    by earlier frames equal scenes with fresh memos and a fresh graph per frame."""
     frames = _town01_frames(town01, 12)
     graph = lane_graph_from_map(town01)
     warm = prepare(graph)
+    warm_memo = SceneMemo()
     params = RssParams()
     built = 0
     for frame in frames:
         fresh = prepare(graph)
         scenes = []
-        for prep in (warm, fresh):
+        for prep, memo in ((warm, warm_memo), (fresh, SceneMemo())):
             ego, objects, _ = frame_to_scene(frame, prep, params, IdMap())
-            scenes.append(create_scene(prep, ego, objects, params.scene))
+            scenes.append(create_scene(prep, ego, objects, params.scene, memo=memo))
         assert repr(scenes[0]) == repr(scenes[1])
         built += len(scenes[0].constellations)
     assert built > 100

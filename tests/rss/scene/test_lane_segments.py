@@ -1,4 +1,4 @@
-"""``rss.scene.cache.LaneSegmentCache``: whole lanes built once, cut lanes like ``build_road``."""
+"""``rss.scene.lane_segments``: whole lanes built once per memo, cut lanes like ``build_road``."""
 
 from __future__ import annotations
 
@@ -6,8 +6,9 @@ import numpy as np
 import pytest
 
 from rss.model import LaneDrivingDirection
-from rss.scene import prepare
-from rss.scene.roadarea import SegmentPlan, build_road
+from rss.scene import SceneMemo, prepare
+from rss.scene.roadarea import build_road
+from rss.scene.segment_plans import SegmentPlan
 from tests.rss.scene.synthetic import straight_road
 
 
@@ -19,9 +20,10 @@ def prep():
 @pytest.mark.parametrize("forward", [True, False])
 def test_whole_lane_is_built_once(prep, forward: bool) -> None:
     cache = prep.lane_segments
+    whole = SceneMemo().whole_lanes
     for lane in range(len(prep.graph)):
-        seg = cache.lane_segment(lane, forward=forward, id_offset=7)
-        assert cache.lane_segment(lane, forward=forward, id_offset=7) is seg
+        seg = cache.lane_segment(whole, lane, forward=forward, id_offset=7)
+        assert cache.lane_segment(whole, lane, forward=forward, id_offset=7) is seg
         assert seg.lane_id == lane + 7
         assert (seg.length_min_m, seg.length_max_m) == (
             prep.length_min_m[lane],
@@ -41,9 +43,12 @@ def test_whole_lane_is_built_once(prep, forward: bool) -> None:
 @pytest.mark.parametrize("forward", [True, False])
 def test_lane_segments_equal_build_road(prep, p0: float, p1: float, forward: bool) -> None:
     plan = SegmentPlan(lanes=[(1, forward), (2, forward)], p0=p0, p1=p1)
-    (road,), _, _ = build_road(prep, [plan], id_offset=3)
+    memo = SceneMemo()
+    (road,), _, _ = build_road(prep, memo, [plan], id_offset=3)
     cached = tuple(
-        prep.lane_segments.lane_segment(lane, forward=forward, id_offset=3, p0=p0, p1=p1)
+        prep.lane_segments.lane_segment(
+            memo.whole_lanes, lane, forward=forward, id_offset=3, p0=p0, p1=p1
+        )
         for lane in (1, 2)
     )
     assert road.lanes == cached
