@@ -2,10 +2,11 @@
 
 from loaders.drive import Drive, DriveInfo, TopicInfo, TopicRoles
 from loaders.errors import LoaderError
-from loaders.open import open_drive
+from loaders.open import LOG_SUFFIXES, is_drive_path, is_rosbag2_dir, open_drive
 from loaders.records import ActorTable, EgoState, Frame, ObjectClass, Plan
 
 __all__ = [
+    "LOG_SUFFIXES",
     "ActorTable",
     "Drive",
     "DriveInfo",
@@ -16,5 +17,7 @@ __all__ = [
     "Plan",
     "TopicInfo",
     "TopicRoles",
+    "is_drive_path",
+    "is_rosbag2_dir",
     "open_drive",
 ]

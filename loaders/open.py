@@ -21,22 +21,38 @@ from loaders.errors import (
     LogNotFoundError,
     UnsupportedFormatError,
 )
+from loaders.message_logs.assemble import AssemblyOptions
+from loaders.message_logs.log_drive import LogDrive
+from loaders.message_logs.mapsource import find_map, read_map
+from loaders.message_logs.mcap_source import McapSource
+from loaders.message_logs.roles import detect_roles
+from loaders.message_logs.rosbags_source import RosbagsSource
 from loaders.profile import DEFAULT_TOLERANCE_NS, Profile, load_profile
-from loaders.ros.assemble import AssemblyOptions
-from loaders.ros.log_drive import LogDrive
-from loaders.ros.mapsource import find_map, read_map
-from loaders.ros.mcap_source import McapSource
-from loaders.ros.roles import detect_roles
-from loaders.ros.rosbags_source import RosbagsSource
 
 if TYPE_CHECKING:
     from loaders.drive import Drive
-    from loaders.ros.source import MessageSource
+    from loaders.message_logs.source import MessageSource
 
-__all__ = ["SUFFIXES", "open_drive"]
+__all__ = ["LOG_SUFFIXES", "is_drive_path", "is_rosbag2_dir", "open_drive"]
 
-#: File suffixes ``open_drive`` accepts (besides rosbag2 directories).
-SUFFIXES: tuple[str, ...] = (".mcap", ".bag", ".xml", ".saa", ".scn")
+#: File suffixes ``open_drive`` accepts (lower case; besides rosbag2 directories).
+LOG_SUFFIXES: tuple[str, ...] = (".mcap", ".bag", ".xml", ".saa", ".scn")
+#: Suffixes of the drives that are not message logs (CommonRoad, ScenarioArchitect).
+_SCENARIO_SUFFIXES = frozenset({".xml", ".saa", ".scn"})
+
+
+def is_rosbag2_dir(path: Path) -> bool:
+    """Whether ``path`` is a rosbag2 bag: a directory holding ``metadata.yaml``."""
+    return path.is_dir() and (path / "metadata.yaml").is_file()
+
+
+def is_drive_path(path: Path) -> bool:
+    """Whether ``path`` is a drive ``open_drive`` takes, judged by its kind only.
+
+    A drive is a file with one of :data:`LOG_SUFFIXES` (any case) or a rosbag2 directory;
+    the content is not checked.
+    """
+    return (path.is_file() and path.suffix.lower() in LOG_SUFFIXES) or is_rosbag2_dir(path)
 
 
 def _rosbag2_storage(path: Path) -> str:
@@ -49,7 +65,7 @@ def _rosbag2_storage(path: Path) -> str:
 
 def _open_source(path: Path) -> MessageSource:
     if path.is_dir():
-        if not (path / "metadata.yaml").is_file():
+        if not is_rosbag2_dir(path):
             raise UnsupportedFormatError(path, "directory without rosbag2 metadata.yaml")
         return RosbagsSource(path, _rosbag2_storage(path))
     if path.stat().st_size == 0:
@@ -118,11 +134,11 @@ def open_drive(
     if not path.exists():
         raise LogNotFoundError(path)
     suffix = path.suffix.lower()
-    if path.is_file() and suffix not in SUFFIXES:
+    if path.is_file() and suffix not in LOG_SUFFIXES:
         raise UnsupportedFormatError(
-            path, f"suffix {suffix or '(none)'}; expected one of {', '.join(SUFFIXES)}"
+            path, f"suffix {suffix or '(none)'}; expected one of {', '.join(LOG_SUFFIXES)}"
         )
-    if suffix in {".xml", ".saa", ".scn"}:
+    if suffix in _SCENARIO_SUFFIXES:
         return _open_other(path, suffix, map_path, ego_id, plan)
     prof = _profile(profile)
     source = _open_source(path)

@@ -9,6 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from loaders import is_drive_path
 from workbench.drives import default_output, open_log
 from workbench.engines.base import EngineSettings
 from workbench.engines.registry import build_runners
@@ -24,7 +25,6 @@ if TYPE_CHECKING:
 
 __all__ = ["DemoRow", "find_sample_logs", "output_names", "primary_logs", "replay_one"]
 
-_LOG_SUFFIXES = (".mcap", ".bag", ".xml", ".saa", ".scn")
 #: Which log keeps the plain ``<stem>.rrd`` name when several share a stem (lowest first).
 _NAME_PRIORITY = {".mcap": 0, "": 1, ".bag": 2, ".xml": 3}
 
@@ -42,21 +42,13 @@ def primary_logs(logs: list[Path]) -> set[Path]:
     return set(best.values())
 
 
-def _is_rosbag2_dir(path: Path) -> bool:
-    return path.is_dir() and (path / "metadata.yaml").is_file()
-
-
 def find_sample_logs(samples_dir: Path) -> list[Path]:
     """Drives directly in ``samples_dir``, sorted by name.
 
     Drives are ``*.mcap``, ``*.bag``, CommonRoad ``*.xml`` and ScenarioArchitect
     ``*.saa``/``*.scn`` files and rosbag2 directories (a directory holding ``metadata.yaml``).
     """
-    found = [
-        p
-        for p in samples_dir.iterdir()
-        if (p.is_file() and p.suffix.lower() in _LOG_SUFFIXES) or _is_rosbag2_dir(p)
-    ]
+    found = [p for p in samples_dir.iterdir() if is_drive_path(p)]
     return sorted(found, key=lambda p: p.name)
 
 

@@ -11,10 +11,10 @@ import pytest
 
 from loaders import ObjectClass, open_drive
 from loaders.drive import TopicInfo
-from loaders.ros.kinematics import ego_kinematics
-from loaders.ros.objects_ros import decode_detection3d
-from loaders.ros.roles import detect_roles
-from loaders.ros.samples import EgoSample
+from loaders.message_logs.decoders.ros_objects import decode_detection3d
+from loaders.message_logs.kinematics import ego_kinematics
+from loaders.message_logs.roles import detect_roles
+from loaders.message_logs.samples import EgoSample
 from loaders.typestore import typestore
 from tests.loaders import synthetic as syn
 from tests.loaders.fixtures import ODOM, Entry, ros_entries, write_mcap_protobuf, write_ros2_mcap

@@ -30,6 +30,7 @@ from mcap.writer import Writer as McapWriter
 from mcap_protobuf.schema import register_schema
 
 from workbench.samples.motion import DT_S
+from workbench.samples.quantise import ANGLE_STEPS, quantise
 from workbench.samples.ros_messages import T0_NS
 from workbench.samples.ros_objects import plan_indices
 from workbench.samples.ros_writers import GENERATOR_VERSION, drive_metadata
@@ -69,11 +70,15 @@ def _ts(t_ns: int) -> Timestamp:
     return Timestamp(seconds=sec, nanos=nsec)
 
 
+def _vec3(x: float = 0.0, y: float = 0.0, z: float = 0.0) -> Vector3:
+    """A ``Vector3`` on the 1e-6 grid of :mod:`workbench.samples.quantise`."""
+    return Vector3(x=quantise(x), y=quantise(y), z=quantise(z))
+
+
 def _pose(x: float, y: float, z: float, yaw: float) -> Pose:
-    return Pose(
-        position=Vector3(x=float(x), y=float(y), z=float(z)),
-        orientation=Quaternion(x=0.0, y=0.0, z=math.sin(yaw / 2), w=math.cos(yaw / 2)),
-    )
+    """A yaw-only pose; position on the 1e-6 grid, quaternion components on the 1e-9 grid."""
+    z_q, w_q = (quantise(f(yaw / 2), ANGLE_STEPS) for f in (math.sin, math.cos))
+    return Pose(position=_vec3(x, y, z), orientation=Quaternion(x=0.0, y=0.0, z=z_q, w=w_q))
 
 
 def _entity(tr: Track, k: int, t_ns: int) -> SceneEntity:
@@ -81,8 +86,8 @@ def _entity(tr: Track, k: int, t_ns: int) -> SceneEntity:
     v, yaw = float(m.speed_mps[k]), float(m.yaw_rad[k])
     meta = {
         "class": tr.object_class.label,
-        "vx_mps": f"{v * math.cos(yaw):.4f}",
-        "vy_mps": f"{v * math.sin(yaw):.4f}",
+        "vx_mps": f"{quantise(v * math.cos(yaw)):.4f}",
+        "vy_mps": f"{quantise(v * math.sin(yaw)):.4f}",
     }
     return SceneEntity(
         timestamp=_ts(t_ns),
@@ -94,7 +99,7 @@ def _entity(tr: Track, k: int, t_ns: int) -> SceneEntity:
         cubes=[
             CubePrimitive(
                 pose=_pose(m.x_m[k], m.y_m[k], tr.height_m / 2, yaw),
-                size=Vector3(x=tr.length_m, y=tr.width_m, z=tr.height_m),
+                size=_vec3(tr.length_m, tr.width_m, tr.height_m),
                 color=Color(r=0.2, g=0.5, b=1.0, a=0.8),
             )
         ],
@@ -102,15 +107,16 @@ def _entity(tr: Track, k: int, t_ns: int) -> SceneEntity:
 
 
 def _plan(sc: Scenario, k: int, t_ns: int) -> bytes:
+    """The JSON plan; numbers are the quantised values rounded to 4 decimals (yaw 5)."""
     idx = plan_indices(sc, k)
     m = sc.ego.motion
     plan = {
         "t_ns": t_ns,
-        "x_m": [round(float(m.x_m[i]), 4) for i in idx],
-        "y_m": [round(float(m.y_m[i]), 4) for i in idx],
-        "yaw_rad": [round(float(m.yaw_rad[i]), 5) for i in idx],
+        "x_m": [round(quantise(m.x_m[i]), 4) for i in idx],
+        "y_m": [round(quantise(m.y_m[i]), 4) for i in idx],
+        "yaw_rad": [round(quantise(m.yaw_rad[i], ANGLE_STEPS), 5) for i in idx],
         "t_offset_s": [round((i - k) * DT_S, 3) for i in idx],
-        "speed_mps": [round(float(m.speed_mps[i]), 4) for i in idx],
+        "speed_mps": [round(quantise(m.speed_mps[i]), 4) for i in idx],
     }
     return json.dumps(plan, separators=(",", ":")).encode()
 
@@ -139,8 +145,8 @@ def write_foxglove_mcap(sc: Scenario, path: Path, osm: bytes) -> None:
                 frame_id="map",
                 body_frame_id="base_link",
                 pose=_pose(ego.motion.x_m[k], ego.motion.y_m[k], 0.0, ego.motion.yaw_rad[k]),
-                linear_velocity=Vector3(x=float(ego.motion.speed_mps[k])),
-                angular_velocity=Vector3(z=float(ego.yaw_rate_radps[k])),
+                linear_velocity=_vec3(ego.motion.speed_mps[k]),
+                angular_velocity=_vec3(z=ego.yaw_rate_radps[k]),
             )
             writer.add_message(odom_ch, t_ns, odom.SerializeToString(), t_ns, k)
             if k % 2:

@@ -11,6 +11,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from workbench.samples.quantise import quantise
+
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike, NDArray
 
@@ -78,8 +80,14 @@ class MapBuilder:
         return new
 
     def node(self, x_m: float, y_m: float) -> int:
-        """Id of the node at ``(x_m, y_m)``, created on first use."""
-        key = (round(x_m * 1000), round(y_m * 1000))
+        """Id of the node at ``(x_m, y_m)``, created on first use.
+
+        Nodes live on a millimetre grid (the precision of the OSM ``local_x``/``local_y``
+        tags). The coordinates are first put on the 1e-6 m grid of
+        :mod:`workbench.samples.quantise`, so last-bit noise in the geometry math can neither
+        move a node nor split or merge nodes.
+        """
+        key = (round(quantise(x_m) * 1000), round(quantise(y_m) * 1000))
         if key not in self._by_xy:
             node_id = self._new_id()
             self._by_xy[key] = node_id

@@ -19,6 +19,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from workbench.samples.quantise import quantise
+
 if TYPE_CHECKING:
     from pathlib import Path
 
@@ -83,7 +85,17 @@ def _rows(t0: float, v0: float, s0: float, *, ego: bool, brake: bool) -> list[li
     lat = _ego_lat(np.full_like(tau, t0) + (0 if brake else tau)) if ego else np.full_like(tau, 1.5)
     x, y, yaw, kappa = _pose(s, lat)
     psi = (yaw - math.pi / 2 + math.pi) % (2 * math.pi) - math.pi
-    return [[round(float(c), 4) for c in row] for row in np.stack([x, y, psi, kappa, v, a], axis=1)]
+    return [[_q4(c) for c in row] for row in np.stack([x, y, psi, kappa, v, a], axis=1)]
+
+
+def _q4(value: float) -> float:
+    """A written number: on the 1e-6 grid of :mod:`workbench.samples.quantise`, then 4 decimals.
+
+    Rounding the raw value to 4 decimals directly would let last-bit noise flip a value
+    lying on a decimal tie (synthetic kinematics hit those); the quantised value is the same
+    double on every machine, so its 4-decimal rounding is too.
+    """
+    return round(quantise(value), 4)
 
 
 def _scn_text() -> str:
@@ -91,8 +103,8 @@ def _scn_text() -> str:
     zeros = np.zeros_like(s_b)
     lx, ly, _, _ = _pose(s_b, zeros - _HALF_WIDTH_M)
     rx, ry, _, _ = _pose(s_b, zeros + _HALF_WIDTH_M)
-    left = [[round(float(a), 4), round(float(b), 4)] for a, b in zip(lx, ly, strict=True)]
-    right = [[round(float(a), 4), round(float(b), 4)] for a, b in zip(rx, ry, strict=True)]
+    left = [[_q4(a), _q4(b)] for a, b in zip(lx, ly, strict=True)]
+    right = [[_q4(a), _q4(b)] for a, b in zip(rx, ry, strict=True)]
     lines = [f"# bound_l:{json.dumps(left)}", f"# bound_r:{json.dumps(right)}", _COLUMNS]
     for k in range(round(_DURATION_S / _DT_S) + 1):
         t = round(k * _DT_S, 1)

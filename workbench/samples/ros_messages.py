@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from loaders.records import ObjectClass
+from workbench.samples.quantise import ANGLE_STEPS, STEPS_PER_UNIT, quantise_field
 
 if TYPE_CHECKING:
     from rosbags.typesys.store import Typestore
@@ -90,8 +91,15 @@ class MessageFactory:
         self._t = store.types
 
     def new(self, name: str, **fields: Any) -> Any:
-        """Construct message type ``name`` from keyword fields."""
-        return self._t[name](**fields)
+        """Construct message type ``name`` from keyword fields.
+
+        The one place every ROS message is built: each float field (and float array) is
+        rounded to the grid of :mod:`workbench.samples.quantise` (quaternion components to
+        1e-9, everything else to 1e-6 of its unit), so the serialised bytes do not depend on
+        last-bit differences of the math before.
+        """
+        steps = ANGLE_STEPS if name == "geometry_msgs/msg/Quaternion" else STEPS_PER_UNIT
+        return self._t[name](**{key: quantise_field(v, steps) for key, v in fields.items()})
 
     def stamp(self, t_ns: int) -> Any:
         """A ``builtin_interfaces/Time``."""

@@ -16,7 +16,7 @@ if TYPE_CHECKING:
     from pathlib import Path
 
     from loaders.maps.model import LaneMap
-    from loaders.ros.source import MessageSource
+    from loaders.message_logs.source import MessageSource
 
 __all__ = ["find_map", "read_map"]
 

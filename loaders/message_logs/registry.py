@@ -10,12 +10,12 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-from loaders.ros import ego, objects_mcap, objects_ros, plan
+from loaders.message_logs.decoders import foxglove, mcap_json, ros_ego, ros_objects, ros_plan
 
 if TYPE_CHECKING:
     from collections.abc import Callable
 
-    from loaders.ros.samples import EgoSample, ObjectColumns, PlanSample
+    from loaders.message_logs.samples import EgoSample, ObjectColumns, PlanSample
 
 __all__ = ["FAMILIES", "ROLES", "MessageFamily", "family_of", "normalize_msgtype"]
 
@@ -39,27 +39,27 @@ class MessageFamily:
 
 
 FAMILIES: dict[str, MessageFamily] = {
-    "nav_msgs/Odometry": MessageFamily("ego", 0, ego.decode_odometry),
-    "foxglove.Odometry": MessageFamily("ego", 0, ego.decode_foxglove_odometry),
-    "workbench.EgoState": MessageFamily("ego", 0, ego.decode_json_ego),
-    "geometry_msgs/PoseStamped": MessageFamily("ego", 1, ego.decode_pose_stamped),
-    "foxglove.PoseInFrame": MessageFamily("ego", 1, ego.decode_foxglove_pose_in_frame),
-    "foxglove.FrameTransform": MessageFamily("ego", 2, ego.decode_foxglove_frame_transform),
+    "nav_msgs/Odometry": MessageFamily("ego", 0, ros_ego.decode_odometry),
+    "foxglove.Odometry": MessageFamily("ego", 0, foxglove.decode_foxglove_odometry),
+    "workbench.EgoState": MessageFamily("ego", 0, mcap_json.decode_json_ego),
+    "geometry_msgs/PoseStamped": MessageFamily("ego", 1, ros_ego.decode_pose_stamped),
+    "foxglove.PoseInFrame": MessageFamily("ego", 1, foxglove.decode_foxglove_pose_in_frame),
+    "foxglove.FrameTransform": MessageFamily("ego", 2, foxglove.decode_foxglove_frame_transform),
     "derived_object_msgs/ObjectArray": MessageFamily(
-        "objects", 0, objects_ros.decode_carla_objects
+        "objects", 0, ros_objects.decode_carla_objects
     ),
     "autoware_perception_msgs/TrackedObjects": MessageFamily(
-        "objects", 0, objects_ros.decode_autoware_objects
+        "objects", 0, ros_objects.decode_autoware_objects
     ),
     "autoware_perception_msgs/PredictedObjects": MessageFamily(
-        "objects", 1, objects_ros.decode_autoware_objects
+        "objects", 1, ros_objects.decode_autoware_objects
     ),
-    "workbench.ObjectList": MessageFamily("objects", 0, objects_mcap.decode_json_objects),
-    "vision_msgs/Detection3DArray": MessageFamily("objects", 2, objects_ros.decode_detection3d),
-    "foxglove.SceneUpdate": MessageFamily("objects", 2, objects_mcap.decode_scene_update),
-    "autoware_planning_msgs/Trajectory": MessageFamily("plan", 0, plan.decode_trajectory),
-    "workbench.Plan": MessageFamily("plan", 0, plan.decode_json_plan),
-    "nav_msgs/Path": MessageFamily("plan", 1, plan.decode_path),
+    "workbench.ObjectList": MessageFamily("objects", 0, mcap_json.decode_json_objects),
+    "vision_msgs/Detection3DArray": MessageFamily("objects", 2, ros_objects.decode_detection3d),
+    "foxglove.SceneUpdate": MessageFamily("objects", 2, foxglove.decode_scene_update),
+    "autoware_planning_msgs/Trajectory": MessageFamily("plan", 0, ros_plan.decode_trajectory),
+    "workbench.Plan": MessageFamily("plan", 0, mcap_json.decode_json_plan),
+    "nav_msgs/Path": MessageFamily("plan", 1, ros_plan.decode_path),
 }
 
 

@@ -17,9 +17,9 @@ from typing import Any
 
 import numpy as np
 
+from loaders.message_logs.poses import body_to_map, ros_stamp_ns, yaw_from_quaternion
+from loaders.message_logs.samples import ObjectColumns, class_from_name
 from loaders.records import ObjectClass
-from loaders.ros.poses import body_to_map, ros_stamp_ns, yaw_from_quaternion
-from loaders.ros.samples import ObjectColumns, class_from_name
 
 __all__ = [
     "AUTOWARE_LABELS",

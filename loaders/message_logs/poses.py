@@ -1,4 +1,4 @@
-"""Small pose helpers shared by the message decoders: stamps, yaw, frame rotations.
+"""Small pose helpers shared by the message decoders: stamps, yaw, frame rotations, poses.
 
 Yaw follows the map convention (ENU, 0 = +x, counter-clockwise positive). Rotating a
 body-frame velocity into the map frame::
@@ -17,11 +17,14 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from loaders.message_logs.samples import EgoSample
+
 if TYPE_CHECKING:
     from numpy.typing import NDArray
 
 __all__ = [
     "body_to_map",
+    "ego_sample_from_pose",
     "protobuf_stamp_ns",
     "ros_stamp_ns",
     "yaw_from_quaternion",
@@ -63,3 +66,19 @@ def ros_stamp_ns(stamp: Any) -> int:
 def protobuf_stamp_ns(stamp: Any) -> int:
     """Nanoseconds of a ``google.protobuf.Timestamp``."""
     return int(stamp.seconds) * 1_000_000_000 + int(stamp.nanos)
+
+
+def ego_sample_from_pose(
+    stamp_ns: int | None, pose: Any, speed_mps: float, yaw_rate_radps: float
+) -> EgoSample:
+    """An ego sample from a ROS or Foxglove ``Pose`` (``position``, ``orientation``)."""
+    p, q = pose.position, pose.orientation
+    return EgoSample(
+        stamp_ns,
+        float(p.x),
+        float(p.y),
+        float(p.z),
+        yaw_from_quaternion(q.x, q.y, q.z, q.w),
+        speed_mps,
+        yaw_rate_radps,
+    )

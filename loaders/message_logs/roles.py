@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING
 
 from loaders.drive import TopicInfo, TopicRoles
 from loaders.errors import MissingEgoTopicError, ProfileError, UnknownMessageTypeError
-from loaders.ros.registry import family_of
+from loaders.message_logs.registry import family_of
 
 if TYPE_CHECKING:
     from collections.abc import Sequence

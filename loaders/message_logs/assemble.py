@@ -12,10 +12,10 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from loaders.errors import CorruptLogError, InvalidValueError
+from loaders.message_logs.kinematics import ego_kinematics
+from loaders.message_logs.matching import ObjectBuffer, match_objects
+from loaders.message_logs.samples import EgoSample, ObjectColumns, PlanSample
 from loaders.records import EgoState, Frame
-from loaders.ros.kinematics import ego_kinematics
-from loaders.ros.matching import ObjectBuffer, match_objects
-from loaders.ros.samples import EgoSample, ObjectColumns, PlanSample
 
 if TYPE_CHECKING:
     from collections.abc import Callable, Iterable, Iterator

@@ -1,4 +1,4 @@
-"""Plan decoders: ``nav_msgs/Path``, ``autoware_planning_msgs/Trajectory``, our JSON plan."""
+"""Plan decoders for ROS messages: ``nav_msgs/Path`` and ``autoware_planning_msgs/Trajectory``."""
 
 from __future__ import annotations
 
@@ -6,11 +6,11 @@ from typing import Any
 
 import numpy as np
 
+from loaders.message_logs.poses import ros_stamp_ns, yaws_from_quaternions
+from loaders.message_logs.samples import PlanSample
 from loaders.records import Plan
-from loaders.ros.poses import ros_stamp_ns, yaws_from_quaternions
-from loaders.ros.samples import PlanSample
 
-__all__ = ["decode_json_plan", "decode_path", "decode_trajectory"]
+__all__ = ["decode_path", "decode_trajectory"]
 
 
 def _plan_from_poses(poses: list[Any], t_offset_s: Any, speed_mps: Any) -> Plan:
@@ -44,23 +44,3 @@ def decode_trajectory(msg: Any) -> PlanSample:
     t = [ros_stamp_ns(p.time_from_start) / 1e9 for p in pts]
     v = [float(p.longitudinal_velocity_mps) for p in pts]
     return PlanSample(ros_stamp_ns(msg.header.stamp), _plan_from_poses([p.pose for p in pts], t, v))
-
-
-def decode_json_plan(msg: dict[str, Any]) -> PlanSample:
-    """Our JSON plan schema ``workbench.Plan`` (see ``docs/loaders.md``)."""
-    pts = msg.get("points", [])
-
-    def col(key: str) -> Any:
-        return np.array([np.nan if p.get(key) is None else p[key] for p in pts], dtype=float)
-
-    stamp = msg.get("timestamp_ns")
-    return PlanSample(
-        None if stamp is None else int(stamp),
-        Plan(
-            x_m=col("x_m"),
-            y_m=col("y_m"),
-            yaw_rad=col("yaw_rad"),
-            t_offset_s=col("t_offset_s"),
-            speed_mps=col("speed_mps"),
-        ),
-    )

@@ -18,7 +18,7 @@ import math
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from loaders.ros.samples import EgoSample
+    from loaders.message_logs.samples import EgoSample
 
 __all__ = ["TimedEgo", "ego_kinematics", "wrap_angle"]
 

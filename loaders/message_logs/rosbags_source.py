@@ -11,8 +11,8 @@ from rosbags.rosbag2 import ReaderError as Bag2ReaderError
 
 from loaders.drive import TopicInfo
 from loaders.errors import CorruptLogError, EmptyLogError
-from loaders.ros.mcap_source import osm_attachments
-from loaders.ros.registry import normalize_msgtype
+from loaders.message_logs.mcap_source import osm_attachments
+from loaders.message_logs.registry import normalize_msgtype
 from loaders.typestore import typestore
 
 if TYPE_CHECKING:

@@ -6,17 +6,17 @@ from dataclasses import replace
 from typing import TYPE_CHECKING, Any, Self
 
 from loaders.drive import DriveInfo
-from loaders.ros.assemble import AssemblyOptions, FrameAssembler
-from loaders.ros.registry import family_of
-from loaders.ros.roles import assign_roles
+from loaders.message_logs.assemble import AssemblyOptions, FrameAssembler
+from loaders.message_logs.registry import family_of
+from loaders.message_logs.roles import assign_roles
 
 if TYPE_CHECKING:
     from collections.abc import Callable, Iterator
 
     from loaders.drive import TopicRoles
     from loaders.maps.model import LaneMap
+    from loaders.message_logs.source import MessageSource
     from loaders.records import Frame
-    from loaders.ros.source import MessageSource
 
 __all__ = ["LogDrive"]
 

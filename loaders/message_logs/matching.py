@@ -24,7 +24,7 @@ from loaders.records import ActorTable
 if TYPE_CHECKING:
     from numpy.typing import NDArray
 
-    from loaders.ros.samples import ObjectColumns
+    from loaders.message_logs.samples import ObjectColumns
 
 __all__ = ["ObjectBuffer", "match_objects"]
 

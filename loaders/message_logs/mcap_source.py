@@ -30,7 +30,7 @@ from zstandard import ZstdError
 
 from loaders.drive import TopicInfo
 from loaders.errors import CorruptLogError, EmptyLogError, UnsupportedFormatError
-from loaders.ros.registry import normalize_msgtype
+from loaders.message_logs.registry import normalize_msgtype
 
 if TYPE_CHECKING:
     from collections.abc import Callable, Collection, Iterator
