@@ -27,6 +27,7 @@ def test_documented_defaults() -> None:
     assert params.for_class(ObjectClass.PEDESTRIAN) == DEFAULT_PEDESTRIAN_DYNAMICS
     assert DEFAULT_PEDESTRIAN_DYNAMICS.max_speed_on_acceleration_mps == 10.0
     assert params.scene.restrict_speed_limit_mode == RestrictSpeedLimitMode.INCREASED_SPEED_LIMIT_10
+    assert params.scene.ego_length_m is None  # the frames' size (docs/architecture.md)
 
 
 def test_example_toml_loads() -> None:
@@ -34,7 +35,7 @@ def test_example_toml_loads() -> None:
         pytest.skip("example not present")
     params = parse_rss_params(EXAMPLE.read_text())
     assert params.for_class(ObjectClass.EGO).response_time_s == 1.0
-    assert params.scene.ego_length_m is None
+    assert params.scene.ego_length_m == 4.5
 
 
 def test_reproduce_adrss_5_0_defects_is_an_opt_in_bool() -> None:
