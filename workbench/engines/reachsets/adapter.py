@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from loaders.maps.model import LaneDirection, LaneKind, LineType
+from loaders.maps.model import DRIVABLE_LANE_KINDS, LaneDirection, LaneKind, LineType
 from reachsets.adapter import reach_inputs_from_arrays
 from reachsets.inputs import RightOfWayRule, RoadLane, RoadLayout, TrackBounds
 
@@ -26,6 +26,8 @@ __all__ = [
 
 #: Without a plan the ego is assumed to keep its speed and heading for this long.
 PLAN_FALLBACK_HORIZON_S = 4.0
+#: The reach-set road layout: the drivable lanes of motor vehicles (not bicycle lanes).
+_MOTOR_LANE_KINDS = DRIVABLE_LANE_KINDS - {LaneKind.BICYCLE}
 
 
 def road_layout_from_lane_map(lane_map: LaneMap) -> RoadLayout | None:
@@ -34,9 +36,9 @@ def road_layout_from_lane_map(lane_map: LaneMap) -> RoadLayout | None:
     solid = []
     in_intersection = {lane_id for group in lane_map.intersections for lane_id in group}
     for lane in lane_map.lanes.values():
-        if lane.kind not in (LaneKind.ROAD, LaneKind.INTERSECTION) or len(lane.left_m) < 2:  # noqa: PLR2004
+        if lane.kind not in _MOTOR_LANE_KINDS or len(lane.left_m) < 2:  # noqa: PLR2004
             continue
-        ring = np.concatenate([lane.left_m, lane.right_m[::-1]])
+        ring = lane.outline_m
         centre = lane.centre_m if lane.direction != LaneDirection.NEGATIVE else lane.centre_m[::-1]
         lanes.append(
             RoadLane(
