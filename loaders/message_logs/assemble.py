@@ -80,6 +80,11 @@ class FrameAssembler:
         self.skipped_invalid = 0
         self.skipped_out_of_order = 0
 
+    @property
+    def unused_objects(self) -> int:
+        """Object messages no frame took (replaced before the next ego message, or too old)."""
+        return sum(b.unused_total for b in self._buffers)
+
     def _time(self, log_ns: int, stamp_ns: int | None) -> int:
         return stamp_ns if self._opt.clock == "header" and stamp_ns is not None else log_ns
 

@@ -14,10 +14,12 @@ typestore built from the channel's ``ros2msg`` schema.
 from __future__ import annotations
 
 import json
+import re
 import struct
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
+from backports.zstd import ZstdError as BackportsZstdError
 from google.protobuf.message import DecodeError
 from mcap.data_stream import ReadDataStream
 from mcap.exceptions import McapError
@@ -25,7 +27,9 @@ from mcap.reader import SeekingReader
 from mcap.records import Attachment, Channel, Message, Schema
 from mcap.stream_reader import StreamReader
 from mcap_protobuf.decoder import DecoderFactory as ProtobufDecoderFactory
+from rosbags.serde import SerdeError
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
+from rosbags.typesys.base import TypesysError
 from zstandard import ZstdError
 
 from loaders.drive import TopicInfo
@@ -37,7 +41,7 @@ if TYPE_CHECKING:
     from pathlib import Path
     from typing import BinaryIO
 
-__all__ = ["MCAP_ERRORS", "McapSource", "osm_attachments"]
+__all__ = ["MCAP_ERRORS", "McapSource", "is_service_event", "osm_attachments"]
 
 #: What a damaged MCAP raises while reading (wrapped into ``CorruptLogError``).
 MCAP_ERRORS: tuple[type[Exception], ...] = (
@@ -50,15 +54,36 @@ MCAP_ERRORS: tuple[type[Exception], ...] = (
     RuntimeError,
     IndexError,
     ZstdError,
+    BackportsZstdError,
     DecodeError,
+    AssertionError,
+    TypesysError,
+    SerdeError,
 )
-_FORMATS = {"cdr": "ros2-mcap", "json": "mcap-json", "protobuf": "mcap-protobuf"}
+_FORMATS = {
+    "cdr": "ros2-mcap",
+    "ros1": "ros1-mcap",
+    "json": "mcap-json",
+    "protobuf": "mcap-protobuf",
+}
+#: ROS 2 (Jazzy) service-event channels: recorded service calls, never a drive's topic.
+_SERVICE_EVENT = re.compile(r"(/_service_event$)")
+_SERVICE_SCHEMA = re.compile(r"/srv/\w+_Event$")
 
 
-def _ros2_decoder(schema: Schema) -> Callable[[bytes], Any]:
+def is_service_event(channel: Channel, schema: Schema | None) -> bool:
+    """Whether ``channel`` records ROS 2 service calls (ignored, with a note)."""
+    name = schema.name if schema is not None else ""
+    return bool(_SERVICE_EVENT.search(channel.topic) or _SERVICE_SCHEMA.search(name))
+
+
+def _ros_decoder(schema: Schema, *, ros1: bool) -> Callable[[bytes], Any]:
     store = get_typestore(Stores.EMPTY)
-    store.register(get_types_from_msg(schema.data.decode(), schema.name))
-    name = schema.name
+    types = get_types_from_msg(schema.data.decode(), schema.name)
+    store.register(types)
+    name = next(iter(types))
+    if ros1:
+        return lambda data: store.deserialize_ros1(data, name)
     return lambda data: store.deserialize_cdr(data, name)
 
 
@@ -139,6 +164,8 @@ class McapSource:
             self._file.seek(0)
             index = _scan(self._file)
         self._index = index
+        self.ignored = self._drop_service_events()
+        self.notes = {"ignored_service_channels": ", ".join(self.ignored)} if self.ignored else {}
         if not index.counts or index.start_ns is None:
             self.close()
             if index.damage is not None:
@@ -152,12 +179,25 @@ class McapSource:
         if not known:
             self.close()
             raise UnsupportedFormatError(path, f"no channel encoding we read: {sorted(encodings)}")
+        ros = [k for k in ("ros2-mcap", "ros1-mcap") if k in known]
         self.source_format = (
-            "ros2-mcap"
-            if "ros2-mcap" in known
-            else "mcap-" + "+".join(k.removeprefix("mcap-") for k in known)
+            ros[0] if ros else "mcap-" + "+".join(k.removeprefix("mcap-") for k in known)
         )
         self.topics = self._topic_infos()
+
+    def _drop_service_events(self) -> tuple[str, ...]:
+        """Remove service-event channels from the index; return their topics."""
+        index = self._index
+        dropped = [
+            cid
+            for cid, channel in index.channels.items()
+            if is_service_event(channel, index.schemas.get(channel.schema_id))
+        ]
+        topics = sorted({index.channels[cid].topic for cid in dropped})
+        for cid in dropped:
+            del index.channels[cid]
+            index.counts.pop(cid, None)
+        return tuple(topics)
 
     @property
     def indexed(self) -> bool:
@@ -182,8 +222,8 @@ class McapSource:
             schema = self._index.schemas.get(channel.schema_id)
             if channel.message_encoding == "json":
                 decode = json.loads
-            elif channel.message_encoding == "cdr" and schema is not None:
-                decode = _ros2_decoder(schema)
+            elif channel.message_encoding in {"cdr", "ros1"} and schema is not None:
+                decode = _ros_decoder(schema, ros1=channel.message_encoding == "ros1")
             else:
                 found = self._protobuf.decoder_for(channel.message_encoding, schema)
                 if found is None:

@@ -2,15 +2,20 @@
 
 from __future__ import annotations
 
+import re
+import sqlite3
 import struct
 from typing import TYPE_CHECKING, Any
 
+from backports.zstd import ZstdError
 from rosbags.highlevel import AnyReader, AnyReaderError
 from rosbags.rosbag1 import ReaderError as Bag1ReaderError
 from rosbags.rosbag2 import ReaderError as Bag2ReaderError
+from rosbags.serde import SerdeError
+from rosbags.typesys.base import TypesysError
 
 from loaders.drive import TopicInfo
-from loaders.errors import CorruptLogError, EmptyLogError
+from loaders.errors import CorruptLogError, EmptyLogError, UnsupportedFormatError
 from loaders.message_logs.mcap_source import osm_attachments
 from loaders.message_logs.registry import normalize_msgtype
 from loaders.typestore import typestore
@@ -33,7 +38,13 @@ READ_ERRORS: tuple[type[Exception], ...] = (
     KeyError,
     OSError,
     RuntimeError,  # lz4 frame errors
+    ZstdError,
+    AssertionError,  # rosbags asserts on some malformed ROS 1 records
+    SerdeError,
+    TypesysError,
+    sqlite3.Error,
 )
+_SERIALIZATION = re.compile(r"Serialization format (\{.*\}) is not supported")
 
 
 def _size(path: Path) -> int:
@@ -54,12 +65,17 @@ class RosbagsSource:
         """Open ``path``; see the class docstring for errors."""
         self.path = path
         self.source_format = source_format
+        self.notes: dict[str, str] = {}
         self._reader = AnyReader([path], default_typestore=typestore(2))
         try:
             self._reader.open()
         except READ_ERRORS as err:
+            if found := _SERIALIZATION.search(str(err)):
+                raise UnsupportedFormatError(
+                    path, f"serialization format {found.group(1)}; only cdr is read"
+                ) from err
             raise CorruptLogError(
-                path, f"cannot read the index: {err}", offset=_size(path)
+                path, f"cannot read the index: {type(err).__name__}: {err}", offset=_size(path)
             ) from err
         if self._reader.message_count == 0:
             self._reader.close()
@@ -85,7 +101,9 @@ class RosbagsSource:
                 yield conn.topic, t, self._reader.deserialize(raw, conn.msgtype)
         except READ_ERRORS as err:
             where = "after the last readable message" if topic else "before any message"
-            raise CorruptLogError(self.path, f"{where}: {err}", topic=topic, t_ns=t_ns) from err
+            raise CorruptLogError(
+                self.path, f"{where}: {type(err).__name__}: {err}", topic=topic, t_ns=t_ns
+            ) from err
 
     def attachments(self) -> Iterator[tuple[str, bytes]]:
         """``.osm`` attachments of the MCAP file(s); bags and sqlite3 storage have none."""
