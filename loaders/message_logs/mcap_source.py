@@ -166,7 +166,7 @@ class McapSource:
         self._index = index
         self.ignored = self._drop_service_events()
         self.notes = {"ignored_service_channels": ", ".join(self.ignored)} if self.ignored else {}
-        if not index.counts or index.start_ns is None:
+        if not any(index.counts.get(cid) for cid, _ in self._channels()) or index.start_ns is None:
             self.close()
             if index.damage is not None:
                 raise CorruptLogError(
@@ -174,7 +174,7 @@ class McapSource:
                 )
             raise EmptyLogError(path, "the MCAP holds no messages")
         self.start_ns, self.end_ns = index.start_ns, index.end_ns
-        encodings = {c.message_encoding for c in index.channels.values()}
+        encodings = {c.message_encoding for _, c in self._channels()}
         known = sorted(_FORMATS[e] for e in encodings if e in _FORMATS)
         if not known:
             self.close()
@@ -186,18 +186,20 @@ class McapSource:
         self.topics = self._topic_infos()
 
     def _drop_service_events(self) -> tuple[str, ...]:
-        """Remove service-event channels from the index; return their topics."""
+        """Leave service-event channels out of the topics; return their topics."""
         index = self._index
-        dropped = [
+        self._ignored_ids = {
             cid
             for cid, channel in index.channels.items()
             if is_service_event(channel, index.schemas.get(channel.schema_id))
-        ]
-        topics = sorted({index.channels[cid].topic for cid in dropped})
-        for cid in dropped:
-            del index.channels[cid]
-            index.counts.pop(cid, None)
-        return tuple(topics)
+        }
+        return tuple(sorted({index.channels[cid].topic for cid in self._ignored_ids}))
+
+    def _channels(self) -> Iterator[tuple[int, Channel]]:
+        """The channels read as topics (service events left out)."""
+        for cid, channel in self._index.channels.items():
+            if cid not in self._ignored_ids:
+                yield cid, channel
 
     @property
     def indexed(self) -> bool:
@@ -211,7 +213,7 @@ class McapSource:
     def _topic_infos(self) -> tuple[TopicInfo, ...]:
         counts: dict[str, int] = {}
         types: dict[str, str] = {}
-        for cid, channel in self._index.channels.items():
+        for cid, channel in self._channels():
             counts[channel.topic] = counts.get(channel.topic, 0) + self._index.counts.get(cid, 0)
             types[channel.topic] = self._msgtype(channel)
         return tuple(TopicInfo(t, types[t], counts[t]) for t in sorted(types))
