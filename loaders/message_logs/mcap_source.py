@@ -1,4 +1,4 @@
-"""MCAP files through ``mcap``'s reader: JSON and protobuf channels, and damaged ROS 2 files.
+"""MCAP files through ``mcap``'s reader: ROS 1, JSON and protobuf channels, damaged ROS 2 files.
 
 Healthy files are read through the summary and chunk index (``SeekingReader``). Files
 without a readable summary (truncated, or written without one) are read as a record
@@ -7,8 +7,9 @@ breaks off; message reading then yields every message before that point and rais
 ``CorruptLogError`` with the byte offset.
 
 Decoders are resolved once per channel and cached: ``protobuf`` through
-``mcap_protobuf``, ``json`` with the standard library, ``cdr`` (ROS 2) through a rosbags
-typestore built from the channel's ``ros2msg`` schema.
+``mcap_protobuf``, ``json`` with the standard library, ``cdr`` (ROS 2) and ``ros1`` through
+a rosbags typestore built from the channel's ``ros2msg``/``ros1msg`` schema. ROS 2 service-event
+channels (``*/_service_event``, ``*/srv/*_Event`` schemas) are left out of the topics.
 """
 
 from __future__ import annotations

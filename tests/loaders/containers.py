@@ -13,11 +13,11 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 from mcap.reader import make_reader
-from ruamel.yaml import YAML
 from mcap.writer import Writer as McapWriter
 from rosbags.highlevel import AnyReader
 from rosbags.rosbag2 import StoragePlugin
 from rosbags.rosbag2 import Writer as Bag2Writer
+from ruamel.yaml import YAML
 
 from loaders.typestore import typestore
 
@@ -47,16 +47,18 @@ def _rewrite(src: Path, dst: Path, keep: Any) -> int:
     """Copy the messages of ``src`` with ``keep(index)`` true into a new rosbag2 ``dst``."""
     store = typestore(2)
     written = 0
-    with AnyReader([src], default_typestore=store) as reader:
-        with Bag2Writer(dst, version=9, storage_plugin=StoragePlugin.SQLITE3) as writer:
-            conns = {
-                c.id: writer.add_connection(c.topic, c.msgtype, typestore=store)
-                for c in reader.connections
-            }
-            for k, (conn, t_ns, raw) in enumerate(reader.messages()):
-                if keep(k):
-                    writer.write(conns[conn.id], t_ns, raw)
-                    written += 1
+    with (
+        AnyReader([src], default_typestore=store) as reader,
+        Bag2Writer(dst, version=9, storage_plugin=StoragePlugin.SQLITE3) as writer,
+    ):
+        conns = {
+            c.id: writer.add_connection(c.topic, c.msgtype, typestore=store)
+            for c in reader.connections
+        }
+        for k, (conn, t_ns, raw) in enumerate(reader.messages()):
+            if keep(k):
+                writer.write(conns[conn.id], t_ns, raw)
+                written += 1
     return written
 
 
@@ -113,12 +115,16 @@ def with_service_events(mcap: Path, out: Path) -> Path:
         for schema, channel, message in reader.iter_messages():
             assert schema is not None
             if schema.id not in schemas:
-                schemas[schema.id] = writer.register_schema(schema.name, schema.encoding, schema.data)
+                schemas[schema.id] = writer.register_schema(
+                    schema.name, schema.encoding, schema.data
+                )
             if channel.id not in channels:
                 channels[channel.id] = writer.register_channel(
                     channel.topic, channel.message_encoding, schemas[schema.id], channel.metadata
                 )
-            writer.add_message(channels[channel.id], message.log_time, message.data, message.publish_time)
+            writer.add_message(
+                channels[channel.id], message.log_time, message.data, message.publish_time
+            )
             t_first = message.log_time if t_first is None else t_first
         service = writer.register_schema("std_srvs/srv/SetBool_Event", "unknown", b"")
         topic = writer.register_channel("/set_flag/_service_event", "cdr", service)

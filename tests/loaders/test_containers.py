@@ -8,14 +8,17 @@ from __future__ import annotations
 import shutil
 from contextlib import closing
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 import pytest
 
 from loaders import open_drive
 from loaders.errors import UnsupportedFormatError
-from loaders.records import Frame
 from tests.loaders import containers
+
+if TYPE_CHECKING:
+    from loaders.records import Frame
 
 SAMPLES = Path(__file__).resolve().parents[2] / "sample_logs"
 
@@ -74,6 +77,8 @@ def test_service_event_channels_are_ignored_with_a_note(tmp_path: Path) -> None:
 def test_wrong_serialization_format_is_named(tmp_path: Path) -> None:
     bag = shutil.copytree(SAMPLES / "highway_cut_in_rosbag2", tmp_path / "bag")
     meta = bag / "metadata.yaml"
-    meta.write_text(meta.read_text().replace("serialization_format: cdr", "serialization_format: ros1", 1))
+    meta.write_text(
+        meta.read_text().replace("serialization_format: cdr", "serialization_format: ros1", 1)
+    )
     with pytest.raises(UnsupportedFormatError, match=r"serialization format \{'ros1'\}; only cdr"):
         open_drive(bag)

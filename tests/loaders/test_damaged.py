@@ -57,16 +57,31 @@ def _mcap_chunk(path: Path) -> int:
     return chunk.chunk_start_offset + chunk.chunk_length // 2
 
 
+def _copy(name: str) -> Callable[[Path], Path]:
+    """Writer copying the sample ``name`` into a directory."""
+
+    def write(directory: Path) -> Path:
+        src = SAMPLES / name
+        if src.is_dir():
+            return Path(shutil.copytree(src, directory / "x"))
+        return Path(shutil.copy(src, directory / f"x{src.suffix}"))
+
+    return write
+
+
 def _middle(path: Path) -> int:
     return path.stat().st_size // 2
 
 
 #: Container -> (writer of the undamaged file from the samples, offset inside compressed data).
 _CONTAINERS: dict[str, tuple[Callable[[Path], Path], Callable[[Path], int]]] = {
-    "ros1-bag": (lambda d: shutil.copy(SAMPLES / "highway_cut_in.bag", d / "x.bag"), _middle),
-    "ros2-mcap": (lambda d: shutil.copy(SAMPLES / "highway_cut_in.mcap", d / "x.mcap"), _mcap_chunk),
+    "ros1-bag": (_copy("highway_cut_in.bag"), _middle),
+    "ros2-mcap": (
+        _copy("highway_cut_in.mcap"),
+        _mcap_chunk,
+    ),
     "mcap-protobuf": (
-        lambda d: shutil.copy(SAMPLES / "pedestrian_crossing_foxglove.mcap", d / "x.mcap"),
+        _copy("pedestrian_crossing_foxglove.mcap"),
         _mcap_chunk,
     ),
     "ros1-mcap": (
@@ -74,7 +89,7 @@ _CONTAINERS: dict[str, tuple[Callable[[Path], Path], Callable[[Path], int]]] = {
         _mcap_chunk,
     ),
     "rosbag2-sqlite3": (
-        lambda d: shutil.copytree(SAMPLES / "highway_cut_in_rosbag2", d / "x"),
+        _copy("highway_cut_in_rosbag2"),
         lambda p: _middle(next(p.glob("*.db3"))),
     ),
     "bare-db3": (lambda d: containers.bare_db3(SAMPLES / "highway_cut_in_rosbag2", d), _middle),
@@ -87,7 +102,7 @@ def _target(path: Path) -> Path:
 
 
 def _damage(kind: str, data: bytes, offset: int) -> bytes:
-    rng = random.Random(18)
+    rng = random.Random(18)  # noqa: S311 - reproducible damage, not cryptography
     out = bytearray(data)
     if kind == "truncated-half":
         return data[: len(data) // 2]

@@ -63,7 +63,9 @@ def test_info_and_evaluate_agree_and_say_what_was_dropped(repeated_times: Path) 
     assert "lost: ego messages dropped: 3 (time not after" in verbose.output
 
 
-def test_info_fails_on_a_damaged_mcap_chunk(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+def test_info_fails_on_a_damaged_mcap_chunk(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     path = tmp_path / "damaged.mcap"
     data = bytearray((SAMPLES / "highway_cut_in.mcap").read_bytes())
     data[17635 + 6000 : 17635 + 6064] = bytes(range(64))  # inside the second zstd chunk
