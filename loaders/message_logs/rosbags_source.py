@@ -102,8 +102,30 @@ class RosbagsSource:
         except READ_ERRORS as err:
             where = "after the last readable message" if topic else "before any message"
             raise CorruptLogError(
-                self.path, f"{where}: {type(err).__name__}: {err}", topic=topic, t_ns=t_ns
+                self.path,
+                f"{where}: {type(err).__name__}: {err}",
+                topic=topic,
+                t_ns=t_ns,
+                offset=self._chunk_offset(t_ns, start_ns),
             ) from err
+
+    def _chunk_offset(self, last_ns: int | None, start_ns: int | None) -> int | None:
+        """Byte offset of the ROS 1 chunk that failed (``None`` for rosbag2 storage).
+
+        rosbags loads a chunk once the merge reaches its start time: every chunk starting at
+        or before the last good message was read, so the damaged one is the first chunk
+        starting after it (or the first one read at all).
+        """
+        chunks = sorted(
+            (info.pos, info.start_time, info.end_time)
+            for reader in self._reader.readers
+            for info in getattr(reader, "chunk_infos", ())
+        )
+        if last_ns is not None:
+            after = [pos for pos, start, _ in chunks if start > last_ns]
+        else:
+            after = [pos for pos, _, end in chunks if start_ns is None or end >= start_ns]
+        return after[0] if after and len(self._reader.readers) == 1 else None
 
     def attachments(self) -> Iterator[tuple[str, bytes]]:
         """``.osm`` attachments of the MCAP file(s); bags and sqlite3 storage have none."""

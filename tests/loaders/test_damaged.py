@@ -150,3 +150,4 @@ def test_damaged_file_keeps_readable_frames_and_fails_typed(
     assert err is not None, f"{kind} {container}: damage went unnoticed"
     assert str(path) in str(err) or str(target) in str(err)
     assert "\n" not in str(err)
+    assert err.offset is not None or err.t_ns is not None, str(err)

@@ -39,7 +39,9 @@ def _summary_table(violations: list[Violation], t0_ns: int) -> Table:
 
 
 def evaluate(
-    log: Annotated[Path, typer.Argument(help="Drive: .mcap, .bag, rosbag2 dir or .db3, .xml, .saa.")],
+    log: Annotated[
+        Path, typer.Argument(help="Drive: .mcap, .bag, rosbag2 dir or .db3, .xml, .saa.")
+    ],
     *,
     map_path: Annotated[Path | None, typer.Option("--map", help="Lane map file.")] = None,
     profile: Annotated[Path | None, typer.Option("--profile", help="TOML topic profile.")] = None,

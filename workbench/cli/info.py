@@ -55,7 +55,9 @@ def render_info(drive: Drive, console: Console, frames: int | None = None) -> No
 
 
 def info(
-    log: Annotated[Path, typer.Argument(help="Drive: .mcap, .bag, rosbag2 dir or .db3, .xml, .saa/.scn")],
+    log: Annotated[
+        Path, typer.Argument(help="Drive: .mcap, .bag, rosbag2 dir or .db3, .xml, .saa/.scn")
+    ],
     *,
     map_path: Annotated[
         Path | None, typer.Option("--map", help="Lane map file (Lanelet2 .osm)")

@@ -1,6 +1,5 @@
 """Every real NGSIM CommonRoad scenario replays into an .rrd that reads back whole."""
 
-
 import pytest
 from rerun.chunk import RrdReader
 
