@@ -29,7 +29,14 @@ LOSS_NOTES: dict[str, tuple[str, str]] = {
     "skipped_invalid_ego": ("ego messages dropped", "non-finite pose (invalid_ego = skip)"),
     "unused_object_messages": (
         "object messages used by no frame",
-        "replaced by a newer one before the next ego message, or older than the match tolerance",
+        (
+            "replaced by a newer one before the next ego message, older than the match "
+            "tolerance, or after the last ego message"
+        ),
+    ),
+    "unused_plan_messages": (
+        "plan messages used by no frame",
+        "replaced by a newer plan before the next ego message, or after the last one",
     ),
     "ignored_service_channels": (
         "service-event channels ignored",
@@ -42,11 +49,17 @@ def _count(value: str) -> int:
     return int(value) if value.isdigit() else len([v for v in value.split(",") if v.strip()])
 
 
+def _singular(what: str) -> str:
+    return what.replace("messages", "message", 1).replace("channels", "channel", 1)
+
+
 def loss_summary(notes: dict[str, str]) -> str | None:
     """One line naming every kind of loss with its count, or ``None`` when nothing was lost."""
-    parts = [
-        f"{_count(notes[key])} {what}" for key, (what, _) in LOSS_NOTES.items() if key in notes
-    ]
+    parts = []
+    for key, (what, _) in LOSS_NOTES.items():
+        if key in notes:
+            count = _count(notes[key])
+            parts.append(f"{count} {_singular(what) if count == 1 else what}")
     if not parts:
         return None
     return "not in any frame: " + "; ".join(parts) + " (details: --verbose)"

@@ -99,6 +99,7 @@ class LogDrive:
                 ("skipped_invalid_ego", assembler.skipped_invalid),
                 ("skipped_out_of_order_ego", assembler.skipped_out_of_order),
                 ("unused_object_messages", assembler.unused_objects),
+                ("unused_plan_messages", assembler.unused_plans),
             ):
                 if count:
                     notes[key] = str(count)
