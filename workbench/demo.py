@@ -106,6 +106,8 @@ def replay_one(
             drive.close()
     except USER_ERRORS as err:
         return DemoRow(log=log.name, error=str(err))
+    if s.stopped_by is not None and not s.frames:
+        return DemoRow(log=log.name, error=f"no frame read (no {target.name}): {s.stopped_by}")
     if s.stopped_by is not None:
         return DemoRow(
             log=log.name, error=f"{s.frames} frames kept in {target}, then: {s.stopped_by}"

@@ -68,7 +68,7 @@ _FORMATS = {
     "protobuf": "mcap-protobuf",
 }
 #: ROS 2 (Jazzy) service-event channels: recorded service calls, never a drive's topic.
-_SERVICE_EVENT = re.compile(r"(/_service_event$)")
+_SERVICE_EVENT = re.compile(r"/_service_event$")
 _SERVICE_SCHEMA = re.compile(r"/srv/\w+_Event$")
 
 
