@@ -40,7 +40,8 @@ class DriveInfo:
 
     Attributes:
         path: The drive file or bag directory.
-        source_format: e.g. ``ros2-mcap``, ``ros1-bag``, ``rosbag2-sqlite3``, ``rosbag2-mcap``,
+        source_format: e.g. ``ros2-mcap``, ``ros1-mcap``, ``ros1-bag``, ``rosbag2-sqlite3``,
+            ``rosbag2-mcap``,
             ``mcap-json``, ``mcap-protobuf``, ``commonroad-2020a``, ``scenario-architect``.
         start_ns: First message time.
         end_ns: Last message time.

@@ -4,8 +4,10 @@
 |-----------------------------------------|------------------------------------------|
 | ``.bag``                                | rosbags ``AnyReader`` (ROS 1)            |
 | rosbag2 directory (sqlite3 or mcap)     | rosbags ``AnyReader``                    |
-| ``.mcap`` with ``cdr`` channels         | ``AnyReader`` (``mcap`` if summary damaged) |
-| ``.mcap`` with ``json``/``protobuf``    | ``mcap`` reader                          |
+| ``.db3`` (rosbag2 storage, no metadata) | rosbags ``AnyReader``                    |
+| ``.mcap`` with ``cdr`` channels         | ``AnyReader`` (``mcap`` if summary damaged |
+|                                         | or service-event channels present)       |
+| ``.mcap`` with ``ros1``/``json``/``protobuf`` | ``mcap`` reader                    |
 | ``.xml`` (CommonRoad)                   | ``loaders.commonroad``                   |
 | ``.saa`` / ``.scn`` (ScenarioArchitect) | ``loaders.scenario_architect``           |
 """
@@ -36,7 +38,7 @@ if TYPE_CHECKING:
 __all__ = ["LOG_SUFFIXES", "is_drive_path", "is_rosbag2_dir", "open_drive"]
 
 #: File suffixes ``open_drive`` accepts (lower case; besides rosbag2 directories).
-LOG_SUFFIXES: tuple[str, ...] = (".mcap", ".bag", ".xml", ".saa", ".scn")
+LOG_SUFFIXES: tuple[str, ...] = (".mcap", ".bag", ".db3", ".xml", ".saa", ".scn")
 #: Suffixes of the drives that are not message logs (CommonRoad, ScenarioArchitect).
 _SCENARIO_SUFFIXES = frozenset({".xml", ".saa", ".scn"})
 
@@ -73,8 +75,10 @@ def _open_source(path: Path) -> MessageSource:
     suffix = path.suffix.lower()
     if suffix == ".bag":
         return RosbagsSource(path, "ros1-bag")
+    if suffix == ".db3":
+        return RosbagsSource(path, "rosbag2-sqlite3")  # a bare storage file: topics table
     source = McapSource(path)
-    if source.source_format == "ros2-mcap" and source.indexed:
+    if source.source_format == "ros2-mcap" and source.indexed and not source.ignored:
         source.close()
         return RosbagsSource(path, "ros2-mcap")
     return source

@@ -18,7 +18,11 @@ from rss import compiled
 # fresh, before any test imports ``rss`` submodules.
 compiled.activate()
 
-EXTERNAL_DIR = (Path(__file__).resolve().parents[1] / ".." / "shared" / "external").resolve()
+#: ``RSS_WORKBENCH_EXTERNAL`` overrides the place (e.g. for a git worktree elsewhere).
+EXTERNAL_DIR = Path(
+    os.environ.get("RSS_WORKBENCH_EXTERNAL")
+    or Path(__file__).resolve().parents[1] / ".." / "shared" / "external"
+).resolve()
 
 
 def require_external_dir(path: Path, *, ci: bool) -> Path:

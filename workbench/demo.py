@@ -45,8 +45,9 @@ def primary_logs(logs: list[Path]) -> set[Path]:
 def find_sample_logs(samples_dir: Path) -> list[Path]:
     """Drives directly in ``samples_dir``, sorted by name.
 
-    Drives are ``*.mcap``, ``*.bag``, CommonRoad ``*.xml`` and ScenarioArchitect
-    ``*.saa``/``*.scn`` files and rosbag2 directories (a directory holding ``metadata.yaml``).
+    Drives are ``*.mcap``, ``*.bag``, bare rosbag2 ``*.db3``, CommonRoad ``*.xml`` and
+    ScenarioArchitect ``*.saa``/``*.scn`` files and rosbag2 directories (a directory holding
+    ``metadata.yaml``).
     """
     found = [p for p in samples_dir.iterdir() if is_drive_path(p)]
     return sorted(found, key=lambda p: p.name)
@@ -105,6 +106,8 @@ def replay_one(
             drive.close()
     except USER_ERRORS as err:
         return DemoRow(log=log.name, error=str(err))
+    if s.stopped_by is not None and not s.frames:
+        return DemoRow(log=log.name, error=f"no frame read (no {target.name}): {s.stopped_by}")
     if s.stopped_by is not None:
         return DemoRow(
             log=log.name, error=f"{s.frames} frames kept in {target}, then: {s.stopped_by}"

@@ -74,11 +74,23 @@ class FrameAssembler:
         self._buffers = [ObjectBuffer(t) for t in roles.objects]
         self._by_topic = {b.topic: b for b in self._buffers}
         self._plan: tuple[int, Plan] | None = None
+        self._plan_used = False
+        self._plans_unused = 0
         self._prev: _Pending | None = None
         self._cur: _Pending | None = None
         self._index = 0
         self.skipped_invalid = 0
         self.skipped_out_of_order = 0
+
+    @property
+    def unused_objects(self) -> int:
+        """Object messages no frame took (replaced before the next ego message, or too old)."""
+        return sum(b.unused_total for b in self._buffers)
+
+    @property
+    def unused_plans(self) -> int:
+        """Plan messages no frame took (replaced before the next ego message, or last)."""
+        return self._plans_unused + int(self._plan is not None and not self._plan_used)
 
     def _time(self, log_ns: int, stamp_ns: int | None) -> int:
         return stamp_ns if self._opt.clock == "header" and stamp_ns is not None else log_ns
@@ -122,6 +134,7 @@ class FrameAssembler:
             )
         actors = match_objects(self._buffers, t_ns, self._opt.tolerance_ns, self._opt.exclude_id)
         plan = self._plan[1] if self._plan is not None and self._plan[0] <= t_ns else None
+        self._plan_used = self._plan_used or plan is not None
         return self._emit(_Pending(t_ns, sample, actors, plan))
 
     def run(self, messages: Iterable[tuple[str, int, Any]]) -> Iterator[Frame]:
@@ -145,7 +158,9 @@ class FrameAssembler:
                 elif isinstance(decoded, ObjectColumns):
                     self._by_topic[topic].update(self._time(log_ns, decoded.stamp_ns), decoded)
                 elif isinstance(decoded, PlanSample):
+                    self._plans_unused += int(self._plan is not None and not self._plan_used)
                     self._plan = (self._time(log_ns, decoded.stamp_ns), decoded.plan)
+                    self._plan_used = False
         except (CorruptLogError, InvalidValueError):
             frame = self._emit(None)
             if frame is not None:

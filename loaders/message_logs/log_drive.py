@@ -5,7 +5,7 @@ from __future__ import annotations
 from dataclasses import replace
 from typing import TYPE_CHECKING, Any, Self
 
-from loaders.drive import DriveInfo
+from loaders.drive import DriveInfo, TopicRoles
 from loaders.message_logs.assemble import AssemblyOptions, FrameAssembler
 from loaders.message_logs.registry import family_of
 from loaders.message_logs.roles import assign_roles
@@ -13,12 +13,15 @@ from loaders.message_logs.roles import assign_roles
 if TYPE_CHECKING:
     from collections.abc import Callable, Iterator
 
-    from loaders.drive import TopicRoles
     from loaders.maps.model import LaneMap
     from loaders.message_logs.source import MessageSource
     from loaders.records import Frame
 
 __all__ = ["LogDrive"]
+
+
+def _topics(roles: TopicRoles) -> set[str]:
+    return {t for t in (roles.ego, *roles.objects, roles.plan) if t is not None}
 
 
 class LogDrive:
@@ -55,7 +58,7 @@ class LogDrive:
             match_tolerance_ns=options.tolerance_ns,
             frame_count=counts[roles.ego],
             map_source=None if lane_map is None else lane_map[0],
-            notes={},
+            notes=dict(source.notes),
         )
 
     @property
@@ -81,16 +84,38 @@ class LogDrive:
         lead = opt.tolerance_ns + 1_000_000_000  # objects and a plan before the first frame
         read_from = None if opt.start_ns is None else opt.start_ns - lead
         read_to = None if opt.end_ns is None else opt.end_ns + 1_000_000_000
-        assembler = FrameAssembler(self._source.path, self._roles, self._decoders, opt)
+        return self._run(self._roles, opt, read_from, read_to)
+
+    def _run(
+        self, roles: TopicRoles, opt: AssemblyOptions, read_from: int | None, read_to: int | None
+    ) -> Iterator[Frame]:
+        decoders = {t: d for t, d in self._decoders.items() if t in _topics(roles)}
+        assembler = FrameAssembler(self._source.path, roles, decoders, opt)
         try:
-            yield from assembler.run(
-                self._source.messages(tuple(self._decoders), read_from, read_to)
-            )
+            yield from assembler.run(self._source.messages(tuple(decoders), read_from, read_to))
         finally:
-            if assembler.skipped_invalid:
-                self._info.notes["skipped_invalid_ego"] = str(assembler.skipped_invalid)
-            if assembler.skipped_out_of_order:
-                self._info.notes["skipped_out_of_order_ego"] = str(assembler.skipped_out_of_order)
+            notes = self._info.notes
+            for key, count in (
+                ("skipped_invalid_ego", assembler.skipped_invalid),
+                ("skipped_out_of_order_ego", assembler.skipped_out_of_order),
+                ("unused_object_messages", assembler.unused_objects),
+                ("unused_plan_messages", assembler.unused_plans),
+            ):
+                if count:
+                    notes[key] = str(count)
+                else:
+                    notes.pop(key, None)
+
+    def count_frames(self) -> int:
+        """Frames ``frames()`` yields over the open window, by an ego-only pass.
+
+        Records the ego drops in ``info.notes``; raises the ``LoaderError`` that ends a
+        damaged ego topic (after counting the frames before it).
+        """
+        opt = self._options
+        read_from = None if opt.start_ns is None else opt.start_ns - 1_000_000_000
+        read_to = None if opt.end_ns is None else opt.end_ns + 1_000_000_000
+        return sum(1 for _ in self._run(TopicRoles(self._roles.ego), opt, read_from, read_to))
 
     def close(self) -> None:
         """Close the source."""

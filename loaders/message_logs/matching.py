@@ -37,6 +37,10 @@ class ObjectBuffer:
         self.topic = topic
         self.t_ns: int | None = None
         self.columns: ObjectColumns | None = None
+        #: Whether a frame took the buffered message.
+        self.used = False
+        #: Messages replaced before any frame took them.
+        self.unused = 0
 
     def update(self, t_ns: int, cols: ObjectColumns) -> None:
         """Replace the buffer with a newer message (estimating velocities if needed)."""
@@ -54,7 +58,14 @@ class ObjectBuffer:
                         vy[k] = (cols.y_m[k] - old.y_m[j]) / dt
             object.__setattr__(cols, "vx_mps", vx)
             object.__setattr__(cols, "vy_mps", vy)
-        self.t_ns, self.columns = t_ns, cols
+        if self.columns is not None and not self.used:
+            self.unused += 1
+        self.t_ns, self.columns, self.used = t_ns, cols, False
+
+    @property
+    def unused_total(self) -> int:
+        """Messages no frame took so far, counting the one buffered now."""
+        return self.unused + int(self.columns is not None and not self.used)
 
 
 def match_objects(
@@ -75,6 +86,7 @@ def match_objects(
         dt_ns = t_ns - buf.t_ns
         if dt_ns < 0 or dt_ns > tolerance_ns or not cols.ids:
             continue
+        buf.used = True
         parts.append((buf.topic, dt_ns, cols))
     if not parts:
         return ActorTable.empty()

@@ -1,4 +1,4 @@
-"""MCAP files through ``mcap``'s reader: JSON and protobuf channels, and damaged ROS 2 files.
+"""MCAP files through ``mcap``'s reader: ROS 1, JSON and protobuf channels, damaged ROS 2 files.
 
 Healthy files are read through the summary and chunk index (``SeekingReader``). Files
 without a readable summary (truncated, or written without one) are read as a record
@@ -7,17 +7,20 @@ breaks off; message reading then yields every message before that point and rais
 ``CorruptLogError`` with the byte offset.
 
 Decoders are resolved once per channel and cached: ``protobuf`` through
-``mcap_protobuf``, ``json`` with the standard library, ``cdr`` (ROS 2) through a rosbags
-typestore built from the channel's ``ros2msg`` schema.
+``mcap_protobuf``, ``json`` with the standard library, ``cdr`` (ROS 2) and ``ros1`` through
+a rosbags typestore built from the channel's ``ros2msg``/``ros1msg`` schema. ROS 2 service-event
+channels (``*/_service_event``, ``*/srv/*_Event`` schemas) are left out of the topics.
 """
 
 from __future__ import annotations
 
 import json
+import re
 import struct
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
+from backports.zstd import ZstdError as BackportsZstdError
 from google.protobuf.message import DecodeError
 from mcap.data_stream import ReadDataStream
 from mcap.exceptions import McapError
@@ -25,7 +28,9 @@ from mcap.reader import SeekingReader
 from mcap.records import Attachment, Channel, Message, Schema
 from mcap.stream_reader import StreamReader
 from mcap_protobuf.decoder import DecoderFactory as ProtobufDecoderFactory
+from rosbags.serde import SerdeError
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
+from rosbags.typesys.base import TypesysError
 from zstandard import ZstdError
 
 from loaders.drive import TopicInfo
@@ -37,7 +42,7 @@ if TYPE_CHECKING:
     from pathlib import Path
     from typing import BinaryIO
 
-__all__ = ["MCAP_ERRORS", "McapSource", "osm_attachments"]
+__all__ = ["MCAP_ERRORS", "McapSource", "is_service_event", "osm_attachments"]
 
 #: What a damaged MCAP raises while reading (wrapped into ``CorruptLogError``).
 MCAP_ERRORS: tuple[type[Exception], ...] = (
@@ -50,15 +55,36 @@ MCAP_ERRORS: tuple[type[Exception], ...] = (
     RuntimeError,
     IndexError,
     ZstdError,
+    BackportsZstdError,
     DecodeError,
+    AssertionError,
+    TypesysError,
+    SerdeError,
 )
-_FORMATS = {"cdr": "ros2-mcap", "json": "mcap-json", "protobuf": "mcap-protobuf"}
+_FORMATS = {
+    "cdr": "ros2-mcap",
+    "ros1": "ros1-mcap",
+    "json": "mcap-json",
+    "protobuf": "mcap-protobuf",
+}
+#: ROS 2 (Jazzy) service-event channels: recorded service calls, never a drive's topic.
+_SERVICE_EVENT = re.compile(r"/_service_event$")
+_SERVICE_SCHEMA = re.compile(r"/srv/\w+_Event$")
 
 
-def _ros2_decoder(schema: Schema) -> Callable[[bytes], Any]:
+def is_service_event(channel: Channel, schema: Schema | None) -> bool:
+    """Whether ``channel`` records ROS 2 service calls (ignored, with a note)."""
+    name = schema.name if schema is not None else ""
+    return bool(_SERVICE_EVENT.search(channel.topic) or _SERVICE_SCHEMA.search(name))
+
+
+def _ros_decoder(schema: Schema, *, ros1: bool) -> Callable[[bytes], Any]:
     store = get_typestore(Stores.EMPTY)
-    store.register(get_types_from_msg(schema.data.decode(), schema.name))
-    name = schema.name
+    types = get_types_from_msg(schema.data.decode(), schema.name)
+    store.register(types)
+    name = next(iter(types))
+    if ros1:
+        return lambda data: store.deserialize_ros1(data, name)
     return lambda data: store.deserialize_cdr(data, name)
 
 
@@ -139,7 +165,9 @@ class McapSource:
             self._file.seek(0)
             index = _scan(self._file)
         self._index = index
-        if not index.counts or index.start_ns is None:
+        self.ignored = self._drop_service_events()
+        self.notes = {"ignored_service_channels": ", ".join(self.ignored)} if self.ignored else {}
+        if not any(index.counts.get(cid) for cid, _ in self._channels()) or index.start_ns is None:
             self.close()
             if index.damage is not None:
                 raise CorruptLogError(
@@ -147,17 +175,32 @@ class McapSource:
                 )
             raise EmptyLogError(path, "the MCAP holds no messages")
         self.start_ns, self.end_ns = index.start_ns, index.end_ns
-        encodings = {c.message_encoding for c in index.channels.values()}
+        encodings = {c.message_encoding for _, c in self._channels()}
         known = sorted(_FORMATS[e] for e in encodings if e in _FORMATS)
         if not known:
             self.close()
             raise UnsupportedFormatError(path, f"no channel encoding we read: {sorted(encodings)}")
+        ros = [k for k in ("ros2-mcap", "ros1-mcap") if k in known]
         self.source_format = (
-            "ros2-mcap"
-            if "ros2-mcap" in known
-            else "mcap-" + "+".join(k.removeprefix("mcap-") for k in known)
+            ros[0] if ros else "mcap-" + "+".join(k.removeprefix("mcap-") for k in known)
         )
         self.topics = self._topic_infos()
+
+    def _drop_service_events(self) -> tuple[str, ...]:
+        """Leave service-event channels out of the topics; return their topics."""
+        index = self._index
+        self._ignored_ids = {
+            cid
+            for cid, channel in index.channels.items()
+            if is_service_event(channel, index.schemas.get(channel.schema_id))
+        }
+        return tuple(sorted({index.channels[cid].topic for cid in self._ignored_ids}))
+
+    def _channels(self) -> Iterator[tuple[int, Channel]]:
+        """The channels read as topics (service events left out)."""
+        for cid, channel in self._index.channels.items():
+            if cid not in self._ignored_ids:
+                yield cid, channel
 
     @property
     def indexed(self) -> bool:
@@ -171,7 +214,7 @@ class McapSource:
     def _topic_infos(self) -> tuple[TopicInfo, ...]:
         counts: dict[str, int] = {}
         types: dict[str, str] = {}
-        for cid, channel in self._index.channels.items():
+        for cid, channel in self._channels():
             counts[channel.topic] = counts.get(channel.topic, 0) + self._index.counts.get(cid, 0)
             types[channel.topic] = self._msgtype(channel)
         return tuple(TopicInfo(t, types[t], counts[t]) for t in sorted(types))
@@ -182,8 +225,8 @@ class McapSource:
             schema = self._index.schemas.get(channel.schema_id)
             if channel.message_encoding == "json":
                 decode = json.loads
-            elif channel.message_encoding == "cdr" and schema is not None:
-                decode = _ros2_decoder(schema)
+            elif channel.message_encoding in {"cdr", "ros1"} and schema is not None:
+                decode = _ros_decoder(schema, ros1=channel.message_encoding == "ros1")
             else:
                 found = self._protobuf.decoder_for(channel.message_encoding, schema)
                 if found is None:

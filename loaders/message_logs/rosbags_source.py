@@ -2,15 +2,20 @@
 
 from __future__ import annotations
 
+import re
+import sqlite3
 import struct
 from typing import TYPE_CHECKING, Any
 
+from backports.zstd import ZstdError
 from rosbags.highlevel import AnyReader, AnyReaderError
 from rosbags.rosbag1 import ReaderError as Bag1ReaderError
 from rosbags.rosbag2 import ReaderError as Bag2ReaderError
+from rosbags.serde import SerdeError
+from rosbags.typesys.base import TypesysError
 
 from loaders.drive import TopicInfo
-from loaders.errors import CorruptLogError, EmptyLogError
+from loaders.errors import CorruptLogError, EmptyLogError, UnsupportedFormatError
 from loaders.message_logs.mcap_source import osm_attachments
 from loaders.message_logs.registry import normalize_msgtype
 from loaders.typestore import typestore
@@ -33,7 +38,13 @@ READ_ERRORS: tuple[type[Exception], ...] = (
     KeyError,
     OSError,
     RuntimeError,  # lz4 frame errors
+    ZstdError,
+    AssertionError,  # rosbags asserts on some malformed ROS 1 records
+    SerdeError,
+    TypesysError,
+    sqlite3.Error,
 )
+_SERIALIZATION = re.compile(r"Serialization format (\{.*\}) is not supported")
 
 
 def _size(path: Path) -> int:
@@ -54,12 +65,17 @@ class RosbagsSource:
         """Open ``path``; see the class docstring for errors."""
         self.path = path
         self.source_format = source_format
+        self.notes: dict[str, str] = {}
         self._reader = AnyReader([path], default_typestore=typestore(2))
         try:
             self._reader.open()
         except READ_ERRORS as err:
+            if found := _SERIALIZATION.search(str(err)):
+                raise UnsupportedFormatError(
+                    path, f"serialization format {found.group(1)}; only cdr is read"
+                ) from err
             raise CorruptLogError(
-                path, f"cannot read the index: {err}", offset=_size(path)
+                path, f"cannot read the index: {type(err).__name__}: {err}", offset=_size(path)
             ) from err
         if self._reader.message_count == 0:
             self._reader.close()
@@ -85,7 +101,31 @@ class RosbagsSource:
                 yield conn.topic, t, self._reader.deserialize(raw, conn.msgtype)
         except READ_ERRORS as err:
             where = "after the last readable message" if topic else "before any message"
-            raise CorruptLogError(self.path, f"{where}: {err}", topic=topic, t_ns=t_ns) from err
+            raise CorruptLogError(
+                self.path,
+                f"{where}: {type(err).__name__}: {err}",
+                topic=topic,
+                t_ns=t_ns,
+                offset=self._chunk_offset(t_ns, start_ns),
+            ) from err
+
+    def _chunk_offset(self, last_ns: int | None, start_ns: int | None) -> int | None:
+        """Byte offset of the ROS 1 chunk that failed (``None`` for rosbag2 storage).
+
+        rosbags loads a chunk once the merge reaches its start time: every chunk starting at
+        or before the last good message was read, so the damaged one is the first chunk
+        starting after it (or the first one read at all).
+        """
+        chunks = sorted(
+            (info.pos, info.start_time, info.end_time)
+            for reader in self._reader.readers
+            for info in getattr(reader, "chunk_infos", ())
+        )
+        if last_ns is not None:
+            after = [pos for pos, start, _ in chunks if start > last_ns]
+        else:
+            after = [pos for pos, _, end in chunks if start_ns is None or end >= start_ns]
+        return after[0] if after and len(self._reader.readers) == 1 else None
 
     def attachments(self) -> Iterator[tuple[str, bytes]]:
         """``.osm`` attachments of the MCAP file(s); bags and sqlite3 storage have none."""

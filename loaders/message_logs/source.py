@@ -21,6 +21,8 @@ class MessageSource(Protocol):
     start_ns: int
     end_ns: int
     topics: tuple[TopicInfo, ...]
+    #: What the container reader left out or changed (e.g. ignored channels), for ``DriveInfo``.
+    notes: dict[str, str]
 
     def messages(
         self, topics: Collection[str], start_ns: int | None, stop_ns: int | None

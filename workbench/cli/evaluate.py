@@ -9,6 +9,7 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
+from workbench.cli.losses import VerboseOption, echo_losses
 from workbench.cli.options import ReachMethodOption
 from workbench.cli.progress import frame_progress
 from workbench.drives import ego_size, load_rss_params, open_log, window_ns
@@ -38,7 +39,9 @@ def _summary_table(violations: list[Violation], t0_ns: int) -> Table:
 
 
 def evaluate(
-    log: Annotated[Path, typer.Argument(help="Drive: .mcap, .bag, rosbag2 dir, .xml, .saa.")],
+    log: Annotated[
+        Path, typer.Argument(help="Drive: .mcap, .bag, rosbag2 dir or .db3, .xml, .saa.")
+    ],
     *,
     map_path: Annotated[Path | None, typer.Option("--map", help="Lane map file.")] = None,
     profile: Annotated[Path | None, typer.Option("--profile", help="TOML topic profile.")] = None,
@@ -61,6 +64,7 @@ def evaluate(
         Path | None,
         typer.Option("--rss-params", help="TOML with RSS dynamics and [scene] settings."),
     ] = None,
+    verbose: VerboseOption = False,
 ) -> None:
     """Re-evaluate every frame; print the violations, optionally write per-frame JSON lines."""
     from workbench.driver.evaluate import evaluate_drive  # noqa: PLC0415 - keeps start-up light
@@ -93,6 +97,7 @@ def evaluate(
     typer.echo(
         f"{done.frames} frames evaluated with {', '.join(names)}; {done.unsafe_frames} unsafe"
     )
+    echo_losses(drive.info.notes, verbose=verbose)
     if found:
         Console().print(_summary_table(found, drive.info.start_ns))
     typer.echo(f"{len(found)} violation interval(s)")

@@ -9,19 +9,31 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
+from workbench.cli.losses import VerboseOption, echo_losses
+
 if TYPE_CHECKING:
     from loaders.drive import Drive
 
 __all__ = ["info", "register", "render_info"]
 
 
-def render_info(drive: Drive, console: Console) -> None:
-    """Print the drive summary and the topic table."""
+def render_info(drive: Drive, console: Console, frames: int | None = None) -> None:
+    """Print the drive summary and the topic table.
+
+    Args:
+        drive: The opened drive.
+        console: Where to print.
+        frames: The frames ``evaluate`` will produce (``loaders.losses.count_frames``), when
+            counted; printed beside the index count when they differ.
+    """
     info = drive.info
     console.print(f"[bold]{info.path}[/bold]")
     console.print(f"format      {info.source_format}")
     console.print(f"duration    {info.duration_s:.3f} s ({info.start_ns} .. {info.end_ns} ns)")
-    console.print(f"frames      {info.frame_count}")
+    if frames is None or frames == info.frame_count:
+        console.print(f"frames      {info.frame_count}")
+    else:
+        console.print(f"frames      {frames} (of {info.frame_count} ego messages)")
     console.print(
         f"clock       {info.clock}, match tolerance {info.match_tolerance_ns / 1e9:.3f} s"
     )
@@ -43,21 +55,39 @@ def render_info(drive: Drive, console: Console) -> None:
 
 
 def info(
-    log: Annotated[Path, typer.Argument(help="Drive: .mcap, .bag, rosbag2 dir, .xml, .saa/.scn")],
+    log: Annotated[
+        Path, typer.Argument(help="Drive: .mcap, .bag, rosbag2 dir or .db3, .xml, .saa/.scn")
+    ],
+    *,
     map_path: Annotated[
         Path | None, typer.Option("--map", help="Lane map file (Lanelet2 .osm)")
     ] = None,
     profile: Annotated[Path | None, typer.Option("--profile", help="TOML topic profile")] = None,
     ego_id: Annotated[str | None, typer.Option("--ego-id", help="CommonRoad ego obstacle")] = None,
+    verbose: VerboseOption = False,
 ) -> None:
-    """Show format, duration, frame count, topics with types, counts and roles, and the map."""
-    from loaders import open_drive  # noqa: PLC0415 - keeps CLI start-up light
+    """Show format, duration, frame count, topics with types, counts and roles, and the map.
+
+    The frame count is what ``evaluate`` will produce: the ego topic is read once to count
+    the messages that make no frame (printed on one line; ``--verbose`` details them). A
+    damaged ego topic ends the command with its error after the summary.
+    """
+    from loaders import LoaderError, open_drive  # noqa: PLC0415 - keeps CLI start-up light
+    from loaders.losses import count_frames  # noqa: PLC0415
 
     drive = open_drive(log, map=map_path, profile=profile, ego_id=ego_id)
+    stopped: LoaderError | None = None
     try:
-        render_info(drive, Console(width=160))
+        try:
+            frames: int | None = count_frames(drive)
+        except LoaderError as err:
+            frames, stopped = None, err
+        render_info(drive, Console(width=160), frames)
     finally:
         drive.close()
+    echo_losses(drive.info.notes, verbose=verbose)
+    if stopped is not None:
+        raise stopped
 
 
 def register(app: typer.Typer) -> None:

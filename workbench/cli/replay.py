@@ -8,6 +8,7 @@ from typing import Annotated
 
 import typer
 
+from workbench.cli.losses import VerboseOption, echo_losses
 from workbench.cli.options import ReachMethodOption
 from workbench.cli.progress import run_with_progress
 from workbench.drives import default_output, ego_size, load_rss_params, open_log
@@ -75,6 +76,7 @@ def replay(
         Path | None,
         typer.Option("--rss-params", help="TOML with RSS dynamics and [scene] settings."),
     ] = None,
+    verbose: VerboseOption = False,
 ) -> None:
     """Replay a drive into Rerun: map, ego, actors, plan and plots on timelines frame/log_time."""
     from workbench.engines import EngineSettings, build_runners, parse_engines  # noqa: PLC0415
@@ -109,10 +111,11 @@ def replay(
         f"{summary.frames} frames, {summary.actors_seen} actors, {summary.duration_s:.1f} s of "
         f"drive in {summary.elapsed_s:.2f} s ({summary.frames_per_s:.0f} frames/s)"
     )
+    echo_losses(drive.info.notes, verbose=verbose)
     for name, unsafe in summary.unsafe_frames.items():
         count = sum(1 for v in summary.violations if v.engine == name)
         typer.echo(f"{name}: {unsafe} unsafe frames in {count} violation interval(s)")
-    if target is not None:
+    if target is not None and (summary.frames or summary.stopped_by is None):
         typer.echo(f"wrote {target}")
         typer.echo(f"open it with: rerun {target}")
     if summary.stopped_by is not None:

@@ -120,16 +120,24 @@ def replay_drive(
     blueprint = replay_blueprint(ego_start, engines=run.engine_names)
     detector = ViolationDetector(drive.info.path.name)
     sink = RerunDriveSink(rec, drive, run.engine_names, send_frames=send_frames)
-    with attached(rec, blueprint, out=out, spawn=spawn, serve=serve, ports=ports, bind=bind) as to:
-        for chunk in _with_first(first, chunks):
-            sink.add_chunk(chunk)
-            detector.add_chunk(chunk)
-            if progress is not None:
-                progress(detector.frames)
-        sink.close()
-        if on_served is not None and serve:
-            on_served(to)
-        rec.disconnect()
+    try:
+        with attached(
+            rec, blueprint, out=out, spawn=spawn, serve=serve, ports=ports, bind=bind
+        ) as to:
+            for chunk in _with_first(first, chunks):
+                sink.add_chunk(chunk)
+                detector.add_chunk(chunk)
+                if progress is not None:
+                    progress(detector.frames)
+            sink.close()
+            if on_served is not None and serve:
+                on_served(to)
+            rec.disconnect()
+    except BaseException:
+        _drop_empty(out, sink.frames)
+        raise
+    if run.stopped_by is not None:
+        _drop_empty(out, sink.frames)
     return ReplaySummary(
         log=drive.info.path,
         source_format=drive.info.source_format,
@@ -142,6 +150,12 @@ def replay_drive(
         unsafe_frames={n: detector.unsafe_per_engine.get(n, 0) for n in run.engine_names},
         stopped_by=run.stopped_by,
     )
+
+
+def _drop_empty(out: Path | None, frames: int) -> None:
+    """Remove the ``.rrd`` of a failed run that holds no frame (no empty file left behind)."""
+    if out is not None and frames == 0:
+        out.unlink(missing_ok=True)
 
 
 def _with_first(first: Chunk | None, rest: Iterator[Chunk]) -> Iterator[Chunk]:

@@ -1,18 +1,15 @@
 """Every real NGSIM CommonRoad scenario replays into an .rrd that reads back whole."""
 
-from pathlib import Path
-
 import pytest
 from rerun.chunk import RrdReader
 
 from loaders import open_drive
+from tests.conftest import EXTERNAL_DIR
 from workbench.viewer.replay import replay_drive
 
 pytestmark = pytest.mark.external
 
-NGSIM_FILES = sorted(
-    (Path(__file__).resolve().parents[3].parent / "shared/external/commonroad_ngsim").glob("*.xml")
-)
+NGSIM_FILES = sorted((EXTERNAL_DIR / "commonroad_ngsim").glob("*.xml"))
 
 
 @pytest.mark.parametrize("name", [p.name for p in NGSIM_FILES] or ["<none found>"])
