@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING, Any, Self
 
 from loaders.drive import DriveInfo
 from loaders.message_logs.assemble import AssemblyOptions, FrameAssembler
+from loaders.message_logs.ego_streams import EgoSettings, ego_decoders
 from loaders.message_logs.registry import family_of
 from loaders.message_logs.roles import assign_roles
 
@@ -30,18 +31,21 @@ class LogDrive:
         roles: TopicRoles,
         options: AssemblyOptions,
         lane_map: tuple[str, LaneMap] | None,
+        ego: EgoSettings | None = None,
     ) -> None:
-        """Wire a source, its roles and the assembly options."""
+        """Wire a source, its roles, the assembly options and the ego decoder settings."""
         self._source = source
         self._roles = roles
         self._options = options
         self._map = lane_map
-        types = {t.topic: t.msgtype for t in source.topics}
+        self._ego = ego or EgoSettings()
+        self._types = {t.topic: t.msgtype for t in source.topics}
         self._decoders: dict[str, Callable[[Any], Any]] = {}
-        for topic in (roles.ego, *roles.objects, roles.plan):
+        for topic in (*roles.objects, roles.plan):
             if topic is not None:
-                family = family_of(types[topic])
+                family = family_of(self._types[topic])
                 assert family is not None  # checked by detect_roles
+                assert family.decode is not None  # object and plan families are stateless
                 self._decoders[topic] = family.decode
         counts = {t.topic: t.count for t in source.topics}
         self._info = DriveInfo(
@@ -81,11 +85,11 @@ class LogDrive:
         lead = opt.tolerance_ns + 1_000_000_000  # objects and a plan before the first frame
         read_from = None if opt.start_ns is None else opt.start_ns - lead
         read_to = None if opt.end_ns is None else opt.end_ns + 1_000_000_000
-        assembler = FrameAssembler(self._source.path, self._roles, self._decoders, opt)
+        ego = ego_decoders(self._roles.ego, self._types[self._roles.ego], self._ego)
+        decoders = {**ego, **self._decoders}
+        assembler = FrameAssembler(self._source.path, self._roles, decoders, opt)
         try:
-            yield from assembler.run(
-                self._source.messages(tuple(self._decoders), read_from, read_to)
-            )
+            yield from assembler.run(self._source.messages(tuple(decoders), read_from, read_to))
         finally:
             if assembler.skipped_invalid:
                 self._info.notes["skipped_invalid_ego"] = str(assembler.skipped_invalid)

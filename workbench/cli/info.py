@@ -9,6 +9,8 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
+from workbench.cli.options import EGO_TOPIC_HELP
+
 if TYPE_CHECKING:
     from loaders.drive import Drive
 
@@ -30,6 +32,10 @@ def render_info(drive: Drive, console: Console) -> None:
         console.print("map         none")
     else:
         console.print(f"map         {info.map_source} ({len(lane_map.lanes)} lanes)")
+    roles = info.roles
+    if len(roles.ego_candidates) > 1:
+        console.print(f"ego         {roles.ego} (rule: {roles.ego_rule})")
+        console.print(f"candidates  {', '.join(roles.ego_candidates)}")
     for key, value in sorted(info.notes.items()):
         console.print(f"note        {key}: {value}")
     table = Table(title="topics")
@@ -49,11 +55,12 @@ def info(
     ] = None,
     profile: Annotated[Path | None, typer.Option("--profile", help="TOML topic profile")] = None,
     ego_id: Annotated[str | None, typer.Option("--ego-id", help="CommonRoad ego obstacle")] = None,
+    ego_topic: Annotated[str | None, typer.Option("--ego-topic", help=EGO_TOPIC_HELP)] = None,
 ) -> None:
     """Show format, duration, frame count, topics with types, counts and roles, and the map."""
     from loaders import open_drive  # noqa: PLC0415 - keeps CLI start-up light
 
-    drive = open_drive(log, map=map_path, profile=profile, ego_id=ego_id)
+    drive = open_drive(log, map=map_path, profile=profile, ego_id=ego_id, ego_topic=ego_topic)
     try:
         render_info(drive, Console(width=160))
     finally:
