@@ -37,7 +37,7 @@ from loaders.maps.commonroad import lane_map_from_elements
 from loaders.records import ActorTable, EgoState, Frame, ObjectClass, Plan
 
 if TYPE_CHECKING:
-    from collections.abc import Iterator
+    from collections.abc import Iterator, Sequence
     from pathlib import Path
 
     from numpy.typing import NDArray
@@ -151,6 +151,7 @@ class CommonRoadDrive:
                 "benchmark_id": scenario.benchmark_id,
                 "time_step_ns": str(dt),
                 "plan": f"ego's recorded future, {PLAN_HORIZON_NS // 10**9} s",
+                **_uncertainty_note(scenario.tracks),
             },
         )
 
@@ -254,6 +255,19 @@ class _ActorIndex:
             for name in ("ids", "object_class", *_COLUMNS)
         }
         return ActorTable.from_columns(**cols)
+
+
+def _uncertainty_note(tracks: Sequence[Track]) -> dict[str, str]:
+    """``{"uncertain_states": ...}`` when some states were intervals or shapes, else empty."""
+    uncertain = [t for t in tracks if t.uncertain_states]
+    if not uncertain:
+        return {}
+    states = sum(t.uncertain_states for t in uncertain)
+    names = sorted({name for t in uncertain for name in t.uncertain})
+    return {
+        "uncertain_states": f"{states} states of {len(uncertain)} obstacles "
+        f"({', '.join(names)}): interval centres used"
+    }
 
 
 def _ego_rates(ego: Track, dt_ns: int) -> tuple[int, NDArray[np.float64], NDArray[np.float64]]:

@@ -5,6 +5,10 @@ lists ``<dynamicObstacle>`` and ``<staticObstacle>``. Each obstacle is converted
 ``Track`` of numpy arrays as soon as its element closes (``iterparse``), then the element
 is cleared; the lanelet-network elements are kept for a lazy ``LaneMap``. States without
 an integer time step are dropped; values that are missing or not numbers become NaN.
+Uncertain states (CommonRoad 2020a: ``intervalStart``/``intervalEnd`` values, a position
+given as a rectangle, circle or polygon, a time interval) are read at the interval's centre
+(the shape's centre, the polygon's vertex mean); ``Track.uncertain`` names the quantities
+that were uncertain and ``Track.uncertain_states`` counts the states concerned.
 Results are cached per (file, mtime, size), so listing the ego candidates and opening
 the drive once per candidate parse the file once.
 """
@@ -51,6 +55,8 @@ class Track:
     vx_mps: NDArray[np.float64]
     vy_mps: NDArray[np.float64]
     accel_mps2: NDArray[np.float64]
+    uncertain: tuple[str, ...] = ()
+    uncertain_states: int = 0
 
 
 @dataclass(frozen=True, slots=True)
@@ -158,20 +164,18 @@ def _track(elem: ET.Element) -> Track | None:
         s for s in (elem.find("initialState"), *elem.iterfind("trajectory/state")) if s is not None
     ]
     rows: dict[int, list[float]] = {}
+    uncertain: set[str] = set()
+    uncertain_states = 0
     for state in states:
-        step = _int(state.findtext("time/exact"))
-        if step is not None and step not in rows:
-            rows[step] = [
-                _value(state, tag)
-                for tag in (
-                    "position/point/x",
-                    "position/point/y",
-                    "orientation",
-                    "velocity",
-                    "velocityY",
-                    "acceleration",
-                )
-            ]
+        step, step_uncertain = _time_step(state)
+        if step is None or step in rows:
+            continue
+        readings = [_position(state, axis) for axis in ("x", "y")]
+        readings += [_reading(state, tag) for tag in _STATE_TAGS]
+        rows[step] = [value for value, _ in readings]
+        flags = [step_uncertain, *(flag for _, flag in readings)]
+        uncertain.update(name for name, flag in zip(_QUANTITIES, flags, strict=True) if flag)
+        uncertain_states += any(flags)
     steps = np.array(sorted(rows), dtype=np.int64)
     x, y, yaw, v, vy_given, acc = (
         np.array([rows[s] for s in steps.tolist()], dtype=np.float64).reshape(-1, 6).T
@@ -195,6 +199,8 @@ def _track(elem: ET.Element) -> Track | None:
         vx_mps=vx,
         vy_mps=vy,
         accel_mps2=acc,
+        uncertain=tuple(sorted(uncertain)),
+        uncertain_states=uncertain_states,
     )
 
 
@@ -207,17 +213,48 @@ def _shape(elem: ET.Element) -> tuple[float, float]:
     return diameter, diameter
 
 
-def _value(state: ET.Element, tag: str) -> float:
+#: Scalar state values after the position, in ``_track``'s row order.
+_STATE_TAGS = ("orientation", "velocity", "velocityY", "acceleration")
+#: Names of the quantities of one state, as ``Track.uncertain`` reports them.
+_QUANTITIES = ("time", "position", "position", *_STATE_TAGS)
+#: Uncertain position shapes, each with a ``center`` (a polygon has ``point`` vertices).
+_SHAPES = ("rectangle", "circle")
+
+
+def _reading(state: ET.Element, tag: str) -> tuple[float, bool]:
+    """``(value, uncertain)``: exact value, else the interval's centre (``uncertain``)."""
     node = state.find(tag)
     if node is None:
-        return math.nan
+        return math.nan, False
     if node.find("exact") is not None:
-        return parse_float(node.findtext("exact"))
+        return parse_float(node.findtext("exact")), False
     if node.find("intervalStart") is not None:
-        return 0.5 * (
-            parse_float(node.findtext("intervalStart")) + parse_float(node.findtext("intervalEnd"))
-        )
-    return parse_float(node.text)
+        start = parse_float(node.findtext("intervalStart"))
+        return 0.5 * (start + parse_float(node.findtext("intervalEnd"))), True
+    return parse_float(node.text), False
+
+
+def _position(state: ET.Element, axis: str) -> tuple[float, bool]:
+    """One coordinate of the position: the point, else the centre of the first shape."""
+    if state.find("position/point") is not None:
+        return _reading(state, f"position/point/{axis}")
+    for shape in _SHAPES:
+        if state.find(f"position/{shape}/center") is not None:
+            return parse_float(state.findtext(f"position/{shape}/center/{axis}")), True
+    vertices = [parse_float(p.findtext(axis)) for p in state.iterfind("position/polygon/point")]
+    if vertices:
+        return float(np.mean(vertices)), True
+    return math.nan, False
+
+
+def _time_step(state: ET.Element) -> tuple[int | None, bool]:
+    """``(step, uncertain)``: ``time/exact``, else the interval's centre if a whole step."""
+    if state.find("time/intervalStart") is None:
+        return _int(state.findtext("time/exact")), False
+    value, _ = _reading(state, "time")
+    if not math.isfinite(value) or value != round(value):
+        return None, True
+    return int(value), True
 
 
 def _int(text: str | None) -> int | None:

@@ -27,11 +27,22 @@ class TopicInfo:
 
 @dataclass(frozen=True, slots=True)
 class TopicRoles:
-    """Which topics feed the ego state, the actor table and the plan."""
+    """Which topics feed the ego state, the actor table and the plan.
+
+    Attributes:
+        ego: The ego topic.
+        objects: The object topics.
+        plan: The plan topic, if any.
+        ego_candidates: Every topic that could be the ego, best first (detection order).
+        ego_rule: Why ``ego`` was chosen (``--ego-topic``, the profile, or the rule that
+            decided among the candidates).
+    """
 
     ego: str
     objects: tuple[str, ...] = ()
     plan: str | None = None
+    ego_candidates: tuple[str, ...] = ()
+    ego_rule: str = ""
 
 
 @dataclass(frozen=True, slots=True)

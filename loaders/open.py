@@ -24,6 +24,7 @@ from loaders.errors import (
     UnsupportedFormatError,
 )
 from loaders.message_logs.assemble import AssemblyOptions
+from loaders.message_logs.ego_streams import ego_settings
 from loaders.message_logs.log_drive import LogDrive
 from loaders.message_logs.mapsource import find_map, read_map
 from loaders.message_logs.mcap_source import McapSource
@@ -113,6 +114,7 @@ def open_drive(
     ego_id: str | None = None,
     window: tuple[int | None, int | None] | None = None,
     plan: str | None = None,
+    ego_topic: str | None = None,
 ) -> Drive:
     """Open a recorded drive.
 
@@ -126,6 +128,8 @@ def open_drive(
             removed from the actor tables (the ego's own entry in a global object list).
         window: ``(start_ns, end_ns)`` bounds of the frames ``frames()`` yields.
         plan: ScenarioArchitect trajectory used as plan (``emergency``/``performance``).
+        ego_topic: The ego topic of a ROS/MCAP log (``--ego-topic``), over the profile's and
+            the detected one.
 
     Returns:
         The drive; close it when done.
@@ -147,8 +151,9 @@ def open_drive(
     prof = _profile(profile)
     source = _open_source(path)
     try:
-        roles = detect_roles(path, source.topics, prof)
+        roles = detect_roles(path, source.topics, prof, ego_topic)
         lane_map = find_map(path, source, map_path)
+        ego = ego_settings(source, roles, prof, None if lane_map is None else lane_map[1])
     except LoaderError:
         source.close()
         raise
@@ -161,4 +166,4 @@ def open_drive(
         start_ns=start,
         end_ns=end,
     )
-    return LogDrive(source, roles, options, lane_map)
+    return LogDrive(source, roles, options, lane_map, ego)

@@ -6,6 +6,12 @@ Example::
     ego = "/localization/kinematic_state"
     objects = ["/perception/object_recognition/tracking/objects"]
     plan = "/planning/scenario_planning/trajectory"
+    imu = "/sensing/imu/imu_data"   # heading for a NavSatFix ego
+
+    [tf]                            # ego from /tf: the chain map (or odom) -> vehicle
+    map_frame = "map"
+    odom_frame = "odom"
+    vehicle_frame = "base_link"
 
     [frames]
     clock = "log_time"          # or "header"
@@ -19,11 +25,12 @@ from __future__ import annotations
 
 import math
 import tomllib
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 from loaders.errors import ProfileError
+from loaders.message_logs.decoders.ros_tf import TfFrames
 
 __all__ = ["CLOCKS", "DEFAULT_TOLERANCE_NS", "INVALID_EGO_POLICIES", "Profile", "load_profile"]
 
@@ -46,6 +53,8 @@ class Profile:
         clock: ``log_time`` (recording time) or ``header`` (message header stamps).
         match_tolerance_ns: Maximum age of an object message matched to a frame.
         invalid_ego: ``raise`` on a non-finite ego pose, or ``skip`` the frame.
+        imu: IMU topic giving the heading of a ``NavSatFix`` ego (default: detected).
+        tf: Frame names of the ``/tf`` chain.
         source: The TOML file, if the profile came from one.
     """
 
@@ -55,6 +64,8 @@ class Profile:
     clock: str = "log_time"
     match_tolerance_ns: int = DEFAULT_TOLERANCE_NS
     invalid_ego: str = "raise"
+    imu: str | None = None
+    tf: TfFrames = field(default_factory=TfFrames)
     source: Path | None = None
 
 
@@ -94,6 +105,21 @@ def _tolerance_ns(path: Path, data: dict[str, Any], frames: dict[str, Any]) -> i
     return round(value * 1e9)
 
 
+def _tf(path: Path, table: dict[str, Any]) -> TfFrames:
+    names = {"map_frame", "odom_frame", "vehicle_frame"}
+    if unknown := sorted(set(table) - names):
+        raise ProfileError(path, f"[tf] unknown keys: {', '.join(unknown)}")
+    for key, value in table.items():
+        if not isinstance(value, str) or not value.strip("/"):
+            raise ProfileError(path, f"[tf] {key} must be a frame name", value=value)
+    default = TfFrames()
+    return TfFrames(
+        map_frame=str(table.get("map_frame", default.map_frame)).lstrip("/"),
+        odom_frame=str(table.get("odom_frame", default.odom_frame)).lstrip("/"),
+        vehicle_frame=str(table.get("vehicle_frame", default.vehicle_frame)).lstrip("/"),
+    )
+
+
 def _table(path: Path, data: dict[str, Any], key: str) -> dict[str, Any]:
     value = data.get(key, {})
     if not isinstance(value, dict):
@@ -120,7 +146,7 @@ def load_profile(path: str | Path) -> Profile:
         raise ProfileError(path, f"cannot read profile: {err.strerror}") from err
     except (tomllib.TOMLDecodeError, UnicodeDecodeError) as err:
         raise ProfileError(path, f"not valid TOML: {err}") from err
-    known = {"topics", "frames", "match_tolerance_s"}
+    known = {"topics", "frames", "tf", "match_tolerance_s"}
     if unknown := sorted(set(data) - known):
         raise ProfileError(path, f"unknown keys: {', '.join(unknown)}")
     topics = _table(path, data, "topics")
@@ -132,5 +158,7 @@ def load_profile(path: str | Path) -> Profile:
         clock=_choice(path, frames, "clock", CLOCKS),
         match_tolerance_ns=_tolerance_ns(path, data, frames),
         invalid_ego=_choice(path, frames, "invalid_ego", INVALID_EGO_POLICIES),
+        imu=_topic(path, topics, "imu"),
+        tf=_tf(path, _table(path, data, "tf")),
         source=path,
     )

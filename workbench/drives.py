@@ -33,7 +33,12 @@ def window_ns(
 
 
 def open_log(
-    log: Path, *, map_path: Path | None, profile: Path | None, ego_id: str | None
+    log: Path,
+    *,
+    map_path: Path | None,
+    profile: Path | None,
+    ego_id: str | None,
+    ego_topic: str | None = None,
 ) -> Drive:
     """Open a drive with ``loaders.open_drive``, turning a missing path into a one-line error.
 
@@ -45,7 +50,7 @@ def open_log(
 
     if not log.exists():
         raise WorkbenchError(f"{log}: no such file or directory")
-    return open_drive(log, map=map_path, profile=profile, ego_id=ego_id)
+    return open_drive(log, map=map_path, profile=profile, ego_id=ego_id, ego_topic=ego_topic)
 
 
 def load_rss_params(path: Path | None) -> RssParams | None:

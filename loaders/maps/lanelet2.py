@@ -133,6 +133,7 @@ class _Reader:
         self.label = label
         self.ways = {w.get("id", ""): w for w in root.iter("way")}
         self.relations = {r.get("id", ""): r for r in root.iter("relation")}
+        self.origin_deg: tuple[float, float] | None = None
         self.nodes = self._project_nodes(list(root.iter("node")))
 
     def _project_nodes(self, elems: list[ET.Element]) -> dict[str, tuple[float, float]]:
@@ -153,6 +154,7 @@ class _Reader:
             raise MapError(self.label, f"node {ids[first]} has no valid lat/lon")
         if not elems:
             return {}
+        self.origin_deg = (float(lat[0]), float(lon[0]))
         xs, ys = project_to_local_enu_m(lat, lon, float(lat[0]), float(lon[0]))
         return dict(zip(ids, zip(xs.tolist(), ys.tolist(), strict=True), strict=True))
 
@@ -212,6 +214,7 @@ class _Reader:
             format="lanelet2",
             right_of_way=rows,
             traffic_lights=lights,
+            origin_deg=self.origin_deg,
         )
 
     def _borders(self, rid: str, rel: ET.Element) -> tuple[_Border, _Border]:

@@ -159,6 +159,9 @@ class LaneMap:
         traffic_lights: Traffic lights.
         intersections: Groups of lane ids forming one intersection.
         boundaries_m: Extra polylines (road/track boundaries), each ``(K, 2)``.
+        origin_deg: WGS-84 ``(lat, lon)`` of the map frame's origin when the map was
+            projected from latitude/longitude (Lanelet2 without ``local_x``/``local_y``);
+            GNSS egos are projected about it.
     """
 
     lanes: dict[str, Lane]
@@ -168,6 +171,7 @@ class LaneMap:
     traffic_lights: tuple[TrafficLight, ...] = ()
     intersections: tuple[tuple[str, ...], ...] = ()
     boundaries_m: tuple[NDArray[np.float64], ...] = field(default_factory=tuple)
+    origin_deg: tuple[float, float] | None = None
 
     def __len__(self) -> int:
         """Number of lanes."""

@@ -2,13 +2,15 @@
 
 Memory holds the last message per object topic, the last plan and a three-sample ego
 window, whatever the log size. A frame is emitted when the next ego message arrives (or
-at the end), so finite differences can be central (see ``kinematics``).
+at the end), so finite differences can be central (see ``kinematics``). Samples without
+orientation (``heading_from_track``, GNSS without IMU) take the direction of travel through
+their neighbours (``prev -> nxt``); below 1 cm of travel the previous heading is kept.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
 
 from loaders.errors import CorruptLogError, InvalidValueError
@@ -66,7 +68,11 @@ class FrameAssembler:
         decoders: dict[str, Callable[[Any], Any]],
         options: AssemblyOptions,
     ) -> None:
-        """Prepare buffers for ``roles``; ``decoders`` maps topic → message decoder."""
+        """Prepare buffers for ``roles``; ``decoders`` maps topic → message decoder.
+
+        A decoder may return None: the message only updated its state (``/tf`` moving other
+        frames, an IMU message).
+        """
         self._path = path
         self._roles = roles
         self._decoders = decoders
@@ -79,6 +85,7 @@ class FrameAssembler:
         self._prev: _Pending | None = None
         self._cur: _Pending | None = None
         self._index = 0
+        self._last_yaw = 0.0
         self.skipped_invalid = 0
         self.skipped_out_of_order = 0
 
@@ -99,16 +106,28 @@ class FrameAssembler:
         start, end = self._opt.start_ns, self._opt.end_ns
         return (start is None or t_ns >= start) and (end is None or t_ns < end)
 
+    def _track(self, pending: _Pending, a: _Pending | None, b: _Pending | None) -> _Pending:
+        """``pending`` with the heading of the track from ``a`` to ``b`` (GNSS without IMU)."""
+        if not pending.sample.heading_from_track:
+            return pending
+        a, b = a or pending, b or pending
+        dx, dy = b.sample.x_m - a.sample.x_m, b.sample.y_m - a.sample.y_m
+        yaw = math.atan2(dy, dx) if math.hypot(dx, dy) >= 0.01 else self._last_yaw  # noqa: PLR2004 - 1 cm
+        return replace(pending, sample=replace(pending.sample, yaw_rad=yaw))
+
     def _emit(self, nxt: _Pending | None) -> Frame | None:
         cur = self._cur
         if cur is None:
             self._cur = nxt
             return None
         prev = self._prev
+        cur = self._track(cur, prev, nxt)
+        self._last_yaw = cur.sample.yaw_rad
+        ahead = None if nxt is None else self._track(nxt, cur, None)
         speed, accel, yaw_rate = ego_kinematics(
             (prev.t_ns, prev.sample) if prev else None,
             (cur.t_ns, cur.sample),
-            (nxt.t_ns, nxt.sample) if nxt else None,
+            (ahead.t_ns, ahead.sample) if ahead else None,
         )
         s = cur.sample
         ego = EgoState(s.x_m, s.y_m, s.z_m, s.yaw_rad, speed, accel, yaw_rate)
@@ -124,7 +143,7 @@ class FrameAssembler:
         if self._cur is not None and t_ns <= self._cur.t_ns:
             self.skipped_out_of_order += 1
             return None
-        pose = (sample.x_m, sample.y_m, sample.yaw_rad)
+        pose = (sample.x_m, sample.y_m, 0.0 if sample.heading_from_track else sample.yaw_rad)
         if not all(math.isfinite(v) for v in pose):
             if self._opt.invalid_ego == "skip":
                 self.skipped_invalid += 1
@@ -137,6 +156,14 @@ class FrameAssembler:
         self._plan_used = self._plan_used or plan is not None
         return self._emit(_Pending(t_ns, sample, actors, plan))
 
+    def _decode(self, topic: str, log_ns: int, msg: Any) -> Any:
+        try:
+            return self._decoders[topic](msg)
+        except (AttributeError, KeyError, TypeError, ValueError) as err:
+            raise CorruptLogError(
+                self._path, f"cannot decode message: {err!r}", topic=topic, t_ns=log_ns
+            ) from err
+
     def run(self, messages: Iterable[tuple[str, int, Any]]) -> Iterator[Frame]:
         """Yield frames from the message stream.
 
@@ -145,12 +172,9 @@ class FrameAssembler:
         """
         try:
             for topic, log_ns, msg in messages:
-                try:
-                    decoded = self._decoders[topic](msg)
-                except (AttributeError, KeyError, TypeError, ValueError) as err:
-                    raise CorruptLogError(
-                        self._path, f"cannot decode message: {err!r}", topic=topic, t_ns=log_ns
-                    ) from err
+                decoded = self._decode(topic, log_ns, msg)
+                if decoded is None:  # the message only updated decoder state (TF, IMU)
+                    continue
                 if isinstance(decoded, EgoSample):
                     frame = self._on_ego(topic, log_ns, decoded)
                     if frame is not None:

@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING, Any, Self
 
 from loaders.drive import DriveInfo, TopicRoles
 from loaders.message_logs.assemble import AssemblyOptions, FrameAssembler
+from loaders.message_logs.ego_streams import EgoSettings, ego_decoders
 from loaders.message_logs.registry import family_of
 from loaders.message_logs.roles import assign_roles
 
@@ -33,18 +34,21 @@ class LogDrive:
         roles: TopicRoles,
         options: AssemblyOptions,
         lane_map: tuple[str, LaneMap] | None,
+        ego: EgoSettings | None = None,
     ) -> None:
-        """Wire a source, its roles and the assembly options."""
+        """Wire a source, its roles, the assembly options and the ego decoder settings."""
         self._source = source
         self._roles = roles
         self._options = options
         self._map = lane_map
-        types = {t.topic: t.msgtype for t in source.topics}
+        self._ego = ego or EgoSettings()
+        self._types = {t.topic: t.msgtype for t in source.topics}
         self._decoders: dict[str, Callable[[Any], Any]] = {}
-        for topic in (roles.ego, *roles.objects, roles.plan):
+        for topic in (*roles.objects, roles.plan):
             if topic is not None:
-                family = family_of(types[topic])
+                family = family_of(self._types[topic])
                 assert family is not None  # checked by detect_roles
+                assert family.decode is not None  # object and plan families are stateless
                 self._decoders[topic] = family.decode
         counts = {t.topic: t.count for t in source.topics}
         self._info = DriveInfo(
@@ -89,7 +93,9 @@ class LogDrive:
     def _run(
         self, roles: TopicRoles, opt: AssemblyOptions, read_from: int | None, read_to: int | None
     ) -> Iterator[Frame]:
-        decoders = {t: d for t, d in self._decoders.items() if t in _topics(roles)}
+        ego = ego_decoders(roles.ego, self._types[roles.ego], self._ego)
+        others = {t: d for t, d in self._decoders.items() if t in _topics(roles)}
+        decoders = {**ego, **others}
         assembler = FrameAssembler(self._source.path, roles, decoders, opt)
         try:
             yield from assembler.run(self._source.messages(tuple(decoders), read_from, read_to))

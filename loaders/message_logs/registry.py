@@ -30,12 +30,14 @@ class MessageFamily:
     Attributes:
         role: ``ego``, ``objects`` or ``plan``.
         rank: Preference within the role when several topics qualify (lower wins).
-        decode: Decoded message object → sample.
+        decode: Decoded message object → sample; None for the stateful ego families
+            (``tf2_msgs/TFMessage``, ``sensor_msgs/NavSatFix``) whose decoders are built per
+            read by ``loaders.message_logs.ego_streams``.
     """
 
     role: str
     rank: int
-    decode: Callable[[Any], EgoSample | ObjectColumns | PlanSample]
+    decode: Callable[[Any], EgoSample | ObjectColumns | PlanSample] | None
 
 
 FAMILIES: dict[str, MessageFamily] = {
@@ -43,8 +45,13 @@ FAMILIES: dict[str, MessageFamily] = {
     "foxglove.Odometry": MessageFamily("ego", 0, foxglove.decode_foxglove_odometry),
     "workbench.EgoState": MessageFamily("ego", 0, mcap_json.decode_json_ego),
     "geometry_msgs/PoseStamped": MessageFamily("ego", 1, ros_ego.decode_pose_stamped),
+    "geometry_msgs/PoseWithCovarianceStamped": MessageFamily(
+        "ego", 1, ros_ego.decode_pose_with_covariance
+    ),
     "foxglove.PoseInFrame": MessageFamily("ego", 1, foxglove.decode_foxglove_pose_in_frame),
     "foxglove.FrameTransform": MessageFamily("ego", 2, foxglove.decode_foxglove_frame_transform),
+    "tf2_msgs/TFMessage": MessageFamily("ego", 2, None),
+    "sensor_msgs/NavSatFix": MessageFamily("ego", 3, None),
     "derived_object_msgs/ObjectArray": MessageFamily(
         "objects", 0, ros_objects.decode_carla_objects
     ),

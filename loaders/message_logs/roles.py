@@ -2,8 +2,11 @@
 
 Detection rules (``docs/loaders.md``):
 
-- ego: the best-ranked ego type (``Odometry`` before ``PoseStamped`` before transforms);
-  among equals, names containing ``ego``, ``localization`` or ``kinematic_state`` win;
+- ego: ``--ego-topic`` / the profile if given; else topics named like ground truth
+  (``groundtruth``, ``ground_truth``, ``gt``) before every other (estimates: ORB-SLAM,
+  odometry), then the best-ranked ego type (``Odometry`` before
+  ``PoseStamped`` before transforms before GNSS), then names containing ``ego``,
+  ``localization`` or ``kinematic_state``, then the name order (``/tf_static`` never);
 - objects: the single best-ranked object topic (several topics of one log usually carry
   the same objects at different pipeline stages); a profile may list several;
 - plan: the best-ranked plan topic, names containing ``planning`` or ``plan`` first.
@@ -11,6 +14,7 @@ Detection rules (``docs/loaders.md``):
 
 from __future__ import annotations
 
+import re
 from typing import TYPE_CHECKING
 
 from loaders.drive import TopicInfo, TopicRoles
@@ -27,6 +31,8 @@ __all__ = ["EGO_HINTS", "PLAN_HINTS", "assign_roles", "detect_roles"]
 
 #: Name fragments that make an ego candidate preferable.
 EGO_HINTS: tuple[str, ...] = ("ego", "localization", "kinematic_state")
+#: Topic names that read as ground truth (whole words: ``/gt/pose``, ``/groundtruth``).
+_GROUND_TRUTH = re.compile(r"ground[_-]?truth|(^|[^a-z])gt([^a-z]|$)")
 #: Name fragments that make a plan candidate preferable.
 PLAN_HINTS: tuple[str, ...] = ("planning", "plan")
 
@@ -40,6 +46,34 @@ def _best(topics: Sequence[TopicInfo], role: str, hints: tuple[str, ...]) -> Top
         hinted = any(h in info.topic.lower() for h in hints)
         candidates.append((info.count == 0, family.rank, not hinted, info.topic, info))
     return min(candidates)[-1] if candidates else None
+
+
+def _truth_rank(topic: str) -> int:
+    return 0 if _GROUND_TRUTH.search(topic.lower()) else 1
+
+
+def _ego_candidates(topics: Sequence[TopicInfo]) -> tuple[list[str], str]:
+    """Ego candidates best first and the rule that put the first one first."""
+    keys = []
+    for info in topics:
+        family = family_of(info.msgtype)
+        if family is None or family.role != "ego" or info.topic == "/tf_static":
+            continue
+        hinted = any(h in info.topic.lower() for h in EGO_HINTS)
+        keys.append((info.count == 0, _truth_rank(info.topic), family.rank, not hinted, info.topic))
+    keys.sort()
+    if len(keys) < 2:  # noqa: PLR2004 - one candidate needs no rule
+        return [k[-1] for k in keys], "only candidate"
+    rules = (
+        "has messages",
+        "ground truth before estimates",
+        "message type rank",
+        "name hint (ego, localization, kinematic_state)",
+        "name order",
+    )
+    first, second = keys[0], keys[1]
+    rule = next(r for r, a, b in zip(rules, first, second, strict=True) if a != b)
+    return [k[-1] for k in keys], rule
 
 
 def _listing(topics: Sequence[TopicInfo]) -> str:
@@ -61,8 +95,15 @@ def _check(path: Path, topics: dict[str, TopicInfo], topic: str, role: str) -> N
         )
 
 
-def detect_roles(path: Path, topics: Sequence[TopicInfo], profile: Profile | None) -> TopicRoles:
+def detect_roles(
+    path: Path,
+    topics: Sequence[TopicInfo],
+    profile: Profile | None,
+    ego_topic: str | None = None,
+) -> TopicRoles:
     """Choose the ego, object and plan topics.
+
+    ``ego_topic`` (``--ego-topic``) overrides the profile's and the detected ego topic.
 
     Raises:
         MissingEgoTopicError: No ego topic (listing the topics and types present).
@@ -70,12 +111,15 @@ def detect_roles(path: Path, topics: Sequence[TopicInfo], profile: Profile | Non
         UnknownMessageTypeError: A profile-named topic has a type we cannot decode.
     """
     by_name = {t.topic: t for t in topics}
-    ego_topic = profile.ego if profile else None
+    candidates, rule = _ego_candidates(topics)
+    if ego_topic is not None:
+        rule = "--ego-topic"
+    elif profile is not None and profile.ego is not None:
+        ego_topic, rule = profile.ego, f"profile {profile.source or ''}".strip()
     if ego_topic is None:
-        best = _best(topics, "ego", EGO_HINTS)
-        if best is None:
+        if not candidates:
             raise MissingEgoTopicError(path, f"present: {_listing(topics)}")
-        ego_topic = best.topic
+        ego_topic = candidates[0]
     else:
         _check(path, by_name, ego_topic, "ego")
     objects = profile.objects if profile else None
@@ -91,7 +135,13 @@ def detect_roles(path: Path, topics: Sequence[TopicInfo], profile: Profile | Non
         plan_topic = None if best is None else best.topic
     else:
         _check(path, by_name, plan_topic, "plan")
-    return TopicRoles(ego=ego_topic, objects=tuple(objects), plan=plan_topic)
+    return TopicRoles(
+        ego=ego_topic,
+        objects=tuple(objects),
+        plan=plan_topic,
+        ego_candidates=tuple(candidates),
+        ego_rule=rule,
+    )
 
 
 def assign_roles(topics: Sequence[TopicInfo], roles: TopicRoles) -> tuple[TopicInfo, ...]:

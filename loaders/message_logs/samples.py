@@ -45,7 +45,9 @@ class EgoSample:
     """One decoded ego message (map frame).
 
     ``speed_mps`` and ``yaw_rate_radps`` are NaN when the message carries no twist; the
-    frame assembler then derives them by finite differences.
+    frame assembler then derives them by finite differences. ``heading_from_track`` marks a
+    sample without orientation (GNSS fix without IMU): ``yaw_rad`` is NaN and the assembler
+    takes the heading of the track through the neighbouring samples.
     """
 
     stamp_ns: int | None
@@ -55,6 +57,7 @@ class EgoSample:
     yaw_rad: float
     speed_mps: float = float("nan")
     yaw_rate_radps: float = float("nan")
+    heading_from_track: bool = False
 
 
 @dataclass(frozen=True, slots=True)

@@ -10,7 +10,7 @@ from rich.console import Console
 from rich.table import Table
 
 from workbench.cli.losses import VerboseOption, echo_losses
-from workbench.cli.options import ReachMethodOption
+from workbench.cli.options import EGO_TOPIC_HELP, ReachMethodOption
 from workbench.cli.progress import frame_progress
 from workbench.drives import ego_size, load_rss_params, open_log, window_ns
 from workbench.errors import WorkbenchError
@@ -46,6 +46,7 @@ def evaluate(
     map_path: Annotated[Path | None, typer.Option("--map", help="Lane map file.")] = None,
     profile: Annotated[Path | None, typer.Option("--profile", help="TOML topic profile.")] = None,
     ego_id: Annotated[str | None, typer.Option("--ego-id", help="CommonRoad ego id.")] = None,
+    ego_topic: Annotated[str | None, typer.Option("--ego-topic", help=EGO_TOPIC_HELP)] = None,
     engines: Annotated[
         str, typer.Option("--engines", help="Comma-separated; `workbench engines` lists them.")
     ] = "reachsets",
@@ -75,7 +76,7 @@ def evaluate(
     if not names:
         raise WorkbenchError("--engines: name at least one engine")
     params = load_rss_params(rss_params)
-    drive = open_log(log, map_path=map_path, profile=profile, ego_id=ego_id)
+    drive = open_log(log, map_path=map_path, profile=profile, ego_id=ego_id, ego_topic=ego_topic)
     try:
         settings = EngineSettings(rss_params=params, reach_method=reach_method.value)
         runners = build_runners(names, drive.lane_map, settings)

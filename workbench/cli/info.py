@@ -10,6 +10,7 @@ from rich.console import Console
 from rich.table import Table
 
 from workbench.cli.losses import VerboseOption, echo_losses
+from workbench.cli.options import EGO_TOPIC_HELP
 
 if TYPE_CHECKING:
     from loaders.drive import Drive
@@ -42,6 +43,10 @@ def render_info(drive: Drive, console: Console, frames: int | None = None) -> No
         console.print("map         none")
     else:
         console.print(f"map         {info.map_source} ({len(lane_map.lanes)} lanes)")
+    roles = info.roles
+    if len(roles.ego_candidates) > 1:
+        console.print(f"ego         {roles.ego} (rule: {roles.ego_rule})")
+        console.print(f"candidates  {', '.join(roles.ego_candidates)}")
     for key, value in sorted(info.notes.items()):
         console.print(f"note        {key}: {value}")
     table = Table(title="topics")
@@ -65,6 +70,7 @@ def info(
     profile: Annotated[Path | None, typer.Option("--profile", help="TOML topic profile")] = None,
     ego_id: Annotated[str | None, typer.Option("--ego-id", help="CommonRoad ego obstacle")] = None,
     verbose: VerboseOption = False,
+    ego_topic: Annotated[str | None, typer.Option("--ego-topic", help=EGO_TOPIC_HELP)] = None,
 ) -> None:
     """Show format, duration, frame count, topics with types, counts and roles, and the map.
 
@@ -75,7 +81,7 @@ def info(
     from loaders import LoaderError, open_drive  # noqa: PLC0415 - keeps CLI start-up light
     from loaders.losses import count_frames  # noqa: PLC0415
 
-    drive = open_drive(log, map=map_path, profile=profile, ego_id=ego_id)
+    drive = open_drive(log, map=map_path, profile=profile, ego_id=ego_id, ego_topic=ego_topic)
     stopped: LoaderError | None = None
     try:
         try:

@@ -9,7 +9,7 @@ from typing import Annotated
 import typer
 
 from workbench.cli.losses import VerboseOption, echo_losses
-from workbench.cli.options import ReachMethodOption
+from workbench.cli.options import EGO_TOPIC_HELP, ReachMethodOption
 from workbench.cli.progress import run_with_progress
 from workbench.drives import default_output, ego_size, load_rss_params, open_log
 
@@ -45,6 +45,7 @@ def replay(
     ego_id: Annotated[
         str | None, typer.Option("--ego-id", help="CommonRoad: obstacle id promoted to ego.")
     ] = None,
+    ego_topic: Annotated[str | None, typer.Option("--ego-topic", help=EGO_TOPIC_HELP)] = None,
     out: Annotated[Path | None, typer.Option("--out", help="Write this .rrd file.")] = None,
     out_dir: Annotated[
         Path, typer.Option("--out-dir", help="Directory for the default <log stem>.rrd.")
@@ -86,7 +87,7 @@ def replay(
         raise ReplayError("--out, --spawn and --serve are mutually exclusive")
     target = out if (out is not None or spawn or serve) else default_output(log, out_dir)
     params = load_rss_params(rss_params)
-    drive = open_log(log, map_path=map_path, profile=profile, ego_id=ego_id)
+    drive = open_log(log, map_path=map_path, profile=profile, ego_id=ego_id, ego_topic=ego_topic)
     try:
         settings = EngineSettings(
             rss_params=params, reach_method=reach_method.value, full_geometry=True

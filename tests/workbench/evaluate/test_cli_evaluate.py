@@ -126,3 +126,18 @@ def test_missing_rss_params_file_is_named(tmp_path, capsys):
     log = str(SAMPLES / "hard_braking_lead.mcap")
     assert _run(["evaluate", log, "--engines", "rss", "--rss-params", str(missing)]) == 2
     assert str(missing) in capsys.readouterr().err
+
+
+def test_evaluate_ego_topic_chooses_the_ego(tmp_path):
+    """``--ego-topic /tf`` reads the sample's pose-only /tf ego: same frames and verdicts."""
+    log = SAMPLES / "highway_cut_in.mcap"
+    outputs = []
+    for extra in ([], ["--ego-topic", "/tf"]):
+        per_frame = tmp_path / f"frames{len(extra)}.jsonl"
+        args = ["evaluate", str(log), "--engines", "rss", "--per-frame", str(per_frame)]
+        assert _run([*args, "--end", "8", *extra]) == 0
+        outputs.append([json.loads(line) for line in per_frame.read_text().splitlines()])
+    odometry, tf = outputs
+    assert len(odometry) == len(tf) == 160
+    assert [r["rss"]["is_safe"] for r in tf] == [r["rss"]["is_safe"] for r in odometry]
+    assert _run(["evaluate", str(log), "--engines", "rss", "--ego-topic", "/nope"]) == 2

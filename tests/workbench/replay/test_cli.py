@@ -20,8 +20,16 @@ def opened(monkeypatch):
     """Replace ``loaders.open_drive`` with one returning fake drives; record the calls."""
     calls = []
 
-    def fake_open_drive(path, *, map=None, profile=None, ego_id=None):  # noqa: A002
-        calls.append({"path": Path(path), "map": map, "profile": profile, "ego_id": ego_id})
+    def fake_open_drive(path, *, map=None, profile=None, ego_id=None, ego_topic=None):  # noqa: A002
+        calls.append(
+            {
+                "path": Path(path),
+                "map": map,
+                "profile": profile,
+                "ego_id": ego_id,
+                "ego_topic": ego_topic,
+            }
+        )
         if Path(path).name.startswith("broken"):
             raise UnsupportedFormatError(path, "not a drive")
         return FakeDrive(n_frames=12, n_actors=2, path=Path(path))
@@ -39,7 +47,8 @@ def _log(tmp_path: Path, name: str = "drive.mcap") -> Path:
 def test_replay_writes_default_output_and_says_how_to_open(tmp_path, monkeypatch, opened):
     log = _log(tmp_path)
     monkeypatch.chdir(tmp_path)
-    result = runner.invoke(app, ["replay", str(log), "--ego-id", "7", "--map", "m.osm"])
+    args = ["replay", str(log), "--ego-id", "7", "--map", "m.osm", "--ego-topic", "/tf"]
+    result = runner.invoke(app, args)
     assert result.exit_code == 0, result.output
     expected = Path("out") / "drive.rrd"
     assert (tmp_path / expected).is_file()
@@ -47,6 +56,7 @@ def test_replay_writes_default_output_and_says_how_to_open(tmp_path, monkeypatch
     assert f"rerun {expected}" in result.output
     assert "12 frames, 2 actors" in result.output
     assert opened[0]["ego_id"] == "7"
+    assert opened[0]["ego_topic"] == "/tf"
     assert opened[0]["map"] == Path("m.osm")
 
 
