@@ -11,17 +11,21 @@ frame::
                                  ──select_frame──▶ F x FrameVerdict
 
 Frames without constellations are safe and unchecked; one of them forgets the memory
-(the runs of frames the engine carries its memory through break there).
+(the runs of frames the engine carries its memory through break there). A malformed
+constellation (e.g. a road area with a lane twice) is left out of its frame and named in
+``FrameVerdict.rejected`` with the reason; the rest of the frame is checked.
 """
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
 
 from rss.arrays import IntArray  # noqa: TC001 - dataclass field type
+from rss.errors import RssConstellationError
 from rss.params import ObjectClass
 from rss.scene import SceneMemo, create_scene
 from rss.scene.chunked import match_frames
@@ -54,12 +58,15 @@ class FrameVerdict:
         result: The engine's result of the frame alone (``F = 1``, as
             :func:`rss.structured.engine.check_frame` returns it); ``None`` when the frame
             has no constellation (safe, nothing checked).
+        rejected: ``(other object id, reason)`` of each malformed constellation left out
+            of the frame (``scene`` no longer holds them).
     """
 
     scene: Scene
     object_id: IntArray
     constellation_type: IntArray
     result: FrameResult | None
+    rejected: tuple[tuple[int, str], ...] = ()
 
 
 def evaluate_frames(
@@ -106,9 +113,14 @@ def evaluate_frames(
         )
         for (ego, objects), m in zip(frames, matches, strict=True)
     ]
+    scenes, rejected = _well_formed(scenes)
     counts = [len(s.constellations) for s in scenes]
     if not any(counts):
-        return [FrameVerdict(s, _NO_ROWS, _NO_ROWS, None) for s in scenes], None
+        verdicts = [
+            FrameVerdict(s, _NO_ROWS, _NO_ROWS, None, bad)
+            for s, bad in zip(scenes, rejected, strict=True)
+        ]
+        return verdicts, None
     batch = stack_constellations([c for s in scenes for c in s.constellations])
     frame_of = np.repeat(np.arange(len(frames)), counts)
     ego_dyn = params.for_class(ObjectClass.EGO)
@@ -117,7 +129,7 @@ def evaluate_frames(
     verdicts = []
     for k, scene in enumerate(scenes):
         if not counts[k]:
-            verdicts.append(FrameVerdict(scene, _NO_ROWS, _NO_ROWS, None))
+            verdicts.append(FrameVerdict(scene, _NO_ROWS, _NO_ROWS, None, rejected[k]))
             continue
         rows = slice(offsets[k], offsets[k + 1])
         verdicts.append(
@@ -126,6 +138,39 @@ def evaluate_frames(
                 batch.other.object_id[rows],
                 batch.constellation_type[rows],
                 select_frame(result, k),
+                rejected[k],
             )
         )
     return verdicts, memory if counts[-1] else None
+
+
+def _well_formed(scenes: list[Scene]) -> tuple[list[Scene], list[tuple[tuple[int, str], ...]]]:
+    """The scenes without malformed constellations, and ``(object id, reason)`` per frame.
+
+    Stacking checks every constellation; only when the whole batch fails is each one
+    stacked alone, so the usual case costs nothing extra.
+    """
+    try:
+        stack_constellations([c for s in scenes for c in s.constellations])
+    except RssConstellationError:
+        pass
+    else:
+        return scenes, [() for _ in scenes]
+    kept_scenes, rejected = [], []
+    for scene in scenes:
+        keep: list[int] = []
+        bad: list[tuple[int, str]] = []
+        for k, constellation in enumerate(scene.constellations):
+            try:
+                stack_constellations([constellation])
+            except RssConstellationError as err:
+                bad.append((int(constellation.other.object_id), str(err)))
+            else:
+                keep.append(k)
+        areas = tuple(scene.road_areas[k] for k in keep) if scene.road_areas else ()
+        constellations = tuple(scene.constellations[k] for k in keep)
+        kept_scenes.append(
+            dataclasses.replace(scene, constellations=constellations, road_areas=areas)
+        )
+        rejected.append(tuple(bad))
+    return kept_scenes, rejected

@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+import rss.evaluate
 from rss import RssParams, evaluate_frames
 from rss.params import ObjectClass
 from rss.scene import create_scene, prepare
@@ -15,6 +16,8 @@ from rss.structured.stacking import stack_constellations
 from tests.rss.scene.synthetic import WIDTH, ego, objects, straight_road
 
 if TYPE_CHECKING:
+    import pytest
+
     from rss.scene import PreparedGraph, SceneEgo, SceneObjects
     from rss.structured.engine import FrameResult
     from rss.structured.memory import RssMemory
@@ -107,3 +110,31 @@ def test_frames_without_constellations() -> None:
     assert memory is not None
     _, after = evaluate_frames(frames, PARAMS, memory, graph=graph)
     assert after is None  # forgotten after frames without constellations
+
+
+def test_a_malformed_constellation_is_left_out_with_its_reason_and_the_rest_is_checked(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    graph = prepare(straight_road())
+    frames = _drive()[:3]
+    good, _ = evaluate_frames(frames, PARAMS, None, graph=graph)
+    assert all(len(v.object_id) == 2 for v in good)
+    original = create_scene
+
+    def one_bad_lane(*args: Any, **kwargs: Any) -> Any:
+        scene = original(*args, **kwargs)
+        first = scene.constellations[0]
+        seg = first.ego_road[0]
+        twice = dataclasses.replace(seg, lanes=(seg.lanes[0], seg.lanes[0], *seg.lanes[1:]))
+        broken = dataclasses.replace(first, ego_road=(twice, *first.ego_road[1:]))
+        return dataclasses.replace(scene, constellations=(broken, *scene.constellations[1:]))
+
+    monkeypatch.setattr(rss.evaluate, "create_scene", one_bad_lane)
+    got, _ = evaluate_frames(frames, PARAMS, None, graph=graph)
+    for verdict, reference in zip(got, good, strict=True):
+        assert len(verdict.rejected) == 1
+        object_id, reason = verdict.rejected[0]
+        assert object_id == int(reference.object_id[0])
+        assert "lane" in reason
+        assert verdict.object_id.tolist() == reference.object_id[1:].tolist()
+        assert verdict.result is not None

@@ -4,7 +4,9 @@ Keys, in order: ``is_safe``, ``dangerous_objects`` (actor ids, sorted),
 ``longitudinal_response``, ``lateral_response_left``, ``lateral_response_right`` (ad-rss
 response names), ``acceleration_restrictions`` (``{"longitudinal" | "lateral_left" |
 "lateral_right": [min, max]}`` in m/s², ``null`` bounds for unbounded values; ``null``
-without constellations), ``constellations``, ``invalid_objects``.
+without constellations), ``constellations``, ``invalid_objects``; ``rejected_constellations``
+(``{object id: reason}`` of malformed constellations left out of the frame) only when there
+are any.
 """
 
 from __future__ import annotations
@@ -22,6 +24,13 @@ __all__ = ["rss_record"]
 
 def rss_record(verdict: RssVerdict) -> dict[str, Any]:
     """The JSON-ready record of one frame."""
+    record = _record(verdict)
+    if verdict.rejected:
+        record["rejected_constellations"] = dict(verdict.rejected)
+    return record
+
+
+def _record(verdict: RssVerdict) -> dict[str, Any]:
     result = verdict.result
     if result is None:
         return {

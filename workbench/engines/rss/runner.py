@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -86,12 +87,23 @@ class RssRunner:
             memo=self._scene_memo,
             road_boundaries=self._road_boundaries,
         )
-        return [
+        out = [
             _safe(invalid)
             if v.result is None
             else self._output(v.scene, invalid, v.object_id, v.constellation_type, v.result)
             for v, (_, _, invalid) in zip(verdicts, inputs, strict=True)
         ]
+        return [self._with_rejected(o, v.rejected) for o, v in zip(out, verdicts, strict=True)]
+
+    def _with_rejected(
+        self, verdict: RssVerdict, rejected: tuple[tuple[int, str], ...]
+    ) -> RssVerdict:
+        """The verdict naming the malformed constellations left out of its frame."""
+        if not rejected:
+            return verdict
+        named = tuple((_label(self._ids, object_id), reason) for object_id, reason in rejected)
+        invalid = tuple(sorted({*verdict.invalid_objects, *(label for label, _ in named)}))
+        return dataclasses.replace(verdict, invalid_objects=invalid, rejected=named)
 
     def _output(
         self,

@@ -33,6 +33,8 @@ class RssVerdict:
             constellations.
         road_areas: Outline rings of each constellation's road area in the map frame [m]
             (``(C,)`` entries of closed ``(K, 2)`` rings; empty tuple: not computed).
+        rejected: ``(object id, reason)`` of each malformed constellation left out of the
+            frame (also in ``invalid_objects``).
     """
 
     is_safe: bool
@@ -45,6 +47,7 @@ class RssVerdict:
     object_id: NDArray[np.int64] | None = None
     result: FrameResult | None = None
     road_areas: tuple[tuple[NDArray[np.float64], ...], ...] = ()
+    rejected: tuple[tuple[str, str], ...] = ()
 
     @property
     def constellations(self) -> int:
