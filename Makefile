@@ -74,7 +74,7 @@ $(MAP_ORACLE_STAMP):
 oracle-adrss-map: $(STAMP) $(COMPILED) $(MAP_ORACLE_STAMP)
 	RSS_MAP_ORACLE_PYTHON=$(abspath $(MAP_ORACLE_VENV))/bin/python \
 		$(BIN)/python -m pytest -q -p no:cacheprovider tests/rss/scene/test_crosscheck_adrss_map.py \
-		tests/rss/scene/test_scene_reference.py
+		tests/rss/scene/test_crosscheck_drives.py tests/rss/scene/test_scene_reference.py
 
 test: lint typecheck layers pytest oracle-commonroad oracle-adrss-map
 
