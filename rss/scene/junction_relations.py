@@ -135,8 +135,8 @@ def _turn(
     jid = prep.junction_list
     entry = route[first][0]
     inside = {entry} | inside_successors(prep, jid, j, entry)
-    exits = sorted({x for lane in inside for x in exits(prep, lane) if jid[x] != j})
-    return arms.get(exits[0], Arm.UNKNOWN) if exits else Arm.UNKNOWN
+    leaving = sorted({x for lane in inside for x in exits(prep, lane) if jid[x] != j})
+    return arms.get(leaving[0], Arm.UNKNOWN) if leaving else Arm.UNKNOWN
 
 
 def relation(

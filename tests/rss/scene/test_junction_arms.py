@@ -118,3 +118,23 @@ def test_town01_compat_mode_takes_the_left_turn_for_a_u_turn(town01: PreparedGra
         relation(prep, SceneMemo(), left, span, oncoming, admap_defects=True) == Relation.OPPOSITE
     )
     assert relation(prep, SceneMemo(), left, span, oncoming) == Relation.CROSSING
+
+
+def test_town01_compat_mode_route_ending_inside_turns_where_its_lanes_lead(
+    town01: PreparedGraph,
+) -> None:
+    """A route ending inside the junction takes the exit its junction lanes lead to.
+
+    ``[scene] reproduce_adrss_5_0_defects`` (ad-map ``successorsOnRouteLeavingIntersection``):
+    the left turn cut after its junction lane 304_0_1 leaves at 4_0_1 as the whole route
+    does (a U-turn for ad-map 5.0), so the oncoming straight route is opposite as well.
+    Regression: this path raised ``NameError`` (a local name shadowed the ``exits`` helper;
+    Town01 drive cross-check, seed 1 drive 6).
+    """
+    prep = town01
+    left = _route(prep, "18_0_1", "304_0_1")
+    oncoming = _route(prep, "17_0_-1", "296_0_-1", "18_0_-1")
+    (span,) = junctions_on(prep, SceneMemo(), left)
+    assert (
+        relation(prep, SceneMemo(), left, span, oncoming, admap_defects=True) == Relation.OPPOSITE
+    )
