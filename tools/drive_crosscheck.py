@@ -6,7 +6,7 @@ cached in ``out/`` per (seed, n), so iterating on our side takes seconds::
 
     .venv/bin/python tools/drive_crosscheck.py [--n 20] [--seed 1] [--show 20]
         [--oracle .venv-oracle-adrss-map/bin/python] [--mode default|compat|both]
-        [--frames 3:0,3:1] [--town ../shared/external/maps/Town01.xodr]
+        [--frames 3:0,3:1] [--min-gap 6] [--town ../shared/external/maps/Town01.xodr]
 
 Prints, per mode, the agreement line, then every disagreeing frame (``drive:frame``) with
 both sides' constellations of the objects involved: type, longitudinal / lateral distance,
@@ -61,20 +61,26 @@ def main() -> int:
     ap.add_argument("--show", type=int, default=60)
     ap.add_argument("--oracle", default=str(ROOT / ".venv-oracle-adrss-map" / "bin" / "python"))
     ap.add_argument("--mode", choices=[*MODES, "both"], default="both")
+    ap.add_argument("--min-gap", type=float, default=6.0, help="objects' start gap (m)")
     ap.add_argument("--town", type=Path, default=TOWN, help="the Town01 OpenDRIVE map")
     ap.add_argument("--frames", default="", help="drive:frame,... to show whatever they say")
     args = ap.parse_args()
     prep = prepare(lane_graph_from_map(read_opendrive(args.town)))
-    drives = make_drives(prep, args.seed, args.n)
-    cache = ROOT / "out" / f"adrss_drive_oracle_s{args.seed}_n{args.n}.json"
+    drives = make_drives(prep, args.seed, args.n, args.min_gap)
+    gap = "" if args.min_gap == 6.0 else f"_g{args.min_gap:g}"  # noqa: PLR2004 - the default
+    cache = ROOT / "out" / f"adrss_drive_oracle_s{args.seed}_n{args.n}{gap}.json"
     theirs = oracle_drives(drives, args.oracle, args.town, cache)
     for mode in MODES if args.mode == "both" else [args.mode]:
         memo = SceneMemo()
         mine = [our_drive(prep, d, MODES[mode], memo) for d in drives]
         stats = compare_drives(mine, theirs)
         print(f"\n######## {mode}: {stats.summary()}")
-        picked = [tuple(int(v) for v in p.split(":")) for p in args.frames.split(",") if p]
-        rows = [("missed", stats.missed), ("extra", stats.extra), ("picked", picked)]
+        picked = [(int(p.split(":")[0]), int(p.split(":")[1])) for p in args.frames.split(",") if p]
+        rows: list[tuple[str, list[tuple[int, int]]]] = [
+            ("missed", stats.missed),
+            ("extra", stats.extra),
+            ("picked", picked),
+        ]
         for name, frames in rows:
             if frames:
                 print(f"== {name}: {len(frames)}")

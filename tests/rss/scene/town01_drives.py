@@ -96,8 +96,11 @@ def _track(
     return [path.pose(min(s0 + d, path.length_m)) for d in travel]
 
 
-def drive(prep: PreparedGraph, rng: np.random.Generator) -> dict[str, Any]:
-    """One random drive (module docstring)."""
+def drive(
+    prep: PreparedGraph, rng: np.random.Generator, min_gap_m: float = _MIN_GAP_M
+) -> dict[str, Any]:
+    """One random drive (module docstring); objects start ``min_gap_m`` apart or more
+    (centres; 0 lets boxes start touching or overlapping)."""
     g = prep.graph
     roads = np.flatnonzero(~g.is_intersection)
     lane = int(rng.choice(roads))
@@ -117,7 +120,7 @@ def drive(prep: PreparedGraph, rng: np.random.Generator) -> dict[str, Any]:
         track = _track(prep, rng, other, s0, v)
         x, y, _ = track[0]
         starts = [ego[0]] + [t[0][0] for t in tracks]
-        if min(np.hypot(x - p[0], y - p[1]) for p in starts) < _MIN_GAP_M:
+        if min(np.hypot(x - p[0], y - p[1]) for p in starts) < min_gap_m:
             continue
         if np.hypot(x - ego[0][0], y - ego[0][1]) > 2 * _NEAR_M:
             continue
@@ -142,6 +145,8 @@ def drive(prep: PreparedGraph, rng: np.random.Generator) -> dict[str, Any]:
     return {"frames": frames}
 
 
-def drives(prep: PreparedGraph, seed: int, n: int) -> list[dict[str, Any]]:
+def drives(
+    prep: PreparedGraph, seed: int, n: int, min_gap_m: float = _MIN_GAP_M
+) -> list[dict[str, Any]]:
     """``n`` drives, drive ``i`` from the generator seeded with ``(seed, i)``."""
-    return [drive(prep, np.random.default_rng([seed, i])) for i in range(n)]
+    return [drive(prep, np.random.default_rng([seed, i]), min_gap_m) for i in range(n)]
