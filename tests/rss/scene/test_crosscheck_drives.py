@@ -84,13 +84,24 @@ def test_drives_default_mode_misses_no_danger(town01_drives: Answers) -> None:
     Measured: 954 of 996 frames agree (95.8 %); of the 545 frames the reference calls
     dangerous, 6 are safe for us, all "beside on a curve" (:func:`beside_on_curve`); the
     36 frames only we call dangerous are ad-rss' swapped route headings and turn
-    directions (and 3 of "beside on a curve").
+    directions (and 3 of "beside on a curve"). A missed frame is also explained where
+    the compatibility mode, i.e. the default mode plus the documented ad-rss rules, calls
+    it dangerous.
     """
     prep, drives, theirs = town01_drives
     memo = SceneMemo()
     mine = [our_drive(prep, d, SETTINGS, memo) for d in drives]
     stats = compare_drives(mine, theirs)
     sys.stderr.write(f"drive cross-check, default mode: {stats.summary()}\n")
-    unexplained = [(d, k) for d, k in stats.missed if not beside_on_curve(mine[d][k], theirs[d][k])]
+    # a frame the compatibility mode (default + the documented ad-rss rules) calls
+    # dangerous is explained by those rules
+    compat = {
+        d: our_drive(prep, drives[d], COMPAT_SETTINGS, memo) for d in {d for d, _ in stats.missed}
+    }
+    unexplained = [
+        (d, k)
+        for d, k in stats.missed
+        if not beside_on_curve(mine[d][k], theirs[d][k]) and not compat[d][k]["dangerous"]
+    ]
     assert unexplained == []
     assert stats.rate >= 0.95
