@@ -10,8 +10,6 @@ the drives differ. Used by ``test_crosscheck_drives.py`` and ``tools/drive_cross
 from __future__ import annotations
 
 import json
-import subprocess
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -26,6 +24,7 @@ from rss.params import (
     SceneSettings,
 )
 from rss.scene import SceneEgo, SceneMemo, SceneObjects
+from tests.rss.scene.oracle_processes import ask_in_parallel
 
 if TYPE_CHECKING:
     from rss.scene import PreparedGraph
@@ -107,26 +106,9 @@ def our_drive(
 def _ask(python: str, town: Path, drives: list[dict[str, Any]]) -> list[list[dict[str, Any]]]:
     """The oracle's frames of ``drives``, two processes (one per core) over alternate drives."""
     chunks = [drives[0::2], drives[1::2]]
-    procs = [
-        subprocess.Popen(  # noqa: S603 - interpreter chosen by the tester
-            [python, str(DRIVE_ORACLE), str(town)],
-            stdin=subprocess.PIPE,
-            stdout=subprocess.PIPE,
-            stderr=subprocess.PIPE,
-            text=True,
-        )
-        for _ in chunks
-    ]
-    with ThreadPoolExecutor(len(procs)) as pool:
-        outs = list(
-            pool.map(
-                lambda job: job[0].communicate(json.dumps(job[1]), timeout=3600),
-                zip(procs, chunks, strict=True),
-            )
-        )
     parts = []
-    for proc, (out, err) in zip(procs, outs, strict=True):
-        if proc.returncode != 0 or not out.strip():
+    for code, out, err in ask_in_parallel(python, DRIVE_ORACLE, town, chunks, 3600):
+        if code != 0 or not out.strip():
             msg = f"drive oracle failed: {err[-2000:]}"
             raise RuntimeError(msg)
         parts.append(json.loads(out.strip().splitlines()[-1]))

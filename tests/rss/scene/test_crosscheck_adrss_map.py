@@ -14,7 +14,6 @@ import json
 import os
 import subprocess
 import sys
-from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 from typing import Any
 
@@ -43,6 +42,7 @@ from rss.scene.create import scene_boxes
 from rss.scene.junction_arms import Arm, intersection_arms
 from rss.structured.engine import check_frame
 from rss.structured.stacking import stack_constellations
+from tests.rss.scene.oracle_processes import ask_in_parallel
 from workbench.engines.rss.adapter import lane_graph_from_map
 
 ORACLE = Path(__file__).with_name("adrss_map_oracle.py")
@@ -300,26 +300,9 @@ def town01_answers(
     pairs = placements(prep, seed=1, n=N_PAIRS)
     # The reference needs about 0.5 s per pair: one oracle process per core, half each.
     halves = [pairs[: N_PAIRS // 2], pairs[N_PAIRS // 2 :]]
-    procs = [
-        subprocess.Popen(  # noqa: S603 - interpreter chosen by the tester
-            [oracle_python, str(ORACLE), str(town)],
-            stdin=subprocess.PIPE,
-            stdout=subprocess.PIPE,
-            stderr=subprocess.PIPE,
-            text=True,
-        )
-        for _ in halves
-    ]
-    with ThreadPoolExecutor(len(procs)) as pool:
-        outputs = list(
-            pool.map(
-                lambda job: job[0].communicate(json.dumps(job[1]), timeout=1800),
-                zip(procs, halves, strict=True),
-            )
-        )
     theirs = []
-    for proc, (out, err) in zip(procs, outputs, strict=True):
-        assert proc.returncode == 0, f"oracle failed: {err[-2000:]}"
+    for code, out, err in ask_in_parallel(oracle_python, ORACLE, town, halves, 1800):
+        assert code == 0, f"oracle failed: {err[-2000:]}"
         theirs += json.loads(out.strip().splitlines()[-1])
     return prep, pairs, theirs
 
