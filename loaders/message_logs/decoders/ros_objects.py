@@ -122,10 +122,8 @@ def decode_autoware_objects(msg: Any) -> ObjectColumns:
         classes.append(_autoware_class(obj.classification))
         x, y, z, yaw = _pose_row(pose.pose)
         lin = twist.twist.linear
-        vx, vy = float(lin.x), float(lin.y)
-        if not getattr(kin, "has_twist", True):
-            vx = vy = _NAN
-        rows.append((x, y, z, yaw, vx, vy, *_autoware_dims(obj.shape)))
+        velocity = (float(lin.x), float(lin.y)) if getattr(kin, "has_twist", True) else (_NAN, _NAN)
+        rows.append((x, y, z, yaw, *velocity, *_autoware_dims(obj.shape)))
     cols = ObjectColumns.from_rows(ros_stamp_ns(msg.header.stamp), ids, classes, rows)
     vx, vy = body_to_map(cols.vx_mps, cols.vy_mps, cols.yaw_rad)
     object.__setattr__(cols, "vx_mps", vx)
