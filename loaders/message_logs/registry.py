@@ -10,7 +10,14 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-from loaders.message_logs.decoders import foxglove, mcap_json, ros_ego, ros_objects, ros_plan
+from loaders.message_logs.decoders import (
+    foxglove,
+    mcap_json,
+    ros_boxes,
+    ros_ego,
+    ros_objects,
+    ros_plan,
+)
 
 if TYPE_CHECKING:
     from collections.abc import Callable
@@ -55,15 +62,20 @@ FAMILIES: dict[str, MessageFamily] = {
     "derived_object_msgs/ObjectArray": MessageFamily(
         "objects", 0, ros_objects.decode_carla_objects
     ),
-    "autoware_perception_msgs/TrackedObjects": MessageFamily(
-        "objects", 0, ros_objects.decode_autoware_objects
-    ),
-    "autoware_perception_msgs/PredictedObjects": MessageFamily(
-        "objects", 1, ros_objects.decode_autoware_objects
-    ),
+    **{
+        f"{package}/{kind}Objects": MessageFamily(
+            "objects", rank, ros_objects.decode_autoware_objects
+        )
+        for package in ("autoware_perception_msgs", "autoware_auto_perception_msgs")
+        for kind, rank in (("Tracked", 0), ("Predicted", 1), ("Detected", 2))
+    },
     "workbench.ObjectList": MessageFamily("objects", 0, mcap_json.decode_json_objects),
     "vision_msgs/Detection3DArray": MessageFamily("objects", 2, ros_objects.decode_detection3d),
     "foxglove.SceneUpdate": MessageFamily("objects", 2, foxglove.decode_scene_update),
+    "jsk_recognition_msgs/BoundingBoxArray": MessageFamily(
+        "objects", 2, ros_boxes.decode_jsk_boxes
+    ),
+    "visualization_msgs/MarkerArray": MessageFamily("objects", 3, ros_boxes.decode_marker_array),
     "autoware_planning_msgs/Trajectory": MessageFamily("plan", 0, ros_plan.decode_trajectory),
     "workbench.Plan": MessageFamily("plan", 0, mcap_json.decode_json_plan),
     "nav_msgs/Path": MessageFamily("plan", 1, ros_plan.decode_path),

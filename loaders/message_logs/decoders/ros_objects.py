@@ -99,22 +99,31 @@ def _autoware_dims(shape: Any) -> tuple[float, float, float]:
     return length, width, height
 
 
+def _autoware_id(obj: Any, index: int) -> str:
+    object_id = getattr(obj, "object_id", None)
+    if object_id is None:  # DetectedObject: no id, the index within the message
+        return f"det{index}"
+    return bytes(np.asarray(object_id.uuid, dtype=np.uint8)).hex()
+
+
 def decode_autoware_objects(msg: Any) -> ObjectColumns:
-    """``autoware_perception_msgs/PredictedObjects`` or ``TrackedObjects``.
+    """``autoware_(auto_)perception_msgs/{Predicted,Tracked,Detected}Objects``.
 
     The twist is in the object body frame and is rotated into the map frame; the UUID
-    becomes a 32-character hex id.
+    becomes a 32-character hex id. Detected objects have no id: ``det<k>`` is the index
+    within the message; their twist is NaN (the row invalid) when ``has_twist`` is false.
     """
     ids, classes, rows = [], [], []
-    for obj in msg.objects:
+    for k, obj in enumerate(msg.objects):
         kin = obj.kinematics
         pose = getattr(kin, "initial_pose_with_covariance", None) or kin.pose_with_covariance
         twist = getattr(kin, "initial_twist_with_covariance", None) or kin.twist_with_covariance
-        ids.append(bytes(np.asarray(obj.object_id.uuid, dtype=np.uint8)).hex())
+        ids.append(_autoware_id(obj, k))
         classes.append(_autoware_class(obj.classification))
         x, y, z, yaw = _pose_row(pose.pose)
         lin = twist.twist.linear
-        rows.append((x, y, z, yaw, float(lin.x), float(lin.y), *_autoware_dims(obj.shape)))
+        velocity = (float(lin.x), float(lin.y)) if getattr(kin, "has_twist", True) else (_NAN, _NAN)
+        rows.append((x, y, z, yaw, *velocity, *_autoware_dims(obj.shape)))
     cols = ObjectColumns.from_rows(ros_stamp_ns(msg.header.stamp), ids, classes, rows)
     vx, vy = body_to_map(cols.vx_mps, cols.vy_mps, cols.yaw_rad)
     object.__setattr__(cols, "vx_mps", vx)

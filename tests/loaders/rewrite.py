@@ -1,0 +1,170 @@
+"""Re-write a CARLA sample log's objects (``derived_object_msgs/ObjectArray``) in other types.
+
+The ego odometry and the path are copied; every object message becomes one message of the
+target type built from the same poses, sizes, classes and (map-frame) velocities.
+"""
+
+from __future__ import annotations
+
+import math
+import shutil
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from rosbags.highlevel import AnyReader
+
+from loaders.typestore import typestore
+from tests.loaders import fixtures
+from tests.loaders.msgbuild import build
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+    from pathlib import Path
+
+__all__ = ["CARLA_TO_AUTOWARE", "TARGETS", "rewrite_objects"]
+
+#: ``derived_object_msgs`` classification → Autoware ``ObjectClassification.label``.
+CARLA_TO_AUTOWARE = {4: 7, 5: 6, 6: 1, 7: 2, 8: 5, 9: 1}
+
+
+def _vec(ts: Any, msgtype: str, v: Any) -> Any:
+    return build(ts, msgtype, x=float(v.x), y=float(v.y), z=float(v.z))
+
+
+def _pose(ts: Any, p: Any) -> Any:
+    q = p.orientation
+    orientation = build(ts, "geometry_msgs/msg/Quaternion", x=q.x, y=q.y, z=q.z, w=float(q.w))
+    return build(
+        ts,
+        "geometry_msgs/msg/Pose",
+        position=_vec(ts, "geometry_msgs/msg/Point", p.position),
+        orientation=orientation,
+    )
+
+
+def _yaw(q: Any) -> float:
+    return math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z))
+
+
+def _autoware(package: str, kind: str) -> Callable[[Any, Any], Any]:
+    def make(ts: Any, msg: Any) -> Any:
+        objs = []
+        for obj in msg.objects:
+            yaw = _yaw(obj.pose.orientation)
+            vx, vy = float(obj.twist.linear.x), float(obj.twist.linear.y)
+            body = build(
+                ts,
+                "geometry_msgs/msg/Vector3",
+                x=math.cos(yaw) * vx + math.sin(yaw) * vy,
+                y=-math.sin(yaw) * vx + math.cos(yaw) * vy,
+            )
+            twist = build(ts, "geometry_msgs/msg/Twist", linear=body)
+            pwc = build(ts, "geometry_msgs/msg/PoseWithCovariance", pose=_pose(ts, obj.pose))
+            twc = build(ts, "geometry_msgs/msg/TwistWithCovariance", twist=twist)
+            prefix = "initial_" if kind == "Predicted" else ""
+            kin_fields = {
+                f"{prefix}pose_with_covariance": pwc,
+                f"{prefix}twist_with_covariance": twc,
+            }
+            if kind == "Detected":
+                kin_fields["has_twist"] = True
+            d = obj.shape.dimensions
+            label = CARLA_TO_AUTOWARE.get(int(obj.classification), 0)
+            fields: dict[str, Any] = {
+                "existence_probability": 1.0,
+                "classification": [
+                    build(ts, f"{package}/msg/ObjectClassification", label=label, probability=1.0)
+                ],
+                "kinematics": build(ts, f"{package}/msg/{kind}ObjectKinematics", **kin_fields),
+                "shape": build(
+                    ts,
+                    f"{package}/msg/Shape",
+                    dimensions=build(ts, "geometry_msgs/msg/Vector3", x=d[0], y=d[1], z=d[2]),
+                ),
+            }
+            if kind != "Detected":
+                fields["object_id"] = build(
+                    ts,
+                    "unique_identifier_msgs/msg/UUID",
+                    uuid=np.frombuffer(int(obj.id).to_bytes(16, "big"), dtype=np.uint8).copy(),
+                )
+            objs.append(build(ts, f"{package}/msg/{kind}Object", **fields))
+        return build(ts, f"{package}/msg/{kind}Objects", header=msg.header, objects=objs)
+
+    return make
+
+
+def _markers(ts: Any, msg: Any) -> Any:
+    markers = [
+        build(
+            ts,
+            "visualization_msgs/msg/Marker",
+            header=msg.header,
+            ns="carla",
+            id=int(obj.id),
+            type=1,
+            pose=_pose(ts, obj.pose),
+            scale=build(
+                ts,
+                "geometry_msgs/msg/Vector3",
+                x=obj.shape.dimensions[0],
+                y=obj.shape.dimensions[1],
+                z=obj.shape.dimensions[2],
+            ),
+        )
+        for obj in msg.objects
+    ]
+    # a text label and a DELETEALL marker: counted and ignored by the decoder
+    markers.append(build(ts, "visualization_msgs/msg/Marker", header=msg.header, type=9))
+    markers.append(build(ts, "visualization_msgs/msg/Marker", header=msg.header, action=3))
+    return build(ts, "visualization_msgs/msg/MarkerArray", markers=markers)
+
+
+def _jsk(ts: Any, msg: Any) -> Any:
+    boxes = [
+        build(
+            ts,
+            "jsk_recognition_msgs/msg/BoundingBox",
+            header=msg.header,
+            pose=_pose(ts, obj.pose),
+            dimensions=build(
+                ts,
+                "geometry_msgs/msg/Vector3",
+                x=obj.shape.dimensions[0],
+                y=obj.shape.dimensions[1],
+                z=obj.shape.dimensions[2],
+            ),
+            value=1.0,
+            label=int(obj.id),
+        )
+        for obj in msg.objects
+    ]
+    return build(ts, "jsk_recognition_msgs/msg/BoundingBoxArray", header=msg.header, boxes=boxes)
+
+
+#: Target message type → converter ``(typestore, ObjectArray) → message``.
+TARGETS: dict[str, Callable[[Any, Any], Any]] = {
+    **{
+        f"{package}/msg/{kind}Objects": _autoware(package, kind)
+        for package in ("autoware_perception_msgs", "autoware_auto_perception_msgs")
+        for kind in ("Detected", "Tracked", "Predicted")
+    },
+    "visualization_msgs/msg/MarkerArray": _markers,
+    "jsk_recognition_msgs/msg/BoundingBoxArray": _jsk,
+}
+
+
+def rewrite_objects(source: Path, target: Path, msgtype: str) -> Path:
+    """Write ``target`` (a ROS 2 MCAP with ``source``'s map sidecar) with objects as ``msgtype``."""
+    ts = typestore(2)
+    entries = []
+    with AnyReader([source]) as reader:
+        conns = [c for c in reader.connections if c.topic != "/tf"]
+        for conn, t_ns, raw in reader.messages(connections=conns):
+            msg = reader.deserialize(raw, conn.msgtype)
+            if conn.msgtype == "derived_object_msgs/msg/ObjectArray":
+                entries.append(fixtures.Entry("/objects", msgtype, t_ns, TARGETS[msgtype](ts, msg)))
+            else:
+                entries.append(fixtures.Entry(conn.topic, conn.msgtype, t_ns, msg))
+    shutil.copy(source.with_suffix(".osm"), target.with_suffix(".osm"))
+    return fixtures.write_ros2_mcap(target, entries)
