@@ -38,6 +38,7 @@ if TYPE_CHECKING:
 
     from rss.params import RssParams
     from rss.scene import PreparedGraph, Scene, SceneEgo, SceneObjects
+    from rss.structured.batch import ConstellationBatch
     from rss.structured.memory import RssMemory
 
 __all__ = ["FrameVerdict", "evaluate_frames"]
@@ -113,15 +114,14 @@ def evaluate_frames(
         )
         for (ego, objects), m in zip(frames, matches, strict=True)
     ]
-    scenes, rejected = _well_formed(scenes)
+    batch, scenes, rejected = _stacked(scenes)
     counts = [len(s.constellations) for s in scenes]
-    if not any(counts):
+    if batch is None:
         verdicts = [
             FrameVerdict(s, _NO_ROWS, _NO_ROWS, None, bad)
             for s, bad in zip(scenes, rejected, strict=True)
         ]
         return verdicts, None
-    batch = stack_constellations([c for s in scenes for c in s.constellations])
     frame_of = np.repeat(np.arange(len(frames)), counts)
     ego_dyn = params.for_class(ObjectClass.EGO)
     result, memory = check_frames(batch, frame_of, len(frames), ego_dyn, state)
@@ -144,18 +144,29 @@ def evaluate_frames(
     return verdicts, memory if counts[-1] else None
 
 
-def _well_formed(scenes: list[Scene]) -> tuple[list[Scene], list[tuple[tuple[int, str], ...]]]:
-    """The scenes without malformed constellations, and ``(object id, reason)`` per frame.
+def _stacked(
+    scenes: list[Scene],
+) -> tuple[ConstellationBatch | None, list[Scene], list[tuple[tuple[int, str], ...]]]:
+    """The stacked constellations of all frames (``None``: none), their scenes, the rejected.
 
-    Stacking checks every constellation; only when the whole batch fails is each one
-    stacked alone, so the usual case costs nothing extra.
+    Stacking checks every constellation. Only when the whole batch fails is each one stacked
+    alone: the malformed ones leave their scene and are named ``(object id, reason)`` per
+    frame, and the rest is stacked again.
     """
+    rejected: list[tuple[tuple[int, str], ...]] = [() for _ in scenes]
+    rows = [c for s in scenes for c in s.constellations]
+    if not rows:
+        return None, scenes, rejected
     try:
-        stack_constellations([c for s in scenes for c in s.constellations])
+        return stack_constellations(rows), scenes, rejected
     except RssConstellationError:
-        pass
-    else:
-        return scenes, [() for _ in scenes]
+        scenes, rejected = _well_formed(scenes)
+    rows = [c for s in scenes for c in s.constellations]
+    return (stack_constellations(rows) if rows else None), scenes, rejected
+
+
+def _well_formed(scenes: list[Scene]) -> tuple[list[Scene], list[tuple[tuple[int, str], ...]]]:
+    """The scenes without malformed constellations, and ``(object id, reason)`` per frame."""
     kept_scenes, rejected = [], []
     for scene in scenes:
         keep: list[int] = []
