@@ -22,10 +22,8 @@ import argparse
 import functools
 import json
 import logging
-import subprocess
 import sys
 from collections import defaultdict
-from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -35,6 +33,7 @@ sys.path.insert(0, str(ROOT))
 
 from loaders.maps.opendrive import read_opendrive  # noqa: E402
 from rss.scene import PreparedGraph, create_scene, prepare  # noqa: E402
+from tests.rss.scene.oracle_processes import ask_in_parallel  # noqa: E402
 from tests.rss.scene.test_crosscheck_adrss_map import (  # noqa: E402
     COMPAT_SETTINGS,
     ORACLE,
@@ -69,22 +68,8 @@ def oracle_answers(
             return answers
     half = len(pairs) // 2
     chunks = [pairs[:half], pairs[half:]]
-    procs = [
-        subprocess.Popen(  # noqa: S603 - interpreter chosen by the user
-            [python, str(ORACLE), str(TOWN)],
-            stdin=subprocess.PIPE,
-            stdout=subprocess.PIPE,
-            stderr=subprocess.PIPE,
-            text=True,
-        )
-        for _ in chunks
-    ]
-    with ThreadPoolExecutor(2) as pool:
-        outs = list(
-            pool.map(lambda j: j[0].communicate(json.dumps(j[1])), zip(procs, chunks, strict=True))
-        )
     answers = []
-    for out, err in outs:
+    for _, out, err in ask_in_parallel(python, ORACLE, TOWN, chunks, None):
         if not out.strip():
             raise SystemExit(err[-2000:])
         answers += json.loads(out.strip().splitlines()[-1])

@@ -14,9 +14,11 @@ __all__ = ["ask_in_parallel"]
 
 
 def ask_in_parallel(
-    python: str, script: Path, town: Path, jobs: list[Any], timeout_s: float
+    python: str, script: Path, town: Path, jobs: list[Any], timeout_s: float | None
 ) -> list[tuple[int, str, str]]:
     """Run ``python script town`` once per job at the same time, the job as JSON on stdin.
+
+    ``timeout_s`` bounds each process (``None``: no bound).
 
     Returns:
         ``(return code, stdout, stderr)`` of each process, in the order of ``jobs``.
