@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any
 from loaders.errors import CorruptLogError, InvalidValueError
 from loaders.message_logs.kinematics import ego_kinematics
 from loaders.message_logs.matching import ObjectBuffer, match_objects
-from loaders.message_logs.samples import EgoSample, ObjectColumns, PlanSample
+from loaders.message_logs.samples import EgoSample, EgoWithObjects, ObjectColumns, PlanSample
 from loaders.records import EgoState, Frame
 
 if TYPE_CHECKING:
@@ -164,6 +164,23 @@ class FrameAssembler:
                 self._path, f"cannot decode message: {err!r}", topic=topic, t_ns=log_ns
             ) from err
 
+    def _on_message(self, topic: str, log_ns: int, decoded: Any) -> Frame | None:
+        """File one decoded message; the frame it completes, if any."""
+        if isinstance(decoded, EgoWithObjects):  # OSI: the objects first, then the ego
+            buffer = self._by_topic.get(topic)
+            if buffer is not None:
+                buffer.update(self._time(log_ns, decoded.ego.stamp_ns), decoded.objects)
+            decoded = decoded.ego
+        if isinstance(decoded, EgoSample):
+            return self._on_ego(topic, log_ns, decoded)
+        if isinstance(decoded, ObjectColumns):
+            self._by_topic[topic].update(self._time(log_ns, decoded.stamp_ns), decoded)
+        elif isinstance(decoded, PlanSample):
+            self._plans_unused += int(self._plan is not None and not self._plan_used)
+            self._plan = (self._time(log_ns, decoded.stamp_ns), decoded.plan)
+            self._plan_used = False
+        return None
+
     def run(self, messages: Iterable[tuple[str, int, Any]]) -> Iterator[Frame]:
         """Yield frames from the message stream.
 
@@ -175,16 +192,9 @@ class FrameAssembler:
                 decoded = self._decode(topic, log_ns, msg)
                 if decoded is None:  # the message only updated decoder state (TF, IMU)
                     continue
-                if isinstance(decoded, EgoSample):
-                    frame = self._on_ego(topic, log_ns, decoded)
-                    if frame is not None:
-                        yield frame
-                elif isinstance(decoded, ObjectColumns):
-                    self._by_topic[topic].update(self._time(log_ns, decoded.stamp_ns), decoded)
-                elif isinstance(decoded, PlanSample):
-                    self._plans_unused += int(self._plan is not None and not self._plan_used)
-                    self._plan = (self._time(log_ns, decoded.stamp_ns), decoded.plan)
-                    self._plan_used = False
+                frame = self._on_message(topic, log_ns, decoded)
+                if frame is not None:
+                    yield frame
         except (CorruptLogError, InvalidValueError):
             frame = self._emit(None)
             if frame is not None:

@@ -45,7 +45,7 @@ class LogDrive:
         self._types = {t.topic: t.msgtype for t in source.topics}
         self._decoders: dict[str, Callable[[Any], Any]] = {}
         for topic in (*roles.objects, roles.plan):
-            if topic is not None:
+            if topic is not None and topic != roles.ego:  # an OSI ego topic decodes both
                 family = family_of(self._types[topic])
                 assert family is not None  # checked by detect_roles
                 assert family.decode is not None  # object and plan families are stateless

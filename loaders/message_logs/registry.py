@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Any
 from loaders.message_logs.decoders import (
     foxglove,
     mcap_json,
+    osi,
     ros_boxes,
     ros_ego,
     ros_objects,
@@ -22,7 +23,12 @@ from loaders.message_logs.decoders import (
 if TYPE_CHECKING:
     from collections.abc import Callable
 
-    from loaders.message_logs.samples import EgoSample, ObjectColumns, PlanSample
+    from loaders.message_logs.samples import (
+        EgoSample,
+        EgoWithObjects,
+        ObjectColumns,
+        PlanSample,
+    )
 
 __all__ = ["FAMILIES", "ROLES", "MessageFamily", "family_of", "normalize_msgtype"]
 
@@ -40,17 +46,23 @@ class MessageFamily:
         decode: Decoded message object → sample; None for the stateful ego families
             (``tf2_msgs/TFMessage``, ``sensor_msgs/NavSatFix``) whose decoders are built per
             read by ``loaders.message_logs.ego_streams``.
+        carries_objects: An ego family whose messages also hold the object list (ASAM OSI
+            ground truth): its topic is the drive's object topic too, unless a profile
+            names object topics.
     """
 
     role: str
     rank: int
-    decode: Callable[[Any], EgoSample | ObjectColumns | PlanSample] | None
+    decode: Callable[[Any], EgoSample | EgoWithObjects | ObjectColumns | PlanSample] | None
+    carries_objects: bool = False
 
 
 FAMILIES: dict[str, MessageFamily] = {
     "nav_msgs/Odometry": MessageFamily("ego", 0, ros_ego.decode_odometry),
     "foxglove.Odometry": MessageFamily("ego", 0, foxglove.decode_foxglove_odometry),
     "workbench.EgoState": MessageFamily("ego", 0, mcap_json.decode_json_ego),
+    osi.OSI_GROUND_TRUTH: MessageFamily("ego", 0, osi.decode_ground_truth, carries_objects=True),
+    osi.OSI_SENSOR_VIEW: MessageFamily("ego", 0, osi.decode_sensor_view, carries_objects=True),
     "geometry_msgs/PoseStamped": MessageFamily("ego", 1, ros_ego.decode_pose_stamped),
     "geometry_msgs/PoseWithCovarianceStamped": MessageFamily(
         "ego", 1, ros_ego.decode_pose_with_covariance

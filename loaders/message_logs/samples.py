@@ -14,7 +14,14 @@ if TYPE_CHECKING:
 
     from numpy.typing import NDArray
 
-__all__ = ["CLASS_NAMES", "EgoSample", "ObjectColumns", "PlanSample", "class_from_name"]
+__all__ = [
+    "CLASS_NAMES",
+    "EgoSample",
+    "EgoWithObjects",
+    "ObjectColumns",
+    "PlanSample",
+    "class_from_name",
+]
 
 #: Free-text class names (vision_msgs ``class_id``, Foxglove metadata, our JSON) → class.
 CLASS_NAMES: dict[str, ObjectClass] = {
@@ -131,3 +138,16 @@ class ObjectColumns:
             height_m=c[8],
             has_velocity=has_velocity,
         )
+
+
+@dataclass(frozen=True, slots=True)
+class EgoWithObjects:
+    """One message holding the ego and the object list (ASAM OSI ground truth).
+
+    The assembler files ``objects`` under the ego topic (when that topic is an object
+    topic of the drive) before it makes the frame of ``ego``, so the frame takes them
+    unextrapolated (``match_dt_ns`` 0).
+    """
+
+    ego: EgoSample
+    objects: ObjectColumns

@@ -40,7 +40,7 @@ def _summary_table(violations: list[Violation], t0_ns: int) -> Table:
 
 def evaluate(
     log: Annotated[
-        Path, typer.Argument(help="Drive: .mcap, .bag, rosbag2 dir or .db3, .xml, .saa.")
+        Path, typer.Argument(help="Drive: .mcap, .bag, rosbag2 dir or .db3, .osi, .xml, .saa.")
     ],
     *,
     map_path: Annotated[Path | None, typer.Option("--map", help="Lane map file.")] = None,

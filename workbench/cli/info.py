@@ -61,7 +61,7 @@ def render_info(drive: Drive, console: Console, frames: int | None = None) -> No
 
 def info(
     log: Annotated[
-        Path, typer.Argument(help="Drive: .mcap, .bag, rosbag2 dir or .db3, .xml, .saa/.scn")
+        Path, typer.Argument(help="Drive: .mcap, .bag, rosbag2 dir or .db3, .osi, .xml, .saa/.scn")
     ],
     *,
     map_path: Annotated[
