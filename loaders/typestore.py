@@ -3,7 +3,8 @@
 rosbags' stores hold only the ROS core packages. For *writing* sample logs and for reading
 old ROS 2 bags that carry no message definitions, we register the CARLA
 (``derived_object_msgs``), Autoware (``autoware_perception_msgs``, ``autoware_planning_msgs``,
-``autoware_auto_perception_msgs``), ``jsk_recognition_msgs`` boxes
+``autoware_auto_perception_msgs``, ``autoware_auto_planning_msgs``), Autoware.AI
+(``autoware_msgs`` objects), ``radar_msgs`` tracks, ``jsk_recognition_msgs`` boxes
 and ``vision_msgs`` 4.x types from the ``.msg`` files in ``loaders/msgs/``. Their field layout
 follows the upstream interface definitions; files are named ``<package>__<Type>.msg``.
 Reading a log never needs this: ROS 1 bags and MCAP files embed their definitions and

@@ -18,6 +18,7 @@ from loaders.message_logs.decoders import (
     ros_ego,
     ros_objects,
     ros_plan,
+    ros_radar,
 )
 
 if TYPE_CHECKING:
@@ -81,6 +82,10 @@ FAMILIES: dict[str, MessageFamily] = {
         for package in ("autoware_perception_msgs", "autoware_auto_perception_msgs")
         for kind, rank in (("Tracked", 0), ("Predicted", 1), ("Detected", 2))
     },
+    "autoware_msgs/DetectedObjectArray": MessageFamily(
+        "objects", 1, ros_objects.decode_autoware_ai_objects
+    ),
+    "radar_msgs/RadarTracks": MessageFamily("objects", 2, ros_radar.decode_radar_tracks),
     "workbench.ObjectList": MessageFamily("objects", 0, mcap_json.decode_json_objects),
     "vision_msgs/Detection3DArray": MessageFamily("objects", 2, ros_objects.decode_detection3d),
     "foxglove.SceneUpdate": MessageFamily("objects", 2, foxglove.decode_scene_update),
@@ -88,7 +93,10 @@ FAMILIES: dict[str, MessageFamily] = {
         "objects", 2, ros_boxes.decode_jsk_boxes
     ),
     "visualization_msgs/MarkerArray": MessageFamily("objects", 3, ros_boxes.decode_marker_array),
-    "autoware_planning_msgs/Trajectory": MessageFamily("plan", 0, ros_plan.decode_trajectory),
+    **{
+        f"{package}/Trajectory": MessageFamily("plan", 0, ros_plan.decode_trajectory)
+        for package in ("autoware_planning_msgs", "autoware_auto_planning_msgs")
+    },
     "workbench.Plan": MessageFamily("plan", 0, mcap_json.decode_json_plan),
     "nav_msgs/Path": MessageFamily("plan", 1, ros_plan.decode_path),
 }
