@@ -88,6 +88,11 @@ class FrameAssembler:
         self._last_yaw = 0.0
         self.skipped_invalid = 0
         self.skipped_out_of_order = 0
+        #: Ego-topic messages that made no ego sample (``/tf`` moving other frames only, or
+        #: without a chain to the map; GNSS without a fix).
+        self.ego_without_pose = 0
+        #: Entries of object messages that are not objects (``MarkerArray`` non-box markers).
+        self.ignored_markers = 0
 
     @property
     def unused_objects(self) -> int:
@@ -174,6 +179,7 @@ class FrameAssembler:
         if isinstance(decoded, EgoSample):
             return self._on_ego(topic, log_ns, decoded)
         if isinstance(decoded, ObjectColumns):
+            self.ignored_markers += decoded.ignored
             self._by_topic[topic].update(self._time(log_ns, decoded.stamp_ns), decoded)
         elif isinstance(decoded, PlanSample):
             self._plans_unused += int(self._plan is not None and not self._plan_used)
@@ -191,6 +197,7 @@ class FrameAssembler:
             for topic, log_ns, msg in messages:
                 decoded = self._decode(topic, log_ns, msg)
                 if decoded is None:  # the message only updated decoder state (TF, IMU)
+                    self.ego_without_pose += int(topic == self._roles.ego)
                     continue
                 frame = self._on_message(topic, log_ns, decoded)
                 if frame is not None:

@@ -94,6 +94,8 @@ class ObjectColumns:
         height_m: Full box height.
         has_velocity: False when the message type carries no velocity; the assembler
             estimates it per id by finite differences across messages.
+        ignored: Entries of the message that are not objects and were left out
+            (``MarkerArray`` markers other than box cubes); counted in the drive's notes.
     """
 
     stamp_ns: int | None
@@ -109,6 +111,7 @@ class ObjectColumns:
     width_m: NDArray[np.float64]
     height_m: NDArray[np.float64]
     has_velocity: bool = True
+    ignored: int = 0
 
     @classmethod
     def from_rows(
@@ -119,6 +122,7 @@ class ObjectColumns:
         rows: Sequence[tuple[float, ...]],
         *,
         has_velocity: bool = True,
+        ignored: int = 0,
     ) -> ObjectColumns:
         """Build from per-object rows ``(x, y, z, yaw, vx, vy, length, width, height)``."""
         table = np.asarray(rows, dtype=np.float64).reshape(len(rows), 9)
@@ -137,6 +141,7 @@ class ObjectColumns:
             width_m=c[7],
             height_m=c[8],
             has_velocity=has_velocity,
+            ignored=ignored,
         )
 
 

@@ -74,9 +74,10 @@ def info(
 ) -> None:
     """Show format, duration, frame count, topics with types, counts and roles, and the map.
 
-    The frame count is what ``evaluate`` will produce: the ego topic is read once to count
-    the messages that make no frame (printed on one line; ``--verbose`` details them). A
-    damaged ego topic ends the command with its error after the summary.
+    The frame count is what ``evaluate`` will produce: the role topics are read once,
+    without the engines, to count the frames and the messages that make none (printed on
+    the same line ``evaluate`` prints; ``--verbose`` details them). A damaged log ends the
+    command with its error after the summary.
     """
     from loaders import LoaderError, open_drive  # noqa: PLC0415 - keeps CLI start-up light
     from loaders.losses import count_frames  # noqa: PLC0415
