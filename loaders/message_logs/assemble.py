@@ -135,7 +135,7 @@ class FrameAssembler:
             (ahead.t_ns, ahead.sample) if ahead else None,
         )
         s = cur.sample
-        ego = EgoState(s.x_m, s.y_m, s.z_m, s.yaw_rad, speed, accel, yaw_rate)
+        ego = EgoState(s.x_m, s.y_m, s.z_m, s.yaw_rad, speed, accel, yaw_rate, *(s.size_m or ()))
         self._prev, self._cur = cur, nxt
         if not self._in_window(cur.t_ns):
             return None

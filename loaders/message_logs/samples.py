@@ -54,7 +54,9 @@ class EgoSample:
     ``speed_mps`` and ``yaw_rate_radps`` are NaN when the message carries no twist; the
     frame assembler then derives them by finite differences. ``heading_from_track`` marks a
     sample without orientation (GNSS fix without IMU): ``yaw_rad`` is NaN and the assembler
-    takes the heading of the track through the neighbouring samples.
+    takes the heading of the track through the neighbouring samples. ``size_m`` is the ego's
+    ``(length, width, height)`` when the message carries it (OSI host vehicle), else None
+    (the ``DEFAULT_EGO_*`` size).
     """
 
     stamp_ns: int | None
@@ -65,6 +67,7 @@ class EgoSample:
     speed_mps: float = float("nan")
     yaw_rate_radps: float = float("nan")
     heading_from_track: bool = False
+    size_m: tuple[float, float, float] | None = None
 
 
 @dataclass(frozen=True, slots=True)

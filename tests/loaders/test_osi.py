@@ -120,3 +120,21 @@ def test_ground_truth_without_host_vehicle_fails_typed(tmp_path: Path) -> None:
     path.write_bytes((struct.pack("<I", len(data)) + data) * 2)
     with pytest.raises(CorruptLogError, match="host_vehicle_id"), closing(open_drive(path)) as d:
         list(d.frames())
+
+
+def test_host_vehicle_dimension_is_the_ego_size(reference: list[Frame], tmp_path: Path) -> None:
+    path = write_osi(reference[:5], tmp_path, "gt_osi")
+    data = path.read_bytes()
+    out, offset = b"", 0
+    while offset < len(data):  # every record: the host vehicle 5.0 x 2.2 x 1.8 m
+        (length,) = struct.unpack("<I", data[offset : offset + 4])
+        gt = betterosi.GroundTruth.from_binary(data[offset + 4 : offset + 4 + length])
+        host = next(o for o in gt.moving_object if o.id.value == HOST_ID)
+        host.base.dimension = betterosi.Dimension3d(length=5.0, width=2.2, height=1.8)
+        body = gt.to_binary()
+        out += struct.pack("<I", len(body)) + body
+        offset += 4 + length
+    path.write_bytes(out)
+    frames = _frames(path)
+    assert len(frames) == 5
+    assert {(f.ego.length_m, f.ego.width_m, f.ego.height_m) for f in frames} == {(5.0, 2.2, 1.8)}

@@ -7,7 +7,7 @@ object list (``EgoWithObjects``):
   else that of its ``global_ground_truth``): ``base.position`` (the bounding-box centre),
   ``base.orientation.yaw``, speed = ``base.velocity`` (global frame) projected on the
   heading, yaw rate = ``base.orientation_rate.yaw``; a missing velocity or rate is NaN
-  (finite differences);
+  (finite differences); ``base.dimension`` is the ego size (when all three are positive);
 - objects = every other moving object: ``base.position``/``orientation.yaw``, map-frame
   ``base.velocity`` (estimated per id when some object has none), ``base.dimension`` (full
   length/width/height), class from ``type`` and ``vehicle_classification.type``
@@ -85,6 +85,14 @@ def _yaw(base: Any) -> float:
     return _NAN if base.orientation is None else float(base.orientation.yaw or 0.0)
 
 
+def _size(dim: Any) -> tuple[float, float, float] | None:
+    """``(length, width, height)`` of a ``Dimension3d`` when all three are positive."""
+    if dim is None:
+        return None
+    size = (float(dim.length or 0.0), float(dim.width or 0.0), float(dim.height or 0.0))
+    return size if all(math.isfinite(v) and v > 0 for v in size) else None
+
+
 def _ego(stamp: int | None, base: Any) -> EgoSample:
     x, y, z = _xyz(base.position)
     yaw = _yaw(base)
@@ -98,6 +106,7 @@ def _ego(stamp: int | None, base: Any) -> EgoSample:
         yaw,
         speed_mps=vx * math.cos(yaw) + vy * math.sin(yaw),
         yaw_rate_radps=_NAN if rate is None else float(rate.yaw or 0.0),
+        size_m=_size(base.dimension),
     )
 
 
