@@ -20,6 +20,7 @@ if TYPE_CHECKING:
     from pathlib import Path
 
     from loaders.drive import Drive
+    from rss.params import RssParams
     from workbench.engines.base import EngineRunner
     from workbench.viewer.replay import ReplaySummary
 
@@ -91,6 +92,7 @@ def replay_one(
     target: Path,
     engine_names: list[str],
     replay: Callable[[Drive, Path, Sequence[EngineRunner]], ReplaySummary],
+    rss_params: RssParams | None = None,
 ) -> DemoRow:
     """Evaluate and replay one log into ``target`` with ``replay(drive, target, runners)``.
 
@@ -99,7 +101,7 @@ def replay_one(
     try:
         drive = open_log(log, map_path=None, profile=None, ego_id=None)
         try:
-            settings = EngineSettings(full_geometry=True)
+            settings = EngineSettings(rss_params=rss_params, full_geometry=True)
             runners = build_runners(engine_names, drive.lane_map, settings)
             s = replay(drive, target, runners)
         finally:

@@ -4,7 +4,8 @@ Keys, in order: ``is_safe``, ``dangerous_objects`` (actor ids, sorted),
 ``longitudinal_response``, ``lateral_response_left``, ``lateral_response_right`` (ad-rss
 response names), ``acceleration_restrictions`` (``{"longitudinal" | "lateral_left" |
 "lateral_right": [min, max]}`` in m/s², ``null`` bounds for unbounded values; ``null``
-without constellations), ``constellations``, ``invalid_objects``; ``rejected_constellations``
+without constellations), ``constellations``, ``invalid_objects``, ``profile`` (the RSS
+parameter profile, ``NAME`` or ``NAME+file``); ``rejected_constellations``
 (``{object id: reason}`` of malformed constellations left out of the frame) only when there
 are any.
 """
@@ -25,6 +26,7 @@ __all__ = ["rss_record"]
 def rss_record(verdict: RssVerdict) -> dict[str, Any]:
     """The JSON-ready record of one frame."""
     record = _record(verdict)
+    record["profile"] = verdict.profile
     if verdict.rejected:
         record["rejected_constellations"] = dict(verdict.rejected)
     return record

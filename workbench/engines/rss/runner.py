@@ -76,8 +76,9 @@ class RssRunner:
         them; a frame without constellations forgets the memory.
         """
         prep = self._prep
+        label = self._params.profile_label
         if prep is None:
-            return [_safe(()) for _ in frames]
+            return [_safe((), label) for _ in frames]
         inputs = [frame_to_scene(f, prep, self._params, self._ids) for f in frames]
         verdicts, self._memory = evaluate_frames(
             [(ego, objects) for ego, objects, _ in inputs],
@@ -88,7 +89,7 @@ class RssRunner:
             road_boundaries=self._road_boundaries,
         )
         out = [
-            _safe(invalid)
+            _safe(invalid, label)
             if v.result is None
             else self._output(v.scene, invalid, v.object_id, v.constellation_type, v.result)
             for v, (_, _, invalid) in zip(verdicts, inputs, strict=True)
@@ -133,6 +134,7 @@ class RssRunner:
             road_areas=road_area_outlines(prep.graph, scene.road_areas)
             if self._outlines and prep is not None
             else (),
+            profile=self._params.profile_label,
         )
 
 
@@ -141,6 +143,6 @@ def _label(ids: IdMap, object_id: int) -> str:
     return names.get(object_id) or ids.to_str(object_id)
 
 
-def _safe(invalid: tuple[str, ...] | list[str]) -> RssVerdict:
+def _safe(invalid: tuple[str, ...] | list[str], profile: str) -> RssVerdict:
     """The verdict of a frame without constellations."""
-    return RssVerdict(is_safe=True, invalid_objects=tuple(sorted(invalid)))
+    return RssVerdict(is_safe=True, invalid_objects=tuple(sorted(invalid)), profile=profile)

@@ -35,6 +35,8 @@ class RssVerdict:
             (``(C,)`` entries of closed ``(K, 2)`` rings; empty tuple: not computed).
         rejected: ``(object id, reason)`` of each malformed constellation left out of the
             frame (also in ``invalid_objects``).
+        profile: The parameter profile (``RssParams.profile_label``) the frame was checked
+            with.
     """
 
     is_safe: bool
@@ -48,6 +50,7 @@ class RssVerdict:
     result: FrameResult | None = None
     road_areas: tuple[tuple[NDArray[np.float64], ...], ...] = ()
     rejected: tuple[tuple[str, str], ...] = ()
+    profile: str = "adrss-5.0"
 
     @property
     def constellations(self) -> int:

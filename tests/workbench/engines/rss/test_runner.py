@@ -35,6 +35,7 @@ PINNED = {
     "acceleration_restrictions",
     "constellations",
     "invalid_objects",
+    "profile",
 }
 T0_NS = 1_700_000_000_000_000_000
 
@@ -175,3 +176,61 @@ def test_runner_with_road_boundaries_names_them():
     assert all(r["constellations"] >= 2 for r in records[1:])
     names = {d for r in records for d in r["dangerous_objects"]}
     assert not {"road_boundary_left", "road_boundary_right"} & names  # ego keeps its lane
+
+
+def _first_unsafe_s(log: str, tmp_path: Path, *options: str) -> tuple[float, set[str]]:
+    per_frame = tmp_path / f"{log}.jsonl"
+    code = _run(
+        [
+            "evaluate",
+            str(SAMPLES / log),
+            "--engines",
+            "rss",
+            "--per-frame",
+            str(per_frame),
+            *options,
+        ]
+    )
+    assert code == 0
+    lines = [json.loads(line) for line in per_frame.read_text().splitlines()]
+    unsafe = [line for line in lines if not line["rss"]["is_safe"]]
+    first = min(((line["t_ns"] - T0_NS) / 1e9 for line in unsafe), default=float("inf"))
+    return first, {d for line in unsafe for d in line["rss"]["dangerous_objects"]}
+
+
+def test_evaluate_records_the_review_profile_by_default_and_the_chosen_one(tmp_path):
+    for options, label in (((), "highway"), (("--rss-profile", "adrss-5.0"), "adrss-5.0")):
+        per_frame = tmp_path / "frames.jsonl"
+        code = _run(
+            [
+                "evaluate",
+                str(SAMPLES / "highway_cut_in.mcap"),
+                "--engines",
+                "rss",
+                "--end",
+                "1",
+                "--per-frame",
+                str(per_frame),
+                *options,
+            ]
+        )
+        assert code == 0
+        lines = [json.loads(line) for line in per_frame.read_text().splitlines()]
+        assert {line["rss"]["profile"] for line in lines} == {label}
+
+
+@pytest.mark.parametrize(
+    ("log", "event_s", "actor"),
+    [
+        ("highway_cut_in.mcap", 5.0, "1"),
+        ("hard_braking_lead.mcap", 4.5, "00000000000000000000000000000001"),
+    ],
+)
+def test_review_default_free_flow_is_safe_before_the_scripted_event(log, event_s, actor, tmp_path):
+    # docs/samples.md: the free-flow stretch before the scripted event; the event's actor named
+    first, named = _first_unsafe_s(log, tmp_path)
+    assert first >= event_s
+    assert actor in named
+    # under the conformance reference the car-following gap of hard_braking_lead is unsafe
+    reference_first, _ = _first_unsafe_s(log, tmp_path, "--rss-profile", "adrss-5.0")
+    assert reference_first <= first
