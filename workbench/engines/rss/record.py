@@ -5,7 +5,9 @@ Keys, in order: ``is_safe``, ``dangerous_objects`` (actor ids, sorted),
 response names), ``acceleration_restrictions`` (``{"longitudinal" | "lateral_left" |
 "lateral_right": [min, max]}`` in m/s², ``null`` bounds for unbounded values; ``null``
 without constellations), ``constellations``, ``invalid_objects``, ``profile`` (the RSS
-parameter profile, ``NAME`` or ``NAME+file``); ``rejected_constellations``
+parameter profile, ``NAME`` or ``NAME+file``), ``responsibility`` (``{object id: "ego" |
+"object" | "both"}``: who must act, RSS being symmetric, for every object dangerous from
+the ego's or its own side; docs/rss.md); ``rejected_constellations``
 (``{object id: reason}`` of malformed constellations left out of the frame) only when there
 are any.
 """
@@ -26,6 +28,7 @@ __all__ = ["rss_record"]
 def rss_record(verdict: RssVerdict) -> dict[str, Any]:
     """The JSON-ready record of one frame."""
     record = _record(verdict)
+    record["responsibility"] = verdict.responsibility()
     record["profile"] = verdict.profile
     if verdict.rejected:
         record["rejected_constellations"] = dict(verdict.rejected)

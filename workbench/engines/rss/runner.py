@@ -46,6 +46,7 @@ class RssRunner:
         *,
         road_boundaries: bool = False,
         outlines: bool = False,
+        responsibility: bool = True,
     ) -> None:
         """Prepare the lane graph once.
 
@@ -56,9 +57,12 @@ class RssRunner:
                 route (off by default, as in CARLA).
             outlines: Also compute the road-area outline of every constellation (for the
                 viewer; ``detail.road_areas``).
+            responsibility: Also check every constellation from the other object's side
+                (who must act; ``RssVerdict.responsible``). On by default.
         """
         self._road_boundaries = road_boundaries
         self._outlines = outlines
+        self._responsibility = responsibility
         self._params = params or RssParams()
         self._prep: PreparedGraph | None = None
         if lane_map is not None and lane_map.format != "track":
@@ -87,6 +91,7 @@ class RssRunner:
             graph=prep,
             memo=self._scene_memo,
             road_boundaries=self._road_boundaries,
+            responsibility=self._responsibility,
         )
         out = [
             _safe(invalid, label)
@@ -134,6 +139,9 @@ class RssRunner:
             road_areas=road_area_outlines(prep.graph, scene.road_areas)
             if self._outlines and prep is not None
             else (),
+            responsible=None
+            if result.responsibility is None
+            else result.responsibility.responsible,
             profile=self._params.profile_label,
         )
 

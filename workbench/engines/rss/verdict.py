@@ -35,6 +35,8 @@ class RssVerdict:
             (``(C,)`` entries of closed ``(K, 2)`` rings; empty tuple: not computed).
         rejected: ``(object id, reason)`` of each malformed constellation left out of the
             frame (also in ``invalid_objects``).
+        responsible: ``(C,)`` :class:`rss.structured.responsibility.Responsible` codes: who
+            must act in each constellation (``None`` without constellations).
         profile: The parameter profile (``RssParams.profile_label``) the frame was checked
             with.
     """
@@ -50,7 +52,22 @@ class RssVerdict:
     result: FrameResult | None = None
     road_areas: tuple[tuple[NDArray[np.float64], ...], ...] = ()
     rejected: tuple[tuple[str, str], ...] = ()
+    responsible: NDArray[np.int64] | None = None
     profile: str = "adrss-5.0"
+
+    def responsibility(self) -> dict[str, str]:
+        """Who must act per object: ``ego``, ``object`` or ``both``, sorted by label.
+
+        Every object one of whose constellations is dangerous from either side is listed.
+        """
+        if self.responsible is None:
+            return {}
+        codes: dict[str, int] = {}
+        for label, code in zip(self.labels, self.responsible.tolist(), strict=True):
+            if code:
+                codes[label] = codes.get(label, 0) | int(code)
+        names = {1: "ego", 2: "object", 3: "both"}
+        return {label: names[code] for label, code in sorted(codes.items())}
 
     @property
     def constellations(self) -> int:

@@ -36,6 +36,7 @@ PINNED = {
     "constellations",
     "invalid_objects",
     "profile",
+    "responsibility",
 }
 T0_NS = 1_700_000_000_000_000_000
 
