@@ -17,7 +17,8 @@ carla      CARLA's ``RssCheck`` defaults (``LibCarla/source/carla/rss/RssCheck.c
 highway    Review of recorded drives on motorways: others rho = 1 s (reaction and brake
            response time of the German case law), ego rho = 0.5 s, accel_max 2 m/s^2 during
            the response time, brake_min -6 m/s^2, brake_min_correct -5 m/s^2; everything else
-           as adrss-5.0. The ``evaluate`` / ``replay`` / ``demo`` default.
+           as adrss-5.0. What ``--rss-profile auto`` (the ``evaluate`` / ``replay`` /
+           ``demo`` default) picks on fast roads.
 ========== ==================================================================================
 """
 
@@ -42,7 +43,7 @@ __all__ = [
 
 #: Profile of ``RssParams()`` and of the conformance checks.
 LIBRARY_PROFILE = "adrss-5.0"
-#: Default profile of the commands that review recorded drives (docs/rss.md).
+#: Profile of the review commands' ``auto`` choice on fast roads (docs/rss.md).
 REVIEW_PROFILE = "highway"
 
 Tables = dict[str, dict[str, object]]
@@ -114,7 +115,7 @@ PROFILES: dict[str, Profile] = {
         ),
         Profile(
             name="highway",
-            summary="review of recorded motorway drives (the commands' default)",
+            summary="review of recorded drives on fast roads (auto's choice there)",
             source="docs/rss.md, Parameter profiles (legal reaction time; project calibration)",
             tables={
                 "ego": {**_HIGHWAY_VEHICLE, "response_time": 0.5},

@@ -10,6 +10,7 @@ if TYPE_CHECKING:
     from pathlib import Path
 
     from loaders.drive import Drive
+    from loaders.maps.model import LaneMap
     from rss.params import RssParams
     from workbench.driver.run import EgoSize
 
@@ -60,13 +61,20 @@ def open_log(
     return open_drive(log, map=map_path, profile=profile, ego_id=ego_id, ego_topic=ego_topic)
 
 
-def load_rss_params(path: Path | None, profile: str | None = None) -> RssParams:
+def load_rss_params(
+    path: Path | None, profile: str | None = None, lane_map: LaneMap | None = None
+) -> RssParams:
     """The RSS parameters of a command: ``--rss-profile NAME`` and ``--rss-params FILE.toml``.
 
-    Without a file: the named profile, else the review default
-    (:data:`rss.profiles.REVIEW_PROFILE`, docs/rss.md). With a file: its tables over the
-    profile it or ``--rss-profile`` names (a file naming none starts from ``adrss-5.0``,
-    the library defaults, as before profiles existed).
+    Without a file: the named profile; ``None`` or ``auto`` choose by the drive's road
+    (:func:`workbench.engines.rss.auto_profile.auto_profile`, docs/rss.md). With a file: its
+    tables over the profile it or ``--rss-profile`` names (a file naming none starts from
+    ``adrss-5.0``, the library defaults, as before profiles existed).
+
+    Args:
+        path: ``--rss-params`` file, if any.
+        profile: ``--rss-profile`` value, if given.
+        lane_map: The drive's lane map (for ``auto``).
 
     Raises:
         WorkbenchError: The file cannot be read.
@@ -74,10 +82,12 @@ def load_rss_params(path: Path | None, profile: str | None = None) -> RssParams:
             or the profile is unknown or contradicts the file's.
     """
     from rss.params import parse_rss_params, rss_params_from_mapping  # noqa: PLC0415
-    from rss.profiles import REVIEW_PROFILE  # noqa: PLC0415 - keeps CLI start-up light
+    from workbench.engines.rss.auto_profile import AUTO, auto_profile  # noqa: PLC0415
 
+    if profile == AUTO or (profile is None and path is None):
+        profile = auto_profile(lane_map)
     if path is None:
-        return rss_params_from_mapping({}, profile=profile or REVIEW_PROFILE)
+        return rss_params_from_mapping({}, profile=profile)
     try:
         text = path.read_text()
     except OSError as err:

@@ -14,7 +14,6 @@ from rich.table import Table
 from workbench.cli.options import RssProfileOption  # noqa: TC001 - typer reads it at run time
 from workbench.cli.progress import run_with_progress
 from workbench.demo import find_sample_logs, output_names, primary_logs, replay_one
-from workbench.drives import load_rss_params
 from workbench.engines.registry import engine, parse_engines
 from workbench.errors import WorkbenchError
 
@@ -94,7 +93,6 @@ def demo(
     rss_profile: RssProfileOption = None,
 ) -> None:
     """Re-evaluate every sample log in SAMPLES_DIR, replay it into OUT/<name>.rrd, summarise."""
-    params = load_rss_params(None, rss_profile)
     if not samples_dir.is_dir():
         raise WorkbenchError(f"{samples_dir}: not a directory")
     logs = find_sample_logs(samples_dir)
@@ -106,7 +104,9 @@ def demo(
     # one log per drive (the one keeping the plain name), replay the others only.
     primary = primary_logs(logs)
     rows = [
-        replay_one(log, out / names[log], engine_names if log in primary else [], _replay, params)
+        replay_one(
+            log, out / names[log], engine_names if log in primary else [], _replay, rss_profile
+        )
         for log in logs
     ]
     console = Console(width=max(Console().width, 120))
@@ -116,7 +116,7 @@ def demo(
             console.print(f"[red]failed:[/red] {r.error}", highlight=False, soft_wrap=True)
     done = [r for r in rows if not r.error]
     if done:
-        console.print(f"RSS parameter profile: {params.profile_label}")
+        console.print(f"RSS parameter profile: {rss_profile or 'auto (per drive, docs/rss.md)'}")
         console.print(f"{len(done)} of {len(rows)} logs written to {out.resolve()}/")
         if engine_names:
             console.print(

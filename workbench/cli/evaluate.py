@@ -76,9 +76,9 @@ def evaluate(
     names = parse_engines(engines)
     if not names:
         raise WorkbenchError("--engines: name at least one engine")
-    params = load_rss_params(rss_params, rss_profile)
     drive = open_log(log, map_path=map_path, profile=profile, ego_id=ego_id, ego_topic=ego_topic)
     try:
+        params = load_rss_params(rss_params, rss_profile, drive.lane_map)
         settings = EngineSettings(rss_params=params, reach_method=reach_method.value)
         runners = build_runners(names, drive.lane_map, settings)
         start_ns, end_ns = window_ns(drive, start, end)

@@ -87,17 +87,18 @@ def info(
     from loaders import LoaderError, open_drive  # noqa: PLC0415 - keeps CLI start-up light
     from loaders.losses import count_frames  # noqa: PLC0415
 
-    params = load_rss_params(rss_params, rss_profile)
     drive = open_drive(log, map=map_path, profile=profile, ego_id=ego_id, ego_topic=ego_topic)
     stopped: LoaderError | None = None
     try:
+        params = load_rss_params(rss_params, rss_profile, drive.lane_map)
         try:
             frames: int | None = count_frames(drive)
         except LoaderError as err:
             frames, stopped = None, err
         console = Console(width=160)
         render_info(drive, console, frames)
-        console.print(f"rss profile {rss_profile_line(params)}")
+        chosen = "auto -> " if rss_profile in {None, "auto"} and rss_params is None else ""
+        console.print(f"rss profile {chosen}{rss_profile_line(params)}")
     finally:
         drive.close()
     echo_losses(drive.info.notes, verbose=verbose)

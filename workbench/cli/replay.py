@@ -87,9 +87,9 @@ def replay(
     if sum((out is not None, spawn, serve)) > 1:
         raise ReplayError("--out, --spawn and --serve are mutually exclusive")
     target = out if (out is not None or spawn or serve) else default_output(log, out_dir)
-    params = load_rss_params(rss_params, rss_profile)
     drive = open_log(log, map_path=map_path, profile=profile, ego_id=ego_id, ego_topic=ego_topic)
     try:
+        params = load_rss_params(rss_params, rss_profile, drive.lane_map)
         settings = EngineSettings(
             rss_params=params, reach_method=reach_method.value, full_geometry=True
         )
