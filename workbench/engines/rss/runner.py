@@ -14,6 +14,7 @@ from rss.scene.boundaries import LEFT_BOUNDARY_ID, RIGHT_BOUNDARY_ID
 from rss.structured.states import LongitudinalResponse
 from workbench.engines.ids import IdMap
 from workbench.engines.rss.adapter import frame_to_scene, lane_graph_from_map
+from workbench.engines.rss.compliance import ComplianceTracker
 from workbench.engines.rss.outlines import road_area_outlines
 from workbench.engines.rss.verdict import RssVerdict
 
@@ -71,6 +72,7 @@ class RssRunner:
         self._scene_memo = SceneMemo()  # per map, kept across frames (rss.scene.memo)
         self._ids = IdMap()
         self._memory: RssMemory | None = None
+        self._compliance = ComplianceTracker(self._params)
 
     def step_many(self, frames: Sequence[Frame]) -> list[RssVerdict]:
         """Evaluate consecutive frames at once (as ``step`` on each in turn).
@@ -99,7 +101,14 @@ class RssRunner:
             else self._output(v.scene, invalid, v.object_id, v.constellation_type, v.result)
             for v, (_, _, invalid) in zip(verdicts, inputs, strict=True)
         ]
-        return [self._with_rejected(o, v.rejected) for o, v in zip(out, verdicts, strict=True)]
+        out = [self._with_rejected(o, v.rejected) for o, v in zip(out, verdicts, strict=True)]
+        if not self._responsibility:
+            return out
+        duties = self._compliance.obligations(frames, out)
+        return [
+            dataclasses.replace(v, obligations=d) if d else v
+            for v, d in zip(out, duties, strict=True)
+        ]
 
     def _with_rejected(
         self, verdict: RssVerdict, rejected: tuple[tuple[int, str], ...]
@@ -125,12 +134,15 @@ class RssRunner:
         bad = object_id[np.asarray(result.invalid) != 0]
         is_safe = bool(result.responses.is_safe[0])
         response = LongitudinalResponse(int(result.responses.longitudinal_response[0]))
+        margin = float("inf") if is_safe else 0.0
+        if not is_safe and result.severity is not None:
+            margin = float(np.min(result.severity.distance_ratio[result.dangerous]))
         prep = self._prep
         return RssVerdict(
             is_safe=is_safe,
             culprits=culprits,
             cause="" if is_safe else f"RSS {response}",
-            margin=float("inf") if is_safe else 0.0,
+            margin=margin,
             invalid_objects=tuple(sorted({*invalid, *(self._ids.to_str(int(x)) for x in bad)})),
             labels=tuple(_label(self._ids, int(x)) for x in object_id),
             constellation_type=constellation_type,

@@ -37,6 +37,8 @@ PINNED = {
     "invalid_objects",
     "profile",
     "responsibility",
+    "severity",
+    "compliance",
 }
 T0_NS = 1_700_000_000_000_000_000
 
