@@ -7,16 +7,14 @@ from pathlib import Path
 
 import pytest
 
+from tests.workbench.engines.helpers import run_cli
 from workbench.cli.main import main
 
 SAMPLES = Path(__file__).resolve().parents[4] / "sample_logs"
 
 
 def _run(args: list[str]) -> int:
-    with pytest.raises(SystemExit) as info:
-        main(args)
-    code = info.value.code
-    return 0 if code is None else int(code)
+    return run_cli(main, args)
 
 
 @pytest.mark.parametrize(
