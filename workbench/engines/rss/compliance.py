@@ -109,6 +109,8 @@ class ComplianceTracker:
         self._push(frame)
         duties = _duties(verdict)
         self._since = {k: self._since.get(k, frame.t_ns) for k in duties}
+        if not duties:
+            return ()
         classes = dict(
             zip(frame.actors.ids.tolist(), frame.actors.object_class.tolist(), strict=True)
         )
