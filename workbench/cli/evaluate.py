@@ -10,7 +10,7 @@ from rich.console import Console
 from rich.table import Table
 
 from workbench.cli.losses import VerboseOption, echo_losses
-from workbench.cli.options import EGO_TOPIC_HELP, ReachMethodOption
+from workbench.cli.options import EGO_TOPIC_HELP, ReachMethodOption, RssProfileOption
 from workbench.cli.progress import frame_progress
 from workbench.drives import ego_size, load_rss_params, open_log, window_ns
 from workbench.errors import WorkbenchError
@@ -65,6 +65,7 @@ def evaluate(
         Path | None,
         typer.Option("--rss-params", help="TOML with RSS dynamics and [scene] settings."),
     ] = None,
+    rss_profile: RssProfileOption = None,
     verbose: VerboseOption = False,
 ) -> None:
     """Re-evaluate every frame; print the violations, optionally write per-frame JSON lines."""
@@ -75,9 +76,9 @@ def evaluate(
     names = parse_engines(engines)
     if not names:
         raise WorkbenchError("--engines: name at least one engine")
-    params = load_rss_params(rss_params)
     drive = open_log(log, map_path=map_path, profile=profile, ego_id=ego_id, ego_topic=ego_topic)
     try:
+        params = load_rss_params(rss_params, rss_profile, drive.lane_map)
         settings = EngineSettings(rss_params=params, reach_method=reach_method.value)
         runners = build_runners(names, drive.lane_map, settings)
         start_ns, end_ns = window_ns(drive, start, end)

@@ -10,7 +10,8 @@ from rich.console import Console
 from rich.table import Table
 
 from workbench.cli.losses import VerboseOption, echo_losses
-from workbench.cli.options import EGO_TOPIC_HELP
+from workbench.cli.options import EGO_TOPIC_HELP, RssProfileOption
+from workbench.drives import load_rss_params, rss_profile_line
 
 if TYPE_CHECKING:
     from loaders.drive import Drive
@@ -71,6 +72,11 @@ def info(
     ego_id: Annotated[str | None, typer.Option("--ego-id", help="CommonRoad ego obstacle")] = None,
     verbose: VerboseOption = False,
     ego_topic: Annotated[str | None, typer.Option("--ego-topic", help=EGO_TOPIC_HELP)] = None,
+    rss_profile: RssProfileOption = None,
+    rss_params: Annotated[
+        Path | None,
+        typer.Option("--rss-params", help="TOML with RSS dynamics and [scene] settings."),
+    ] = None,
 ) -> None:
     """Show format, duration, frame count, topics with types, counts and roles, and the map.
 
@@ -85,11 +91,15 @@ def info(
     drive = open_drive(log, map=map_path, profile=profile, ego_id=ego_id, ego_topic=ego_topic)
     stopped: LoaderError | None = None
     try:
+        params = load_rss_params(rss_params, rss_profile, drive.lane_map)
         try:
             frames: int | None = count_frames(drive)
         except LoaderError as err:
             frames, stopped = None, err
-        render_info(drive, Console(width=160), frames)
+        console = Console(width=160)
+        render_info(drive, console, frames)
+        chosen = "auto -> " if rss_profile in {None, "auto"} and rss_params is None else ""
+        console.print(f"rss profile {chosen}{rss_profile_line(params)}")
     finally:
         drive.close()
     echo_losses(drive.info.notes, verbose=verbose)

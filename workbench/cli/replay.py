@@ -9,7 +9,7 @@ from typing import Annotated
 import typer
 
 from workbench.cli.losses import VerboseOption, echo_losses
-from workbench.cli.options import EGO_TOPIC_HELP, ReachMethodOption
+from workbench.cli.options import EGO_TOPIC_HELP, ReachMethodOption, RssProfileOption
 from workbench.cli.progress import run_with_progress
 from workbench.drives import default_output, ego_size, load_rss_params, open_log
 
@@ -77,6 +77,7 @@ def replay(
         Path | None,
         typer.Option("--rss-params", help="TOML with RSS dynamics and [scene] settings."),
     ] = None,
+    rss_profile: RssProfileOption = None,
     verbose: VerboseOption = False,
 ) -> None:
     """Replay a drive into Rerun: map, ego, actors, plan and plots on timelines frame/log_time."""
@@ -86,9 +87,9 @@ def replay(
     if sum((out is not None, spawn, serve)) > 1:
         raise ReplayError("--out, --spawn and --serve are mutually exclusive")
     target = out if (out is not None or spawn or serve) else default_output(log, out_dir)
-    params = load_rss_params(rss_params)
     drive = open_log(log, map_path=map_path, profile=profile, ego_id=ego_id, ego_topic=ego_topic)
     try:
+        params = load_rss_params(rss_params, rss_profile, drive.lane_map)
         settings = EngineSettings(
             rss_params=params, reach_method=reach_method.value, full_geometry=True
         )
