@@ -9,7 +9,6 @@ the original sample, up to the ``match_dt`` of the rows (OSI objects are at the 
 
 from __future__ import annotations
 
-import json
 import struct
 from contextlib import closing
 from pathlib import Path
@@ -18,13 +17,12 @@ from typing import TYPE_CHECKING, Any
 import betterosi
 import numpy as np
 import pytest
-from typer.testing import CliRunner
 
 from loaders import open_drive
 from loaders.errors import CorruptLogError, UnsupportedFormatError
 from tests.loaders.ego_logs import reference_frames
 from tests.loaders.osi_logs import HOST_ID, VARIANTS, write_osi
-from workbench.cli.main import app
+from tests.loaders.verdicts import VERDICT_FRAMES, rss_verdicts
 
 if TYPE_CHECKING:
     from loaders.records import Frame
@@ -32,7 +30,6 @@ if TYPE_CHECKING:
 ROOT = Path(__file__).resolve().parents[2]
 SOURCE = ROOT / "sample_logs" / "highway_cut_in.mcap"
 TOL = 1e-9
-VERDICT_FRAMES = 150
 _ACTOR_FIELDS = ("x_m", "y_m", "z_m", "yaw_rad", "vx_mps", "vy_mps", "length_m", "width_m")
 
 pytestmark = pytest.mark.skipif(not SOURCE.is_file(), reason="sample log not generated")
@@ -73,10 +70,7 @@ def test_osi_reads_into_the_sample_frames(
 
 
 def _verdicts(path: Path, out: Path, *extra: str) -> list[dict[str, Any]]:
-    args = ["evaluate", str(path), "--engines", "rss", "--end", str(VERDICT_FRAMES / 20)]
-    result = CliRunner().invoke(app, [*args, *extra, "--per-frame", str(out)])
-    assert result.exit_code == 0, result.output
-    return [json.loads(line)["rss"] for line in out.read_text().splitlines()]
+    return rss_verdicts(path, out, *extra)
 
 
 @pytest.mark.parametrize("variant", ["gt_osi", "sv_mcap"])

@@ -8,14 +8,12 @@
 
 from __future__ import annotations
 
-import json
 from contextlib import closing
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import pytest
-from typer.testing import CliRunner
 
 from loaders import open_drive
 from loaders.message_logs.decoders.ros_objects import decode_autoware_ai_objects
@@ -24,23 +22,19 @@ from loaders.records import ObjectClass
 from loaders.typestore import typestore
 from tests.loaders.msgbuild import build, header, pose
 from tests.loaders.rewrite import rewrite_objects, rewrite_plan
-from workbench.cli.main import app
+from tests.loaders.verdicts import VERDICT_FRAMES, rss_verdicts
 
 if TYPE_CHECKING:
     from loaders.records import Frame
 
 SAMPLES = Path(__file__).resolve().parents[2] / "sample_logs"
-VERDICT_FRAMES = 150
 pytestmark = pytest.mark.skipif(
     not (SAMPLES / "highway_cut_in.bag").is_file(), reason="sample logs not generated"
 )
 
 
-def _verdicts(path: Path, out: Path) -> list[dict[str, Any]]:
-    args = ["evaluate", str(path), "--engines", "rss", "--end", str(VERDICT_FRAMES / 20)]
-    result = CliRunner().invoke(app, [*args, "--per-frame", str(out)])
-    assert result.exit_code == 0, result.output
-    return [json.loads(line)["rss"] for line in out.read_text().splitlines()]
+def _verdicts(path: Path, out: Path, *extra: str) -> list[dict[str, Any]]:
+    return rss_verdicts(path, out, *extra)
 
 
 def _frames(path: Path) -> list[Frame]:
