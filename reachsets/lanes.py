@@ -33,6 +33,7 @@ __all__ = [
     "corridor",
     "half_widths",
     "project",
+    "project_many",
 ]
 
 #: A lane follows another when its centre line starts this close to the other's end [m].
@@ -160,13 +161,21 @@ def project(centre_m: NDArray[np.float64], x: float, y: float) -> tuple[float, N
         x: Point x.
         y: Point y.
     """
+    off, t = project_many(centre_m, np.array([x]), np.array([y]))
+    return float(off[0]), t[0]
+
+
+def project_many(
+    centre_m: NDArray[np.float64], x: NDArray[np.float64], y: NDArray[np.float64]
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """``project`` for ``(M,)`` points: offsets ``(M,)`` and unit tangents ``(M, 2)``."""
     a = centre_m[:-1]
     d = np.diff(centre_m, axis=0)
     seg2 = np.maximum(np.sum(d * d, axis=1), 1e-12)
-    p = np.array([x, y])
-    u = np.clip(np.sum((p - a) * d, axis=1) / seg2, 0.0, 1.0)
-    foot = a + u[:, None] * d
-    k = int(np.argmin(np.sum((foot - p) ** 2, axis=1)))
-    t = d[k] / np.sqrt(seg2[k])
-    rel = p - foot[k]
-    return float(t[0] * rel[1] - t[1] * rel[0]), t
+    p = np.stack([x, y], axis=1)[:, None, :]  # (M, 1, 2)
+    u = np.clip(np.sum((p - a) * d, axis=2) / seg2, 0.0, 1.0)  # (M, S)
+    foot = a + u[..., None] * d  # (M, S, 2)
+    k = np.argmin(np.sum((foot - p) ** 2, axis=2), axis=1)
+    t = d[k] / np.sqrt(seg2[k])[:, None]
+    rel = p[:, 0, :] - foot[np.arange(len(k)), k]
+    return t[:, 0] * rel[:, 1] - t[:, 1] * rel[:, 0], t

@@ -23,12 +23,12 @@ road.keep_lane        ``KEEP_s = (not leaving_s) S (settled and not     everythi
                       leaving it to that side                            ``KEEP_s`` is false open,
                                                                          minus the ego's lanes
                                                                          (all steps)
-road.no_cut_in        ``(not crossing_ego) S settled``, for an object    step ``k``: the ego's
-                      whose centre is outside the ego's lane corridor:   lanes within
-                      it has not started to leave its lane towards the   ``max(cut_in_gap_s v_ego,
-                      ego since it was last settled in it                cut_in_gap_min_m)`` before
-                                                                         and behind the ego's
-                                                                         footprint at ``t_k``
+road.no_cut_in        ``(not crossing_ego) S settled``, for an object    the ego's lanes within
+                      whose centre is outside the ego's lane corridor    ``max(cut_in_gap_s v_ego,
+                      and whose corridor does not cross or merge into    cut_in_gap_min_m)``
+                      it: it has not started to leave its lane towards   before and behind its
+                      the ego since it was last settled in it            footprints along the
+                                                                         plan (all steps)
 ====================  ================================================  =========================
 
 The ego's lanes are those containing the centre of its occupancy at any grid stamp, heading
@@ -43,7 +43,7 @@ import numpy as np
 import shapely
 
 from reachsets.footprints import body_to_map
-from reachsets.lanes import complement, corridor, half_widths, project
+from reachsets.lanes import complement, corridor, half_widths, project, project_many
 from reachsets.ltl import And, Atom, Not, Since, step
 from reachsets.patches import RulePatch
 
@@ -69,6 +69,8 @@ KEEP_RIGHT = _keep("right")
 NO_CUT_IN = Since(Not(Atom("crossing_ego")), Atom("settled"))
 
 _FAR_M = 100.0
+#: Corridors sharing more area than this cross or merge [m^2].
+_OVERLAP_M2 = 1.0
 
 
 def _nearest_lane(
@@ -134,15 +136,20 @@ def _ego_lanes(ctx: RuleContext, geo: RoadGeometry) -> frozenset[int]:
     x, y, yaw = np.ravel(occ.x_m), np.ravel(occ.y_m), np.ravel(occ.yaw_rad)
     inside = np.asarray(shapely.contains(geo.lane_polys[None, :], shapely.points(x, y)[:, None]))
     found: set[int] = set()
-    for s, k in zip(*np.nonzero(inside), strict=True):
-        _, t = project(geo.lanes[int(k)].centre_m, float(x[s]), float(y[s]))
-        if t[0] * np.cos(yaw[s]) + t[1] * np.sin(yaw[s]) > 0:
+    for k in np.flatnonzero(inside.any(axis=0)):
+        s = np.flatnonzero(inside[:, k])
+        _, t = project_many(geo.lanes[int(k)].centre_m, x[s], y[s])
+        if np.any(t[:, 0] * np.cos(yaw[s]) + t[:, 1] * np.sin(yaw[s]) > 0):
             found.add(int(k))
     return frozenset(found)
 
 
-def _bands(ctx: RuleContext, ego_corridor: Any) -> NDArray[np.object_]:
-    """Per step, the ego's lanes within the cut-in gap before and behind its footprint."""
+def _band(ctx: RuleContext, ego_corridor: Any) -> Any:
+    """The ego's lanes around its path, within the cut-in gap of its footprints.
+
+    From the gap behind its footprint at ``t = 0`` to the gap ahead of it at the horizon: the
+    convex hull of the per-step bands, within the ego's corridor.
+    """
     occ, p = ctx.occupancy, ctx.params.road
     gap = max(p.cut_in_gap_s * ctx.ego_speed_mps, p.cut_in_gap_min_m)
     if not np.isfinite(gap):
@@ -158,7 +165,20 @@ def _bands(ctx: RuleContext, ego_corridor: Any) -> NDArray[np.object_]:
         y[:, None],
         yaw[:, None],
     )
-    return np.asarray(shapely.intersection(shapely.polygons(coords), ego_corridor))
+    hull = shapely.convex_hull(shapely.multipoints(coords.reshape(-1, 2)))
+    return shapely.intersection(hull, ego_corridor)
+
+
+def _crosses(
+    geo: RoadGeometry, lanes: frozenset[int], ego_key: frozenset[int], ego_corr: Any, length: float
+) -> bool:
+    """Whether the corridor of ``lanes`` overlaps the ego's (crossing or merging lanes), cached."""
+    cache = geo.cache.setdefault("crosses", {})
+    key = (lanes, ego_key)
+    if key not in cache:
+        own = corridor(geo, lanes, open_left=False, open_right=False, length_m=length)
+        cache[key] = bool(shapely.area(shapely.intersection(own, ego_corr)) > _OVERLAP_M2)
+    return bool(cache[key])
 
 
 def evaluate_lanes(
@@ -205,13 +225,12 @@ def evaluate_lanes(
     outside = ~np.asarray(
         shapely.contains(ego_corr, shapely.points(objs.x_m, objs.y_m)), dtype=bool
     )
-    rows = np.flatnonzero(holds["road.no_cut_in"] & outside)
-    if len(rows):
-        bands = _bands(ctx, ego_corr)
-        patches += [
-            RulePatch(int(i), "road.no_cut_in", band, step=k)
-            for i in rows
-            for k, band in enumerate(bands)
-            if not shapely.is_empty(band)
-        ]
+    rows = [
+        i
+        for i in np.flatnonzero(holds["road.no_cut_in"] & outside)
+        if own[i] and not _crosses(geo, own[i], ego_key, ego_corr, length)
+    ]
+    if rows:
+        band = _band(ctx, ego_corr)
+        patches += [RulePatch(int(i), "road.no_cut_in", band) for i in rows]
     return patches, mem

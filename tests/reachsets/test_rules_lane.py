@@ -160,3 +160,24 @@ def test_the_memory_keeps_the_duty_of_a_car_straddling_the_far_line():
     fresh, _ = evaluate_one(straddling, params)
     assert not fresh.is_safe
     assert [c.object_id for c in fresh.collisions] == ["o0"]
+
+
+def test_crossing_traffic_is_not_kept_out_of_the_ego_lanes():
+    """A lane that crosses the ego's is no lane change: no_cut_in leaves it alone."""
+    y = np.linspace(-100.0, 100.0, 21)
+    crossing = RoadLane(
+        "n",
+        np.concatenate(
+            [
+                np.stack([np.full_like(y, 61.75), y], 1),
+                np.stack([np.full_like(y, 58.25), y[::-1]], 1),
+            ]
+        ),
+        np.stack([np.full_like(y, 60.0), y], 1),
+    )
+    road = RoadLayout(lanes=(*three_lanes().lanes, crossing))
+    inp = _frame((60.0, -20.0, np.pi / 2, 10.0), road=road)
+    result, _ = evaluate_one(inp, _params(lane_rules=True))
+    assert "road.no_cut_in" not in {p.rule for p in result.patches}
+    assert "road.keep_lane" in {p.rule for p in result.patches}
+    assert [c.object_id for c in result.collisions] == ["o0"]
