@@ -80,14 +80,14 @@ def _links(geo: RoadGeometry) -> tuple[list[list[int]], list[list[int]]]:
 
 
 def half_widths(geo: RoadGeometry) -> NDArray[np.float64]:
-    """Half width of every lane: median distance of its centre points to its outline [m]."""
+    """Half width of every lane: its area over twice its centre line's length [m].
+
+    (The distance of centre points to the outline fails at the lane's ends, which lie on it.)
+    """
     got = geo.cache.get("half_widths")
     if got is None:
-        out = []
-        for ln, poly in zip(geo.lanes, geo.lane_polys, strict=True):
-            pts = shapely.points(ln.centre_m)
-            out.append(float(np.median(shapely.distance(pts, shapely.boundary(poly)))))
-        got = np.array(out)
+        area = np.asarray(shapely.area(geo.lane_polys), dtype=np.float64)
+        got = area / np.maximum(2 * _lengths(geo), 1e-9)
         geo.cache["half_widths"] = got
     return np.asarray(got)
 

@@ -9,7 +9,7 @@ import pytest
 import shapely
 
 from reachsets.inputs import ReachInputs, RoadLane, RoadLayout
-from reachsets.lanes import corridor
+from reachsets.lanes import corridor, half_widths
 from reachsets.ltl import evaluate_trace
 from reachsets.params import ReachParams
 from reachsets.road import prepare_road
@@ -181,3 +181,14 @@ def test_crossing_traffic_is_not_kept_out_of_the_ego_lanes():
     assert "road.no_cut_in" not in {p.rule for p in result.patches}
     assert "road.keep_lane" in {p.rule for p in result.patches}
     assert [c.object_id for c in result.collisions] == ["o0"]
+
+
+def test_short_lanes_get_their_width():
+    """A 4 m lane of two centre points is 3.5 m wide, not 0 (both lie on its outline)."""
+    short = RoadLane(
+        "short",
+        np.array([[100.0, -1.75], [104.0, -1.75], [104.0, 1.75], [100.0, 1.75]]),
+        np.array([[100.0, 0.0], [104.0, 0.0]]),
+    )
+    geo = prepare_road(RoadLayout(lanes=(short, _lane("long", 1.75, 0, 99))))
+    assert half_widths(geo) == pytest.approx([LANE_W / 2, LANE_W / 2])
