@@ -4,6 +4,7 @@ Atoms per object (``F`` its current footprint; ``lane``: every lane of agreeing 
 (``cos > 0``) containing its centre; offset, tangent and half width ``w`` from the lane whose
 centre line is nearest; ``v_lat`` = speed x sin(heading - lane direction), left positive):
 
+    in_lane        it has a lane
     settled        it has a lane and F sticks out of it by at most ``lane_margin_m`` on either side
     crossing       it has a lane and F sticks out of it by more than ``lane_margin_m``
     crossing_ego   crossing on the side of the ego (the side of the lane's centre line, offset
@@ -23,12 +24,13 @@ road.keep_lane        ``KEEP_s = (not leaving_s) S (settled and not     everythi
                       leaving it to that side                            ``KEEP_s`` is false open,
                                                                          minus the ego's lanes
                                                                          (all steps)
-road.no_cut_in        ``(not crossing_ego) S settled``, for an object    the ego's lanes within
-                      whose centre is outside the ego's lane corridor    ``max(cut_in_gap_s v_ego,
-                      and whose corridor does not cross or merge into    cut_in_gap_min_m)``
-                      it: it has not started to leave its lane towards   before and behind its
-                      the ego since it was last settled in it            footprints along the
-                                                                         plan (all steps)
+road.no_cut_in        ``(not crossing_ego) S (in_lane and not            the ego's lanes within
+                      crossing_ego)``, for an object whose centre is     ``max(cut_in_gap_s v_ego,
+                      outside the ego's lane corridor and whose          cut_in_gap_min_m)``
+                      corridor does not cross or merge into it: since    before and behind its
+                      it was last in a lane without crossing towards     footprints along the
+                      the ego, it has not started to leave it towards    plan (all steps)
+                      the ego
 ====================  ================================================  =========================
 
 The ego's lanes are those containing the centre of its occupancy at any grid stamp, heading
@@ -66,7 +68,7 @@ def _keep(side: str) -> Since:
 
 KEEP_LEFT = _keep("left")
 KEEP_RIGHT = _keep("right")
-NO_CUT_IN = Since(Not(Atom("crossing_ego")), Atom("settled"))
+NO_CUT_IN = Since(Not(Atom("crossing_ego")), And((Atom("in_lane"), Not(Atom("crossing_ego")))))
 
 _FAR_M = 100.0
 #: Corridors sharing more area than this cross or merge [m^2].
@@ -101,7 +103,7 @@ def lane_atoms(
     objs, p = ctx.objects, ctx.params.road
     n = len(objs)
     hw = half_widths(geo)
-    names = ("settled", "crossing", "crossing_ego", "leaving_left", "leaving_right")
+    names = ("in_lane", "settled", "crossing", "crossing_ego", "leaving_left", "leaving_right")
     atoms = {name: np.zeros(n, dtype=bool) for name in names}
     own: list[frozenset[int]] = []
     for i in range(n):
@@ -120,6 +122,7 @@ def lane_atoms(
         atoms["crossing"][i] = out_left or out_right
         ego_left = project(geo.lanes[k].centre_m, ctx.ego_x_m, ctx.ego_y_m)[0] > off
         atoms["crossing_ego"][i] = out_left if ego_left else out_right
+        atoms["in_lane"][i] = True
         atoms["settled"][i] = not (out_left or out_right)
         atoms["leaving_left"][i] = bool(
             out_left or v_lat >= p.lane_change_v_lat_mps or off >= p.lane_change_offset_m

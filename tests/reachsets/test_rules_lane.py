@@ -134,27 +134,33 @@ def test_keep_lane_formula_on_traces(settled, leaving, expected):
     assert got == [bool(e) for e in expected]
 
 
-def test_no_cut_in_formula_is_lifted_from_the_first_crossing_until_settled():
-    trace = [
-        {"settled": s, "crossing_ego": c}
-        for s, c in [(True, False), (False, False), (False, True), (False, False), (True, False)]
-    ]
+def test_no_cut_in_formula_is_lifted_from_crossing_towards_the_ego_until_back_in_a_lane():
+    # hand-evaluated: (not crossing_ego) S (in_lane and not crossing_ego)
+    rows = [(True, False), (False, False), (True, True), (False, False), (True, False)]
+    trace = [{"in_lane": a, "crossing_ego": c} for a, c in rows]
     got = [evaluate_trace(NO_CUT_IN, trace, k) for k in range(len(trace))]
     assert got == [True, True, False, False, True]
+    assert not evaluate_trace(NO_CUT_IN, [{"in_lane": False, "crossing_ego": False}], 0)
 
 
-def test_the_memory_keeps_the_duty_of_a_car_straddling_the_far_line():
-    """Settled in the left lane, then over its *left* edge: the duty towards the ego holds on.
+def test_the_memory_keeps_a_car_over_its_far_line_in_its_lane_towards_the_ego():
+    """Settled in the left lane, then over its *left* edge: it still keeps to it on the right.
 
-    Without the memory (a fresh start at the second frame) the car has never been settled, so
-    nothing may be assumed and its reachable set covers the ego alongside.
+    The ego (2.8 m wide, in the right lane) pokes 0.25 m into the middle lane, which is not
+    one of its lanes, so only ``keep_lane`` protects it there. Without the memory (a fresh
+    start at the second frame) the car has never been settled, nothing is assumed on its
+    right, and its set reaches the ego's part in the middle lane.
     """
     road = three_lanes()
     params = _params(lane_rules=True)
-    settled = _frame((0.0, LANE_W, 0.0, 25.0), road=road)
-    first, state = evaluate_one(settled, params)
+
+    def frame(y: float) -> ReachInputs:
+        ego = straight_ego(y0=-2.9, speed=25.0)
+        return ReachInputs(ego=ego, objects=objects((0.0, y, 0.0, 25.0), width=1.9), road=road)
+
+    first, state = evaluate_one(frame(LANE_W), params)
     assert first.is_safe
-    straddling = _frame((0.0, LANE_W + 1.2, 0.0, 25.0), road=road)  # 0.35 m over the left edge
+    straddling = frame(LANE_W + 1.2)  # 0.35 m over the left edge
     second, _ = evaluate_one(straddling, params, state)
     assert second.is_safe
     fresh, _ = evaluate_one(straddling, params)
