@@ -7,8 +7,8 @@ centre line is nearest; ``v_lat`` = speed x sin(heading - lane direction), left 
     in_lane        it has a lane
     settled        it has a lane and F sticks out of it by at most ``lane_margin_m`` on either side
     crossing       it has a lane and F sticks out of it by more than ``lane_margin_m``
-    crossing_ego   crossing on the side of the ego (the side of the lane's centre line, offset
-                   by the object's own offset, on which the ego's centre lies)
+    crossing_ego   crossing on the side of the ego (the side of the line through the object's
+                   centre along the lane's tangent there on which the ego's centre lies)
     leaving_left   crossing its left boundary, or ``v_lat >= lane_change_v_lat_mps``, or its
                    centre lies ``>= lane_change_offset_m`` left of the lane's centre line
     leaving_right  the same to the right
@@ -120,7 +120,7 @@ def lane_atoms(
         out_right = off - extent < -(hw[k] + p.lane_margin_m)
         v_lat = float(objs.speed_mps[i]) * sin_d if np.isfinite(objs.speed_mps[i]) else 0.0
         atoms["crossing"][i] = out_left or out_right
-        ego_left = project(geo.lanes[k].centre_m, ctx.ego_x_m, ctx.ego_y_m)[0] > off
+        ego_left = t[0] * (ctx.ego_y_m - y) - t[1] * (ctx.ego_x_m - x) > 0
         atoms["crossing_ego"][i] = out_left if ego_left else out_right
         atoms["in_lane"][i] = True
         atoms["settled"][i] = not (out_left or out_right)
@@ -169,7 +169,8 @@ def _band(ctx: RuleContext, ego_corridor: Any) -> Any:
         yaw[:, None],
     )
     hull = shapely.convex_hull(shapely.multipoints(coords.reshape(-1, 2)))
-    return shapely.intersection(hull, ego_corridor)
+    near = shapely.clip_by_rect(ego_corridor, *shapely.bounds(hull))
+    return shapely.intersection(hull, near)
 
 
 def _crosses(
