@@ -121,9 +121,16 @@ def run(quick: bool) -> str:  # noqa: FBT001
             check_frames(many, frames, n_frames, DEFAULT_EGO_DYNAMICS)  # type: ignore[arg-type]
 
         batched = _rate(ours_batched, budget) * n * n_frames
+
+        def ours_both_sides(
+            many: object = many, frames: np.ndarray = frames, n_frames: int = n_frames
+        ) -> None:
+            check_frames(many, frames, n_frames, DEFAULT_EGO_DYNAMICS, with_responsibility=True)  # type: ignore[arg-type]
+
+        both = _rate(ours_both_sides, budget) * n * n_frames
         binding = _binding_rate(frame, budget)
         binding_rate = binding * n if binding else None
-        rows.append((n, binding_rate, per_frame, batched, n_frames))
+        rows.append((n, binding_rate, per_frame, batched, n_frames, both))
     lines = [
         "## Structured RSS engine vs ad-rss 5.0 binding",
         "",
@@ -133,20 +140,23 @@ def run(quick: bool) -> str:  # noqa: FBT001
             "frame. Ours per frame: `rss.structured.engine.check_frame`, one call per frame, "
             "memory carried. Ours batched: `rss.structured.engine.check_frames` over F "
             "consecutive frames in one call (memory carried through them), as a replay of a "
-            "recorded drive does."
+            "recorded drive does. Both sides: the same batched call with "
+            "`with_responsibility=True` (every constellation also checked from the other "
+            "object's side, `rss.structured.responsibility`); cost = batched / both sides."
         ),
         "",
         (
             "| N objects | ad-rss binding | ours, per frame | ours, batched (F frames) "
-            "| batched / binding |"
+            "| batched / binding | both sides, batched | cost of the object side |"
         ),
-        "|---:|---:|---:|---:|---:|",
+        "|---:|---:|---:|---:|---:|---:|---:|",
     ]
-    for n, binding_rate, per_frame, batched, n_frames in rows:
+    for n, binding_rate, per_frame, batched, n_frames, both in rows:
         ratio = f"{batched / binding_rate:.0f}x" if binding_rate else "n/a"
         bind = f"{binding_rate:,.0f}" if binding_rate else "not installed"
         lines.append(
-            f"| {n} | {bind} | {per_frame:,.0f} | {batched:,.0f} (F={n_frames}) | {ratio} |"
+            f"| {n} | {bind} | {per_frame:,.0f} | {batched:,.0f} (F={n_frames}) | {ratio} "
+            f"| {both:,.0f} | {batched / both:.2f}x |"
         )
     return "\n".join(lines) + "\n"
 

@@ -3,7 +3,8 @@
 The readers record counts in ``DriveInfo.notes`` under the keys of :data:`LOSS_NOTES`;
 :func:`loss_summary` makes the one line the CLI prints after ``info``, ``evaluate`` and
 ``replay``, :func:`loss_details` the lines ``--verbose`` adds. :func:`count_frames` tells
-exactly how many frames ``Drive.frames()`` will yield (``info`` and ``evaluate`` agree).
+exactly how many frames ``Drive.frames()`` will yield and fills the same loss notes
+(``info`` and ``evaluate`` agree on both).
 """
 
 from __future__ import annotations
@@ -27,6 +28,13 @@ LOSS_NOTES: dict[str, tuple[str, str]] = {
         ),
     ),
     "skipped_invalid_ego": ("ego messages dropped", "non-finite pose (invalid_ego = skip)"),
+    "ego_messages_without_pose": (
+        "ego-topic messages without an ego pose",
+        (
+            "/tf messages moving other frames only, or whose chain does not reach the map "
+            "or odom frame; NavSatFix messages without a fix (status < 0)"
+        ),
+    ),
     "unused_object_messages": (
         "object messages used by no frame",
         (
@@ -37,6 +45,13 @@ LOSS_NOTES: dict[str, tuple[str, str]] = {
     "unused_plan_messages": (
         "plan messages used by no frame",
         "replaced by a newer plan before the next ego message, or after the last one",
+    ),
+    "ignored_markers": (
+        "markers ignored",
+        (
+            "MarkerArray markers other than ADD/MODIFY cubes (text, arrows, lines, "
+            "DELETE/DELETEALL): only boxes are objects"
+        ),
     ),
     "ignored_service_channels": (
         "service-event channels ignored",
@@ -50,7 +65,9 @@ def _count(value: str) -> int:
 
 
 def _singular(what: str) -> str:
-    return what.replace("messages", "message", 1).replace("channels", "channel", 1)
+    for plural in ("messages", "channels", "markers"):
+        what = what.replace(plural, plural[:-1], 1)
+    return what
 
 
 def loss_summary(notes: dict[str, str]) -> str | None:
@@ -75,8 +92,9 @@ def loss_details(notes: dict[str, str]) -> list[str]:
 def count_frames(drive: Drive) -> int:
     """The exact number of frames ``drive.frames()`` yields over its open window.
 
-    Message logs are counted by a pass over the ego topic only (the drops it finds are
-    recorded in ``drive.info.notes``); other drives know their count.
+    Message logs are counted by a pass over the role topics without the engines (the losses
+    it finds are recorded in ``drive.info.notes``, the same ``evaluate`` reports); other
+    drives know their count.
 
     Raises:
         LoaderError: The ego topic cannot be read to the end (after counting what could).

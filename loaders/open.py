@@ -5,9 +5,10 @@
 | ``.bag``                                | rosbags ``AnyReader`` (ROS 1)            |
 | rosbag2 directory (sqlite3 or mcap)     | rosbags ``AnyReader``                    |
 | ``.db3`` (rosbag2 storage, no metadata) | rosbags ``AnyReader``                    |
+| ``.osi`` (ASAM OSI trace, gt / sv)      | ``betterosi``                            |
 | ``.mcap`` with ``cdr`` channels         | ``AnyReader`` (``mcap`` if summary damaged |
 |                                         | or service-event channels present)       |
-| ``.mcap`` with ``ros1``/``json``/``protobuf`` | ``mcap`` reader                    |
+| ``.mcap`` with ``ros1``/``json``/``protobuf`` | ``mcap`` reader (OSI: ``betterosi``) |
 | ``.xml`` (CommonRoad)                   | ``loaders.commonroad``                   |
 | ``.saa`` / ``.scn`` (ScenarioArchitect) | ``loaders.scenario_architect``           |
 """
@@ -28,6 +29,7 @@ from loaders.message_logs.ego_streams import ego_settings
 from loaders.message_logs.log_drive import LogDrive
 from loaders.message_logs.mapsource import find_map, read_map
 from loaders.message_logs.mcap_source import McapSource
+from loaders.message_logs.osi_source import OsiTraceSource
 from loaders.message_logs.roles import detect_roles
 from loaders.message_logs.rosbags_source import RosbagsSource
 from loaders.profile import DEFAULT_TOLERANCE_NS, Profile, load_profile
@@ -39,7 +41,7 @@ if TYPE_CHECKING:
 __all__ = ["LOG_SUFFIXES", "is_drive_path", "is_rosbag2_dir", "open_drive"]
 
 #: File suffixes ``open_drive`` accepts (lower case; besides rosbag2 directories).
-LOG_SUFFIXES: tuple[str, ...] = (".mcap", ".bag", ".db3", ".xml", ".saa", ".scn")
+LOG_SUFFIXES: tuple[str, ...] = (".mcap", ".bag", ".db3", ".osi", ".xml", ".saa", ".scn")
 #: Suffixes of the drives that are not message logs (CommonRoad, ScenarioArchitect).
 _SCENARIO_SUFFIXES = frozenset({".xml", ".saa", ".scn"})
 
@@ -78,6 +80,8 @@ def _open_source(path: Path) -> MessageSource:
         return RosbagsSource(path, "ros1-bag")
     if suffix == ".db3":
         return RosbagsSource(path, "rosbag2-sqlite3")  # a bare storage file: topics table
+    if suffix == ".osi":
+        return OsiTraceSource(path)  # ASAM OSI trace: GroundTruth / SensorView
     source = McapSource(path)
     if source.source_format == "ros2-mcap" and source.indexed and not source.ignored:
         source.close()
@@ -119,8 +123,8 @@ def open_drive(
     """Open a recorded drive.
 
     Args:
-        path: ``.mcap``, ``.bag``, rosbag2 directory, CommonRoad ``.xml`` or
-            ScenarioArchitect ``.saa``/``.scn``.
+        path: ``.mcap``, ``.bag``, rosbag2 directory, ``.db3``, ASAM OSI ``.osi``,
+            CommonRoad ``.xml`` or ScenarioArchitect ``.saa``/``.scn``.
         map: Lane map file (Lanelet2 ``.osm`` for ROS/MCAP logs); default: attachment or
             sidecar file.
         profile: TOML topic profile (path or parsed ``Profile``).

@@ -3,11 +3,13 @@
 rosbags' stores hold only the ROS core packages. For *writing* sample logs and for reading
 old ROS 2 bags that carry no message definitions, we register the CARLA
 (``derived_object_msgs``), Autoware (``autoware_perception_msgs``, ``autoware_planning_msgs``,
-``autoware_auto_perception_msgs``), ``jsk_recognition_msgs`` boxes
-and ``vision_msgs`` 4.x types from the ``.msg`` files in ``loaders/msgs/``. Their field layout
-follows the upstream interface definitions; files are named ``<package>__<Type>.msg``.
-Reading a log never needs this: ROS 1 bags and MCAP files embed their definitions and
-rosbags' ``AnyReader`` builds the types itself.
+``autoware_auto_perception_msgs``, ``autoware_auto_planning_msgs``), Autoware.AI
+(``autoware_msgs`` objects), ``radar_msgs`` tracks, ``jsk_recognition_msgs`` boxes,
+``vision_msgs`` 4.x and (for ROS 1, whose store lacks it) ``tf2_msgs/TFMessage`` types
+from the ``.msg`` files in ``loaders/msgs/``. Their field layout follows the upstream
+interface definitions; files are named ``<package>__<Type>.msg``. Reading a log never needs
+this: ROS 1 bags and MCAP files embed their definitions and rosbags' ``AnyReader`` builds the
+types itself.
 """
 
 from __future__ import annotations
@@ -36,7 +38,7 @@ def _custom_types() -> dict[str, object]:
 
 #: Message types we register on top of the ROS core stores.
 CUSTOM_MSGTYPES: tuple[str, ...] = tuple(
-    sorted(t for t in _custom_types() if not t.startswith("unique_identifier_msgs/"))
+    sorted(t for t in _custom_types() if not t.startswith(("unique_identifier_msgs/", "tf2_msgs/")))
 )
 
 
@@ -51,8 +53,7 @@ def typestore(ros_version: int = 2) -> Typestore:
         A cached typestore; do not register further types on it.
     """
     store = get_typestore(Stores.ROS1_NOETIC if ros_version == 1 else Stores.ROS2_HUMBLE)
-    types = _custom_types()
-    if "unique_identifier_msgs/msg/UUID" in store.types:
-        types.pop("unique_identifier_msgs/msg/UUID")
+    # core types the store already has (UUID, TFMessage in ROS 2) keep the store's definition
+    types = {name: t for name, t in _custom_types().items() if name not in store.types}
     store.register(types)  # type: ignore[arg-type]
     return store

@@ -78,6 +78,7 @@ def evaluate_frames(
     graph: PreparedGraph,
     memo: SceneMemo | None = None,
     road_boundaries: bool = False,
+    responsibility: bool = False,
 ) -> tuple[list[FrameVerdict], RssMemory | None]:
     """Create the scenes of ``F`` consecutive frames and check them in one call.
 
@@ -95,6 +96,8 @@ def evaluate_frames(
         memo: The map's scene memo, kept by the caller across calls (``None``: a fresh one
             for this call; same results, slower).
         road_boundaries: Also check the ego against the road boundaries along its route.
+        responsibility: Also check every constellation from the other object's side
+            (``FrameResult.responsibility``: who must act); the verdicts do not change.
 
     Returns:
         ``(verdicts (F,), memory after the last frame)``; the memory is ``None`` (forgotten)
@@ -124,7 +127,9 @@ def evaluate_frames(
         return verdicts, None
     frame_of = np.repeat(np.arange(len(frames)), counts)
     ego_dyn = params.for_class(ObjectClass.EGO)
-    result, memory = check_frames(batch, frame_of, len(frames), ego_dyn, state)
+    result, memory = check_frames(
+        batch, frame_of, len(frames), ego_dyn, state, with_responsibility=responsibility
+    )
     offsets = np.concatenate([[0], np.cumsum(counts)]).tolist()
     verdicts = []
     for k, scene in enumerate(scenes):

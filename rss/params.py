@@ -8,9 +8,11 @@ TOML layout (``--rss-params``, see ``conformance/rss_params_example.toml``)::
     [pedestrian]  RssDynamics keys of pedestrians
     [scene]       restrict_speed_limit_mode, constellation_creation_mode,
                   ego_length, ego_width, ego_height, reproduce_adrss_5_0_defects
+    profile = "NAME"   (top level, optional) a named profile of :mod:`rss.profiles`
 
-Keys not given keep the documented defaults: ad-rss-lib's unit-test dynamics for the ego
-(rho = 1 s) and for vehicles (rho = 2 s), CARLA's pedestrian dynamics for pedestrians.
+Keys not given keep the profile's values; without a profile the documented defaults
+(profile ``adrss-5.0``): ad-rss-lib's unit-test dynamics for the ego (rho = 1 s) and for
+vehicles (rho = 2 s), CARLA's pedestrian dynamics for pedestrians.
 """
 
 from __future__ import annotations
@@ -23,6 +25,7 @@ from typing import TYPE_CHECKING, TypeVar
 
 from rss.dynamics import RssDynamics
 from rss.errors import RssParameterError
+from rss.profiles import LIBRARY_PROFILE, merged_tables
 
 if TYPE_CHECKING:
     from collections.abc import Mapping
@@ -142,21 +145,33 @@ class RssParams:
     Attributes:
         dynamics: Dynamics of every :class:`ObjectClass` (all present).
         scene: Scene-creation settings.
+        profile: Name of the :mod:`rss.profiles` profile the values start from.
+        overridden: ``True`` when a ``--rss-params`` file changed any of the profile's
+            values (outputs then name the profile with ``+file``).
     """
 
     dynamics: Mapping[ObjectClass, RssDynamics] = field(default_factory=_default_classes)
     scene: SceneSettings = field(default_factory=SceneSettings)
+    profile: str = LIBRARY_PROFILE
+    overridden: bool = False
+
+    @property
+    def profile_label(self) -> str:
+        """The profile as every output records it: ``NAME`` or ``NAME+file``."""
+        return f"{self.profile}+file" if self.overridden else self.profile
 
     def for_class(self, object_class: ObjectClass) -> RssDynamics:
         """Return the dynamics of one object class."""
         return self.dynamics[object_class]
 
 
-def parse_rss_params(text: str) -> RssParams:
+def parse_rss_params(text: str, *, profile: str | None = None) -> RssParams:
     """Parse an ``--rss-params`` TOML document.
 
     Args:
         text: TOML text.
+        profile: Profile chosen outside the file (``--rss-profile``); the file's own
+            ``profile`` key must then name the same one.
 
     Returns:
         The validated parameter set.
@@ -168,17 +183,29 @@ def parse_rss_params(text: str) -> RssParams:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
         raise RssParameterError("<toml>", str(err), "not valid TOML") from err
-    return rss_params_from_mapping(data)
+    return rss_params_from_mapping(data, profile=profile)
 
 
-def rss_params_from_mapping(data: Mapping[str, object]) -> RssParams:
+def rss_params_from_mapping(data: Mapping[str, object], *, profile: str | None = None) -> RssParams:
     """Build the parameter set from a parsed TOML mapping (tables as nested mappings).
 
-    ``[vehicle]`` applies to every vehicle class first; ``[car]`` etc. refine it.
+    The profile (``profile`` argument, else the mapping's ``profile`` key, else
+    ``adrss-5.0``) gives the starting values; the mapping's tables override them key by
+    key. ``[vehicle]`` applies to every vehicle class first; ``[car]`` etc. refine it.
 
     Raises:
-        RssParameterError: Unknown table or key, invalid value.
+        RssParameterError: Unknown profile, table or key, invalid value, or a file profile
+            that contradicts ``profile``.
     """
+    named = data.get("profile")
+    if named is not None and not isinstance(named, str):
+        raise RssParameterError("profile", named, "must be a profile name (a string)")
+    if profile is not None and named is not None and named != profile:
+        raise RssParameterError("profile", named, f"contradicts --rss-profile {profile}")
+    name = profile or named or LIBRARY_PROFILE
+    own = {k: v for k, v in data.items() if k != "profile"}
+    overridden = bool(own)
+    data = merged_tables(name, own)
     known = {c.value for c in ObjectClass} | {"vehicle", "scene"}
     for table, content in data.items():
         if table not in known:
@@ -194,7 +221,8 @@ def rss_params_from_mapping(data: Mapping[str, object]) -> RssParams:
         classes[cls] = base.with_overrides(_table(data, cls.value), prefix=f"{cls.value}.")
     for cls in (ObjectClass.EGO, ObjectClass.PEDESTRIAN):
         classes[cls] = classes[cls].with_overrides(_table(data, cls.value), prefix=f"{cls.value}.")
-    return RssParams(dynamics=classes, scene=_scene(_table(data, "scene")))
+    scene = _scene(_table(data, "scene"))
+    return RssParams(dynamics=classes, scene=scene, profile=name, overridden=overridden)
 
 
 def _table(data: Mapping[str, object], name: str) -> dict[str, object]:

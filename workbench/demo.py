@@ -10,7 +10,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from loaders import is_drive_path
-from workbench.drives import default_output, open_log
+from workbench.drives import default_output, load_rss_params, open_log
 from workbench.engines.base import EngineSettings
 from workbench.engines.registry import build_runners
 from workbench.errors import USER_ERRORS
@@ -91,6 +91,7 @@ def replay_one(
     target: Path,
     engine_names: list[str],
     replay: Callable[[Drive, Path, Sequence[EngineRunner]], ReplaySummary],
+    rss_profile: str | None = None,
 ) -> DemoRow:
     """Evaluate and replay one log into ``target`` with ``replay(drive, target, runners)``.
 
@@ -99,7 +100,8 @@ def replay_one(
     try:
         drive = open_log(log, map_path=None, profile=None, ego_id=None)
         try:
-            settings = EngineSettings(full_geometry=True)
+            params = load_rss_params(None, rss_profile, drive.lane_map)
+            settings = EngineSettings(rss_params=params, full_geometry=True)
             runners = build_runners(engine_names, drive.lane_map, settings)
             s = replay(drive, target, runners)
         finally:

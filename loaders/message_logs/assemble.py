@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any
 from loaders.errors import CorruptLogError, InvalidValueError
 from loaders.message_logs.kinematics import ego_kinematics
 from loaders.message_logs.matching import ObjectBuffer, match_objects
-from loaders.message_logs.samples import EgoSample, ObjectColumns, PlanSample
+from loaders.message_logs.samples import EgoSample, EgoWithObjects, ObjectColumns, PlanSample
 from loaders.records import EgoState, Frame
 
 if TYPE_CHECKING:
@@ -88,6 +88,11 @@ class FrameAssembler:
         self._last_yaw = 0.0
         self.skipped_invalid = 0
         self.skipped_out_of_order = 0
+        #: Ego-topic messages that made no ego sample (``/tf`` moving other frames only, or
+        #: without a chain to the map; GNSS without a fix).
+        self.ego_without_pose = 0
+        #: Entries of object messages that are not objects (``MarkerArray`` non-box markers).
+        self.ignored_markers = 0
 
     @property
     def unused_objects(self) -> int:
@@ -130,7 +135,7 @@ class FrameAssembler:
             (ahead.t_ns, ahead.sample) if ahead else None,
         )
         s = cur.sample
-        ego = EgoState(s.x_m, s.y_m, s.z_m, s.yaw_rad, speed, accel, yaw_rate)
+        ego = EgoState(s.x_m, s.y_m, s.z_m, s.yaw_rad, speed, accel, yaw_rate, *(s.size_m or ()))
         self._prev, self._cur = cur, nxt
         if not self._in_window(cur.t_ns):
             return None
@@ -164,6 +169,24 @@ class FrameAssembler:
                 self._path, f"cannot decode message: {err!r}", topic=topic, t_ns=log_ns
             ) from err
 
+    def _on_message(self, topic: str, log_ns: int, decoded: Any) -> Frame | None:
+        """File one decoded message; the frame it completes, if any."""
+        if isinstance(decoded, EgoWithObjects):  # OSI: the objects first, then the ego
+            buffer = self._by_topic.get(topic)
+            if buffer is not None:
+                buffer.update(self._time(log_ns, decoded.ego.stamp_ns), decoded.objects)
+            decoded = decoded.ego
+        if isinstance(decoded, EgoSample):
+            return self._on_ego(topic, log_ns, decoded)
+        if isinstance(decoded, ObjectColumns):
+            self.ignored_markers += decoded.ignored
+            self._by_topic[topic].update(self._time(log_ns, decoded.stamp_ns), decoded)
+        elif isinstance(decoded, PlanSample):
+            self._plans_unused += int(self._plan is not None and not self._plan_used)
+            self._plan = (self._time(log_ns, decoded.stamp_ns), decoded.plan)
+            self._plan_used = False
+        return None
+
     def run(self, messages: Iterable[tuple[str, int, Any]]) -> Iterator[Frame]:
         """Yield frames from the message stream.
 
@@ -174,17 +197,11 @@ class FrameAssembler:
             for topic, log_ns, msg in messages:
                 decoded = self._decode(topic, log_ns, msg)
                 if decoded is None:  # the message only updated decoder state (TF, IMU)
+                    self.ego_without_pose += int(topic == self._roles.ego)
                     continue
-                if isinstance(decoded, EgoSample):
-                    frame = self._on_ego(topic, log_ns, decoded)
-                    if frame is not None:
-                        yield frame
-                elif isinstance(decoded, ObjectColumns):
-                    self._by_topic[topic].update(self._time(log_ns, decoded.stamp_ns), decoded)
-                elif isinstance(decoded, PlanSample):
-                    self._plans_unused += int(self._plan is not None and not self._plan_used)
-                    self._plan = (self._time(log_ns, decoded.stamp_ns), decoded.plan)
-                    self._plan_used = False
+                frame = self._on_message(topic, log_ns, decoded)
+                if frame is not None:
+                    yield frame
         except (CorruptLogError, InvalidValueError):
             frame = self._emit(None)
             if frame is not None:

@@ -45,7 +45,7 @@ class LogDrive:
         self._types = {t.topic: t.msgtype for t in source.topics}
         self._decoders: dict[str, Callable[[Any], Any]] = {}
         for topic in (*roles.objects, roles.plan):
-            if topic is not None:
+            if topic is not None and topic != roles.ego:  # an OSI ego topic decodes both
                 family = family_of(self._types[topic])
                 assert family is not None  # checked by detect_roles
                 assert family.decode is not None  # object and plan families are stateless
@@ -106,6 +106,8 @@ class LogDrive:
                 ("skipped_out_of_order_ego", assembler.skipped_out_of_order),
                 ("unused_object_messages", assembler.unused_objects),
                 ("unused_plan_messages", assembler.unused_plans),
+                ("ego_messages_without_pose", assembler.ego_without_pose),
+                ("ignored_markers", assembler.ignored_markers),
             ):
                 if count:
                     notes[key] = str(count)
@@ -113,15 +115,13 @@ class LogDrive:
                     notes.pop(key, None)
 
     def count_frames(self) -> int:
-        """Frames ``frames()`` yields over the open window, by an ego-only pass.
+        """Frames ``frames()`` yields over the open window, by a pass without the engines.
 
-        Records the ego drops in ``info.notes``; raises the ``LoaderError`` that ends a
-        damaged ego topic (after counting the frames before it).
+        Reads every role topic like ``frames()``, so ``info.notes`` then holds the same loss
+        counts ``evaluate`` reports; raises the ``LoaderError`` that ends a damaged log
+        (after counting the frames before it).
         """
-        opt = self._options
-        read_from = None if opt.start_ns is None else opt.start_ns - 1_000_000_000
-        read_to = None if opt.end_ns is None else opt.end_ns + 1_000_000_000
-        return sum(1 for _ in self._run(TopicRoles(self._roles.ego), opt, read_from, read_to))
+        return sum(1 for _ in self.frames())
 
     def close(self) -> None:
         """Close the source."""

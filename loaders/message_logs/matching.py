@@ -84,9 +84,11 @@ def match_objects(
         if cols is None or buf.t_ns is None:
             continue
         dt_ns = t_ns - buf.t_ns
-        if dt_ns < 0 or dt_ns > tolerance_ns or not cols.ids:
+        if dt_ns < 0 or dt_ns > tolerance_ns:
             continue
-        buf.used = True
+        buf.used = True  # an empty list is used too: the frame has no objects of the topic
+        if not cols.ids:
+            continue
         parts.append((buf.topic, dt_ns, cols))
     if not parts:
         return ActorTable.empty()

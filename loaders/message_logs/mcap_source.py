@@ -6,8 +6,9 @@ stream: a first pass lists channels, counts and attachments and notes where the 
 breaks off; message reading then yields every message before that point and raises
 ``CorruptLogError`` with the byte offset.
 
-Decoders are resolved once per channel and cached: ``protobuf`` through
-``mcap_protobuf``, ``json`` with the standard library, ``cdr`` (ROS 2) and ``ros1`` through
+Decoders are resolved once per channel and cached: ``protobuf`` through ``betterosi``
+for ASAM OSI schemas (``osi3.GroundTruth``, ``osi3.SensorView``, …) and ``mcap_protobuf``
+otherwise, ``json`` with the standard library, ``cdr`` (ROS 2) and ``ros1`` through
 a rosbags typestore built from the channel's ``ros2msg``/``ros1msg`` schema. ROS 2 service-event
 channels (``*/_service_event``, ``*/srv/*_Event`` schemas) are left out of the topics.
 """
@@ -21,6 +22,8 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 from backports.zstd import ZstdError as BackportsZstdError
+from betterosi import BetterOsiDecoderFactory
+from betterosi.mcap_reader import osi_type_name
 from google.protobuf.message import DecodeError
 from mcap.data_stream import ReadDataStream
 from mcap.exceptions import McapError
@@ -145,6 +148,7 @@ class McapSource:
         self._file = path.open("rb")
         self._reader: SeekingReader | None = None
         self._protobuf = ProtobufDecoderFactory()
+        self._osi = BetterOsiDecoderFactory()
         self._decoders: dict[int, Callable[[bytes], Any]] = {}
         try:
             reader = SeekingReader(self._file)
@@ -209,7 +213,10 @@ class McapSource:
 
     def _msgtype(self, channel: Channel) -> str:
         schema = self._index.schemas.get(channel.schema_id)
-        return normalize_msgtype(schema.name) if schema is not None else channel.message_encoding
+        if schema is None:
+            return channel.message_encoding
+        osi = osi_type_name(schema) if channel.message_encoding == "protobuf" else None
+        return f"osi3.{osi}" if osi is not None else normalize_msgtype(schema.name)
 
     def _topic_infos(self) -> tuple[TopicInfo, ...]:
         counts: dict[str, int] = {}
@@ -228,7 +235,10 @@ class McapSource:
             elif channel.message_encoding in {"cdr", "ros1"} and schema is not None:
                 decode = _ros_decoder(schema, ros1=channel.message_encoding == "ros1")
             else:
-                found = self._protobuf.decoder_for(channel.message_encoding, schema)
+                # betterosi decodes the ASAM OSI schemas, mcap_protobuf every other schema
+                found = self._osi.decoder_for(
+                    channel.message_encoding, schema
+                ) or self._protobuf.decoder_for(channel.message_encoding, schema)
                 if found is None:
                     raise UnsupportedFormatError(
                         self.path, f"cannot decode {channel.message_encoding}", topic=channel.topic

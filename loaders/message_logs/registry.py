@@ -13,16 +13,23 @@ from typing import TYPE_CHECKING, Any
 from loaders.message_logs.decoders import (
     foxglove,
     mcap_json,
+    osi,
     ros_boxes,
     ros_ego,
     ros_objects,
     ros_plan,
+    ros_radar,
 )
 
 if TYPE_CHECKING:
     from collections.abc import Callable
 
-    from loaders.message_logs.samples import EgoSample, ObjectColumns, PlanSample
+    from loaders.message_logs.samples import (
+        EgoSample,
+        EgoWithObjects,
+        ObjectColumns,
+        PlanSample,
+    )
 
 __all__ = ["FAMILIES", "ROLES", "MessageFamily", "family_of", "normalize_msgtype"]
 
@@ -40,17 +47,23 @@ class MessageFamily:
         decode: Decoded message object → sample; None for the stateful ego families
             (``tf2_msgs/TFMessage``, ``sensor_msgs/NavSatFix``) whose decoders are built per
             read by ``loaders.message_logs.ego_streams``.
+        carries_objects: An ego family whose messages also hold the object list (ASAM OSI
+            ground truth): its topic is the drive's object topic too, unless a profile
+            names object topics.
     """
 
     role: str
     rank: int
-    decode: Callable[[Any], EgoSample | ObjectColumns | PlanSample] | None
+    decode: Callable[[Any], EgoSample | EgoWithObjects | ObjectColumns | PlanSample] | None
+    carries_objects: bool = False
 
 
 FAMILIES: dict[str, MessageFamily] = {
     "nav_msgs/Odometry": MessageFamily("ego", 0, ros_ego.decode_odometry),
     "foxglove.Odometry": MessageFamily("ego", 0, foxglove.decode_foxglove_odometry),
     "workbench.EgoState": MessageFamily("ego", 0, mcap_json.decode_json_ego),
+    osi.OSI_GROUND_TRUTH: MessageFamily("ego", 0, osi.decode_ground_truth, carries_objects=True),
+    osi.OSI_SENSOR_VIEW: MessageFamily("ego", 0, osi.decode_sensor_view, carries_objects=True),
     "geometry_msgs/PoseStamped": MessageFamily("ego", 1, ros_ego.decode_pose_stamped),
     "geometry_msgs/PoseWithCovarianceStamped": MessageFamily(
         "ego", 1, ros_ego.decode_pose_with_covariance
@@ -69,6 +82,10 @@ FAMILIES: dict[str, MessageFamily] = {
         for package in ("autoware_perception_msgs", "autoware_auto_perception_msgs")
         for kind, rank in (("Tracked", 0), ("Predicted", 1), ("Detected", 2))
     },
+    "autoware_msgs/DetectedObjectArray": MessageFamily(
+        "objects", 1, ros_objects.decode_autoware_ai_objects
+    ),
+    "radar_msgs/RadarTracks": MessageFamily("objects", 2, ros_radar.decode_radar_tracks),
     "workbench.ObjectList": MessageFamily("objects", 0, mcap_json.decode_json_objects),
     "vision_msgs/Detection3DArray": MessageFamily("objects", 2, ros_objects.decode_detection3d),
     "foxglove.SceneUpdate": MessageFamily("objects", 2, foxglove.decode_scene_update),
@@ -76,7 +93,10 @@ FAMILIES: dict[str, MessageFamily] = {
         "objects", 2, ros_boxes.decode_jsk_boxes
     ),
     "visualization_msgs/MarkerArray": MessageFamily("objects", 3, ros_boxes.decode_marker_array),
-    "autoware_planning_msgs/Trajectory": MessageFamily("plan", 0, ros_plan.decode_trajectory),
+    **{
+        f"{package}/Trajectory": MessageFamily("plan", 0, ros_plan.decode_trajectory)
+        for package in ("autoware_planning_msgs", "autoware_auto_planning_msgs")
+    },
     "workbench.Plan": MessageFamily("plan", 0, mcap_json.decode_json_plan),
     "nav_msgs/Path": MessageFamily("plan", 1, ros_plan.decode_path),
 }

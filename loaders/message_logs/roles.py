@@ -123,12 +123,16 @@ def detect_roles(
     else:
         _check(path, by_name, ego_topic, "ego")
     objects = profile.objects if profile else None
+    ego_family = family_of(by_name[ego_topic].msgtype)
+    if objects is None and ego_family is not None and ego_family.carries_objects:
+        objects = (ego_topic,)  # ASAM OSI: the ground truth holds the objects too
     if objects is None:
         best = _best(topics, "objects", EGO_HINTS)
         objects = () if best is None else (best.topic,)
     else:
         for topic in objects:
-            _check(path, by_name, topic, "objects")
+            if topic != ego_topic or ego_family is None or not ego_family.carries_objects:
+                _check(path, by_name, topic, "objects")
     plan_topic = profile.plan if profile else None
     if plan_topic is None:
         best = _best(topics, "plan", PLAN_HINTS)
@@ -146,7 +150,8 @@ def detect_roles(
 
 def assign_roles(topics: Sequence[TopicInfo], roles: TopicRoles) -> tuple[TopicInfo, ...]:
     """Copies of ``topics`` with the ``role`` field filled from ``roles``."""
-    role_of = {roles.ego: "ego", **dict.fromkeys(roles.objects, "objects")}
+    role_of = dict.fromkeys(roles.objects, "objects")
+    role_of[roles.ego] = "ego+objects" if roles.ego in role_of else "ego"  # OSI ground truth
     if roles.plan is not None:
         role_of[roles.plan] = "plan"
     return tuple(TopicInfo(t.topic, t.msgtype, t.count, role_of.get(t.topic)) for t in topics)

@@ -14,7 +14,14 @@ if TYPE_CHECKING:
 
     from numpy.typing import NDArray
 
-__all__ = ["CLASS_NAMES", "EgoSample", "ObjectColumns", "PlanSample", "class_from_name"]
+__all__ = [
+    "CLASS_NAMES",
+    "EgoSample",
+    "EgoWithObjects",
+    "ObjectColumns",
+    "PlanSample",
+    "class_from_name",
+]
 
 #: Free-text class names (vision_msgs ``class_id``, Foxglove metadata, our JSON) → class.
 CLASS_NAMES: dict[str, ObjectClass] = {
@@ -47,7 +54,9 @@ class EgoSample:
     ``speed_mps`` and ``yaw_rate_radps`` are NaN when the message carries no twist; the
     frame assembler then derives them by finite differences. ``heading_from_track`` marks a
     sample without orientation (GNSS fix without IMU): ``yaw_rad`` is NaN and the assembler
-    takes the heading of the track through the neighbouring samples.
+    takes the heading of the track through the neighbouring samples. ``size_m`` is the ego's
+    ``(length, width, height)`` when the message carries it (OSI host vehicle), else None
+    (the ``DEFAULT_EGO_*`` size).
     """
 
     stamp_ns: int | None
@@ -58,6 +67,7 @@ class EgoSample:
     speed_mps: float = float("nan")
     yaw_rate_radps: float = float("nan")
     heading_from_track: bool = False
+    size_m: tuple[float, float, float] | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -87,6 +97,8 @@ class ObjectColumns:
         height_m: Full box height.
         has_velocity: False when the message type carries no velocity; the assembler
             estimates it per id by finite differences across messages.
+        ignored: Entries of the message that are not objects and were left out
+            (``MarkerArray`` markers other than box cubes); counted in the drive's notes.
     """
 
     stamp_ns: int | None
@@ -102,6 +114,7 @@ class ObjectColumns:
     width_m: NDArray[np.float64]
     height_m: NDArray[np.float64]
     has_velocity: bool = True
+    ignored: int = 0
 
     @classmethod
     def from_rows(
@@ -112,6 +125,7 @@ class ObjectColumns:
         rows: Sequence[tuple[float, ...]],
         *,
         has_velocity: bool = True,
+        ignored: int = 0,
     ) -> ObjectColumns:
         """Build from per-object rows ``(x, y, z, yaw, vx, vy, length, width, height)``."""
         table = np.asarray(rows, dtype=np.float64).reshape(len(rows), 9)
@@ -130,4 +144,18 @@ class ObjectColumns:
             width_m=c[7],
             height_m=c[8],
             has_velocity=has_velocity,
+            ignored=ignored,
         )
+
+
+@dataclass(frozen=True, slots=True)
+class EgoWithObjects:
+    """One message holding the ego and the object list (ASAM OSI ground truth).
+
+    The assembler files ``objects`` under the ego topic (when that topic is an object
+    topic of the drive) before it makes the frame of ``ego``, so the frame takes them
+    unextrapolated (``match_dt_ns`` 0).
+    """
+
+    ego: EgoSample
+    objects: ObjectColumns

@@ -16,9 +16,11 @@ import numpy as np
 from rss.structured.batch import take_rows
 from rss.structured.checks import RawStates, check_all
 from rss.structured.extraction import Relative, extract
-from rss.structured.memory import RssMemory, apply_memory, is_dangerous
+from rss.structured.memory import RssMemory, apply_memory_both, is_dangerous
 from rss.structured.merge import merge_similar
 from rss.structured.response import ProperResponses, resolve
+from rss.structured.responsibility import Responsibility, responsibility, swap_roles
+from rss.structured.severity import Severity, severity
 from rss.structured.states import InvalidReason
 
 if TYPE_CHECKING:
@@ -40,6 +42,10 @@ class FrameResult:
         invalid: ``(C,)`` :class:`InvalidReason` codes (0 = evaluated).
         frame: ``(C,)`` frame number of each constellation.
         responses: The ego's proper response per frame (``(F,)`` arrays).
+        responsibility: Who must act per constellation, from both sides (``None`` unless
+            asked for: :func:`check_frames` ``with_responsibility=True``).
+        severity: Severity facts per constellation (distance ratio, time to collision,
+            required deceleration; asked for together with ``responsibility``).
     """
 
     relative: Relative
@@ -48,6 +54,8 @@ class FrameResult:
     invalid: IntArray
     frame: IntArray
     responses: ProperResponses
+    responsibility: Responsibility | None = None
+    severity: Severity | None = None
 
 
 def check_frames(
@@ -56,6 +64,8 @@ def check_frames(
     n_frames: int,
     default_ego: RssDynamics,
     memory: RssMemory | None = None,
+    *,
+    with_responsibility: bool = False,
 ) -> tuple[FrameResult, RssMemory]:
     """Evaluate the constellations of ``F`` consecutive frames in one vectorised call.
 
@@ -65,6 +75,9 @@ def check_frames(
         n_frames: ``F`` (frames without constellations are safe).
         default_ego: Default ego dynamics (seed of the acceleration restrictions).
         memory: Memory before frame 0; ``None`` = fresh start.
+        with_responsibility: Also check every constellation from the other object's side
+            (:mod:`rss.structured.responsibility`) and compute the severity facts
+            (:mod:`rss.structured.severity`); the ego's verdicts do not change.
 
     Returns:
         ``(result, memory)``: the result and the memory after frame ``F-1``.
@@ -72,11 +85,16 @@ def check_frames(
     frame = np.asarray(frame, dtype=np.int64)
     batch, rel = merge_similar(batch, extract(batch), frame)
     raw = check_all(batch, rel)
+    other_raw = check_all(*swap_roles(batch, rel)) if with_responsibility else None
     valid = rel.invalid == InvalidReason.Valid
-    states, new_memory = apply_memory(batch, rel, raw, valid, frame, memory or RssMemory.empty())
+    before = memory or RssMemory.empty()
+    states, other, new_memory = apply_memory_both(batch, rel, raw, other_raw, valid, frame, before)
     dangerous = is_dangerous(states) & valid
     responses = resolve(batch, states, dangerous, frame, n_frames, default_ego)
-    return FrameResult(rel, states, dangerous, rel.invalid, frame, responses), new_memory
+    who = None if other is None else responsibility(states, other, dangerous, valid)
+    facts = None if other is None else severity(batch, rel, states)
+    result = FrameResult(rel, states, dangerous, rel.invalid, frame, responses, who, facts)
+    return result, new_memory
 
 
 def check_frame(
@@ -104,4 +122,8 @@ def select_frame(result: FrameResult, index: int) -> FrameResult:
         invalid=result.invalid[rows],
         frame=np.zeros(rows.size, dtype=np.int64),
         responses=take_rows(result.responses, np.array([index])),
+        responsibility=None
+        if result.responsibility is None
+        else take_rows(result.responsibility, rows),
+        severity=None if result.severity is None else take_rows(result.severity, rows),
     )

@@ -40,7 +40,9 @@ if TYPE_CHECKING:
     from rss.structured.batch import ConstellationBatch
     from rss.structured.extraction import Relative
 
-__all__ = ["RssMemory", "apply_memory", "is_dangerous"]
+__all__ = ["RssMemory", "apply_memory", "apply_memory_both", "is_dangerous"]
+
+_OBJECT_PRIO = int(ConstellationType.IntersectionObjectHasPriority)
 
 
 @dataclass(frozen=True)
@@ -147,6 +149,24 @@ def apply_memory(  # noqa: PLR0917  (structure-of-arrays engine step)
     frame: IntArray,
     memory: RssMemory,
 ) -> tuple[RawStates, RssMemory]:
+    """Adjust the ego's responses by the remembered safe state (see :func:`apply_memory_both`).
+
+    Returns:
+        ``(states, memory)``: adjusted states and the memory after the last frame.
+    """
+    states, _, new_memory = apply_memory_both(batch, rel, raw, None, valid, frame, memory)
+    return states, new_memory
+
+
+def apply_memory_both(  # noqa: PLR0917  (structure-of-arrays engine step)
+    batch: ConstellationBatch,
+    rel: Relative,
+    raw: RawStates,
+    other_raw: RawStates | None,
+    valid: BoolArray,
+    frame: IntArray,
+    memory: RssMemory,
+) -> tuple[RawStates, RawStates | None, RssMemory]:
     """Adjust the responses of dangerous states by the remembered safe state.
 
     Non-intersection (dangerous now), by what was safe at the remembered frame: only
@@ -155,16 +175,22 @@ def apply_memory(  # noqa: PLR0917  (structure-of-arrays engine step)
     able-to-stop -> None if the ego has priority; safe longitudinal distance -> None if the
     ego is in front; otherwise BrakeMin.
 
+    The other object's side (``other_raw``, :mod:`rss.structured.responsibility`) gets the
+    same adjustment from the pair's one memory (what was safe is symmetric), with the
+    priority and "in front" of the intersection rule taken from the object's side.
+
     Args:
         batch: ``C`` constellations.
         rel: Their relative situation.
         raw: Unadjusted states.
+        other_raw: Unadjusted states from the other object's side, or ``None``.
         valid: ``(C,)`` constellations that were evaluated.
         frame: ``(C,)`` frame number 0..F-1 of each constellation (consecutive frames).
         memory: Memory before frame 0.
 
     Returns:
-        ``(states, memory)``: adjusted states and the memory after the last frame.
+        ``(states, other states or None, memory)``: adjusted states and the memory after
+        the last frame.
     """
     runs = _runs(memory, batch, frame)
     o = runs.order
@@ -211,35 +237,54 @@ def apply_memory(  # noqa: PLR0917  (structure-of-arrays engine step)
     unsafe_int = ok & intersection & ~lon_safe_now & known
     ego_prio = ctype == ConstellationType.IntersectionEgoHasPriority
     ego_front = rel.lon_position[o] == LongitudinalPosition.InFront
+    ego_back = rel.lon_position[o] == LongitudinalPosition.AtBack
     int_none = unsafe_int & (
         ((prev_int == IntersectionState.NON_PRIO_ABLE_TO_BREAK) & ego_prio)
         | ((prev_int == IntersectionState.SAFE_LONGITUDINAL_DISTANCE) & ego_front)
     )
     calm = ~intersection & ~dangerous
-    clear_lon_rows = np.zeros(batch.size, dtype=np.bool_)
-    clear_lon_rows[o] = clear_lon | int_none | calm
     clear_lat_rows = np.zeros(batch.size, dtype=np.bool_)
     clear_lat_rows[o] = clear_lat | calm
-    states = dataclasses.replace(
+    states = _cleared(raw, o, clear_lon | int_none | calm, clear_lat_rows)
+    other_states = None
+    if other_raw is not None:
+        other_none = unsafe_int & (
+            ((prev_int == IntersectionState.NON_PRIO_ABLE_TO_BREAK) & (ctype == _OBJECT_PRIO))
+            | ((prev_int == IntersectionState.SAFE_LONGITUDINAL_DISTANCE) & ego_back)
+        )
+        other_states = _cleared(other_raw, o, clear_lon | other_none | calm, clear_lat_rows)
+    return (
+        states,
+        other_states,
+        _memory_after(
+            batch,
+            frame,
+            runs,
+            store,
+            known,
+            stored_lon,
+            stored_lat,
+            stored_int,
+            prev_lon,
+            prev_lat,
+            prev_int,
+        ),
+    )
+
+
+def _cleared(
+    raw: RawStates, order: IntArray, clear_lon_sorted: BoolArray, clear_lat_rows: BoolArray
+) -> RawStates:
+    """``raw`` with the longitudinal (given in sorted order) and lateral responses cleared."""
+    clear_lon_rows = np.zeros(raw.lon_response.shape[0], dtype=np.bool_)
+    clear_lon_rows[order] = clear_lon_sorted
+    return dataclasses.replace(
         raw,
         lon_response=np.where(clear_lon_rows, LongitudinalResponse.None_, raw.lon_response).astype(
             np.int64
         ),
         left=_side(raw.left, clear_lat_rows),
         right=_side(raw.right, clear_lat_rows),
-    )
-    return states, _memory_after(
-        batch,
-        frame,
-        runs,
-        store,
-        known,
-        stored_lon,
-        stored_lat,
-        stored_int,
-        prev_lon,
-        prev_lat,
-        prev_int,
     )
 
 

@@ -29,7 +29,7 @@ from rosbags.highlevel import AnyReader
 
 from loaders import open_drive
 from loaders.typestore import typestore
-from tests.loaders.fixtures import Entry, write_rosbag2
+from tests.loaders.fixtures import Entry, write_ros1_bag, write_rosbag2
 from tests.loaders.msgbuild import build, header, pose, quat
 
 if TYPE_CHECKING:
@@ -64,9 +64,9 @@ def reference_frames(root: Path) -> list[Frame]:
         return list(drive.frames())
 
 
-def _copied(root: Path) -> list[Entry]:
+def _copied(root: Path, source: str = SAMPLE) -> list[Entry]:
     out = []
-    with AnyReader([root / SAMPLE]) as reader:
+    with AnyReader([root / source]) as reader:
         conns = [c for c in reader.connections if c.topic in _COPIED]
         for conn, t_ns, raw in reader.messages(connections=conns):
             msg = reader.deserialize(raw, conn.msgtype)
@@ -149,7 +149,17 @@ def _ego_entries(ts: Any, frames: list[Frame], variant: str) -> list[Entry]:
 
 
 def write_variant(root: Path, out_dir: Path, variant: str, storage: str = "mcap") -> Path:
-    """Write the sample with its ego as ``variant`` to a rosbag2 directory; return its path."""
+    """Write the sample with its ego as ``variant``; return its path.
+
+    ``storage`` ``mcap`` or ``sqlite3`` gives a rosbag2 directory, ``bag`` a ROS 1 bag (the
+    objects and path copied from the sample's ROS 1 twin ``highway_cut_in.bag``).
+    """
+    if storage == "bag":
+        ts = typestore(1)
+        entries = _copied(root, SAMPLE.replace(".mcap", ".bag"))
+        entries += _ego_entries(ts, reference_frames(root), variant)
+        entries.sort(key=lambda e: e.t_ns)
+        return write_ros1_bag(out_dir / f"highway_{variant}.bag", entries)
     ts = typestore(2)
     entries = _copied(root) + _ego_entries(ts, reference_frames(root), variant)
     entries.sort(key=lambda e: e.t_ns)

@@ -52,6 +52,7 @@ def test_marker_array_reads_cubes_and_ignores_the_rest(caplog: pytest.LogCapture
     assert cols.object_class.tolist() == [ObjectClass.UNKNOWN]
     assert not cols.has_velocity
     assert "ignored 2" in caplog.text
+    assert cols.ignored == 2  # counted into the drive's notes (ignored_markers)
 
 
 def test_empty_marker_array_has_no_stamp():

@@ -20,6 +20,8 @@ from mcap.reader import make_reader
 from loaders import open_drive
 from loaders.errors import LoaderError
 from tests.loaders import containers
+from tests.loaders.ego_logs import reference_frames
+from tests.loaders.osi_logs import write_osi
 
 if TYPE_CHECKING:
     from collections.abc import Callable
@@ -93,6 +95,8 @@ _CONTAINERS: dict[str, tuple[Callable[[Path], Path], Callable[[Path], int]]] = {
         lambda p: _middle(next(p.glob("*.db3"))),
     ),
     "bare-db3": (lambda d: containers.bare_db3(SAMPLES / "highway_cut_in_rosbag2", d), _middle),
+    "osi-trace": (lambda d: write_osi(reference_frames(SAMPLES.parent), d, "gt_osi"), _middle),
+    "osi-mcap": (lambda d: write_osi(reference_frames(SAMPLES.parent), d, "sv_mcap"), _mcap_chunk),
 }
 
 

@@ -94,3 +94,59 @@ def test_replay_of_an_unreadable_drive_leaves_no_rrd(tmp_path: Path) -> None:
     assert "0 frames" in result.output
     assert "wrote" not in result.output
     assert not out.exists()
+
+
+def _frames_line(output: str) -> str:
+    return next(line for line in output.splitlines() if line.startswith("frames"))
+
+
+def test_ros1_bag_with_a_tf_ego_info_and_evaluate_agree(tmp_path: Path) -> None:
+    """The sample's ego as /tf in a ROS 1 bag: half the /tf messages move the lidar only."""
+    from tests.loaders.ego_logs import reference_frames, write_variant  # noqa: PLC0415
+
+    root = SAMPLES.parent
+    bag = write_variant(root, tmp_path, "tf", storage="bag")
+    reference = reference_frames(root)
+    with closing(open_drive(bag)) as drive:
+        assert drive.info.source_format == "ros1-bag"
+        counted = count_frames(drive)
+        frames = list(drive.frames())
+        notes = drive.info.notes
+        tf_messages = drive.info.frame_count
+    assert counted == len(frames) == len(reference)
+    assert [f.t_ns for f in frames] == [f.t_ns for f in reference]
+    for new, old in zip(frames, reference, strict=True):
+        assert (new.ego.x_m, new.ego.y_m) == pytest.approx((old.ego.x_m, old.ego.y_m), abs=1e-6)
+    # every /tf message accounted for: a frame, or counted as moving other frames only
+    assert int(notes["ego_messages_without_pose"]) == tf_messages - len(frames) == len(frames)
+    info = runner.invoke(app, ["info", str(bag)])
+    evaluated = runner.invoke(app, ["evaluate", str(bag), "--engines", "rss"])
+    assert info.exit_code == evaluated.exit_code == 0, info.output + evaluated.output
+    assert _frames_line(info.output) == f"frames      {len(frames)} (of {tf_messages} ego messages)"
+    assert f"{len(frames)} frames evaluated" in evaluated.output
+    lost = f"{len(frames)} ego-topic messages without an ego pose"
+    assert lost in info.output
+    assert lost in evaluated.output
+
+
+def test_ignored_markers_are_counted_and_printed(tmp_path: Path) -> None:
+    """Each re-written MarkerArray holds a text and a DELETEALL marker beside the cubes."""
+    from tests.loaders.rewrite import rewrite_objects  # noqa: PLC0415
+
+    source = SAMPLES / "highway_cut_in.mcap"
+    path = rewrite_objects(source, tmp_path / "markers.mcap", "visualization_msgs/msg/MarkerArray")
+    with closing(open_drive(path)) as drive:
+        messages = next(t.count for t in drive.info.topics if t.topic == "/objects")
+        list(drive.frames())
+        notes = dict(drive.info.notes)
+    assert notes["ignored_markers"] == str(2 * messages)
+    line = f"{2 * messages} markers ignored"
+    for command in ("info", "evaluate"):
+        extra = ["--engines", "rss"] if command == "evaluate" else []
+        result = runner.invoke(app, [command, str(path), *extra])
+        assert result.exit_code == 0, result.output
+        assert line in result.output, command
+    verbose = runner.invoke(app, ["info", str(path), "--verbose"])
+    assert f"lost: markers ignored: {2 * messages} (MarkerArray markers other than" in (
+        verbose.output
+    )

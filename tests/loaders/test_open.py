@@ -9,7 +9,7 @@ from loaders.errors import UnsupportedFormatError
 
 
 def test_suffixes_are_the_drive_formats():
-    assert LOG_SUFFIXES == (".mcap", ".bag", ".db3", ".xml", ".saa", ".scn")
+    assert LOG_SUFFIXES == (".mcap", ".bag", ".db3", ".osi", ".xml", ".saa", ".scn")
 
 
 @pytest.mark.parametrize("name", ["a.mcap", "b.BAG", "c.xml", "d.saa", "e.scn"])

@@ -11,6 +11,7 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
+from workbench.cli.options import RssProfileOption  # noqa: TC001 - typer reads it at run time
 from workbench.cli.progress import run_with_progress
 from workbench.demo import find_sample_logs, output_names, primary_logs, replay_one
 from workbench.engines.registry import engine, parse_engines
@@ -89,6 +90,7 @@ def demo(
     engines: Annotated[
         str, typer.Option("--engines", help="Engines evaluated on every frame ('' for none).")
     ] = "reachsets,rss,unstructured",
+    rss_profile: RssProfileOption = None,
 ) -> None:
     """Re-evaluate every sample log in SAMPLES_DIR, replay it into OUT/<name>.rrd, summarise."""
     if not samples_dir.is_dir():
@@ -102,7 +104,9 @@ def demo(
     # one log per drive (the one keeping the plain name), replay the others only.
     primary = primary_logs(logs)
     rows = [
-        replay_one(log, out / names[log], engine_names if log in primary else [], _replay)
+        replay_one(
+            log, out / names[log], engine_names if log in primary else [], _replay, rss_profile
+        )
         for log in logs
     ]
     console = Console(width=max(Console().width, 120))
@@ -112,6 +116,7 @@ def demo(
             console.print(f"[red]failed:[/red] {r.error}", highlight=False, soft_wrap=True)
     done = [r for r in rows if not r.error]
     if done:
+        console.print(f"RSS parameter profile: {rss_profile or 'auto (per drive, docs/rss.md)'}")
         console.print(f"{len(done)} of {len(rows)} logs written to {out.resolve()}/")
         if engine_names:
             console.print(

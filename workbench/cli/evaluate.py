@@ -17,6 +17,7 @@ from workbench.cli.options import (
     ReachMethodOption,
     ReachRulesOption,
     ReachTrajectoryOption,
+    RssProfileOption,
 )
 from workbench.cli.progress import frame_progress
 from workbench.drives import ego_size, load_rss_params, open_log, window_ns
@@ -47,7 +48,7 @@ def _summary_table(violations: list[Violation], t0_ns: int) -> Table:
 
 def evaluate(
     log: Annotated[
-        Path, typer.Argument(help="Drive: .mcap, .bag, rosbag2 dir or .db3, .xml, .saa.")
+        Path, typer.Argument(help="Drive: .mcap, .bag, rosbag2 dir or .db3, .osi, .xml, .saa.")
     ],
     *,
     map_path: Annotated[Path | None, typer.Option("--map", help="Lane map file.")] = None,
@@ -78,6 +79,7 @@ def evaluate(
         Path | None,
         typer.Option("--rss-params", help="TOML with RSS dynamics and [scene] settings."),
     ] = None,
+    rss_profile: RssProfileOption = None,
     verbose: VerboseOption = False,
 ) -> None:
     """Re-evaluate every frame; print the violations, optionally write per-frame JSON lines."""
@@ -88,9 +90,9 @@ def evaluate(
     names = parse_engines(engines)
     if not names:
         raise WorkbenchError("--engines: name at least one engine")
-    params = load_rss_params(rss_params)
     drive = open_log(log, map_path=map_path, profile=profile, ego_id=ego_id, ego_topic=ego_topic)
     try:
+        params = load_rss_params(rss_params, rss_profile, drive.lane_map)
         settings = EngineSettings(
             rss_params=params,
             reach_method=reach_method.value,

@@ -10,7 +10,8 @@ from rich.console import Console
 from rich.table import Table
 
 from workbench.cli.losses import VerboseOption, echo_losses
-from workbench.cli.options import EGO_TOPIC_HELP
+from workbench.cli.options import EGO_TOPIC_HELP, RssProfileOption
+from workbench.drives import load_rss_params, rss_profile_line
 
 if TYPE_CHECKING:
     from loaders.drive import Drive
@@ -61,7 +62,7 @@ def render_info(drive: Drive, console: Console, frames: int | None = None) -> No
 
 def info(
     log: Annotated[
-        Path, typer.Argument(help="Drive: .mcap, .bag, rosbag2 dir or .db3, .xml, .saa/.scn")
+        Path, typer.Argument(help="Drive: .mcap, .bag, rosbag2 dir or .db3, .osi, .xml, .saa/.scn")
     ],
     *,
     map_path: Annotated[
@@ -71,12 +72,18 @@ def info(
     ego_id: Annotated[str | None, typer.Option("--ego-id", help="CommonRoad ego obstacle")] = None,
     verbose: VerboseOption = False,
     ego_topic: Annotated[str | None, typer.Option("--ego-topic", help=EGO_TOPIC_HELP)] = None,
+    rss_profile: RssProfileOption = None,
+    rss_params: Annotated[
+        Path | None,
+        typer.Option("--rss-params", help="TOML with RSS dynamics and [scene] settings."),
+    ] = None,
 ) -> None:
     """Show format, duration, frame count, topics with types, counts and roles, and the map.
 
-    The frame count is what ``evaluate`` will produce: the ego topic is read once to count
-    the messages that make no frame (printed on one line; ``--verbose`` details them). A
-    damaged ego topic ends the command with its error after the summary.
+    The frame count is what ``evaluate`` will produce: the role topics are read once,
+    without the engines, to count the frames and the messages that make none (printed on
+    the same line ``evaluate`` prints; ``--verbose`` details them). A damaged log ends the
+    command with its error after the summary.
     """
     from loaders import LoaderError, open_drive  # noqa: PLC0415 - keeps CLI start-up light
     from loaders.losses import count_frames  # noqa: PLC0415
@@ -84,11 +91,15 @@ def info(
     drive = open_drive(log, map=map_path, profile=profile, ego_id=ego_id, ego_topic=ego_topic)
     stopped: LoaderError | None = None
     try:
+        params = load_rss_params(rss_params, rss_profile, drive.lane_map)
         try:
             frames: int | None = count_frames(drive)
         except LoaderError as err:
             frames, stopped = None, err
-        render_info(drive, Console(width=160), frames)
+        console = Console(width=160)
+        render_info(drive, console, frames)
+        chosen = "auto -> " if rss_profile in {None, "auto"} and rss_params is None else ""
+        console.print(f"rss profile {chosen}{rss_profile_line(params)}")
     finally:
         drive.close()
     echo_losses(drive.info.notes, verbose=verbose)

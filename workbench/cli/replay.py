@@ -16,6 +16,7 @@ from workbench.cli.options import (
     ReachMethodOption,
     ReachRulesOption,
     ReachTrajectoryOption,
+    RssProfileOption,
 )
 from workbench.cli.progress import run_with_progress
 from workbench.drives import default_output, ego_size, load_rss_params, open_log
@@ -90,6 +91,7 @@ def replay(
         Path | None,
         typer.Option("--rss-params", help="TOML with RSS dynamics and [scene] settings."),
     ] = None,
+    rss_profile: RssProfileOption = None,
     verbose: VerboseOption = False,
 ) -> None:
     """Replay a drive into Rerun: map, ego, actors, plan and plots on timelines frame/log_time."""
@@ -99,9 +101,9 @@ def replay(
     if sum((out is not None, spawn, serve)) > 1:
         raise ReplayError("--out, --spawn and --serve are mutually exclusive")
     target = out if (out is not None or spawn or serve) else default_output(log, out_dir)
-    params = load_rss_params(rss_params)
     drive = open_log(log, map_path=map_path, profile=profile, ego_id=ego_id, ego_topic=ego_topic)
     try:
+        params = load_rss_params(rss_params, rss_profile, drive.lane_map)
         settings = EngineSettings(
             rss_params=params,
             reach_method=reach_method.value,

@@ -32,8 +32,9 @@ def decode_marker_array(msg: Any) -> ObjectColumns:
     """``visualization_msgs/MarkerArray``: every ADD/MODIFY CUBE marker is a box.
 
     The id is ``<ns>/<id>``, ``scale`` the full box size, the stamp that of the first cube.
-    Markers of other types and DELETE/DELETEALL actions are counted and ignored (a debug
-    log line says how many); each message is read as the complete object list.
+    Markers of other types and DELETE/DELETEALL actions are left out and counted
+    (``ObjectColumns.ignored`` → the drive note ``ignored_markers``, printed by the CLI; also
+    a debug log line); each message is read as the complete object list.
     """
     ids, rows = [], []
     stamp: int | None = None
@@ -49,7 +50,7 @@ def decode_marker_array(msg: Any) -> ObjectColumns:
     if ignored:
         _LOG.debug("MarkerArray: ignored %d non-cube or delete markers", ignored)
     classes = [ObjectClass.UNKNOWN] * len(ids)
-    return ObjectColumns.from_rows(stamp, ids, classes, rows, has_velocity=False)
+    return ObjectColumns.from_rows(stamp, ids, classes, rows, has_velocity=False, ignored=ignored)
 
 
 def decode_jsk_boxes(msg: Any) -> ObjectColumns:

@@ -1,4 +1,4 @@
-"""Object decoders for ROS message families: CARLA, Autoware and vision_msgs.
+"""Object decoders for ROS message families: CARLA, Autoware, Autoware.AI and vision_msgs.
 
 Frames of the velocities (checked against the publishers):
 
@@ -7,6 +7,8 @@ Frames of the velocities (checked against the publishers):
   the object frame), so it is used as is.
 - Autoware ``kinematics.*twist_with_covariance`` is in the object's *body* frame; it is
   rotated into the map frame by the object yaw.
+- Autoware.AI ``autoware_msgs/DetectedObject.velocity`` (``imm_ukf_pda_track``: the speed
+  in ``linear.x`` along the object heading) is in the *body* frame too, rotated likewise.
 - ``vision_msgs/Detection3D`` has no velocity: ``has_velocity=False`` lets the assembler
   estimate it per id by finite differences across messages.
 """
@@ -24,6 +26,7 @@ from loaders.records import ObjectClass
 __all__ = [
     "AUTOWARE_LABELS",
     "CARLA_CLASSES",
+    "decode_autoware_ai_objects",
     "decode_autoware_objects",
     "decode_carla_objects",
     "decode_detection3d",
@@ -128,6 +131,36 @@ def decode_autoware_objects(msg: Any) -> ObjectColumns:
     vx, vy = body_to_map(cols.vx_mps, cols.vy_mps, cols.yaw_rad)
     object.__setattr__(cols, "vx_mps", vx)
     object.__setattr__(cols, "vy_mps", vy)
+    return cols
+
+
+def decode_autoware_ai_objects(msg: Any) -> ObjectColumns:
+    """Autoware.AI ``autoware_msgs/DetectedObjectArray`` (ROS 1 and ROS 2).
+
+    ``pose``, ``dimensions`` (full sizes), class from the free-text ``label``; id = ``id``
+    when the ids of the message are distinct (trackers), else ``det<k>`` (the index).
+    ``velocity.linear`` is in the object body frame and rotated into the map frame; unless
+    every object has ``velocity_reliable`` (detectors leave it false), the velocities of the
+    message are estimated per id instead. ``valid`` is not used.
+    """
+    objs = list(msg.objects)
+    raw_ids = [int(obj.id) for obj in objs]
+    distinct = len(set(raw_ids)) == len(raw_ids)
+    ids = [str(i) if distinct else f"det{k}" for k, i in enumerate(raw_ids)]
+    classes = [class_from_name(str(obj.label)) for obj in objs]
+    rows = []
+    for obj in objs:
+        d, lin = obj.dimensions, obj.velocity.linear
+        vel = (float(lin.x), float(lin.y))
+        rows.append((*_pose_row(obj.pose), *vel, float(d.x), float(d.y), float(d.z)))
+    reliable = all(bool(obj.velocity_reliable) for obj in objs)
+    cols = ObjectColumns.from_rows(
+        ros_stamp_ns(msg.header.stamp), ids, classes, rows, has_velocity=reliable
+    )
+    if reliable:
+        vx, vy = body_to_map(cols.vx_mps, cols.vy_mps, cols.yaw_rad)
+        object.__setattr__(cols, "vx_mps", vx)
+        object.__setattr__(cols, "vy_mps", vy)
     return cols
 
 

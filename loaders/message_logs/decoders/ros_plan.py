@@ -1,4 +1,4 @@
-"""Plan decoders for ROS messages: ``nav_msgs/Path`` and ``autoware_planning_msgs/Trajectory``."""
+"""Plan decoders for ROS messages: ``nav_msgs/Path`` and Autoware(.Auto) ``Trajectory``."""
 
 from __future__ import annotations
 
@@ -39,7 +39,10 @@ def decode_path(msg: Any) -> PlanSample:
 
 
 def decode_trajectory(msg: Any) -> PlanSample:
-    """``autoware_planning_msgs/Trajectory``: ``time_from_start`` and longitudinal speed."""
+    """``autoware_(auto_)planning_msgs/Trajectory``: ``time_from_start``, longitudinal speed.
+
+    The Autoware.Auto package has the same layout under its older name.
+    """
     pts = msg.points
     t = [ros_stamp_ns(p.time_from_start) / 1e9 for p in pts]
     v = [float(p.longitudinal_velocity_mps) for p in pts]

@@ -4,7 +4,15 @@ Keys, in order: ``is_safe``, ``dangerous_objects`` (actor ids, sorted),
 ``longitudinal_response``, ``lateral_response_left``, ``lateral_response_right`` (ad-rss
 response names), ``acceleration_restrictions`` (``{"longitudinal" | "lateral_left" |
 "lateral_right": [min, max]}`` in m/s², ``null`` bounds for unbounded values; ``null``
-without constellations), ``constellations``, ``invalid_objects``; ``rejected_constellations``
+without constellations), ``constellations``, ``invalid_objects``, ``profile`` (the RSS
+parameter profile, ``NAME`` or ``NAME+file``), ``responsibility`` (``{object id: "ego" |
+"object" | "both"}``: who must act, RSS being symmetric, for every object dangerous from
+the ego's or its own side; docs/rss.md), ``severity`` (``{object id: {"distance_ratio",
+"ttc_s", "required_decel_mps2"}}``, ``null`` for infinite values), ``compliance``
+(``{object id: [{"party", "since_t_ns", "due_t_ns", "required_max_mps2",
+"measured_mps2", "shortfall_mps2"}, ...]}``: each party that must act, its proper
+response's longitudinal restriction, its measured acceleration and, once due, the
+shortfall); ``rejected_constellations``
 (``{object id: reason}`` of malformed constellations left out of the frame) only when there
 are any.
 """
@@ -25,6 +33,29 @@ __all__ = ["rss_record"]
 def rss_record(verdict: RssVerdict) -> dict[str, Any]:
     """The JSON-ready record of one frame."""
     record = _record(verdict)
+    record["responsibility"] = verdict.responsibility()
+    record["severity"] = {
+        label: {
+            "distance_ratio": json_number(f.distance_ratio),
+            "ttc_s": json_number(f.ttc_s),
+            "required_decel_mps2": json_number(f.required_decel_mps2),
+        }
+        for label, f in verdict.severity().items()
+    }
+    compliance: dict[str, list[dict[str, Any]]] = {}
+    for label, duty in verdict.obligations:
+        compliance.setdefault(label, []).append(
+            {
+                "party": duty.party,
+                "since_t_ns": duty.since_ns,
+                "due_t_ns": duty.due_ns,
+                "required_max_mps2": _number(duty.required_max_mps2),
+                "measured_mps2": _number(duty.measured_mps2),
+                "shortfall_mps2": _number(duty.shortfall_mps2),
+            }
+        )
+    record["compliance"] = compliance
+    record["profile"] = verdict.profile
     if verdict.rejected:
         record["rejected_constellations"] = dict(verdict.rejected)
     return record
@@ -64,3 +95,7 @@ def _record(verdict: RssVerdict) -> dict[str, Any]:
         "constellations": verdict.constellations,
         "invalid_objects": list(verdict.invalid_objects),
     }
+
+
+def _number(value: float | None) -> float | None:
+    return None if value is None else json_number(value)

@@ -14,6 +14,7 @@ from rss.scene.boundaries import LEFT_BOUNDARY_ID, RIGHT_BOUNDARY_ID
 from rss.structured.states import LongitudinalResponse
 from workbench.engines.ids import IdMap
 from workbench.engines.rss.adapter import frame_to_scene, lane_graph_from_map
+from workbench.engines.rss.compliance import ComplianceTracker
 from workbench.engines.rss.outlines import road_area_outlines
 from workbench.engines.rss.verdict import RssVerdict
 
@@ -46,6 +47,7 @@ class RssRunner:
         *,
         road_boundaries: bool = False,
         outlines: bool = False,
+        responsibility: bool = True,
     ) -> None:
         """Prepare the lane graph once.
 
@@ -56,9 +58,12 @@ class RssRunner:
                 route (off by default, as in CARLA).
             outlines: Also compute the road-area outline of every constellation (for the
                 viewer; ``detail.road_areas``).
+            responsibility: Also check every constellation from the other object's side
+                (who must act; ``RssVerdict.responsible``). On by default.
         """
         self._road_boundaries = road_boundaries
         self._outlines = outlines
+        self._responsibility = responsibility
         self._params = params or RssParams()
         self._prep: PreparedGraph | None = None
         if lane_map is not None and lane_map.format != "track":
@@ -67,6 +72,7 @@ class RssRunner:
         self._scene_memo = SceneMemo()  # per map, kept across frames (rss.scene.memo)
         self._ids = IdMap()
         self._memory: RssMemory | None = None
+        self._compliance = ComplianceTracker(self._params)
 
     def step_many(self, frames: Sequence[Frame]) -> list[RssVerdict]:
         """Evaluate consecutive frames at once (as ``step`` on each in turn).
@@ -76,8 +82,9 @@ class RssRunner:
         them; a frame without constellations forgets the memory.
         """
         prep = self._prep
+        label = self._params.profile_label
         if prep is None:
-            return [_safe(()) for _ in frames]
+            return [_safe((), label) for _ in frames]
         inputs = [frame_to_scene(f, prep, self._params, self._ids) for f in frames]
         verdicts, self._memory = evaluate_frames(
             [(ego, objects) for ego, objects, _ in inputs],
@@ -86,14 +93,22 @@ class RssRunner:
             graph=prep,
             memo=self._scene_memo,
             road_boundaries=self._road_boundaries,
+            responsibility=self._responsibility,
         )
         out = [
-            _safe(invalid)
+            _safe(invalid, label)
             if v.result is None
             else self._output(v.scene, invalid, v.object_id, v.constellation_type, v.result)
             for v, (_, _, invalid) in zip(verdicts, inputs, strict=True)
         ]
-        return [self._with_rejected(o, v.rejected) for o, v in zip(out, verdicts, strict=True)]
+        out = [self._with_rejected(o, v.rejected) for o, v in zip(out, verdicts, strict=True)]
+        if not self._responsibility:
+            return out
+        duties = self._compliance.obligations(frames, out)
+        return [
+            dataclasses.replace(v, obligations=d) if d else v
+            for v, d in zip(out, duties, strict=True)
+        ]
 
     def _with_rejected(
         self, verdict: RssVerdict, rejected: tuple[tuple[int, str], ...]
@@ -119,12 +134,15 @@ class RssRunner:
         bad = object_id[np.asarray(result.invalid) != 0]
         is_safe = bool(result.responses.is_safe[0])
         response = LongitudinalResponse(int(result.responses.longitudinal_response[0]))
+        margin = float("inf") if is_safe else 0.0
+        if not is_safe and result.severity is not None:
+            margin = float(np.min(result.severity.distance_ratio[result.dangerous]))
         prep = self._prep
         return RssVerdict(
             is_safe=is_safe,
             culprits=culprits,
             cause="" if is_safe else f"RSS {response}",
-            margin=float("inf") if is_safe else 0.0,
+            margin=margin,
             invalid_objects=tuple(sorted({*invalid, *(self._ids.to_str(int(x)) for x in bad)})),
             labels=tuple(_label(self._ids, int(x)) for x in object_id),
             constellation_type=constellation_type,
@@ -133,6 +151,10 @@ class RssRunner:
             road_areas=road_area_outlines(prep.graph, scene.road_areas)
             if self._outlines and prep is not None
             else (),
+            responsible=None
+            if result.responsibility is None
+            else result.responsibility.responsible,
+            profile=self._params.profile_label,
         )
 
 
@@ -141,6 +163,6 @@ def _label(ids: IdMap, object_id: int) -> str:
     return names.get(object_id) or ids.to_str(object_id)
 
 
-def _safe(invalid: tuple[str, ...] | list[str]) -> RssVerdict:
+def _safe(invalid: tuple[str, ...] | list[str], profile: str) -> RssVerdict:
     """The verdict of a frame without constellations."""
-    return RssVerdict(is_safe=True, invalid_objects=tuple(sorted(invalid)))
+    return RssVerdict(is_safe=True, invalid_objects=tuple(sorted(invalid)), profile=profile)

@@ -64,6 +64,7 @@ class RssSink:
             recording.log(path, state_configuration(colors), static=True)
         self._last: dict[str, str] = {}
         self._object_config = state_configuration(OBJECT_STATES)
+        self._profile_sent = False
 
     def _states(
         self, path: str, frame: NDArray[np.int64], t_ns: NDArray[np.int64], states: list[str]
@@ -144,5 +145,14 @@ class RssSink:
     def send_chunk(
         self, frames: Sequence[Frame], layout: ChunkLayout, verdicts: Sequence[RssVerdict]
     ) -> None:
-        """Lay out and send the verdicts of a chunk of frames."""
+        """Lay out and send the verdicts of a chunk of frames.
+
+        The first chunk also sends the recording property ``rss`` (``profile``: the RSS
+        parameter profile of the run).
+        """
+        if verdicts and not self._profile_sent:
+            values = rr.AnyValues()
+            values.with_component_from_data("profile", verdicts[0].profile)
+            self.recording.send_property("rss", values)
+            self._profile_sent = True
         self.send_columns(layout.frame, layout.t_ns, layout_rss(frames, verdicts))
