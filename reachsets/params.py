@@ -84,12 +84,31 @@ class RoadRuleParams:
         brake_comfort_mps2: Deceleration a yielding vehicle is assumed able to use.
         on_road_margin_m: Footprint may stick out of the road by this much and still count
             as "on the road".
+        lane_rules: Evaluate the lane rules (``road.keep_lane``, ``road.no_cut_in``, see
+            ``rules_lane``). Off by default (the reference has no lane rules); the workbench
+            turns them on for recorded road drives (``--reach-rules public-road``).
+        lane_change_v_lat_mps: Lateral velocity towards a side (relative to the lane) from
+            which a vehicle counts as changing lanes to that side.
+        lane_change_offset_m: Offset of the centre from the lane's centre line towards a side
+            from which a vehicle counts as changing lanes to that side.
+        lane_margin_m: A footprint sticking out of its lane by more than this is crossing.
+        cut_in_gap_s: Time gap (at the ego's current speed) before and behind the ego in
+            its lane into which no vehicle may change lanes.
+        cut_in_gap_min_m: Smallest such gap.
+        corridor_length_m: How far along successor lanes a lane corridor reaches.
     """
 
     enabled: bool = True
     speed_tolerance: float = 0.1
     brake_comfort_mps2: float = 4.0
     on_road_margin_m: float = 0.1
+    lane_rules: bool = False
+    lane_change_v_lat_mps: float = 0.5
+    lane_change_offset_m: float = 0.6
+    lane_margin_m: float = 0.1
+    cut_in_gap_s: float = 0.9
+    cut_in_gap_min_m: float = 2.0
+    corridor_length_m: float = 300.0
 
 
 @dataclass(frozen=True, slots=True)

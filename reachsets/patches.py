@@ -28,8 +28,12 @@ __all__ = [
     "RulePatch",
     "keep_largest_part",
     "patch_grid",
+    "robust_difference",
     "subtract_patches",
 ]
+
+#: Precision grid of the fallback overlay [m].
+_GRID_M = 1e-6
 
 
 @dataclass(frozen=True, slots=True)
@@ -168,8 +172,27 @@ def subtract_patches(
     for cut in (grid.every[i], grid.at[i, k]):
         has = np.asarray([g is not None for g in cut], dtype=bool)
         if has.any():
-            out[has] = shapely.difference(out[has], cut[has].astype(object))
+            out[has] = robust_difference(out[has], cut[has].astype(object))
     return out.reshape(reach.shape)
+
+
+def robust_difference(a: NDArray[np.object_], b: NDArray[np.object_]) -> NDArray[np.object_]:
+    """``shapely.difference(a, b)`` element-wise; where GEOS' overlay fails, snap-rounded.
+
+    GEOS' floating overlay can fail on nearly coincident edges ("Unable to determine overlay
+    result geometry dimension", met on lane-corridor patches of real maps). The failing pairs
+    are recomputed with a 1 micrometre precision grid (snap-rounding, robust by construction).
+    """
+    try:
+        return np.asarray(shapely.difference(a, b))
+    except shapely.errors.GEOSException:
+        out = np.empty(len(a), dtype=object)
+        for n, (x, y) in enumerate(zip(a, b, strict=True)):
+            try:
+                out[n] = shapely.difference(x, y)
+            except shapely.errors.GEOSException:
+                out[n] = shapely.difference(x, y, grid_size=_GRID_M)
+        return out
 
 
 def keep_largest_part(geoms: NDArray[np.object_]) -> NDArray[np.object_]:

@@ -8,7 +8,7 @@ left out and named in ``RoadGeometry.skipped``; the rest of the layout is used a
 from __future__ import annotations
 
 import logging
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -40,6 +40,7 @@ class RoadGeometry:
         lanes_by_id: Lane id -> index into ``lanes`` and ``lane_polys``.
         skipped: The lanes and solid lines left out, as ``"lane <id>"`` and
             ``"solid line <index into RoadLayout.solid_lines_m>"``.
+        cache: Shapes derived on first use (lane corridors, see ``reachsets.lanes``).
     """
 
     lanes: tuple[RoadLane, ...]
@@ -48,6 +49,7 @@ class RoadGeometry:
     solid: Any
     lanes_by_id: dict[str, int]
     skipped: tuple[str, ...] = ()
+    cache: dict[str, Any] = field(default_factory=dict, compare=False, repr=False)
 
 
 def polylines(lines: Sequence[NDArray[np.float64]]) -> NDArray[np.object_]:

@@ -26,6 +26,8 @@ road.speed_limit    H below_limit                              step k: the half-
                                                                d = distance with accel ``a``
                                                                up to the capped speed
 ==================  =========================================  ==============================
+
+With ``RoadRuleParams.lane_rules`` the lane rules of ``rules_lane`` run as well.
 """
 
 from __future__ import annotations
@@ -39,6 +41,7 @@ from reachsets.footprints import body_to_map
 from reachsets.ltl import And, Atom, Historically, LtlMemory, Since, step
 from reachsets.patches import RuleContext, RulePatch
 from reachsets.road import RoadGeometry, prepare_road
+from reachsets.rules_lane import evaluate_lanes
 
 if TYPE_CHECKING:
     from collections.abc import Mapping
@@ -165,6 +168,10 @@ def evaluate_road(
         for i in np.flatnonzero(results["road.right_of_way"])
     )
     patches.extend(_speed_patches(ctx, np.flatnonzero(results["road.speed_limit"]), limit))
+    if p.lane_rules:
+        lane_patches, lane_mem = evaluate_lanes(ctx, memory, geo, aligned)
+        patches += lane_patches
+        mem.update(lane_mem)
     return patches, mem
 
 

@@ -7,6 +7,7 @@ drive. A few frames of each drive keep this test short.
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import json
 import sqlite3
@@ -41,7 +42,9 @@ NGSIM = (
 FRAMES, STRIDE = 4, 4
 
 
-def _verdicts(drive_path: Path, map_path: Path | None = None) -> list[bool]:
+def _verdicts(
+    drive_path: Path, map_path: Path | None = None, params: ReachParams | None = None
+) -> list[bool]:
     """``is_safe`` of ``FRAMES`` frames of the drive, checking that no road element was dropped."""
     drive = open_drive(drive_path, map=map_path)
     try:
@@ -53,7 +56,7 @@ def _verdicts(drive_path: Path, map_path: Path | None = None) -> list[bool]:
     finally:
         drive.close()
     assert len(inputs) == FRAMES
-    results, _ = evaluate_frames(inputs, ReachParams(), None)
+    results, _ = evaluate_frames(inputs, params or ReachParams(), None)
     assert all(r.skipped_road == () for r in results)
     return [r.is_safe for r in results]
 
@@ -61,6 +64,16 @@ def _verdicts(drive_path: Path, map_path: Path | None = None) -> list[bool]:
 @pytest.mark.parametrize("name", NGSIM)
 def test_engine_rates_every_frame_of_ngsim(external_dir, name):
     verdicts = _verdicts(external_dir / "commonroad_ngsim" / f"{name}.xml")
+    assert len(verdicts) == FRAMES
+    assert all(isinstance(v, bool) for v in verdicts)
+
+
+@pytest.mark.parametrize("name", NGSIM)
+def test_lane_rules_rate_every_frame_of_ngsim(external_dir, name):
+    """The public-road lane rules build their corridors on every NGSIM lanelet map."""
+    base = ReachParams()
+    params = dataclasses.replace(base, road=dataclasses.replace(base.road, lane_rules=True))
+    verdicts = _verdicts(external_dir / "commonroad_ngsim" / f"{name}.xml", params=params)
     assert len(verdicts) == FRAMES
     assert all(isinstance(v, bool) for v in verdicts)
 

@@ -10,7 +10,15 @@ from rich.console import Console
 from rich.table import Table
 
 from workbench.cli.losses import VerboseOption, echo_losses
-from workbench.cli.options import EGO_TOPIC_HELP, ReachMethodOption, RssProfileOption
+from workbench.cli.options import (
+    EGO_TOPIC_HELP,
+    REACH_RULES_HELP,
+    REACH_TRAJECTORY_HELP,
+    ReachMethodOption,
+    ReachRulesOption,
+    ReachTrajectoryOption,
+    RssProfileOption,
+)
 from workbench.cli.progress import frame_progress
 from workbench.drives import ego_size, load_rss_params, open_log, window_ns
 from workbench.errors import WorkbenchError
@@ -53,6 +61,12 @@ def evaluate(
     reach_method: Annotated[
         ReachMethodOption, typer.Option("--reach-method", help="Reachable-set method.")
     ] = ReachMethodOption.turn,
+    reach_rules: Annotated[
+        ReachRulesOption, typer.Option("--reach-rules", help=REACH_RULES_HELP)
+    ] = ReachRulesOption.public_road,
+    reach_trajectory: Annotated[
+        ReachTrajectoryOption, typer.Option("--reach-trajectory", help=REACH_TRAJECTORY_HELP)
+    ] = ReachTrajectoryOption.auto,
     per_frame: Annotated[
         Path | None, typer.Option("--per-frame", help="Write one JSON line per frame here.")
     ] = None,
@@ -79,7 +93,12 @@ def evaluate(
     drive = open_log(log, map_path=map_path, profile=profile, ego_id=ego_id, ego_topic=ego_topic)
     try:
         params = load_rss_params(rss_params, rss_profile, drive.lane_map)
-        settings = EngineSettings(rss_params=params, reach_method=reach_method.value)
+        settings = EngineSettings(
+            rss_params=params,
+            reach_method=reach_method.value,
+            reach_rules=reach_rules.setting,
+            reach_trajectory=reach_trajectory.value,
+        )
         runners = build_runners(names, drive.lane_map, settings)
         start_ns, end_ns = window_ns(drive, start, end)
         with frame_progress() as bar:

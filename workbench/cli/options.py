@@ -7,7 +7,15 @@ from typing import Annotated
 
 import typer
 
-__all__ = ["EGO_TOPIC_HELP", "ReachMethodOption", "RssProfileOption"]
+__all__ = [
+    "EGO_TOPIC_HELP",
+    "REACH_RULES_HELP",
+    "REACH_TRAJECTORY_HELP",
+    "ReachMethodOption",
+    "ReachRulesOption",
+    "ReachTrajectoryOption",
+    "RssProfileOption",
+]
 
 #: Help of ``--ego-topic`` (info, evaluate, replay).
 EGO_TOPIC_HELP = "Ego topic of a ROS/MCAP log (over the profile and the detected one)."
@@ -32,3 +40,35 @@ class ReachMethodOption(enum.StrEnum):
     simple = "simple"
     turn = "turn"
     bound = "bound"
+
+
+#: Help of ``--reach-rules``.
+REACH_RULES_HELP = (
+    "Reach-set rules: public-road adds the lane rules (keep lane unless observably changing,"
+    " no cut-in at the ego); reference = the TrajectorySupervisor's rules only."
+)
+#: Help of ``--reach-trajectory``.
+REACH_TRAJECTORY_HELP = (
+    "Ego trajectory the reach sets rate: auto = the log's emergency trajectory, else braking"
+    " from the ego's state along its path; planned = the log's plan; braking = always the stop."
+)
+
+
+class ReachRulesOption(enum.StrEnum):
+    """``--reach-rules`` values (``value`` is the engine setting)."""
+
+    public_road = "public-road"
+    reference = "reference"
+
+    @property
+    def setting(self) -> str:
+        """The ``EngineSettings.reach_rules`` value."""
+        return self.value.replace("-", "_")
+
+
+class ReachTrajectoryOption(enum.StrEnum):
+    """``--reach-trajectory`` values."""
+
+    auto = "auto"
+    planned = "planned"
+    braking = "braking"

@@ -9,7 +9,15 @@ from typing import Annotated
 import typer
 
 from workbench.cli.losses import VerboseOption, echo_losses
-from workbench.cli.options import EGO_TOPIC_HELP, ReachMethodOption, RssProfileOption
+from workbench.cli.options import (
+    EGO_TOPIC_HELP,
+    REACH_RULES_HELP,
+    REACH_TRAJECTORY_HELP,
+    ReachMethodOption,
+    ReachRulesOption,
+    ReachTrajectoryOption,
+    RssProfileOption,
+)
 from workbench.cli.progress import run_with_progress
 from workbench.drives import default_output, ego_size, load_rss_params, open_log
 
@@ -73,6 +81,12 @@ def replay(
     reach_method: Annotated[
         ReachMethodOption, typer.Option("--reach-method", help="Reachable-set method.")
     ] = ReachMethodOption.turn,
+    reach_rules: Annotated[
+        ReachRulesOption, typer.Option("--reach-rules", help=REACH_RULES_HELP)
+    ] = ReachRulesOption.public_road,
+    reach_trajectory: Annotated[
+        ReachTrajectoryOption, typer.Option("--reach-trajectory", help=REACH_TRAJECTORY_HELP)
+    ] = ReachTrajectoryOption.auto,
     rss_params: Annotated[
         Path | None,
         typer.Option("--rss-params", help="TOML with RSS dynamics and [scene] settings."),
@@ -91,7 +105,11 @@ def replay(
     try:
         params = load_rss_params(rss_params, rss_profile, drive.lane_map)
         settings = EngineSettings(
-            rss_params=params, reach_method=reach_method.value, full_geometry=True
+            rss_params=params,
+            reach_method=reach_method.value,
+            reach_rules=reach_rules.setting,
+            reach_trajectory=reach_trajectory.value,
+            full_geometry=True,
         )
         runners = build_runners(parse_engines(engines), drive.lane_map, settings)
         summary = run_with_progress(

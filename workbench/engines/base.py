@@ -102,11 +102,18 @@ class EngineSettings:
             (``--rss-params``); ``None`` = defaults.
         reach_method: ``--reach-method`` (``simple``, ``turn`` or ``bound``).
         full_geometry: Compute everything the viewer draws (replay), not only the verdict.
+        reach_rules: ``--reach-rules``: ``public_road`` (the reference's rules plus the lane
+            rules, the default for recorded drives) or ``reference``.
+        reach_trajectory: ``--reach-trajectory``: ``auto`` (the log's emergency trajectory
+            when it has one, else braking from the ego's state; the default), ``planned`` or
+            ``braking``.
     """
 
     rss_params: RssParams | None = None
     reach_method: str = "turn"
     full_geometry: bool = False
+    reach_rules: str = "public_road"
+    reach_trajectory: str = "auto"
 
 
 @dataclass(frozen=True, slots=True)

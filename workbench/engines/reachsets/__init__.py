@@ -27,7 +27,13 @@ def _build(lane_map: LaneMap | None, settings: EngineSettings) -> EngineRunner:
     from workbench.engines.reachsets.runner import ReachRunner  # noqa: PLC0415
 
     method = ReachMethod(settings.reach_method)
-    return ReachRunner(lane_map, method=method, full_geometry=settings.full_geometry)
+    return ReachRunner(
+        lane_map,
+        method=method,
+        full_geometry=settings.full_geometry,
+        rules=settings.reach_rules,
+        trajectory=settings.reach_trajectory,
+    )
 
 
 def _sink(recording: rr.RecordingStream) -> EngineSink:

@@ -3,12 +3,13 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from loaders.maps.model import DRIVABLE_LANE_KINDS, LaneDirection, LaneKind, LineType
 from reachsets.adapter import reach_inputs_from_arrays
+from reachsets.braking import braking_trajectory
 from reachsets.inputs import RightOfWayRule, RoadLane, RoadLayout, TrackBounds
 
 if TYPE_CHECKING:
@@ -18,9 +19,12 @@ if TYPE_CHECKING:
 
 __all__ = [
     "PLAN_FALLBACK_HORIZON_S",
+    "TRAJECTORY_MODES",
     "ReachMap",
+    "ego_trajectory",
     "frame_to_reach_inputs",
     "prepare_map",
+    "reach_inputs_and_kind",
     "road_layout_from_lane_map",
 ]
 
@@ -28,6 +32,8 @@ __all__ = [
 PLAN_FALLBACK_HORIZON_S = 4.0
 #: The reach-set road layout: the drivable lanes of motor vehicles (not bicycle lanes).
 _MOTOR_LANE_KINDS = DRIVABLE_LANE_KINDS - {LaneKind.BICYCLE}
+_NO_PATH = (np.zeros(0), np.zeros(0), np.zeros(0))
+_Trajectory = tuple[Any, Any, Any, Any, Any]
 
 
 def road_layout_from_lane_map(lane_map: LaneMap) -> RoadLayout | None:
@@ -85,30 +91,71 @@ def prepare_map(lane_map: LaneMap | None) -> ReachMap:
     return ReachMap(road=road_layout_from_lane_map(lane_map))
 
 
-def frame_to_reach_inputs(frame: Frame, lane_map: LaneMap | ReachMap | None) -> ReachInputs:
-    """Engine inputs of one frame.
+#: ``trajectory`` modes of ``frame_to_reach_inputs``.
+TRAJECTORY_MODES = ("planned", "auto", "braking")
 
-    The plan becomes the ego trajectory (its ``t_offset_s`` when known, else timed from its
-    speeds); without a plan the ego keeps its current speed and heading. The map is
-    converted with ``prepare_map`` (pass a ``ReachMap`` to convert it once per drive).
+
+def ego_trajectory(frame: Frame, mode: str = "planned") -> tuple[_Trajectory, str]:
+    """The ego trajectory to rate and what it is.
+
+    Modes: ``planned`` rates the log's plan as it is (without a plan the ego keeps its speed
+    and heading for ``PLAN_FALLBACK_HORIZON_S``); ``braking`` rates the stop from the ego's
+    state along its path (``reachsets.braking``); ``auto`` rates the plan when the log says
+    it is an emergency trajectory (``extras["plan_kind"] == "emergency"``, the
+    ScenarioArchitect logs), else the stop.
+
+    Returns:
+        ``(x, y, yaw, speed, t)`` (``t`` ``None``: time the waypoints from their speeds) and
+        the kind: ``"emergency"``, ``"planned"``, ``"constant_speed"`` (no plan) or
+        ``"braking_from_state"``.
     """
+    if mode not in TRAJECTORY_MODES:
+        msg = f"trajectory mode {mode!r}: expected one of {', '.join(TRAJECTORY_MODES)}"
+        raise ValueError(msg)
     ego = frame.ego
     plan = frame.plan
-    if plan is not None and len(plan) > 0:
-        x, y, yaw = plan.x_m, plan.y_m, plan.yaw_rad
+    has_plan = plan is not None and len(plan) > 0
+    emergency = has_plan and frame.extras.get("plan_kind") == "emergency"
+    if mode == "braking" or (mode == "auto" and not emergency):
+        path = (plan.x_m, plan.y_m, plan.yaw_rad) if plan is not None and has_plan else _NO_PATH
+        (x, y, yaw, speed), t = braking_trajectory(
+            ego.x_m, ego.y_m, ego.yaw_rad, ego.speed_mps, *path
+        )
+        return (x, y, yaw, speed, t), "braking_from_state"
+    if plan is not None and has_plan:
         speed = np.where(np.isfinite(plan.speed_mps), plan.speed_mps, ego.speed_mps)
-        t = plan.t_offset_s if np.all(np.isfinite(plan.t_offset_s)) else None
-    else:
-        t = np.linspace(0.0, PLAN_FALLBACK_HORIZON_S, 21)
-        dist = ego.speed_mps * t
-        x = ego.x_m + np.cos(ego.yaw_rad) * dist
-        y = ego.y_m + np.sin(ego.yaw_rad) * dist
-        yaw = np.full_like(t, ego.yaw_rad)
-        speed = np.full_like(t, ego.speed_mps)
+        t_plan = plan.t_offset_s if np.all(np.isfinite(plan.t_offset_s)) else None
+        kind = "emergency" if emergency else "planned"
+        return (plan.x_m, plan.y_m, plan.yaw_rad, speed, t_plan), kind
+    t = np.linspace(0.0, PLAN_FALLBACK_HORIZON_S, 21)
+    dist = ego.speed_mps * t
+    x = ego.x_m + np.cos(ego.yaw_rad) * dist
+    y = ego.y_m + np.sin(ego.yaw_rad) * dist
+    return (x, y, np.full_like(t, ego.yaw_rad), np.full_like(t, ego.speed_mps), t), "constant_speed"
+
+
+def frame_to_reach_inputs(
+    frame: Frame, lane_map: LaneMap | ReachMap | None, trajectory: str = "planned"
+) -> ReachInputs:
+    """Engine inputs of one frame.
+
+    The ego trajectory is chosen by ``trajectory`` (see ``ego_trajectory``; ``planned``: the
+    plan, its ``t_offset_s`` when known, else timed from its speeds). The map is converted
+    with ``prepare_map`` (pass a ``ReachMap`` to convert it once per drive).
+    """
+    return reach_inputs_and_kind(frame, lane_map, trajectory)[0]
+
+
+def reach_inputs_and_kind(
+    frame: Frame, lane_map: LaneMap | ReachMap | None, trajectory: str = "planned"
+) -> tuple[ReachInputs, str]:
+    """``frame_to_reach_inputs`` and the kind of the ego trajectory (``ego_trajectory``)."""
+    ego = frame.ego
+    (x, y, yaw, speed, t), kind = ego_trajectory(frame, trajectory)
     actors = frame.actors
     valid = np.asarray(actors.valid, dtype=bool)
     prepared = lane_map if isinstance(lane_map, ReachMap) else prepare_map(lane_map)
-    return reach_inputs_from_arrays(
+    inputs = reach_inputs_from_arrays(
         ego_x_m=x,
         ego_y_m=y,
         ego_yaw_rad=yaw,
@@ -126,3 +173,4 @@ def frame_to_reach_inputs(frame: Frame, lane_map: LaneMap | ReachMap | None) -> 
         track=prepared.track,
         road=prepared.road,
     )
+    return inputs, kind

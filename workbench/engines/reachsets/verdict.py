@@ -21,6 +21,9 @@ class ReachVerdict:
         cause: ``"reach-set collision"`` when unsafe, else ``""``.
         margin: Earliest collision offset into the plan [s] (``inf`` when safe).
         result: The engine's result (sets, occupancy, patches, collisions).
+        trajectory: The ego trajectory rated: ``"emergency"``, ``"planned"``,
+            ``"constant_speed"`` (no plan: speed and heading held) or
+            ``"braking_from_state"`` (``reachsets.braking``).
     """
 
     is_safe: bool
@@ -28,14 +31,16 @@ class ReachVerdict:
     cause: str
     margin: float
     result: ReachResult
+    trajectory: str = "planned"
 
 
-def reach_verdict(result: ReachResult) -> ReachVerdict:
-    """The verdict of one frame's result."""
+def reach_verdict(result: ReachResult, trajectory: str = "planned") -> ReachVerdict:
+    """The verdict of one frame's result (``trajectory``: the kind of ego trajectory rated)."""
     return ReachVerdict(
         is_safe=result.is_safe,
         culprits=tuple(c.object_id for c in result.collisions),
         cause="" if result.is_safe else "reach-set collision",
         margin=min((c.t_offset_s for c in result.collisions), default=float("inf")),
         result=result,
+        trajectory=trajectory,
     )
