@@ -16,6 +16,7 @@ COMMAND_MODULES: tuple[str, ...] = (
     "workbench.cli.replay",
     "workbench.cli.evaluate",
     "workbench.cli.demo",
+    "workbench.cli.incidents",
     "workbench.cli.engines",
     "workbench.cli.conformance",
     "workbench.cli.samples",
