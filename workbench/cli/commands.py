@@ -17,6 +17,7 @@ COMMAND_MODULES: tuple[str, ...] = (
     "workbench.cli.evaluate",
     "workbench.cli.demo",
     "workbench.cli.incidents",
+    "workbench.cli.label",
     "workbench.cli.engines",
     "workbench.cli.conformance",
     "workbench.cli.samples",
