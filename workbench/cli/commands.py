@@ -18,6 +18,7 @@ COMMAND_MODULES: tuple[str, ...] = (
     "workbench.cli.demo",
     "workbench.cli.incidents",
     "workbench.cli.label",
+    "workbench.cli.labels",
     "workbench.cli.engines",
     "workbench.cli.conformance",
     "workbench.cli.samples",
