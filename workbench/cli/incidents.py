@@ -45,7 +45,7 @@ def incident_table(incidents: list[Incident], t0_ns: int, title: str) -> Table:
     table = Table(title=title)
     table.add_column("id", no_wrap=True)
     for column in ("engine", "object", "cause", "frames", "start s", "dur s", "unsafe", "margin"):
-        table.add_column(column, no_wrap=column in {"engine", "object", "frames"})
+        table.add_column(column)
     for i in incidents:
         margin = i.severity.worst_margin
         table.add_row(

@@ -31,7 +31,7 @@ if TYPE_CHECKING:
     from workbench.incidents import Incident, IncidentSettings
     from workbench.sinks.violations import Violation
 
-__all__ = ["APPLICATION_ID", "ReplaySummary", "replay_drive"]
+__all__ = ["APPLICATION_ID", "ReplaySummary", "recording_id", "replay_drive"]
 
 APPLICATION_ID = "rss-workbench"
 
@@ -73,7 +73,8 @@ class ReplaySummary:
         return self.frames / self.elapsed_s if self.elapsed_s > 0 else float("inf")
 
 
-def _recording_id(drive: Drive, start_ns: int | None, end_ns: int | None) -> str:
+def recording_id(drive: Drive, start_ns: int | None, end_ns: int | None) -> str:
+    """The replay's recording id: the same drive and window give the same id."""
     key = f"{drive.info.path.resolve()}|{start_ns}|{end_ns}"
     return str(uuid.uuid5(uuid.NAMESPACE_URL, key))
 
@@ -126,7 +127,7 @@ def replay_drive(
     chunks = iter(run)
     first = next(chunks, None)
     ego_start = (first.frames[0].ego.x_m, first.frames[0].ego.y_m) if first else None
-    rec = rr.RecordingStream(APPLICATION_ID, recording_id=_recording_id(drive, start_ns, end_ns))
+    rec = rr.RecordingStream(APPLICATION_ID, recording_id=recording_id(drive, start_ns, end_ns))
     blueprint = replay_blueprint(ego_start, engines=run.engine_names)
     detector = ViolationDetector(drive.info.path.name)
     path = drive.info.path

@@ -1,0 +1,99 @@
+"""Start the review loop: optionally replay the drive into a viewer, then run the UI."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+from urllib.parse import parse_qs, urlsplit
+
+from workbench.review.app import ReviewApp
+from workbench.review.viewer import RerunLink
+
+if TYPE_CHECKING:
+    from collections.abc import Callable, Sequence
+
+    from loaders.drive import Drive
+    from workbench.driver.run import EgoSize
+    from workbench.engines.base import EngineRunner
+    from workbench.incidents import IncidentSettings
+    from workbench.review.session import ReviewSession
+    from workbench.review.viewer import ViewerLink
+
+__all__ = ["SPAWN_URL", "review_in_viewer", "run_review"]
+
+#: gRPC proxy of a viewer started by ``rr.spawn`` (its default port).
+SPAWN_URL = "rerun+http://127.0.0.1:9876/proxy"
+
+
+def run_review(session: ReviewSession, viewer: ViewerLink | None = None) -> None:
+    """Run the terminal UI until the reviewer quits."""
+    ReviewApp(session, viewer).run()
+
+
+def review_in_viewer(
+    session: ReviewSession,
+    drive: Drive,
+    runners: Sequence[EngineRunner],
+    *,
+    serve: bool,
+    bind: str,
+    ports: tuple[int, int],
+    incident_settings: IncidentSettings,
+    ego: EgoSize | None,
+    announce: Callable[[str], None],
+) -> None:
+    """Replay the drive with its incidents into a viewer, then review with it following.
+
+    Args:
+        session: The review session.
+        drive: The opened drive (the caller closes it).
+        runners: Engine runners with full geometry (the same engines as the session's).
+        serve: Serve a web viewer (on ``bind``) instead of spawning a native one.
+        bind: Address ``serve`` listens on.
+        ports: ``(grpc_port, web_port)`` of ``serve``.
+        incident_settings: The session's minimum duration and gap merging.
+        ego: The user's ego size (``--rss-params``), as the session's incidents used.
+        announce: Called with the web viewer URL (``serve``).
+    """
+    from workbench.viewer.replay import (  # noqa: PLC0415 - Rerun only when a viewer is asked
+        APPLICATION_ID,
+        recording_id,
+        replay_drive,
+    )
+
+    first = next(iter(drive.frames()), None)
+    ego_start = (first.ego.x_m, first.ego.y_m) if first is not None else None
+    names = [r.name for r in runners]
+    rid = recording_id(drive, None, None)
+    verdicts = {key: label.verdict for key, label in session.labels.items()}
+
+    def loop(grpc_url: str) -> None:
+        link = RerunLink(
+            grpc_url,
+            application_id=APPLICATION_ID,
+            recording_id=rid,
+            ego_start_m=ego_start,
+            engines=names,
+        )
+        try:
+            run_review(session, link)
+        finally:
+            link.close()
+
+    def served(url: str) -> None:
+        announce(url)
+        loop(parse_qs(urlsplit(url).query)["url"][0])
+
+    replay_drive(
+        drive,
+        spawn=not serve,
+        serve=serve,
+        bind=bind,
+        ports=ports,
+        engines=runners,
+        on_served=served,
+        incident_settings=incident_settings,
+        verdicts=verdicts,
+        ego_size=ego,
+    )
+    if not serve:
+        loop(SPAWN_URL)
