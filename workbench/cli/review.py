@@ -48,6 +48,10 @@ def review(
     serve: Annotated[
         bool, typer.Option("--serve", help="Replay into a web viewer (127.0.0.1 unless --bind).")
     ] = False,
+    connect: Annotated[
+        str | None,
+        typer.Option("--connect", help="Use a running viewer: rerun+http://HOST:PORT/proxy."),
+    ] = None,
     bind: Annotated[
         str, typer.Option("--bind", help="Address --serve listens on (0.0.0.0: the LAN).")
     ] = "127.0.0.1",
@@ -70,8 +74,8 @@ def review(
     from workbench.review import ReviewSession  # noqa: PLC0415
     from workbench.review.loop import review_in_viewer, run_review  # noqa: PLC0415
 
-    if spawn and serve:
-        raise WorkbenchError("--spawn and --serve are mutually exclusive")
+    if sum((spawn, serve, connect is not None)) > 1:
+        raise WorkbenchError("--spawn, --serve and --connect are mutually exclusive")
     report = find_with_progress(
         log,
         engines=engines,
@@ -87,7 +91,7 @@ def review(
     path = store or default_store_path()
     with LabelStore(path) as labels:
         session = ReviewSession(report, labels, reviewer or _login())
-        if not (spawn or serve):
+        if not (spawn or serve or connect):
             run_review(session)
         else:
             params = load_rss_params(rss_params)
@@ -104,6 +108,7 @@ def review(
                     drive,
                     build_runners(names, drive.lane_map, settings),
                     serve=serve,
+                    connect=connect,
                     bind=bind,
                     ports=(grpc_port, web_port),
                     incident_settings=IncidentSettings(min_duration, merge_gap),

@@ -36,9 +36,15 @@ class IncidentDetector:
         self._runs: RunMerger[IncidentKey] = RunMerger(round(self.settings.merge_gap_s * 1e9))
         #: ``(frame index, t_ns)`` of every frame added, in order.
         self.frame_times: list[tuple[int, int]] = []
+        #: Ego position ``(x, y)`` [m] at the first frame of each incident (chunks only).
+        self.ego_at_start_m: dict[int, tuple[float, float]] = {}
 
-    def add(self, frame: int, t_ns: int, verdicts: Mapping[str, Verdict]) -> None:
-        """Add one frame's verdicts per engine (frames in time order)."""
+    def add(self, frame: int, t_ns: int, verdicts: Mapping[str, Verdict]) -> bool:
+        """Add one frame's verdicts per engine (frames in time order).
+
+        Returns:
+            Whether the frame started an incident.
+        """
         self.frame_times.append((frame, t_ns))
         hits: dict[IncidentKey, Verdict] = {}
         for engine, verdict in verdicts.items():
@@ -46,16 +52,20 @@ class IncidentDetector:
                 continue
             for obj in verdict.culprits or ("",):
                 hits[engine, obj, verdict.cause] = verdict
+        started = False
         for run in self._runs.add(frame, t_ns, hits):
             if run.unsafe_frames == 1:
+                started = True
                 run.extra = list(collectors_for(run.key[0]))
             for collector in run.extra:
                 collector.add(frame, t_ns, hits[run.key], run.key[1])
+        return started
 
     def add_chunk(self, chunk: Chunk) -> None:
         """Add every frame of a driver chunk."""
         for k, frame in enumerate(chunk.frames):
-            self.add(frame.index, frame.t_ns, {n: v[k] for n, v in chunk.verdicts.items()})
+            if self.add(frame.index, frame.t_ns, {n: v[k] for n, v in chunk.verdicts.items()}):
+                self.ego_at_start_m[frame.index] = (frame.ego.x_m, frame.ego.y_m)
 
     def _incident(self, run: Run[IncidentKey]) -> Incident:
         engine, obj, cause = run.key

@@ -12,7 +12,7 @@ from workbench.incidents.detect import IncidentDetector
 from workbench.incidents.model import IncidentSettings
 
 if TYPE_CHECKING:
-    from collections.abc import Callable
+    from collections.abc import Callable, Mapping
     from pathlib import Path
 
     from loaders.errors import LoaderError
@@ -76,6 +76,7 @@ class IncidentReport:
         frame_times: ``(frame index, t_ns)`` of every frame evaluated.
         start_ns: The drive's first time stamp.
         stopped_by: The loader error that ended a truncated log early, if any.
+        ego_at_start_m: Ego position ``(x, y)`` [m] at each incident's first frame.
     """
 
     log: Path
@@ -85,6 +86,7 @@ class IncidentReport:
     frame_times: tuple[tuple[int, int], ...]
     start_ns: int
     stopped_by: LoaderError | None = None
+    ego_at_start_m: Mapping[int, tuple[float, float]] = field(default_factory=dict)
 
     def find(self, incident_id: str) -> Incident | None:
         """The incident of that id, if the drive has one."""
@@ -135,4 +137,5 @@ def find_incidents(
         frame_times=tuple(detector.frame_times),
         start_ns=start_ns,
         stopped_by=run.stopped_by,
+        ego_at_start_m=dict(detector.ego_at_start_m),
     )

@@ -35,6 +35,7 @@ def review_in_viewer(
     runners: Sequence[EngineRunner],
     *,
     serve: bool,
+    connect: str | None,
     bind: str,
     ports: tuple[int, int],
     incident_settings: IncidentSettings,
@@ -43,11 +44,16 @@ def review_in_viewer(
 ) -> None:
     """Replay the drive with its incidents into a viewer, then review with it following.
 
+    The viewer is spawned (native), served (web, on ``bind``) or already running
+    (``connect``).
+
     Args:
         session: The review session.
         drive: The opened drive (the caller closes it).
         runners: Engine runners with full geometry (the same engines as the session's).
         serve: Serve a web viewer (on ``bind``) instead of spawning a native one.
+        connect: Use the running viewer at this gRPC proxy URL instead
+            (``rerun+http://HOST:PORT/proxy``; e.g. ``rerun --headless --bind 127.0.0.1``).
         bind: Address ``serve`` listens on.
         ports: ``(grpc_port, web_port)`` of ``serve``.
         incident_settings: The session's minimum duration and gap merging.
@@ -73,6 +79,7 @@ def review_in_viewer(
             recording_id=rid,
             ego_start_m=ego_start,
             engines=names,
+            ego_at_m=session.report.ego_at_start_m,
         )
         try:
             run_review(session, link)
@@ -85,8 +92,9 @@ def review_in_viewer(
 
     replay_drive(
         drive,
-        spawn=not serve,
+        spawn=not serve and connect is None,
         serve=serve,
+        connect=connect,
         bind=bind,
         ports=ports,
         engines=runners,
@@ -96,4 +104,4 @@ def review_in_viewer(
         ego_size=ego,
     )
     if not serve:
-        loop(SPAWN_URL)
+        loop(connect or SPAWN_URL)

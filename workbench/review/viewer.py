@@ -19,7 +19,7 @@ from workbench.replay.incidents import LANES_ORIGIN, UNREVIEWED
 from workbench.replay.sink import time_index
 
 if TYPE_CHECKING:
-    from collections.abc import Sequence
+    from collections.abc import Mapping, Sequence
 
     from workbench.incidents import Incident
 
@@ -59,17 +59,24 @@ class RerunLink:
         recording_id: str,
         ego_start_m: tuple[float, float] | None,
         engines: Sequence[str],
+        ego_at_m: Mapping[int, tuple[float, float]] | None = None,
     ) -> None:
-        """Connect to the viewer's gRPC proxy ``url`` (``rerun+http://HOST:PORT/proxy``)."""
+        """Connect to the viewer's gRPC proxy ``url`` (``rerun+http://HOST:PORT/proxy``).
+
+        ``ego_at_m``: the ego's position per incident start frame; the camera starts behind
+        it (else at ``ego_start_m``, the drive's first position).
+        """
         self.recording = rr.RecordingStream(application_id, recording_id=recording_id)
         self.recording.connect_grpc(url)
         self._ego_start = ego_start_m
+        self._ego_at = dict(ego_at_m or {})
         self._engines = tuple(engines)
 
     def show(self, incident: Incident) -> None:
         """Send a blueprint selecting the incident's frames."""
         selection = (incident.start_frame, incident.end_frame)
-        blueprint = replay_blueprint(self._ego_start, self._engines, selection=selection)
+        ego = self._ego_at.get(incident.start_frame, self._ego_start)
+        blueprint = replay_blueprint(ego, self._engines, selection=selection)
         self.recording.send_blueprint(blueprint, make_active=True)
 
     def mark(self, incident: Incident, verdict: str | None) -> None:

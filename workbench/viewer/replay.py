@@ -96,6 +96,7 @@ def replay_drive(
     ego_size: EgoSize | None = None,
     incident_settings: IncidentSettings | None = None,
     verdicts: Mapping[str, str] | None = None,
+    connect: str | None = None,
 ) -> ReplaySummary:
     """Send a drive's map, frames and engine verdicts to exactly one destination.
 
@@ -118,6 +119,7 @@ def replay_drive(
         incident_settings: How the engines' unsafe frames become incidents (lanes and
             markers sent after the last frame).
         verdicts: Review verdict per incident id, shown on the lanes and markers.
+        connect: Stream to a running viewer's gRPC proxy (``rerun+http://HOST:PORT/proxy``).
 
     Returns:
         Counts and timings of the replay.
@@ -137,7 +139,14 @@ def replay_drive(
     sink = RerunDriveSink(rec, drive, run.engine_names, send_frames=send_frames)
     try:
         with attached(
-            rec, blueprint, out=out, spawn=spawn, serve=serve, ports=ports, bind=bind
+            rec,
+            blueprint,
+            out=out,
+            spawn=spawn,
+            serve=serve,
+            ports=ports,
+            bind=bind,
+            connect=connect,
         ) as to:
             for chunk in _with_first(first, chunks):
                 sink.add_chunk(chunk)
