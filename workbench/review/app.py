@@ -33,7 +33,7 @@ if TYPE_CHECKING:
 
 __all__ = ["ReviewApp"]
 
-_SHOWN = {"confirmed": "CONFIRMED", "false_positive": "false pos", "follow_up": "follow-up"}
+_SHOWN = {"confirmed": "confirmed", "false_positive": "false pos", "follow_up": "follow-up"}
 
 
 class ReviewApp(App[None]):
@@ -75,9 +75,8 @@ class ReviewApp(App[None]):
     def on_mount(self) -> None:
         """Fill the table and go to where the last session stopped."""
         table = self.query_one(DataTable)
-        table.add_columns(
-            "verdict", "id", "engine", "object", "cause", "start s", "dur s", "margin"
-        )
+        table.add_column("verdict", width=max(map(len, _SHOWN.values())))
+        table.add_columns("id", "engine", "object", "cause", "start s", "dur s", "margin")
         t0 = self.session.report.start_ns
         for incident in self.session.incidents:
             margin = incident.severity.worst_margin
