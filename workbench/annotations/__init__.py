@@ -1,7 +1,7 @@
 """Review labels: the SQLite label store and its ASAM OpenLABEL import/export."""
 
 from workbench.annotations.errors import StoreCorruptError, StoreError, StoreLockedError
-from workbench.annotations.paths import default_store_path
+from workbench.annotations.paths import default_reviewer, default_store_path
 from workbench.annotations.schema import SCHEMA_VERSION, VERDICTS
 from workbench.annotations.store import Label, LabelStore
 
@@ -13,5 +13,6 @@ __all__ = [
     "StoreCorruptError",
     "StoreError",
     "StoreLockedError",
+    "default_reviewer",
     "default_store_path",
 ]

@@ -2,10 +2,19 @@
 
 from __future__ import annotations
 
+import getpass
 import os
 from pathlib import Path
 
-__all__ = ["default_store_path"]
+__all__ = ["default_reviewer", "default_store_path"]
+
+
+def default_reviewer() -> str:
+    """The login name (``--reviewer`` not given); ``unknown`` when there is none."""
+    try:
+        return getpass.getuser()
+    except (KeyError, OSError):
+        return "unknown"
 
 
 def default_store_path() -> Path:

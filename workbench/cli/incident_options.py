@@ -6,8 +6,11 @@ incidents (and with them the ids) are declared once here.
 
 from __future__ import annotations
 
+import functools
+import inspect
+import typing
 from pathlib import Path
-from typing import TYPE_CHECKING, Annotated
+from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
@@ -16,6 +19,8 @@ from workbench.cli.progress import frame_progress
 from workbench.errors import WorkbenchError
 
 if TYPE_CHECKING:
+    from collections.abc import Callable
+
     from workbench.incidents import IncidentReport
 
 __all__ = [
@@ -31,6 +36,7 @@ __all__ = [
     "RssParamsOption",
     "StoreOption",
     "find_with_progress",
+    "with_incidents",
 ]
 
 LogArgument = Annotated[
@@ -50,11 +56,14 @@ RssParamsOption = Annotated[
     Path | None, typer.Option("--rss-params", help="TOML with RSS dynamics and [scene] settings.")
 ]
 MinDurationOption = Annotated[
-    float, typer.Option("--min-duration", help="Drop incidents shorter than this [s].", min=0.0)
+    float,
+    typer.Option("--min-duration", help="Drop incidents shorter than this many seconds.", min=0.0),
 ]
 MergeGapOption = Annotated[
     float,
-    typer.Option("--merge-gap", help="Bridge safe stretches of at most this long [s].", min=0.0),
+    typer.Option(
+        "--merge-gap", help="Bridge safe stretches of at most this many seconds.", min=0.0
+    ),
 ]
 StoreOption = Annotated[
     Path | None,
@@ -102,3 +111,48 @@ def find_with_progress(
     with frame_progress() as bar:
         task = bar.add_task(f"incidents {log.name}", total=None)
         return find_incidents(request, progress=lambda done: bar.update(task, completed=done))
+
+
+def _option(name: str, annotation: Any, default: object) -> inspect.Parameter:
+    return inspect.Parameter(
+        name, inspect.Parameter.KEYWORD_ONLY, default=default, annotation=annotation
+    )
+
+
+#: The options that decide a drive's incidents (and so their ids), in help order.
+_SHARED = (
+    _option("engines", EnginesOption, ""),
+    _option("map_path", MapOption, None),
+    _option("profile", ProfileOption, None),
+    _option("ego_id", EgoIdOption, None),
+    _option("ego_topic", EgoTopicOption, None),
+    _option("reach_method", ReachOption, ReachMethodOption.turn),
+    _option("rss_params", RssParamsOption, None),
+    _option("min_duration", MinDurationOption, 0.0),
+    _option("merge_gap", MergeGapOption, 0.0),
+)
+
+
+def with_incidents(command: Callable[..., None]) -> Callable[..., None]:
+    """Give a command the incident options; it gets the drive's ``report`` found with them.
+
+    The command declares ``log`` and ``report`` (not a CLI parameter) and its own options; the
+    returned function's signature (what typer reads) has ``log``, the command's options and
+    the shared ones, so every incident command finds incidents, and so ids, the same way.
+    """
+    hints = typing.get_type_hints(command, include_extras=True, localns={"IncidentReport": Any})
+    own = [
+        p.replace(annotation=hints.get(p.name, p.annotation))
+        for p in inspect.signature(command).parameters.values()
+        if p.name not in {"report", "return"}
+    ]
+
+    @functools.wraps(command)
+    def run(**kwargs: Any) -> None:
+        shared = {p.name: kwargs.pop(p.name) for p in _SHARED}
+        command(report=find_with_progress(kwargs["log"], **shared), **kwargs)
+
+    params = [*own, *_SHARED]
+    run.__signature__ = inspect.Signature(params)  # type: ignore[attr-defined]
+    run.__annotations__ = {p.name: p.annotation for p in params}
+    return run

@@ -10,23 +10,10 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
-from workbench.cli.incident_options import (
-    EgoIdOption,
-    EgoTopicOption,
-    EnginesOption,
-    LogArgument,
-    MapOption,
-    MergeGapOption,
-    MinDurationOption,
-    ProfileOption,
-    ReachOption,
-    RssParamsOption,
-    find_with_progress,
-)
-from workbench.cli.options import ReachMethodOption
+from workbench.cli.incident_options import LogArgument, with_incidents
 
 if TYPE_CHECKING:
-    from workbench.incidents import Incident
+    from workbench.incidents import Incident, IncidentReport
 
 __all__ = ["incident_table", "register"]
 
@@ -62,18 +49,11 @@ def incident_table(incidents: list[Incident], t0_ns: int, title: str) -> Table:
     return table
 
 
+@with_incidents
 def incidents(
     log: LogArgument,
+    report: IncidentReport,
     *,
-    engines: EnginesOption = "",
-    map_path: MapOption = None,
-    profile: ProfileOption = None,
-    ego_id: EgoIdOption = None,
-    ego_topic: EgoTopicOption = None,
-    reach_method: ReachOption = ReachMethodOption.turn,
-    rss_params: RssParamsOption = None,
-    min_duration: MinDurationOption = 0.0,
-    merge_gap: MergeGapOption = 0.0,
     engine: Annotated[
         list[str] | None, typer.Option("--engine", help="Only this engine (repeatable).")
     ] = None,
@@ -93,18 +73,6 @@ def incidents(
     """List a drive's incidents (unsafe runs per engine, object and cause), worst first."""
     from workbench.incidents import filter_incidents, write_incidents  # noqa: PLC0415
 
-    report = find_with_progress(
-        log,
-        engines=engines,
-        map_path=map_path,
-        profile=profile,
-        ego_id=ego_id,
-        ego_topic=ego_topic,
-        reach_method=reach_method,
-        rss_params=rss_params,
-        min_duration=min_duration,
-        merge_gap=merge_gap,
-    )
     found = filter_incidents(
         report.incidents,
         engines=engine or (),

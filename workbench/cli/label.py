@@ -3,27 +3,15 @@
 from __future__ import annotations
 
 import enum
-import getpass
-from typing import Annotated
+from typing import TYPE_CHECKING, Annotated
 
 import typer
 
-from workbench.cli.incident_options import (
-    EgoIdOption,
-    EgoTopicOption,
-    EnginesOption,
-    LogArgument,
-    MapOption,
-    MergeGapOption,
-    MinDurationOption,
-    ProfileOption,
-    ReachOption,
-    RssParamsOption,
-    StoreOption,
-    find_with_progress,
-)
-from workbench.cli.options import ReachMethodOption
+from workbench.cli.incident_options import LogArgument, StoreOption, with_incidents
 from workbench.errors import WorkbenchError
+
+if TYPE_CHECKING:
+    from workbench.incidents import IncidentReport
 
 __all__ = ["ReviewVerdictOption", "register"]
 
@@ -36,15 +24,10 @@ class ReviewVerdictOption(enum.StrEnum):
     follow_up = "follow_up"
 
 
-def _reviewer() -> str:
-    try:
-        return getpass.getuser()
-    except (KeyError, OSError):
-        return "unknown"
-
-
+@with_incidents
 def label(
     log: LogArgument,
+    report: IncidentReport,
     incident_id: Annotated[str, typer.Argument(help="Incident id (`workbench incidents LOG`).")],
     *,
     verdict: Annotated[ReviewVerdictOption, typer.Option("--verdict", help="Review verdict.")],
@@ -56,31 +39,14 @@ def label(
         str | None, typer.Option("--reviewer", help="Reviewer name (default: login name).")
     ] = None,
     store: StoreOption = None,
-    engines: EnginesOption = "",
-    map_path: MapOption = None,
-    profile: ProfileOption = None,
-    ego_id: EgoIdOption = None,
-    ego_topic: EgoTopicOption = None,
-    reach_method: ReachOption = ReachMethodOption.turn,
-    rss_params: RssParamsOption = None,
-    min_duration: MinDurationOption = 0.0,
-    merge_gap: MergeGapOption = 0.0,
 ) -> None:
     """Label one incident of a drive (found with the same settings as `workbench incidents`)."""
-    from workbench.annotations import LabelStore, default_store_path  # noqa: PLC0415
-
-    report = find_with_progress(
-        log,
-        engines=engines,
-        map_path=map_path,
-        profile=profile,
-        ego_id=ego_id,
-        ego_topic=ego_topic,
-        reach_method=reach_method,
-        rss_params=rss_params,
-        min_duration=min_duration,
-        merge_gap=merge_gap,
+    from workbench.annotations import (  # noqa: PLC0415
+        LabelStore,
+        default_reviewer,
+        default_store_path,
     )
+
     if report.find(incident_id) is None:
         msg = (
             f"{log}: no incident {incident_id!r} with these settings "
@@ -96,7 +62,7 @@ def label(
             verdict.value,
             tags=tag if tag is not None else (before.tags if before else ()),
             note=note if note is not None else (before.note if before else ""),
-            reviewer=reviewer or _reviewer(),
+            reviewer=reviewer or default_reviewer(),
             settings=report.settings,
             log_name=log.name,
         )

@@ -15,6 +15,7 @@ if TYPE_CHECKING:
     from collections.abc import Callable, Mapping
     from pathlib import Path
 
+    from loaders.drive import Drive
     from loaders.errors import LoaderError
     from workbench.incidents.model import Incident
 
@@ -47,6 +48,21 @@ class IncidentRequest:
     rss_params: Path | None = None
     settings: IncidentSettings = field(default_factory=IncidentSettings)
 
+    def open_drive(self) -> Drive:
+        """Open the drive with these settings (the caller closes it).
+
+        Raises:
+            WorkbenchError: The log does not exist.
+            LoaderError: The loader cannot read it.
+        """
+        return open_log(
+            self.log,
+            map_path=self.map_path,
+            profile=self.profile,
+            ego_id=self.ego_id,
+            ego_topic=self.ego_topic,
+        )
+
     def record(self) -> dict[str, Any]:
         """The settings that produced the incidents, as stored beside every label."""
         files = {"map": self.map_path, "profile": self.profile, "rss_params": self.rss_params}
@@ -77,6 +93,7 @@ class IncidentReport:
         start_ns: The drive's first time stamp.
         stopped_by: The loader error that ended a truncated log early, if any.
         ego_at_start_m: Ego position ``(x, y)`` [m] at each incident's first frame.
+        request: What the incidents were found with.
     """
 
     log: Path
@@ -87,6 +104,7 @@ class IncidentReport:
     start_ns: int
     stopped_by: LoaderError | None = None
     ego_at_start_m: Mapping[int, tuple[float, float]] = field(default_factory=dict)
+    request: IncidentRequest | None = None
 
     def find(self, incident_id: str) -> Incident | None:
         """The incident of that id, if the drive has one."""
@@ -110,13 +128,7 @@ def find_incidents(
 
     params = load_rss_params(request.rss_params)
     drive_hash = drive_content_hash(request.log) if request.log.exists() else ""
-    drive = open_log(
-        request.log,
-        map_path=request.map_path,
-        profile=request.profile,
-        ego_id=request.ego_id,
-        ego_topic=request.ego_topic,
-    )
+    drive = request.open_drive()
     try:
         settings = EngineSettings(rss_params=params, reach_method=request.reach_method)
         runners = build_runners(list(request.engines), drive.lane_map, settings)
@@ -138,4 +150,5 @@ def find_incidents(
         start_ns=start_ns,
         stopped_by=run.stopped_by,
         ego_at_start_m=dict(detector.ego_at_start_m),
+        request=request,
     )

@@ -5,6 +5,9 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 from urllib.parse import parse_qs, urlsplit
 
+from workbench.drives import ego_size, load_rss_params
+from workbench.engines import EngineSettings, build_runners
+from workbench.errors import WorkbenchError
 from workbench.review.app import ReviewApp
 from workbench.review.viewer import RerunLink
 
@@ -31,6 +34,56 @@ def run_review(session: ReviewSession, viewer: ViewerLink | None = None) -> None
 
 def review_in_viewer(
     session: ReviewSession,
+    *,
+    serve: bool,
+    connect: str | None,
+    bind: str,
+    ports: tuple[int, int],
+    announce: Callable[[str], None],
+) -> None:
+    """Replay the drive with its incidents into a viewer, then review with it following.
+
+    The drive is opened again and evaluated with the settings the session's incidents were
+    found with (``session.report.request``), now with the viewer's geometry. The viewer is
+    spawned (native), served (web, on ``bind``) or already running (``connect``).
+
+    Args:
+        session: The review session.
+        serve: Serve a web viewer (on ``bind``) instead of spawning a native one.
+        connect: Use the running viewer at this gRPC proxy URL instead
+            (``rerun+http://HOST:PORT/proxy``; e.g. ``rerun --headless --bind 127.0.0.1``).
+        bind: Address ``serve`` listens on.
+        ports: ``(grpc_port, web_port)`` of ``serve``.
+        announce: Called with the web viewer URL (``serve``).
+    """
+    request = session.report.request
+    if request is None:
+        raise WorkbenchError("this review session has no drive to replay")
+    params = load_rss_params(request.rss_params)
+    drive = request.open_drive()
+    try:
+        settings = EngineSettings(
+            rss_params=params, reach_method=request.reach_method, full_geometry=True
+        )
+        runners = build_runners(list(request.engines), drive.lane_map, settings)
+        _replay_and_review(
+            session,
+            drive,
+            runners,
+            serve=serve,
+            connect=connect,
+            bind=bind,
+            ports=ports,
+            incident_settings=request.settings,
+            ego=ego_size(params),
+            announce=announce,
+        )
+    finally:
+        drive.close()
+
+
+def _replay_and_review(
+    session: ReviewSession,
     drive: Drive,
     runners: Sequence[EngineRunner],
     *,
@@ -42,24 +95,6 @@ def review_in_viewer(
     ego: EgoSize | None,
     announce: Callable[[str], None],
 ) -> None:
-    """Replay the drive with its incidents into a viewer, then review with it following.
-
-    The viewer is spawned (native), served (web, on ``bind``) or already running
-    (``connect``).
-
-    Args:
-        session: The review session.
-        drive: The opened drive (the caller closes it).
-        runners: Engine runners with full geometry (the same engines as the session's).
-        serve: Serve a web viewer (on ``bind``) instead of spawning a native one.
-        connect: Use the running viewer at this gRPC proxy URL instead
-            (``rerun+http://HOST:PORT/proxy``; e.g. ``rerun --headless --bind 127.0.0.1``).
-        bind: Address ``serve`` listens on.
-        ports: ``(grpc_port, web_port)`` of ``serve``.
-        incident_settings: The session's minimum duration and gap merging.
-        ego: The user's ego size (``--rss-params``), as the session's incidents used.
-        announce: Called with the web viewer URL (``serve``).
-    """
     from workbench.viewer.replay import (  # noqa: PLC0415 - Rerun only when a viewer is asked
         APPLICATION_ID,
         recording_id,

@@ -11,6 +11,7 @@ import json
 import os
 import shlex
 import shutil
+import signal
 import socket
 import subprocess
 import sys
@@ -60,12 +61,10 @@ def _wait_for(session: str, text: str) -> str:
     pytest.fail(f"{text!r} never appeared; screen:\n{screen}")
 
 
-def _start(session: str, store: Path, home: Path) -> None:
-    command = [
-        *CLI, "review", str(LOG), *ARGS,
-        "--store", str(store), "--reviewer", "ann", "--serve",
-        "--grpc-port", str(_free_port()), "--web-port", str(_free_port()),
-    ]  # fmt: skip
+def _start(session: str, store: Path, home: Path, *, viewer: bool = True) -> None:
+    command = [*CLI, "review", str(LOG), *ARGS, "--store", str(store), "--reviewer", "ann"]
+    if viewer:
+        command += ["--serve", "--grpc-port", str(_free_port()), "--web-port", str(_free_port())]
     env = f"PYTHONPATH={shlex.quote(str(ROOT))} HOME={shlex.quote(str(home))} CI=1"
     run = f"env {env} {shlex.join(command)}"
     shell = f"cd {shlex.quote(str(ROOT))} && {run}; echo REVIEW-EXIT $?; sleep 600"
@@ -137,3 +136,31 @@ def main_json_incidents(tmp_path: Path) -> list[str]:
             check=True, cwd=ROOT, env=env, capture_output=True,
         )  # fmt: skip
     return [row["id"] for row in json.loads(out.read_text())]
+
+
+def _review_pid(session: str) -> int:
+    """The review process: the child of the pane's shell."""
+    shell = _tmux("display-message", "-p", "-t", session, "#{pane_pid}").strip()
+    children = Path(f"/proc/{shell}/task/{shell}/children").read_text().split()
+    assert len(children) == 1, children
+    return int(children[0])
+
+
+def test_sigkill_in_the_middle_of_a_session_loses_no_saved_verdict(tmp_path, session_name):
+    ids = main_json_incidents(tmp_path)
+    store = tmp_path / "labels.sqlite"
+    home = tmp_path / "home"
+    home.mkdir()
+    _start(session_name, store, home, viewer=False)
+    _wait_for(session_name, f"0 of {len(ids)} reviewed")
+    _keys(session_name, "c", "t", *"kill-test", "Enter", "f")
+    _wait_for(session_name, f"2 of {len(ids)} reviewed")
+    _keys(session_name, "n", *"typing when killed")  # an unsaved note, mid-edit
+    os.kill(_review_pid(session_name), signal.SIGKILL)
+    _wait_for(session_name, "REVIEW-EXIT 137")
+    with LabelStore(store) as labels:
+        found = labels.labels(drive_content_hash(LOG))
+    assert {k: (v.verdict, v.tags, v.note) for k, v in found.items()} == {
+        ids[0]: ("confirmed", (), ""),
+        ids[1]: ("false_positive", ("kill-test",), ""),
+    }
