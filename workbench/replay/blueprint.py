@@ -87,7 +87,8 @@ def replay_blueprint(
         engines: Names of the engines whose results are logged (registered engines); the
             first one's state lanes are the active tab.
         selection: ``(first, last)`` frame of an incident under review: the time panel
-            selects and loops over it, and the incidents tab is active.
+            selects and loops over it, the incidents tab is active and the camera stays put
+            at ``ego_start_m`` (pass the ego's position at the incident's start).
     """
     x0, y0 = ego_start_m or (0.0, 0.0)
     dx, dy, dz = _EYE_OFFSET_M
@@ -100,7 +101,9 @@ def replay_blueprint(
             position=(x0 + dx, y0 + dy, dz),
             look_target=(x0, y0, 0.0),
             eye_up=(0.0, 0.0, 1.0),
-            tracking_entity="/world/ego",
+            # A live viewer pulls a tracking eye in to the ego's box (about 4 m): for one
+            # incident the camera stays where the incident starts instead.
+            tracking_entity="/world/ego" if selection is None else None,
         ),
         overrides={"world/ego/trail": _trail_ranges()},
     )
