@@ -24,13 +24,17 @@ if TYPE_CHECKING:
     from workbench.incidents import IncidentReport
 
 __all__ = [
+    "CauseFilter",
     "EgoIdOption",
     "EgoTopicOption",
+    "EngineFilter",
     "EnginesOption",
     "LogArgument",
     "MapOption",
+    "MarginFilter",
     "MergeGapOption",
     "MinDurationOption",
+    "ObjectFilter",
     "ProfileOption",
     "ReachOption",
     "RssParamsOption",
@@ -64,6 +68,18 @@ MergeGapOption = Annotated[
     typer.Option(
         "--merge-gap", help="Bridge safe stretches of at most this many seconds.", min=0.0
     ),
+]
+EngineFilter = Annotated[
+    list[str] | None, typer.Option("--engine", help="Only this engine (repeatable).")
+]
+ObjectFilter = Annotated[
+    list[str] | None, typer.Option("--object", help="Only this object id (repeatable).")
+]
+CauseFilter = Annotated[
+    list[str] | None, typer.Option("--cause", help="Cause contains this (repeatable).")
+]
+MarginFilter = Annotated[
+    float | None, typer.Option("--max-margin", help="Worst margin at most this.")
 ]
 StoreOption = Annotated[
     Path | None,

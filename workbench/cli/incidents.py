@@ -10,7 +10,14 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
-from workbench.cli.incident_options import LogArgument, with_incidents
+from workbench.cli.incident_options import (
+    CauseFilter,
+    EngineFilter,
+    LogArgument,
+    MarginFilter,
+    ObjectFilter,
+    with_incidents,
+)
 
 if TYPE_CHECKING:
     from workbench.incidents import Incident, IncidentReport
@@ -54,18 +61,10 @@ def incidents(
     log: LogArgument,
     report: IncidentReport,
     *,
-    engine: Annotated[
-        list[str] | None, typer.Option("--engine", help="Only this engine (repeatable).")
-    ] = None,
-    obj: Annotated[
-        list[str] | None, typer.Option("--object", help="Only this object id (repeatable).")
-    ] = None,
-    cause: Annotated[
-        list[str] | None, typer.Option("--cause", help="Cause contains this (repeatable).")
-    ] = None,
-    max_margin: Annotated[
-        float | None, typer.Option("--max-margin", help="Worst margin at most this.")
-    ] = None,
+    engine: EngineFilter = None,
+    obj: ObjectFilter = None,
+    cause: CauseFilter = None,
+    max_margin: MarginFilter = None,
     out: Annotated[
         Path | None, typer.Option("--out", help="Write them (.json, .csv or .parquet).")
     ] = None,

@@ -2,11 +2,20 @@
 
 from __future__ import annotations
 
+import dataclasses
 from typing import TYPE_CHECKING, Annotated
 
 import typer
 
-from workbench.cli.incident_options import LogArgument, StoreOption, with_incidents
+from workbench.cli.incident_options import (
+    CauseFilter,
+    EngineFilter,
+    LogArgument,
+    MarginFilter,
+    ObjectFilter,
+    StoreOption,
+    with_incidents,
+)
 from workbench.errors import WorkbenchError
 
 if TYPE_CHECKING:
@@ -37,6 +46,10 @@ def review(
     bind: Annotated[
         str, typer.Option("--bind", help="Address --serve listens on (0.0.0.0: the LAN).")
     ] = "127.0.0.1",
+    engine: EngineFilter = None,
+    obj: ObjectFilter = None,
+    cause: CauseFilter = None,
+    max_margin: MarginFilter = None,
     grpc_port: Annotated[int, typer.Option("--grpc-port", help="--serve: gRPC port.")] = 9876,
     web_port: Annotated[int, typer.Option("--web-port", help="--serve: web page port.")] = 9090,
 ) -> None:
@@ -46,11 +59,20 @@ def review(
         default_reviewer,
         default_store_path,
     )
+    from workbench.incidents import filter_incidents  # noqa: PLC0415
     from workbench.review import ReviewSession  # noqa: PLC0415
     from workbench.review.loop import review_in_viewer, run_review  # noqa: PLC0415
 
     if sum((spawn, serve, connect is not None)) > 1:
         raise WorkbenchError("--spawn, --serve and --connect are mutually exclusive")
+    chosen = filter_incidents(
+        report.incidents,
+        engines=engine or (),
+        objects=obj or (),
+        causes=cause or (),
+        max_margin=max_margin,
+    )
+    report = dataclasses.replace(report, incidents=tuple(chosen))
     path = store or default_store_path()
     with LabelStore(path) as labels:
         session = ReviewSession(report, labels, reviewer or default_reviewer())
