@@ -63,13 +63,19 @@ def attached(
     serve: bool,
     ports: tuple[int, int],
     bind: str,
+    connect: str | None = None,
 ) -> Iterator[str]:
     """Set the stream's sink and yield where the data goes (path or URL).
 
-    A server started for ``serve`` is stopped when the block ends.
+    A server started for ``serve`` is stopped when the block ends; ``connect`` streams to a
+    running viewer's gRPC proxy (``rerun+http://HOST:PORT/proxy``).
     """
-    if sum((out is not None, spawn, serve)) != 1:
-        raise ReplayError("choose exactly one of an output file, spawn or serve")
+    if sum((out is not None, spawn, serve, connect is not None)) != 1:
+        raise ReplayError("choose exactly one of an output file, spawn, serve or connect")
+    if connect is not None:
+        rec.connect_grpc(connect, default_blueprint=blueprint)
+        yield connect
+        return
     if out is not None:
         try:
             out.parent.mkdir(parents=True, exist_ok=True)
