@@ -14,14 +14,22 @@ from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
-from workbench.cli.options import EGO_TOPIC_HELP, ReachMethodOption
+from workbench.cli.options import (
+    EGO_TOPIC_HELP,
+    REACH_RULES_HELP,
+    REACH_TRAJECTORY_HELP,
+    ReachMethodOption,
+    ReachRulesOption,
+    ReachTrajectoryOption,
+    RssProfileOption,
+)
 from workbench.cli.progress import frame_progress
 from workbench.errors import WorkbenchError
 
 if TYPE_CHECKING:
     from collections.abc import Callable
 
-    from workbench.incidents import IncidentReport
+    from workbench.incidents import IncidentReport, IncidentRequest
 
 __all__ = [
     "CauseFilter",
@@ -40,6 +48,7 @@ __all__ = [
     "RssParamsOption",
     "StoreOption",
     "find_with_progress",
+    "incident_request",
     "with_incidents",
 ]
 
@@ -58,6 +67,12 @@ ReachOption = Annotated[
 ]
 RssParamsOption = Annotated[
     Path | None, typer.Option("--rss-params", help="TOML with RSS dynamics and [scene] settings.")
+]
+ReachRulesArg = Annotated[
+    ReachRulesOption, typer.Option("--reach-rules", help=REACH_RULES_HELP)
+]
+ReachTrajectoryArg = Annotated[
+    ReachTrajectoryOption, typer.Option("--reach-trajectory", help=REACH_TRAJECTORY_HELP)
 ]
 MinDurationOption = Annotated[
     float,
@@ -89,7 +104,7 @@ StoreOption = Annotated[
 ]
 
 
-def find_with_progress(
+def incident_request(
     log: Path,
     *,
     engines: str,
@@ -98,22 +113,25 @@ def find_with_progress(
     ego_id: str | None,
     ego_topic: str | None,
     reach_method: ReachMethodOption,
+    reach_rules: ReachRulesOption,
+    reach_trajectory: ReachTrajectoryOption,
     rss_params: Path | None,
+    rss_profile: str | None,
     min_duration: float,
     merge_gap: float,
-) -> IncidentReport:
-    """Find the drive's incidents with a progress bar on stderr."""
+) -> IncidentRequest:
+    """The request the incident options describe.
+
+    Raises:
+        WorkbenchError: Unknown engine, or none.
+    """
     from workbench.engines import names, parse_engines  # noqa: PLC0415 - light start-up
-    from workbench.incidents import (  # noqa: PLC0415
-        IncidentRequest,
-        IncidentSettings,
-        find_incidents,
-    )
+    from workbench.incidents import IncidentRequest, IncidentSettings  # noqa: PLC0415
 
     chosen = parse_engines(engines) if engines.strip() else list(names())
     if not chosen:
         raise WorkbenchError("--engines: name at least one engine")
-    request = IncidentRequest(
+    return IncidentRequest(
         log=log,
         engines=tuple(chosen),
         map_path=map_path,
@@ -123,9 +141,18 @@ def find_with_progress(
         reach_method=reach_method.value,
         rss_params=rss_params,
         settings=IncidentSettings(min_duration_s=min_duration, merge_gap_s=merge_gap),
+        rss_profile=rss_profile,
+        reach_rules=reach_rules.setting,
+        reach_trajectory=reach_trajectory.value,
     )
+
+
+def find_with_progress(request: IncidentRequest) -> IncidentReport:
+    """Find the request's incidents with a progress bar on stderr."""
+    from workbench.incidents import find_incidents  # noqa: PLC0415 - light start-up
+
     with frame_progress() as bar:
-        task = bar.add_task(f"incidents {log.name}", total=None)
+        task = bar.add_task(f"incidents {request.log.name}", total=None)
         return find_incidents(request, progress=lambda done: bar.update(task, completed=done))
 
 
@@ -143,7 +170,10 @@ _SHARED = (
     _option("ego_id", EgoIdOption, None),
     _option("ego_topic", EgoTopicOption, None),
     _option("reach_method", ReachOption, ReachMethodOption.turn),
+    _option("reach_rules", ReachRulesArg, ReachRulesOption.public_road),
+    _option("reach_trajectory", ReachTrajectoryArg, ReachTrajectoryOption.auto),
     _option("rss_params", RssParamsOption, None),
+    _option("rss_profile", RssProfileOption, None),
     _option("min_duration", MinDurationOption, 0.0),
     _option("merge_gap", MergeGapOption, 0.0),
 )
@@ -166,7 +196,7 @@ def with_incidents(command: Callable[..., None]) -> Callable[..., None]:
     @functools.wraps(command)
     def run(**kwargs: Any) -> None:
         shared = {p.name: kwargs.pop(p.name) for p in _SHARED}
-        command(report=find_with_progress(kwargs["log"], **shared), **kwargs)
+        command(report=find_with_progress(incident_request(kwargs["log"], **shared)), **kwargs)
 
     params = [*own, *_SHARED]
     run.__signature__ = inspect.Signature(params)  # type: ignore[attr-defined]

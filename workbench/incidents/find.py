@@ -17,6 +17,8 @@ if TYPE_CHECKING:
 
     from loaders.drive import Drive
     from loaders.errors import LoaderError
+    from workbench.driver.run import EgoSize
+    from workbench.engines.base import EngineRunner, EngineSettings
     from workbench.incidents.model import Incident
 
 __all__ = ["IncidentReport", "IncidentRequest", "find_incidents"]
@@ -36,6 +38,9 @@ class IncidentRequest:
         reach_method: ``--reach-method``.
         rss_params: ``--rss-params`` TOML.
         settings: Minimum duration and gap merging.
+        rss_profile: ``--rss-profile`` (``None``: ``auto``, as ``evaluate``).
+        reach_rules: ``--reach-rules`` setting (``public_road`` or ``reference``).
+        reach_trajectory: ``--reach-trajectory`` (``auto``, ``planned`` or ``braking``).
     """
 
     log: Path
@@ -47,6 +52,9 @@ class IncidentRequest:
     reach_method: str = "turn"
     rss_params: Path | None = None
     settings: IncidentSettings = field(default_factory=IncidentSettings)
+    rss_profile: str | None = None
+    reach_rules: str = "public_road"
+    reach_trajectory: str = "auto"
 
     def open_drive(self) -> Drive:
         """Open the drive with these settings (the caller closes it).
@@ -63,12 +71,49 @@ class IncidentRequest:
             ego_topic=self.ego_topic,
         )
 
+    def engine_settings(self, drive: Drive, *, full_geometry: bool = False) -> EngineSettings:
+        """The engines' settings for an opened drive (the ``auto`` profile reads its map).
+
+        ``full_geometry``: compute what a viewer draws too (replays), not only the verdicts.
+
+        Raises:
+            WorkbenchError: Unreadable ``--rss-params``.
+            RssParameterError: Bad parameters or an unknown profile.
+        """
+        from workbench.engines import EngineSettings  # noqa: PLC0415 - light start-up
+
+        return EngineSettings(
+            rss_params=load_rss_params(self.rss_params, self.rss_profile, drive.lane_map),
+            reach_method=self.reach_method,
+            reach_rules=self.reach_rules,
+            reach_trajectory=self.reach_trajectory,
+            full_geometry=full_geometry,
+        )
+
+    def runners(self, drive: Drive, *, full_geometry: bool = False) -> list[EngineRunner]:
+        """Fresh runners of the requested engines for an opened drive.
+
+        Raises:
+            WorkbenchError: Unknown engine or unreadable ``--rss-params``.
+        """
+        from workbench.engines import build_runners  # noqa: PLC0415 - light start-up
+
+        settings = self.engine_settings(drive, full_geometry=full_geometry)
+        return build_runners(list(self.engines), drive.lane_map, settings)
+
+    def ego_size(self, drive: Drive) -> EgoSize | None:
+        """The ego size the settings give the drive (``--rss-params [scene]``), if any."""
+        return ego_size(self.engine_settings(drive).rss_params)
+
     def record(self) -> dict[str, Any]:
         """The settings that produced the incidents, as stored beside every label."""
         files = {"map": self.map_path, "profile": self.profile, "rss_params": self.rss_params}
         return {
             "engines": list(self.engines),
+            "rss_profile": self.rss_profile or "auto",
             "reach_method": self.reach_method,
+            "reach_rules": self.reach_rules,
+            "reach_trajectory": self.reach_trajectory,
             "ego_id": self.ego_id,
             "ego_topic": self.ego_topic,
             **{
@@ -124,15 +169,10 @@ def find_incidents(
         WorkbenchError: Missing log, unknown engine, unreadable settings file.
         LoaderError: The log cannot be opened.
     """
-    from workbench.engines import EngineSettings, build_runners  # noqa: PLC0415 - light start
-
-    params = load_rss_params(request.rss_params)
     drive_hash = drive_content_hash(request.log) if request.log.exists() else ""
     drive = request.open_drive()
     try:
-        settings = EngineSettings(rss_params=params, reach_method=request.reach_method)
-        runners = build_runners(list(request.engines), drive.lane_map, settings)
-        run = DriveRun(drive, runners, ego_size=ego_size(params))
+        run = DriveRun(drive, request.runners(drive), ego_size=request.ego_size(drive))
         detector = IncidentDetector(drive_hash, request.settings)
         for chunk in run:
             detector.add_chunk(chunk)

@@ -5,8 +5,6 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 from urllib.parse import parse_qs, urlsplit
 
-from workbench.drives import ego_size, load_rss_params
-from workbench.engines import EngineSettings, build_runners
 from workbench.errors import WorkbenchError
 from workbench.review.app import ReviewApp
 from workbench.review.viewer import RerunLink
@@ -59,23 +57,18 @@ def review_in_viewer(
     request = session.report.request
     if request is None:
         raise WorkbenchError("this review session has no drive to replay")
-    params = load_rss_params(request.rss_params)
     drive = request.open_drive()
     try:
-        settings = EngineSettings(
-            rss_params=params, reach_method=request.reach_method, full_geometry=True
-        )
-        runners = build_runners(list(request.engines), drive.lane_map, settings)
         _replay_and_review(
             session,
             drive,
-            runners,
+            request.runners(drive, full_geometry=True),
             serve=serve,
             connect=connect,
             bind=bind,
             ports=ports,
             incident_settings=request.settings,
-            ego=ego_size(params),
+            ego=request.ego_size(drive),
             announce=announce,
         )
     finally:

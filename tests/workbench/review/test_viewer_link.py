@@ -16,7 +16,6 @@ import rerun_cli  # type: ignore[import-untyped]
 from rerun.experimental import ViewerClient
 
 from tests.conftest import running_in_ci
-from workbench.engines import EngineSettings, build_runners
 from workbench.incidents import IncidentRequest, find_incidents
 from workbench.review.viewer import RerunLink
 from workbench.viewer.replay import APPLICATION_ID, recording_id, replay_drive
@@ -77,14 +76,12 @@ def _selection(client: ViewerClient, want: dict[str, int]) -> dict[str, int]:
 
 def test_each_incident_shown_selects_its_frames_in_the_live_recording(viewer_url):
     log = ROOT / "sample_logs" / "hard_braking_lead.mcap"
-    request = IncidentRequest(log, engines=ENGINES, reach_method="simple")
+    request = IncidentRequest(log, engines=ENGINES, reach_method="simple", reach_rules="reference")
     report = find_incidents(request)
     client = _connect(viewer_url)
     drive = request.open_drive()
     try:
-        runners = build_runners(
-            list(ENGINES), drive.lane_map, EngineSettings(reach_method="simple", full_geometry=True)
-        )
+        runners = request.runners(drive, full_geometry=True)  # the settings the report used
         summary = replay_drive(drive, connect=viewer_url, engines=runners)
         rid = recording_id(drive, None, None)
     finally:

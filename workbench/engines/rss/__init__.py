@@ -47,7 +47,13 @@ SPEC = EngineSpec(
     title="rss",
     short="rss",
     state_origin="/rss/structured",
-    causes=("RSS BrakeMin", "RSS BrakeMinCorrect", "RSS None"),
+    # the proper responses an unsafe frame demands, e.g. "RSS lon BrakeMin, lat-left BrakeMin"
+    causes=(
+        "RSS lon BrakeMinCorrect",
+        "RSS lon BrakeMin",
+        "RSS lat-left BrakeMin",
+        "RSS lat-right BrakeMin",
+    ),
     build=_build,
     record=rss_record,
     sink=_sink,

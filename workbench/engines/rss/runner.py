@@ -11,7 +11,7 @@ from rss import evaluate_frames
 from rss.params import RssParams
 from rss.scene import SceneMemo, prepare
 from rss.scene.boundaries import LEFT_BOUNDARY_ID, RIGHT_BOUNDARY_ID
-from rss.structured.states import LongitudinalResponse
+from rss.structured.states import LateralResponse, LongitudinalResponse
 from workbench.engines.ids import IdMap
 from workbench.engines.rss.adapter import frame_to_scene, lane_graph_from_map
 from workbench.engines.rss.compliance import ComplianceTracker
@@ -133,7 +133,7 @@ class RssRunner:
         culprits = tuple(sorted({_label(self._ids, int(x)) for x in dangerous}))
         bad = object_id[np.asarray(result.invalid) != 0]
         is_safe = bool(result.responses.is_safe[0])
-        response = LongitudinalResponse(int(result.responses.longitudinal_response[0]))
+        cause = "" if is_safe else _cause(result)
         margin = float("inf") if is_safe else 0.0
         if not is_safe and result.severity is not None:
             margin = float(np.min(result.severity.distance_ratio[result.dangerous]))
@@ -141,7 +141,7 @@ class RssRunner:
         return RssVerdict(
             is_safe=is_safe,
             culprits=culprits,
-            cause="" if is_safe else f"RSS {response}",
+            cause=cause,
             margin=margin,
             invalid_objects=tuple(sorted({*invalid, *(self._ids.to_str(int(x)) for x in bad)})),
             labels=tuple(_label(self._ids, int(x)) for x in object_id),
@@ -156,6 +156,21 @@ class RssRunner:
             else result.responsibility.responsible,
             profile=self._params.profile_label,
         )
+
+
+def _cause(result: FrameResult) -> str:
+    """``"RSS lon BrakeMin, lat-left BrakeMin"``: the proper responses the frame demands."""
+    r = result.responses
+    parts = [
+        f"{name} {response}"
+        for name, response in (
+            ("lon", LongitudinalResponse(int(r.longitudinal_response[0]))),
+            ("lat-left", LateralResponse(int(r.lateral_response_left[0]))),
+            ("lat-right", LateralResponse(int(r.lateral_response_right[0]))),
+        )
+        if response != 0
+    ]
+    return "RSS " + (", ".join(parts) if parts else "dangerous")
 
 
 def _label(ids: IdMap, object_id: int) -> str:

@@ -60,7 +60,9 @@ class RssVerdict:
     Attributes:
         is_safe: No dangerous constellation.
         culprits: Labels of the dangerous objects, sorted.
-        cause: ``"RSS <longitudinal response>"`` when unsafe, else ``""``.
+        cause: The proper responses demanded when unsafe (``"RSS lon BrakeMin, lat-left
+            BrakeMin"``: the non-``None`` ones of longitudinal, lateral left, lateral right),
+            else ``""``.
         margin: When unsafe the smallest distance ratio of the dangerous constellations
             (current / safe distance of the dimension closer to safe, in ``[0, 1)``;
             docs/rss.md, "Severity"), else ``inf``.
