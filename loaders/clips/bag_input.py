@@ -49,6 +49,10 @@ class BagClipInput:
             raise CorruptLogError(path, f"cannot open the bag: {err}") from err
         self.profile = "ros2" if self._reader.is2 else "ros1"
         self._channels: dict[int, ChannelSpec] = {}
+        #: Clips of bags are zstd-compressed MCAP.
+        self.compression = "zstd"
+        #: rosbags reads time windows through the bag's index.
+        self.indexed = True
 
     def _spec(self, conn: Connection) -> ChannelSpec:
         spec = self._channels.get(conn.id)

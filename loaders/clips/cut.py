@@ -30,8 +30,16 @@ __all__ = ["MapAttachment", "write_clips"]
 MapAttachment = tuple[str, str, bytes]
 
 
+#: Beyond any log time (ns).
+_END_OF_TIME = 2**63 - 1
+#: MCAP chunk compression by name; clips keep their log's (unknown or none read: zstd).
+_COMPRESSION = {"zstd": CompressionType.ZSTD, "lz4": CompressionType.LZ4, "": CompressionType.NONE}
+
+
 class _Input(Protocol):
     profile: str
+    compression: str
+    indexed: bool
 
     def messages(
         self, start_ns: int, end_ns: int, topics: Collection[str] | None
@@ -52,12 +60,14 @@ def _open_input(path: Path) -> _Input:
 class _ClipFile:
     """One clip being written."""
 
-    def __init__(self, request: ClipRequest, profile: str) -> None:
+    def __init__(self, request: ClipRequest, profile: str, compression: str) -> None:
         self.request = request
         self.part = request.path.with_name(request.path.name + ".part")
         self.part.parent.mkdir(parents=True, exist_ok=True)
         self._file: BinaryIO = self.part.open("wb")
-        self.writer = Writer(self._file, compression=CompressionType.ZSTD)
+        self.writer = Writer(
+            self._file, compression=_COMPRESSION.get(compression, CompressionType.ZSTD)
+        )
         self.writer.start(profile=profile, library="rss-workbench clip")
         self._schemas: dict[object, int] = {}
         self._channels: dict[object, int] = {}
@@ -151,14 +161,18 @@ def write_clips(
     if not requests:
         return []
     source = _open_input(log)
-    cut = _Cut(requests, source.profile)
+    cut = _Cut(requests, source.profile, source.compression)
     try:
         start = min(r.start_ns for r in requests)
         try:
-            for message in source.messages(start, max(r.end_ns for r in requests), topics):
-                cut.route(message)
-                if on_message is not None:
-                    on_message(len(message.data))
+            # An unindexed (damaged) log is read as one stream from the first window on, to its
+            # end or its damage: how far it reaches decides which windows are whole.
+            spans = _merged_spans(requests) if source.indexed else [(start, _END_OF_TIME)]
+            for first, last in spans:
+                for message in source.messages(first, last, topics):
+                    cut.route(message)
+                    if on_message is not None:
+                        on_message(len(message.data))
         except CorruptLogError as err:
             cut.broke = err
         attachments = source.attachments()
@@ -170,12 +184,24 @@ def write_clips(
         source.close()
 
 
+def _merged_spans(requests: Sequence[ClipRequest]) -> list[tuple[int, int]]:
+    """The union of the windows as sorted, disjoint inclusive spans (ns): only these are read."""
+    spans: list[tuple[int, int]] = []
+    for a, b in sorted((r.start_ns, r.end_ns) for r in requests):
+        if spans and a <= spans[-1][1] + 1:
+            spans[-1] = (spans[-1][0], max(spans[-1][1], b))
+        else:
+            spans.append((a, b))
+    return spans
+
+
 class _Cut:
     """The state of one pass: the open clips, how far the log was read, the damage."""
 
-    def __init__(self, requests: Sequence[ClipRequest], profile: str) -> None:
+    def __init__(self, requests: Sequence[ClipRequest], profile: str, compression: str) -> None:
         self.requests = requests
         self.profile = profile
+        self.compression = compression
         self.files: dict[int, _ClipFile] = {}
         self.reached: int | None = None
         self.broke: CorruptLogError | None = None
@@ -187,7 +213,7 @@ class _Cut:
             if request.start_ns <= t <= request.end_ns:
                 clip = self.files.get(index)
                 if clip is None:
-                    clip = self.files[index] = _ClipFile(request, self.profile)
+                    clip = self.files[index] = _ClipFile(request, self.profile, self.compression)
                 clip.add(message)
 
     def finish(
@@ -209,7 +235,7 @@ class _Cut:
                 )
                 continue
             if clip is None:
-                clip = self.files[index] = _ClipFile(request, self.profile)
+                clip = self.files[index] = _ClipFile(request, self.profile, self.compression)
             record = {
                 "source": source_name,
                 "start_ns": str(request.start_ns),

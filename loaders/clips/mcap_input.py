@@ -49,6 +49,22 @@ class McapClipInput:
         except MCAP_ERRORS as err:
             self._file.close()
             raise CorruptLogError(path, f"cannot read the MCAP header: {err}", offset=0) from err
+        #: Chunk compression of the log (``zstd``, ``lz4``, ``""``); clips keep it.
+        self.compression = "zstd"
+        #: The indexed reader, or ``None`` when the summary is unreadable (read as a stream).
+        self._indexed: SeekingReader | None = None
+        try:
+            self._file.seek(0)
+            reader = SeekingReader(self._file)
+            summary = reader.get_summary()
+            if summary is not None:
+                self._indexed = reader
+                if summary.chunk_indexes:
+                    self.compression = summary.chunk_indexes[0].compression
+        except MCAP_ERRORS:
+            self._indexed = None
+        #: Whether time windows are read through the index (else as one stream).
+        self.indexed = self._indexed is not None
 
     def _spec(self, schema: Schema | None, channel: Channel) -> ChannelSpec:
         spec = self._channels.get(channel.id)
@@ -77,26 +93,21 @@ class McapClipInput:
             CorruptLogError: The file breaks off; every message before the damage was yielded.
         """
         last = None
+        selected = None if topics is None else list(topics)
         try:
-            try:
-                self._file.seek(0)
-                reader = SeekingReader(self._file)
-                reader.get_summary()
-                records = reader.iter_messages(
-                    topics=None if topics is None else list(topics),
-                    starting_at=start_ns,
-                    ending_at=end_ns,
+            if self._indexed is not None:
+                records = self._indexed.iter_messages(
+                    topics=selected, starting_at=start_ns, ending_at=end_ns
                 )
-                first = next(records, None)
-            except MCAP_ERRORS:
+            else:
                 self._file.seek(0)
                 records = NonSeekingReader(self._file).iter_messages(
-                    topics=None if topics is None else list(topics),
+                    topics=selected,
                     starting_at=start_ns,
                     ending_at=end_ns,
                     log_time_order=False,  # file order: sorting would read the whole file first
                 )
-                first = next(records, None)
+            first = next(records, None)
             while first is not None:
                 schema, channel, message = first
                 last = message.log_time

@@ -147,15 +147,19 @@ def test_truncated_log_keeps_the_readable_windows(tmp_path: Path) -> None:
     small_chunks.unlink()
     cut.write_bytes(data[: len(data) * 6 // 10])
     early = ClipRequest(tmp_path / "early.mcap", t0, t0 + SECOND)
+    second = ClipRequest(tmp_path / "second.mcap", t0 + 2 * SECOND, t0 + 3 * SECOND)
     late = ClipRequest(tmp_path / "late.mcap", t1 - SECOND, t1)
-    outcomes = write_clips(cut, [early, late])
-    assert outcomes[0].written
-    assert Counter(_mcap_records(early.path)) == _window(records, t0, t0 + SECOND, None)
-    assert not outcomes[1].written
-    assert outcomes[1].reason is not None
-    assert "breaks off" in outcomes[1].reason
+    outcomes = write_clips(cut, [early, second, late])
+    for request, outcome in zip([early, second], outcomes, strict=False):
+        assert outcome.written
+        expected = _window(records, request.start_ns, request.end_ns, None)
+        assert Counter(_mcap_records(request.path)) == expected
+    assert not outcomes[2].written
+    assert outcomes[2].reason is not None
+    assert "breaks off" in outcomes[2].reason
     assert not late.path.exists()
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["cut.mcap", "early.mcap"]
+    names = sorted(p.name for p in tmp_path.iterdir())
+    assert names == ["cut.mcap", "early.mcap", "second.mcap"]
 
 
 def test_no_requests_reads_nothing(tmp_path: Path) -> None:
