@@ -2,75 +2,129 @@
 
 A ROS 2 MCAP of about 1 GiB (``--quick``: 100 MiB) is generated: the ``highway_cut_in``
 sample's messages repeated back to back, plus a 10 Hz camera topic of incompressible 160 KiB
-``sensor_msgs/CompressedImage`` payloads (about 11 minutes of drive per GiB), the kind of topic that makes real logs large.
-Twenty windows of up to 8 s (at most half the spacing, so they do not overlap) spread over
-the drive are cut with ``loaders.clips.write_clips``;
-the reference is one plain read of the same file with the ``mcap`` reader (every message's
-payload touched). Each side runs in a fresh interpreter, so peak RSS is its own.
+``sensor_msgs/CompressedImage`` payloads (about 11 minutes of drive per GiB), the kind of
+topic that makes real logs large. Twenty windows of up to 9 s (an incident of 3 s with 3 s of
+margin on each side; at most half their spacing, so they do not overlap) spread over the drive
+are cut with ``loaders.clips.write_clips``. The reference is one plain read of the same file
+with the ``mcap`` reader, every payload touched. Each side runs in a fresh interpreter, so
+its peak RSS is its own, and the page cache is emptied before each when we may (root).
 """
 
 from __future__ import annotations
 
 import json
 import os
+import resource
 import tempfile
+import time
 from pathlib import Path
+from typing import Any
 
 from bench.child import run_json
 
 _MIB = 2**20
 _CLIPS = 20
-_WINDOW_S = 9  # an incident of 3 s with 3 s of margin on each side
-
-_GENERATE = """
-import json, os, sys
-from pathlib import Path
-from mcap.reader import make_reader
-from mcap.writer import CompressionType, Writer
-from loaders.typestore import typestore
-
-target, mib = Path(sys.argv[1]), int(sys.argv[2])
-sample = Path("sample_logs/highway_cut_in.mcap")
-store = typestore(2)
-image_t = "sensor_msgs/msg/CompressedImage"
-Header = store.types["std_msgs/msg/Header"]
-Time = store.types["builtin_interfaces/msg/Time"]
-with sample.open("rb") as f:
-    reader = make_reader(f)
-    records = [(s, c, m) for s, c, m in reader.iter_messages()]
-t0 = records[0][2].log_time
-span = records[-1][2].log_time - t0 + 50_000_000
-written = 0
-with target.open("wb") as out:
-    w = Writer(out, compression=CompressionType.ZSTD)
-    w.start(profile="ros2", library="bench")
-    ids = {}
-    for s, c, _ in records:
-        if c.id not in ids:
-            sid = w.register_schema(s.name, s.encoding, s.data)
-            ids[c.id] = w.register_channel(c.topic, c.message_encoding, sid, c.metadata)
-    text = store.generate_msgdef(image_t, ros_version=2)[0]
-    cam = w.register_channel("/camera/image/compressed", "cdr",
-                             w.register_schema(image_t, "ros2msg", text.encode()), {})
-    lap = 0
-    while written < mib * 2**20:
-        base = lap * span
-        for _, c, m in records:
-            w.add_message(ids[c.id], m.log_time + base, m.data, m.log_time + base)
-        t = t0 + base
-        while t < t0 + base + span:
-            msg = store.types[image_t](Header(Time(sec=t // 10**9, nanosec=t % 10**9), "cam"),
-                                       "jpeg", __import__("numpy").frombuffer(os.urandom(160 * 2**10), dtype="uint8"))
-            data = store.serialize_cdr(msg, image_t)
-            w.add_message(cam, t, data, t)
-            written += len(data)
-            t += 100_000_000
-        lap += 1
-    w.finish()
-print(json.dumps({"bytes": target.stat().st_size, "start": t0, "end": t0 + lap * span}))
-"""
-
+_WINDOW_S = 9
+_IMAGE_BYTES = 160 * 2**10
+_IMAGE_PERIOD_NS = 100_000_000
 _DROP_CACHES = Path("/proc/sys/vm/drop_caches")
+_CHILD = (
+    "import json, sys; from bench import bench_clips as b; print(json.dumps(b.{}(*sys.argv[1:])))"
+)
+
+
+def generate(target: str, mib: str) -> dict[str, int]:
+    """Write the large log to ``target`` (about ``mib`` MiB); return its size and time span."""
+    import numpy as np  # noqa: PLC0415 - child-process entry point
+    from mcap.reader import make_reader  # noqa: PLC0415
+    from mcap.writer import CompressionType, Writer  # noqa: PLC0415
+
+    from loaders.typestore import typestore  # noqa: PLC0415
+
+    store = typestore(2)
+    image_t = "sensor_msgs/msg/CompressedImage"
+    header_t = store.types["std_msgs/msg/Header"]
+    time_t = store.types["builtin_interfaces/msg/Time"]
+    with Path("sample_logs/highway_cut_in.mcap").open("rb") as f:
+        records = list(make_reader(f).iter_messages())
+    t0 = records[0][2].log_time
+    span = records[-1][2].log_time - t0 + 50_000_000
+    rng = np.random.default_rng(0)
+    written = laps = 0
+    with Path(target).open("wb") as out:
+        writer = Writer(out, compression=CompressionType.ZSTD)
+        writer.start(profile="ros2", library="bench")
+        ids: dict[int, int] = {}
+        for schema, channel, _ in records:
+            if channel.id not in ids and schema is not None:
+                sid = writer.register_schema(schema.name, schema.encoding, schema.data)
+                ids[channel.id] = writer.register_channel(
+                    channel.topic, channel.message_encoding, sid, channel.metadata
+                )
+        text = store.generate_msgdef(image_t, ros_version=2)[0]
+        camera_schema = writer.register_schema(image_t, "ros2msg", text.encode())
+        camera = writer.register_channel("/camera/image/compressed", "cdr", camera_schema, {})
+        while written < int(mib) * _MIB:
+            base = laps * span
+            for _, channel, message in records:
+                t = message.log_time + base
+                writer.add_message(ids[channel.id], t, message.data, t)
+            for t in range(t0 + base, t0 + base + span, _IMAGE_PERIOD_NS):
+                stamp = time_t(sec=t // 10**9, nanosec=t % 10**9)
+                pixels = rng.integers(0, 256, _IMAGE_BYTES, dtype=np.uint8)
+                image = store.types[image_t](header_t(stamp, "camera"), "jpeg", pixels)
+                data = store.serialize_cdr(image, image_t)
+                writer.add_message(camera, t, bytes(data), t)
+                written += len(data)
+            laps += 1
+        writer.finish()  # type: ignore[no-untyped-call]
+    return {"bytes": Path(target).stat().st_size, "start": t0, "end": t0 + laps * span}
+
+
+def read_once(log: str) -> dict[str, float]:
+    """Read every message of ``log`` with the ``mcap`` reader; wall time and peak RSS."""
+    from mcap.reader import make_reader  # noqa: PLC0415 - child-process entry point
+
+    started = time.perf_counter()
+    count = size = 0
+    with Path(log).open("rb") as f:
+        for _, _, message in make_reader(f).iter_messages():
+            count += 1
+            size += len(message.data)
+    return {"s": time.perf_counter() - started, "messages": count, "rss_mib": _peak_mib()}
+
+
+def cut(log: str, out: str, start: str, end: str) -> dict[str, float]:
+    """Cut the twenty windows of ``[start, end]`` from ``log`` into ``out``."""
+    from loaders.clips import ClipRequest, write_clips  # noqa: PLC0415 - child entry point
+
+    step = (int(end) - int(start)) // _CLIPS
+    window = min(_WINDOW_S * 10**9, step // 2)
+    first = int(start)
+    requests = [
+        ClipRequest(
+            Path(out) / f"clip_{i:02d}.mcap",
+            first + i * step,
+            first + i * step + window,
+            {"id": str(i)},
+        )
+        for i in range(_CLIPS)
+    ]
+    started = time.perf_counter()
+    outcomes = write_clips(Path(log), requests, map_file=("map.osm", "text/xml", b"<osm/>"))
+    elapsed = time.perf_counter() - started
+    return {
+        "s": elapsed,
+        "written": sum(o.written for o in outcomes),
+        "messages": sum(o.messages for o in outcomes),
+        "window_s": window / 1e9,
+        "out_mib": sum(p.stat().st_size for p in Path(out).iterdir()) / _MIB,
+        "rss_mib": _peak_mib(),
+    }
+
+
+def _peak_mib() -> float:
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
 
 
 def _drop_caches() -> bool:
@@ -83,74 +137,42 @@ def _drop_caches() -> bool:
     return True
 
 
-_READ = """
-import json, resource, sys, time
-from mcap.reader import make_reader
-t = time.perf_counter(); n = 0; size = 0
-with open(sys.argv[1], "rb") as f:
-    for _, _, m in make_reader(f).iter_messages():
-        n += 1; size += len(m.data)
-print(json.dumps({"s": time.perf_counter() - t, "messages": n,
-                  "rss_mib": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024}))
-"""
-
-_CUT = """
-import json, resource, sys, time
-from pathlib import Path
-from loaders.clips import ClipRequest, write_clips
-log, out, start, end, clips, window = sys.argv[1], Path(sys.argv[2]), *map(int, sys.argv[3:7])
-step = (end - start) // clips
-window = min(window, step // 2)
-requests = [ClipRequest(out / f"clip_{i:02d}.mcap", start + i * step, start + i * step + window,
-                        {"id": str(i)}) for i in range(clips)]
-t = time.perf_counter()
-outcomes = write_clips(Path(log), requests, map_file=("map.osm", "text/xml", b"<osm/>"))
-elapsed = time.perf_counter() - t
-print(json.dumps({"s": elapsed, "written": sum(o.written for o in outcomes),
-                  "messages": sum(o.messages for o in outcomes),
-                  "out_mib": sum(p.stat().st_size for p in out.iterdir()) / 2**20,
-                  "rss_mib": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024}))
-"""
-
-
 def run(*, quick: bool) -> str:
     """Generate the large log, cut the clips, and return the Markdown section."""
-    mib = 100 if quick else 1024
     with tempfile.TemporaryDirectory(prefix="bench_clips_") as tmp:
         log = Path(tmp) / "large.mcap"
-        made = run_json(_GENERATE, str(log), str(mib))
+        size = "100" if quick else "1024"
+        made: dict[str, Any] = run_json(_CHILD.format("generate"), str(log), size)
         cold = _drop_caches()
-        read = run_json(_READ, str(log))
+        read = run_json(_CHILD.format("read_once"), str(log))
         out = Path(tmp) / "clips"
         out.mkdir()
         cold = _drop_caches() and cold
-        cut = run_json(
-            _CUT,
-            str(log),
-            str(out),
-            str(made["start"]),
-            str(made["end"]),
-            str(_CLIPS),
-            str(_WINDOW_S * 10**9),
+        clips = run_json(
+            _CHILD.format("cut"), str(log), str(out), str(made["start"]), str(made["end"])
         )
-    ratio = cut["s"] / read["s"]
+    ratio = clips["s"] / read["s"]
+    cache = "emptied before each step (both read from disk)" if cold else "warm (not root)"
     rows = [
         "| step | wall time (s) | peak RSS (MiB) | messages |",
         "|---|---:|---:|---:|",
-        f"| read the log once (`mcap` reader) | {read['s']:.2f} | {read['rss_mib']:.0f} | "
-        f"{read['messages']} |",
-        f"| cut {cut['written']} clips in one pass (`write_clips`) | {cut['s']:.2f} | "
-        f"{cut['rss_mib']:.0f} | {cut['messages']} |",
+        (
+            f"| read the log once (`mcap` reader) | {read['s']:.2f} | {read['rss_mib']:.0f} | "
+            f"{read['messages']} |"
+        ),
+        (
+            f"| cut {clips['written']} clips in one pass (`write_clips`) | {clips['s']:.2f} | "
+            f"{clips['rss_mib']:.0f} | {clips['messages']} |"
+        ),
     ]
+    facts = json.dumps({"read": read, "cut": clips}, sort_keys=True)
     return (
         "## Clip export from a large log\n\n"
-        f"Log: {made['bytes'] / _MIB:.0f} MiB ROS 2 MCAP (sample drive repeated + 10 Hz 160 KiB "
-        f"camera payloads); {_CLIPS} clips of {_WINDOW_S} s, {cut['out_mib']:.0f} MiB written "
-        "(zstd). Page cache: "
-        + ("emptied before each step (both read from disk)" if cold else "warm (not root)")
-        + ".\n\n"
+        f"Log: {made['bytes'] / _MIB:.0f} MiB ROS 2 MCAP (sample drive repeated, 10 Hz 160 KiB "
+        f"camera payloads). {_CLIPS} clips of {clips['window_s']:.1f} s, "
+        f"{clips['out_mib']:.0f} MiB written. Page cache: {cache}.\n\n"
         + "\n".join(rows)
-        + f"\n\nCut / read time: **{ratio:.2f}×** "
-        "(target ≤ 2×); peak RSS target < 400 MB.\n"
-        + json.dumps({"read": read, "cut": cut}, sort_keys=True).join(["\n<!-- ", " -->\n"])
+        + f"\n\nCut time / read time: **{ratio:.2f}** (target: at most 2); "
+        "peak RSS target: under 400 MB.\n\n"
+        f"<!-- {facts} -->\n"
     )
