@@ -23,6 +23,7 @@ from typing import TYPE_CHECKING
 import rerun.blueprint as rrb
 
 from workbench.engines.registry import engine, names
+from workbench.replay.incidents import INCIDENT_LOG, LANES_ORIGIN
 from workbench.replay.sink import FRAME_TIMELINE, TIME_TIMELINE
 
 if TYPE_CHECKING:
@@ -56,16 +57,37 @@ def _trail_ranges() -> rrb.VisibleTimeRanges:
     )
 
 
+def _time_panel(selection: tuple[int, int] | None) -> rrb.TimePanel:
+    if selection is None:
+        return rrb.TimePanel(timeline=FRAME_TIMELINE, play_state="paused", state="collapsed")
+    first, last = selection
+    return rrb.TimePanel(
+        timeline=FRAME_TIMELINE,
+        play_state="paused",
+        state="expanded",
+        loop_mode="selection",
+        time_selection=rrb.components.AbsoluteTimeRange(min=first, max=last),
+    )
+
+
 def replay_blueprint(
-    ego_start_m: tuple[float, float] | None = None, engines: Sequence[str] = ()
+    ego_start_m: tuple[float, float] | None = None,
+    engines: Sequence[str] = (),
+    *,
+    selection: tuple[int, int] | None = None,
 ) -> rrb.Blueprint:
     """The default blueprint: scene, plots, engine result views, time panel on ``frame``.
+
+    With engines, an "incidents" tab holds the incident lanes and an "incident log" tab
+    their markers (:mod:`workbench.replay.incidents`).
 
     Args:
         ego_start_m: Ego position at the first frame ``(x, y)``; the camera starts there and
             then tracks ``world/ego``.
         engines: Names of the engines whose results are logged (registered engines); the
             first one's state lanes are the active tab.
+        selection: ``(first, last)`` frame of an incident under review: the time panel
+            selects and loops over it, and the incidents tab is active.
     """
     x0, y0 = ego_start_m or (0.0, 0.0)
     dx, dy, dz = _EYE_OFFSET_M
@@ -89,13 +111,20 @@ def replay_blueprint(
     for name in engines:
         views.extend(engine(name).views())
     specs = [engine(name) for name in names()]
-    tabs = [rrb.StateTimelineView(name=spec.title, origin=spec.state_origin) for spec in specs]
+    tabs: list[rrb.View] = [
+        rrb.StateTimelineView(name=spec.title, origin=spec.state_origin) for spec in specs
+    ]
     active = engine(engines[0]).title if engines else specs[0].title
+    if engines:
+        tabs.append(rrb.StateTimelineView(name="incidents", origin=f"/{LANES_ORIGIN}"))
+        tabs.append(rrb.TextLogView(name="incident log", origin=f"/{INCIDENT_LOG}"))
+        if selection is not None:
+            active = "incidents"
     views.append(rrb.Tabs(*tabs, active_tab=active))
     side = rrb.Vertical(*views, row_shares=[2] * (len(views) - 1) + [2 if engines else 1])
     return rrb.Blueprint(
         rrb.Horizontal(scene, side, column_shares=[3, 1]),
-        rrb.TimePanel(timeline=FRAME_TIMELINE, play_state="paused", state="collapsed"),
+        _time_panel(selection),
         rrb.SelectionPanel(state="hidden"),
         rrb.BlueprintPanel(state="hidden"),
         collapse_panels=False,

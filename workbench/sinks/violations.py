@@ -9,6 +9,7 @@ from dataclasses import asdict, dataclass, field
 from typing import TYPE_CHECKING
 
 from workbench.errors import WorkbenchError
+from workbench.sinks.runs import RunMerger
 
 if TYPE_CHECKING:
     from collections.abc import Iterable, Mapping
@@ -64,15 +65,14 @@ def _stable_id(log: str, engine: str, start_frame: int) -> str:
 class ViolationDetector:
     """Merges consecutive unsafe frames of each engine into intervals, chunk by chunk.
 
-    Only the open intervals and the finished rows are kept, so memory stays flat however
-    long the drive is. A frame the engine rated safe ends its interval.
+    The runs come from :class:`~workbench.sinks.runs.RunMerger` keyed by engine; a frame the
+    engine rated safe ends its interval. Memory stays flat however long the drive is.
     """
 
     def __init__(self, log: str) -> None:
         """Start empty; ``log`` is recorded in each violation (and part of its id)."""
         self.log = log
-        self._open: dict[str, Violation] = {}
-        self._done: list[Violation] = []
+        self._runs: RunMerger[str] = RunMerger()
         #: Frames added so far.
         self.frames = 0
         #: Frames at least one engine rated unsafe.
@@ -88,33 +88,7 @@ class ViolationDetector:
             self.unsafe_per_engine[engine] = self.unsafe_per_engine.get(engine, 0) + (
                 not out.is_safe
             )
-            current = self._open.get(engine)
-            if out.is_safe:
-                if current is not None:
-                    self._done.append(self._open.pop(engine))
-                continue
-            if current is None or current.end_frame != frame - 1:
-                if current is not None:
-                    self._done.append(current)
-                current = Violation(
-                    id=_stable_id(self.log, engine, frame),
-                    log=self.log,
-                    engine=engine,
-                    label=out.cause,
-                    objects=[],
-                    start_frame=frame,
-                    end_frame=frame,
-                    start_ns=t_ns,
-                    end_ns=t_ns,
-                    worst_margin=out.margin,
-                )
-                self._open[engine] = current
-            current.end_frame = frame
-            current.end_ns = t_ns
-            current.worst_margin = min(current.worst_margin, out.margin)
-            current.objects = sorted(set(current.objects) | set(out.culprits))
-            if out.cause:
-                current.labels = sorted(set(current.labels) | {out.cause})
+        self._runs.add(frame, t_ns, {e: v for e, v in verdicts.items() if not v.is_safe})
 
     def add_chunk(self, chunk: Chunk) -> None:
         """Add every frame of a driver chunk."""
@@ -123,7 +97,22 @@ class ViolationDetector:
 
     def violations(self) -> list[Violation]:
         """Every interval so far (open ones included), by start frame, then engine."""
-        found = [*self._done, *self._open.values()]
+        found = [
+            Violation(
+                id=_stable_id(self.log, run.key, run.start_frame),
+                log=self.log,
+                engine=run.key,
+                label=run.causes[0] if run.causes else "",
+                objects=sorted(run.objects),
+                start_frame=run.start_frame,
+                end_frame=run.end_frame,
+                start_ns=run.start_ns,
+                end_ns=run.end_ns,
+                worst_margin=run.worst_margin,
+                labels=sorted(run.causes),
+            )
+            for run in self._runs.runs()
+        ]
         found.sort(key=lambda v: (v.start_frame, v.engine))
         return found
 

@@ -13,7 +13,9 @@ from typing import TYPE_CHECKING
 import rerun as rr
 
 from workbench.driver.run import DriveRun, EgoSize
+from workbench.incidents import IncidentDetector, drive_content_hash
 from workbench.replay.blueprint import replay_blueprint
+from workbench.replay.incident_sink import send_incidents
 from workbench.sinks.rerun_drive import SEND_FRAMES, RerunDriveSink
 from workbench.sinks.violations import ViolationDetector
 from workbench.viewer.outputs import LOCALHOST, attached
@@ -26,6 +28,7 @@ if TYPE_CHECKING:
     from loaders.errors import LoaderError
     from workbench.driver.run import Chunk
     from workbench.engines.base import EngineRunner
+    from workbench.incidents import Incident, IncidentSettings
     from workbench.sinks.violations import Violation
 
 __all__ = ["APPLICATION_ID", "ReplaySummary", "replay_drive"]
@@ -49,6 +52,7 @@ class ReplaySummary:
         unsafe_frames: Unsafe frames per engine.
         stopped_by: The loader error that ended a truncated or corrupted log early; the
             output holds every frame read before it.
+        incidents: The engines' incidents (worst first), shown as lanes and markers.
     """
 
     log: Path
@@ -61,6 +65,7 @@ class ReplaySummary:
     violations: tuple[Violation, ...] = ()
     unsafe_frames: Mapping[str, int] = field(default_factory=dict)
     stopped_by: LoaderError | None = None
+    incidents: tuple[Incident, ...] = ()
 
     @property
     def frames_per_s(self) -> float:
@@ -88,6 +93,8 @@ def replay_drive(
     bind: str = LOCALHOST,
     send_frames: int = SEND_FRAMES,
     ego_size: EgoSize | None = None,
+    incident_settings: IncidentSettings | None = None,
+    verdicts: Mapping[str, str] | None = None,
 ) -> ReplaySummary:
     """Send a drive's map, frames and engine verdicts to exactly one destination.
 
@@ -107,6 +114,9 @@ def replay_drive(
         bind: With ``serve``, the address the gRPC proxy and the web viewer listen on.
         send_frames: Frames per columnar batch sent to Rerun.
         ego_size: The user's ego size for every engine and the viewer (``--rss-params``).
+        incident_settings: How the engines' unsafe frames become incidents (lanes and
+            markers sent after the last frame).
+        verdicts: Review verdict per incident id, shown on the lanes and markers.
 
     Returns:
         Counts and timings of the replay.
@@ -119,6 +129,10 @@ def replay_drive(
     rec = rr.RecordingStream(APPLICATION_ID, recording_id=_recording_id(drive, start_ns, end_ns))
     blueprint = replay_blueprint(ego_start, engines=run.engine_names)
     detector = ViolationDetector(drive.info.path.name)
+    path = drive.info.path
+    incidents = IncidentDetector(
+        drive_content_hash(path) if engines and path.exists() else "", incident_settings
+    )
     sink = RerunDriveSink(rec, drive, run.engine_names, send_frames=send_frames)
     try:
         with attached(
@@ -127,9 +141,13 @@ def replay_drive(
             for chunk in _with_first(first, chunks):
                 sink.add_chunk(chunk)
                 detector.add_chunk(chunk)
+                incidents.add_chunk(chunk)
                 if progress is not None:
                     progress(detector.frames)
             sink.close()
+            found = tuple(incidents.incidents()) if engines else ()
+            if engines:
+                send_incidents(rec, found, verdicts or {}, incidents.frame_times)
             if on_served is not None and serve:
                 on_served(to)
             rec.disconnect()
@@ -149,6 +167,7 @@ def replay_drive(
         violations=tuple(detector.violations()),
         unsafe_frames={n: detector.unsafe_per_engine.get(n, 0) for n in run.engine_names},
         stopped_by=run.stopped_by,
+        incidents=found,
     )
 
 

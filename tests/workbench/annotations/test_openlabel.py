@@ -1,0 +1,180 @@
+import json
+from pathlib import Path
+
+import jsonschema
+import pytest
+
+from workbench.annotations import LabelStore
+from workbench.annotations.openlabel import (
+    OpenLabelError,
+    export_openlabel,
+    import_openlabel,
+    write_openlabel,
+)
+from workbench.cli.main import main
+from workbench.incidents import IncidentReport, IncidentRequest, find_incidents
+
+SAMPLES = Path(__file__).resolve().parents[3] / "sample_logs"
+LOG = SAMPLES / "highway_cut_in.mcap"
+
+
+def _run(args: list[str]) -> int:
+    with pytest.raises(SystemExit) as info:
+        main(args)
+    code = info.value.code
+    return 0 if code is None else int(code)
+
+
+@pytest.fixture(scope="module")
+def report() -> IncidentReport:
+    return find_incidents(IncidentRequest(LOG, engines=("rss", "reachsets"), reach_method="simple"))
+
+
+@pytest.fixture
+def schema(external_dir):
+    path = external_dir / "openlabel" / "openlabel_json_schema-v1.0.0.json"
+    return json.loads(path.read_text())
+
+
+def _labelled_store(path: Path, report: IncidentReport) -> LabelStore:
+    store = LabelStore(path)
+    first, second = report.incidents[:2]
+    store.put(
+        report.drive_hash,
+        first.id,
+        "confirmed",
+        tags=["cut-in", "late"],
+        note="brake late",
+        reviewer="ann",
+        settings=report.settings,
+        log_name=LOG.name,
+        at_ns=1_000,
+    )
+    store.put(
+        report.drive_hash,
+        second.id,
+        "false_positive",
+        tags=["cut-in"],
+        reviewer="bob",
+        settings=report.settings,
+        at_ns=2_000,
+    )
+    return store
+
+
+@pytest.mark.external
+def test_export_validates_against_the_official_schema(tmp_path, report, schema):
+    with _labelled_store(tmp_path / "l.sqlite", report) as store:
+        doc = export_openlabel(report, store.labels(report.drive_hash))
+    jsonschema.Draft7Validator(schema).validate(doc)
+    root = doc["openlabel"]
+    assert root["metadata"]["tagged_file"] == LOG.name
+    assert [a["name"] for a in root["actions"].values()] == [i.id for i in report.incidents]
+    first = root["actions"]["0"]
+    texts = {t["name"]: t["val"] for t in first["action_data"]["text"]}
+    assert (texts["verdict"], texts["note"], texts["reviewer"]) == (
+        "confirmed",
+        "brake late",
+        "ann",
+    )
+    assert texts["engine"] == report.incidents[0].engine
+    incident = report.incidents[0]
+    assert first["frame_intervals"] == [
+        {"frame_start": incident.start_frame, "frame_end": incident.end_frame}
+    ]
+    times = dict(report.frame_times)
+    frame = root["frames"][str(incident.start_frame)]
+    assert frame["frame_properties"]["t_ns"] == times[incident.start_frame]
+    assert "0" in frame["actions"]
+    tags = {t["type"]: t["tag_data"]["vec"][0]["val"] for t in root["tags"].values()}
+    first_two = [i.id for i in report.incidents[:2]]
+    assert tags == {"cut-in": first_two, "late": [first_two[0]]}
+    covered = {f for i in report.incidents for f in range(i.start_frame, i.end_frame + 1)}
+    assert set(map(int, root["frames"])) == covered
+
+
+@pytest.mark.external
+def test_export_import_export_is_identical_and_import_is_idempotent(tmp_path, report, schema):
+    with _labelled_store(tmp_path / "a.sqlite", report) as store:
+        write_openlabel(
+            export_openlabel(report, store.labels(report.drive_hash)), tmp_path / "1.json"
+        )
+    with LabelStore(tmp_path / "b.sqlite") as fresh:
+        assert import_openlabel(tmp_path / "1.json", fresh) == (2, 0)
+        assert import_openlabel(tmp_path / "1.json", fresh) == (0, 2)
+        write_openlabel(
+            export_openlabel(report, fresh.labels(report.drive_hash)), tmp_path / "2.json"
+        )
+        assert fresh.log_name(report.drive_hash) == LOG.name
+    assert (tmp_path / "1.json").read_bytes() == (tmp_path / "2.json").read_bytes()
+    jsonschema.Draft7Validator(schema).validate(json.loads((tmp_path / "2.json").read_text()))
+
+
+def test_cli_export_import_round_trip(tmp_path, capsys):
+    args = ["--engines", "rss", "--reach-method", "simple"]
+    out = tmp_path / "i.json"
+    assert _run(["incidents", str(LOG), *args, "--out", str(out)]) == 0
+    first = json.loads(out.read_text())[0]["id"]
+    a, b = tmp_path / "a.sqlite", tmp_path / "b.sqlite"
+    assert _run(["label", str(LOG), first, *args, "--verdict", "follow_up", "--store", str(a)]) == 0
+    assert (
+        _run(
+            [
+                "labels",
+                "export",
+                str(LOG),
+                *args,
+                "--out",
+                str(tmp_path / "1.json"),
+                "--store",
+                str(a),
+            ]
+        )
+        == 0
+    )
+    assert _run(["labels", "import", str(tmp_path / "1.json"), "--store", str(b)]) == 0
+    assert (
+        _run(
+            [
+                "labels",
+                "export",
+                str(LOG),
+                *args,
+                "--out",
+                str(tmp_path / "2.json"),
+                "--store",
+                str(b),
+            ]
+        )
+        == 0
+    )
+    assert (tmp_path / "1.json").read_text() == (tmp_path / "2.json").read_text()
+    assert "1 label(s) written" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize(
+    ("text", "message"),
+    [
+        ("{not json", "not JSON"),
+        ('{"openlabel": {}}', "no openlabel.metadata"),
+        ('{"openlabel": {"metadata": {"schema_version": "0.9"}}}', "schema_version '0.9'"),
+        ('{"openlabel": {"metadata": {"schema_version": "1.0.0"}}}', "drive_sha256 missing"),
+        (
+            (
+                '{"openlabel": {"metadata": {"schema_version": "1.0.0", "drive_sha256": "d"},'
+                ' "actions": {"0": {"name": "x", "type": "t", "action_data":'
+                ' {"text": [{"name": "verdict", "val": "confirmed"}]}}}}}'
+            ),
+            "actions.0.action_data: no 'engine'",
+        ),
+    ],
+)
+def test_bad_files_are_one_line_errors(tmp_path, text, message, capsys):
+    bad = tmp_path / "bad.json"
+    bad.write_text(text)
+    with LabelStore(tmp_path / "l.sqlite") as store, pytest.raises(OpenLabelError, match=message):
+        import_openlabel(bad, store)
+    assert _run(["labels", "import", str(bad), "--store", str(tmp_path / "l.sqlite")]) == 2
+    err = capsys.readouterr().err
+    assert message.split(":")[0] in err
+    assert "Traceback" not in err

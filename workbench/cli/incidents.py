@@ -1,0 +1,127 @@
+"""``workbench incidents``: a drive's incidents, worst first, as a table or a file."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path  # noqa: TC003 - typer reads the annotations at run time
+from typing import TYPE_CHECKING, Annotated
+
+import typer
+from rich.console import Console
+from rich.table import Table
+
+from workbench.cli.incident_options import (
+    EgoIdOption,
+    EgoTopicOption,
+    EnginesOption,
+    LogArgument,
+    MapOption,
+    MergeGapOption,
+    MinDurationOption,
+    ProfileOption,
+    ReachOption,
+    RssParamsOption,
+    find_with_progress,
+)
+from workbench.cli.options import ReachMethodOption
+
+if TYPE_CHECKING:
+    from workbench.incidents import Incident
+
+__all__ = ["incident_table", "register"]
+
+
+#: Object ids longer than this are shortened in the table.
+_SHORT_ID = 12
+
+
+def _short(object_id: str) -> str:
+    """Long (UUID-like) object ids shortened for the table; files keep them whole."""
+    return object_id if len(object_id) <= _SHORT_ID else f"{object_id[:4]}…{object_id[-6:]}"
+
+
+def incident_table(incidents: list[Incident], t0_ns: int, title: str) -> Table:
+    """Rich table of incidents in the given order."""
+    table = Table(title=title)
+    table.add_column("id", no_wrap=True)
+    for column in ("engine", "object", "cause", "frames", "start s", "dur s", "unsafe", "margin"):
+        table.add_column(column, no_wrap=column in {"engine", "object", "frames"})
+    for i in incidents:
+        margin = i.severity.worst_margin
+        table.add_row(
+            i.id,
+            i.engine,
+            " ".join(_short(o) for o in i.objects) or "-",
+            i.cause,
+            f"{i.start_frame}-{i.end_frame}",
+            f"{(i.start_ns - t0_ns) / 1e9:.2f}",
+            f"{i.duration_s:.2f}",
+            str(i.severity.unsafe_frames),
+            f"{margin:.2f}" if math.isfinite(margin) else "-",
+        )
+    return table
+
+
+def incidents(
+    log: LogArgument,
+    *,
+    engines: EnginesOption = "",
+    map_path: MapOption = None,
+    profile: ProfileOption = None,
+    ego_id: EgoIdOption = None,
+    ego_topic: EgoTopicOption = None,
+    reach_method: ReachOption = ReachMethodOption.turn,
+    rss_params: RssParamsOption = None,
+    min_duration: MinDurationOption = 0.0,
+    merge_gap: MergeGapOption = 0.0,
+    engine: Annotated[
+        list[str] | None, typer.Option("--engine", help="Only this engine (repeatable).")
+    ] = None,
+    obj: Annotated[
+        list[str] | None, typer.Option("--object", help="Only this object id (repeatable).")
+    ] = None,
+    cause: Annotated[
+        list[str] | None, typer.Option("--cause", help="Cause contains this (repeatable).")
+    ] = None,
+    max_margin: Annotated[
+        float | None, typer.Option("--max-margin", help="Worst margin at most this.")
+    ] = None,
+    out: Annotated[
+        Path | None, typer.Option("--out", help="Write them (.json, .csv or .parquet).")
+    ] = None,
+) -> None:
+    """List a drive's incidents (unsafe runs per engine, object and cause), worst first."""
+    from workbench.incidents import filter_incidents, write_incidents  # noqa: PLC0415
+
+    report = find_with_progress(
+        log,
+        engines=engines,
+        map_path=map_path,
+        profile=profile,
+        ego_id=ego_id,
+        ego_topic=ego_topic,
+        reach_method=reach_method,
+        rss_params=rss_params,
+        min_duration=min_duration,
+        merge_gap=merge_gap,
+    )
+    found = filter_incidents(
+        report.incidents,
+        engines=engine or (),
+        objects=obj or (),
+        causes=cause or (),
+        max_margin=max_margin,
+    )
+    title = f"{log.name}: {len(found)} of {len(report.incidents)} incident(s), worst first"
+    Console().print(incident_table(found, report.start_ns, title))
+    if out is not None:
+        write_incidents(found, out)
+        typer.echo(f"wrote {out}")
+    if report.stopped_by is not None:
+        typer.echo(f"stopped early: the incidents cover {len(report.frame_times)} frames")
+        raise report.stopped_by
+
+
+def register(app: typer.Typer) -> None:
+    """Add ``incidents`` to the CLI."""
+    app.command("incidents")(incidents)

@@ -1,0 +1,89 @@
+"""Incidents from the driver's chunks: runs of unsafe frames per engine, object and cause."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from workbench.incidents.facts import collectors_for
+from workbench.incidents.model import Incident, IncidentSettings, Severity, incident_id
+from workbench.sinks.runs import Run, RunMerger
+
+if TYPE_CHECKING:
+    from collections.abc import Mapping
+
+    from workbench.driver.run import Chunk
+    from workbench.engines.base import Verdict
+    from workbench.incidents.model import Fact
+
+__all__ = ["IncidentDetector", "IncidentKey"]
+
+#: ``(engine, object id or "", cause)``.
+IncidentKey = tuple[str, str, str]
+
+
+class IncidentDetector:
+    """A sink of driver chunks that merges each engine's unsafe frames into incidents.
+
+    A frame an engine rates unsafe hits one key per culprit (``(engine, object, cause)``;
+    a verdict naming no culprit hits ``(engine, "", cause)``). Memory grows with the
+    incidents and the frame count (one time stamp per frame), not with the verdicts.
+    """
+
+    def __init__(self, drive_hash: str, settings: IncidentSettings | None = None) -> None:
+        """Start empty for the drive of content hash ``drive_hash``."""
+        self.drive_hash = drive_hash
+        self.settings = settings or IncidentSettings()
+        self._runs: RunMerger[IncidentKey] = RunMerger(round(self.settings.merge_gap_s * 1e9))
+        #: ``(frame index, t_ns)`` of every frame added, in order.
+        self.frame_times: list[tuple[int, int]] = []
+
+    def add(self, frame: int, t_ns: int, verdicts: Mapping[str, Verdict]) -> None:
+        """Add one frame's verdicts per engine (frames in time order)."""
+        self.frame_times.append((frame, t_ns))
+        hits: dict[IncidentKey, Verdict] = {}
+        for engine, verdict in verdicts.items():
+            if verdict.is_safe:
+                continue
+            for obj in verdict.culprits or ("",):
+                hits[engine, obj, verdict.cause] = verdict
+        for run in self._runs.add(frame, t_ns, hits):
+            if run.unsafe_frames == 1:
+                run.extra = list(collectors_for(run.key[0]))
+            for collector in run.extra:
+                collector.add(frame, t_ns, hits[run.key], run.key[1])
+
+    def add_chunk(self, chunk: Chunk) -> None:
+        """Add every frame of a driver chunk."""
+        for k, frame in enumerate(chunk.frames):
+            self.add(frame.index, frame.t_ns, {n: v[k] for n, v in chunk.verdicts.items()})
+
+    def _incident(self, run: Run[IncidentKey]) -> Incident:
+        engine, obj, cause = run.key
+        objects = (obj,) if obj else ()
+        facts: dict[str, Fact] = {}
+        for collector in run.extra:
+            facts.update(collector.facts())
+        severity = Severity(
+            worst_margin=run.worst_margin,
+            unsafe_frames=run.unsafe_frames,
+            duration_s=(run.end_ns - run.start_ns) / 1e9,
+            facts=facts,
+        )
+        return Incident(
+            id=incident_id(self.drive_hash, engine, objects, cause, run.start_frame),
+            engine=engine,
+            objects=objects,
+            cause=cause,
+            start_frame=run.start_frame,
+            end_frame=run.end_frame,
+            start_ns=run.start_ns,
+            end_ns=run.end_ns,
+            severity=severity,
+        )
+
+    def incidents(self) -> list[Incident]:
+        """Incidents at least ``min_duration_s`` long, worst first (ties: start, id)."""
+        min_ns = round(self.settings.min_duration_s * 1e9)
+        found = [self._incident(r) for r in self._runs.runs() if r.end_ns - r.start_ns >= min_ns]
+        found.sort(key=lambda i: (*i.severity.rank_key(), i.start_ns, i.id))
+        return found

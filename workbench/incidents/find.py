@@ -1,0 +1,138 @@
+"""Find a drive's incidents: open it, run the engines through the driver, merge the verdicts."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+from workbench.driver.run import DriveRun
+from workbench.drives import ego_size, load_rss_params, open_log
+from workbench.incidents.content import drive_content_hash
+from workbench.incidents.detect import IncidentDetector
+from workbench.incidents.model import IncidentSettings
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+    from pathlib import Path
+
+    from loaders.errors import LoaderError
+    from workbench.incidents.model import Incident
+
+__all__ = ["IncidentReport", "IncidentRequest", "find_incidents"]
+
+
+@dataclass(frozen=True, slots=True)
+class IncidentRequest:
+    """A drive and every setting that decides its incidents.
+
+    Attributes:
+        log: The drive file or rosbag2 directory.
+        engines: Engine names, in order.
+        map_path: Lane map file (``--map``).
+        profile: TOML topic profile.
+        ego_id: CommonRoad ego id.
+        ego_topic: Ego topic of a ROS/MCAP log.
+        reach_method: ``--reach-method``.
+        rss_params: ``--rss-params`` TOML.
+        settings: Minimum duration and gap merging.
+    """
+
+    log: Path
+    engines: tuple[str, ...]
+    map_path: Path | None = None
+    profile: Path | None = None
+    ego_id: str | None = None
+    ego_topic: str | None = None
+    reach_method: str = "turn"
+    rss_params: Path | None = None
+    settings: IncidentSettings = field(default_factory=IncidentSettings)
+
+    def record(self) -> dict[str, Any]:
+        """The settings that produced the incidents, as stored beside every label."""
+        files = {"map": self.map_path, "profile": self.profile, "rss_params": self.rss_params}
+        return {
+            "engines": list(self.engines),
+            "reach_method": self.reach_method,
+            "ego_id": self.ego_id,
+            "ego_topic": self.ego_topic,
+            **{
+                f"{name}_sha256": None if path is None else drive_content_hash(path)
+                for name, path in files.items()
+            },
+            "min_duration_s": self.settings.min_duration_s,
+            "merge_gap_s": self.settings.merge_gap_s,
+        }
+
+
+@dataclass(frozen=True, slots=True)
+class IncidentReport:
+    """A drive's incidents and what they were found with.
+
+    Attributes:
+        log: The drive.
+        drive_hash: Content hash of the drive (:func:`drive_content_hash`).
+        settings: :meth:`IncidentRequest.record`.
+        incidents: Worst first.
+        frame_times: ``(frame index, t_ns)`` of every frame evaluated.
+        start_ns: The drive's first time stamp.
+        stopped_by: The loader error that ended a truncated log early, if any.
+    """
+
+    log: Path
+    drive_hash: str
+    settings: dict[str, Any]
+    incidents: tuple[Incident, ...]
+    frame_times: tuple[tuple[int, int], ...]
+    start_ns: int
+    stopped_by: LoaderError | None = None
+
+    def find(self, incident_id: str) -> Incident | None:
+        """The incident of that id, if the drive has one."""
+        return next((i for i in self.incidents if i.id == incident_id), None)
+
+
+def find_incidents(
+    request: IncidentRequest, progress: Callable[[int], None] | None = None
+) -> IncidentReport:
+    """Evaluate the drive with the requested engines and merge the verdicts into incidents.
+
+    Args:
+        request: Drive and settings.
+        progress: Called with the number of frames evaluated after each chunk.
+
+    Raises:
+        WorkbenchError: Missing log, unknown engine, unreadable settings file.
+        LoaderError: The log cannot be opened.
+    """
+    from workbench.engines import EngineSettings, build_runners  # noqa: PLC0415 - light start
+
+    params = load_rss_params(request.rss_params)
+    drive_hash = drive_content_hash(request.log) if request.log.exists() else ""
+    drive = open_log(
+        request.log,
+        map_path=request.map_path,
+        profile=request.profile,
+        ego_id=request.ego_id,
+        ego_topic=request.ego_topic,
+    )
+    try:
+        settings = EngineSettings(rss_params=params, reach_method=request.reach_method)
+        runners = build_runners(list(request.engines), drive.lane_map, settings)
+        run = DriveRun(drive, runners, ego_size=ego_size(params))
+        detector = IncidentDetector(drive_hash, request.settings)
+        for chunk in run:
+            detector.add_chunk(chunk)
+            if progress is not None:
+                progress(len(detector.frame_times))
+        start_ns = drive.info.start_ns
+    finally:
+        drive.close()
+    return IncidentReport(
+        log=request.log,
+        drive_hash=drive_hash,
+        settings=request.record(),
+        incidents=tuple(detector.incidents()),
+        frame_times=tuple(detector.frame_times),
+        start_ns=start_ns,
+        stopped_by=run.stopped_by,
+    )

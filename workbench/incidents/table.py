@@ -1,0 +1,103 @@
+"""Incident tables: filters, and the ``--out`` files (JSON, CSV, Parquet)."""
+
+from __future__ import annotations
+
+import csv
+import json
+from typing import TYPE_CHECKING, Any
+
+from workbench.errors import WorkbenchError
+
+if TYPE_CHECKING:
+    from collections.abc import Collection, Iterable
+    from pathlib import Path
+
+    from workbench.incidents.model import Incident
+
+__all__ = ["OUT_SUFFIXES", "filter_incidents", "flat_rows", "write_incidents"]
+
+#: Suffixes ``write_incidents`` knows.
+OUT_SUFFIXES = (".json", ".csv", ".parquet")
+
+
+def filter_incidents(
+    incidents: Iterable[Incident],
+    *,
+    engines: Collection[str] = (),
+    objects: Collection[str] = (),
+    causes: Collection[str] = (),
+    max_margin: float | None = None,
+) -> list[Incident]:
+    """The incidents matching every given filter (an empty filter matches all), order kept.
+
+    Args:
+        incidents: Incidents to filter.
+        engines: Keep these engines.
+        objects: Keep incidents involving one of these object ids.
+        causes: Keep incidents whose cause contains one of these texts (case-insensitive).
+        max_margin: Keep incidents whose worst margin is at most this (engine units).
+    """
+    wanted_causes = [c.lower() for c in causes]
+    return [
+        i
+        for i in incidents
+        if (not engines or i.engine in engines)
+        and (not objects or set(i.objects) & set(objects))
+        and (not wanted_causes or any(c in i.cause.lower() for c in wanted_causes))
+        and (max_margin is None or i.severity.worst_margin <= max_margin)
+    ]
+
+
+def flat_rows(incidents: Iterable[Incident]) -> list[dict[str, Any]]:
+    """One flat row per incident: severity facts as ``severity.<name>`` columns."""
+    rows = []
+    for incident in incidents:
+        row = incident.record()
+        severity = row.pop("severity")
+        row.update({f"severity.{k}": v for k, v in severity.items()})
+        rows.append(row)
+    names: dict[str, None] = {}
+    for row in rows:
+        names.update(dict.fromkeys(row))
+    return [{name: row.get(name) for name in names} for row in rows]
+
+
+def _write_parquet(rows: list[dict[str, Any]], path: Path) -> None:
+    import pyarrow as pa  # noqa: PLC0415 - only for Parquet output
+    import pyarrow.parquet as pq  # noqa: PLC0415
+
+    if not rows:
+        schema = pa.schema([("id", pa.string()), ("objects", pa.list_(pa.string()))])
+        pq.write_table(schema.empty_table(), path)
+        return
+    pq.write_table(pa.Table.from_pylist(rows), path)
+
+
+def write_incidents(incidents: Iterable[Incident], path: Path) -> None:
+    """Write incidents as JSON (a list of objects), CSV or Parquet by suffix, atomically.
+
+    Raises:
+        WorkbenchError: Unknown suffix, or the file cannot be written.
+    """
+    found = list(incidents)
+    if path.suffix not in OUT_SUFFIXES:
+        msg = f"{path}: incidents file must end in {', '.join(OUT_SUFFIXES)}, not {path.suffix!r}"
+        raise WorkbenchError(msg)
+    tmp = path.with_name(f".{path.name}.tmp")
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        if path.suffix == ".json":
+            tmp.write_text(json.dumps([i.record() for i in found], indent=2) + "\n")
+        elif path.suffix == ".parquet":
+            _write_parquet(flat_rows(found), tmp)
+        else:
+            rows = flat_rows(found)
+            with tmp.open("w", newline="") as fh:
+                writer = csv.DictWriter(fh, fieldnames=list(rows[0]) if rows else ["id"])
+                writer.writeheader()
+                for row in rows:
+                    writer.writerow({**row, "objects": " ".join(row["objects"])})
+        tmp.replace(path)
+    except OSError as err:
+        tmp.unlink(missing_ok=True)
+        raise WorkbenchError(f"{path}: cannot write incidents ({err.strerror})") from err
