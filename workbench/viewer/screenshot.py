@@ -13,6 +13,7 @@ Run as ``python -m workbench.viewer.screenshot RRD PNG [FRAME] [WIDTHxHEIGHT]``.
 from __future__ import annotations
 
 import contextlib
+import importlib.util
 import os
 import shutil
 import socket
@@ -43,14 +44,11 @@ class ScreenshotUnavailableError(WorkbenchError):
 
 
 def _viewer_binary() -> str:
-    try:
-        import rerun_cli  # noqa: PLC0415 - the binary shipped with rerun-sdk
-
-        candidate = Path(rerun_cli.__file__).parent / "rerun"
+    spec = importlib.util.find_spec("rerun_cli")  # the binary shipped with rerun-sdk
+    if spec is not None and spec.origin is not None:
+        candidate = Path(spec.origin).parent / "rerun"
         if candidate.is_file():
             return str(candidate)
-    except ImportError:
-        pass
     found = shutil.which("rerun")
     if found is None:
         msg = "no rerun viewer binary found (install rerun-sdk)"
