@@ -19,6 +19,7 @@ COMMAND_MODULES: tuple[str, ...] = (
     "workbench.cli.incidents",
     "workbench.cli.label",
     "workbench.cli.labels",
+    "workbench.cli.export",
     "workbench.cli.engines",
     "workbench.cli.conformance",
     "workbench.cli.samples",

@@ -16,7 +16,7 @@ from workbench.cli.progress import frame_progress
 from workbench.errors import WorkbenchError
 
 if TYPE_CHECKING:
-    from workbench.incidents import IncidentReport
+    from workbench.incidents import IncidentReport, IncidentRequest
 
 __all__ = [
     "EgoIdOption",
@@ -30,7 +30,9 @@ __all__ = [
     "ReachOption",
     "RssParamsOption",
     "StoreOption",
+    "find_request_with_progress",
     "find_with_progress",
+    "incident_request",
 ]
 
 LogArgument = Annotated[
@@ -64,6 +66,52 @@ StoreOption = Annotated[
 ]
 
 
+def incident_request(
+    log: Path,
+    *,
+    engines: str,
+    map_path: Path | None,
+    profile: Path | None,
+    ego_id: str | None,
+    ego_topic: str | None,
+    reach_method: ReachMethodOption,
+    rss_params: Path | None,
+    min_duration: float,
+    merge_gap: float,
+) -> IncidentRequest:
+    """The request the incident options describe.
+
+    Raises:
+        WorkbenchError: Unknown engine, or none.
+    """
+    from workbench.engines import names, parse_engines  # noqa: PLC0415 - light start-up
+    from workbench.incidents import IncidentRequest, IncidentSettings  # noqa: PLC0415
+
+    chosen = parse_engines(engines) if engines.strip() else list(names())
+    if not chosen:
+        raise WorkbenchError("--engines: name at least one engine")
+    return IncidentRequest(
+        log=log,
+        engines=tuple(chosen),
+        map_path=map_path,
+        profile=profile,
+        ego_id=ego_id,
+        ego_topic=ego_topic,
+        reach_method=reach_method.value,
+        rss_params=rss_params,
+        settings=IncidentSettings(min_duration_s=min_duration, merge_gap_s=merge_gap),
+    )
+
+
+def find_request_with_progress(request: IncidentRequest) -> IncidentReport:
+    """Find the request's incidents with a progress bar on stderr."""
+    from workbench.incidents import find_incidents  # noqa: PLC0415 - light start-up
+
+    with frame_progress() as bar:
+        task = bar.add_task(f"incidents {request.log.name}", total=None)
+        return find_incidents(request, progress=lambda done: bar.update(task, completed=done))
+
+
 def find_with_progress(
     log: Path,
     *,
@@ -78,27 +126,16 @@ def find_with_progress(
     merge_gap: float,
 ) -> IncidentReport:
     """Find the drive's incidents with a progress bar on stderr."""
-    from workbench.engines import names, parse_engines  # noqa: PLC0415 - light start-up
-    from workbench.incidents import (  # noqa: PLC0415
-        IncidentRequest,
-        IncidentSettings,
-        find_incidents,
-    )
-
-    chosen = parse_engines(engines) if engines.strip() else list(names())
-    if not chosen:
-        raise WorkbenchError("--engines: name at least one engine")
-    request = IncidentRequest(
-        log=log,
-        engines=tuple(chosen),
+    request = incident_request(
+        log,
+        engines=engines,
         map_path=map_path,
         profile=profile,
         ego_id=ego_id,
         ego_topic=ego_topic,
-        reach_method=reach_method.value,
+        reach_method=reach_method,
         rss_params=rss_params,
-        settings=IncidentSettings(min_duration_s=min_duration, merge_gap_s=merge_gap),
+        min_duration=min_duration,
+        merge_gap=merge_gap,
     )
-    with frame_progress() as bar:
-        task = bar.add_task(f"incidents {log.name}", total=None)
-        return find_incidents(request, progress=lambda done: bar.update(task, completed=done))
+    return find_request_with_progress(request)

@@ -15,7 +15,10 @@ if TYPE_CHECKING:
     from collections.abc import Callable
     from pathlib import Path
 
+    from loaders.drive import Drive
     from loaders.errors import LoaderError
+    from workbench.driver.run import EgoSize
+    from workbench.engines.base import EngineRunner
     from workbench.incidents.model import Incident
 
 __all__ = ["IncidentReport", "IncidentRequest", "find_incidents"]
@@ -46,6 +49,38 @@ class IncidentRequest:
     reach_method: str = "turn"
     rss_params: Path | None = None
     settings: IncidentSettings = field(default_factory=IncidentSettings)
+
+    def open_drive(self) -> Drive:
+        """Open the drive as these settings read it (the caller closes it).
+
+        Raises:
+            WorkbenchError: Missing log.
+            LoaderError: The log cannot be opened.
+        """
+        return open_log(
+            self.log,
+            map_path=self.map_path,
+            profile=self.profile,
+            ego_id=self.ego_id,
+            ego_topic=self.ego_topic,
+        )
+
+    def runners(self, drive: Drive) -> list[EngineRunner]:
+        """Fresh runners of the requested engines for an opened drive.
+
+        Raises:
+            WorkbenchError: Unknown engine or unreadable ``--rss-params``.
+        """
+        from workbench.engines import EngineSettings, build_runners  # noqa: PLC0415 - light start
+
+        settings = EngineSettings(
+            rss_params=load_rss_params(self.rss_params), reach_method=self.reach_method
+        )
+        return build_runners(list(self.engines), drive.lane_map, settings)
+
+    def ego_size(self) -> EgoSize | None:
+        """The ego size the ``--rss-params`` file gives, if any."""
+        return ego_size(load_rss_params(self.rss_params))
 
     def record(self) -> dict[str, Any]:
         """The settings that produced the incidents, as stored beside every label."""
@@ -104,21 +139,10 @@ def find_incidents(
         WorkbenchError: Missing log, unknown engine, unreadable settings file.
         LoaderError: The log cannot be opened.
     """
-    from workbench.engines import EngineSettings, build_runners  # noqa: PLC0415 - light start
-
-    params = load_rss_params(request.rss_params)
     drive_hash = drive_content_hash(request.log) if request.log.exists() else ""
-    drive = open_log(
-        request.log,
-        map_path=request.map_path,
-        profile=request.profile,
-        ego_id=request.ego_id,
-        ego_topic=request.ego_topic,
-    )
+    drive = request.open_drive()
     try:
-        settings = EngineSettings(rss_params=params, reach_method=request.reach_method)
-        runners = build_runners(list(request.engines), drive.lane_map, settings)
-        run = DriveRun(drive, runners, ego_size=ego_size(params))
+        run = DriveRun(drive, request.runners(drive), ego_size=request.ego_size())
         detector = IncidentDetector(drive_hash, request.settings)
         for chunk in run:
             detector.add_chunk(chunk)

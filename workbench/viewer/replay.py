@@ -95,6 +95,7 @@ def replay_drive(
     ego_size: EgoSize | None = None,
     incident_settings: IncidentSettings | None = None,
     verdicts: Mapping[str, str] | None = None,
+    selection: tuple[int, int] | None = None,
 ) -> ReplaySummary:
     """Send a drive's map, frames and engine verdicts to exactly one destination.
 
@@ -117,6 +118,8 @@ def replay_drive(
         incident_settings: How the engines' unsafe frames become incidents (lanes and
             markers sent after the last frame).
         verdicts: Review verdict per incident id, shown on the lanes and markers.
+        selection: ``(first, last)`` frame of an incident: the blueprint's time panel selects
+            and loops over it (a clip's review blueprint).
 
     Returns:
         Counts and timings of the replay.
@@ -127,7 +130,7 @@ def replay_drive(
     first = next(chunks, None)
     ego_start = (first.frames[0].ego.x_m, first.frames[0].ego.y_m) if first else None
     rec = rr.RecordingStream(APPLICATION_ID, recording_id=_recording_id(drive, start_ns, end_ns))
-    blueprint = replay_blueprint(ego_start, engines=run.engine_names)
+    blueprint = replay_blueprint(ego_start, engines=run.engine_names, selection=selection)
     detector = ViolationDetector(drive.info.path.name)
     path = drive.info.path
     incidents = IncidentDetector(
