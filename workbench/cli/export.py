@@ -148,7 +148,8 @@ def export(
     if summary.thumbnails_skipped is not None:
         typer.echo(f"thumbnails skipped: {summary.thumbnails_skipped}")
     if report.stopped_by is not None:
-        typer.echo(f"the log breaks off: {report.stopped_by}")
+        typer.echo("stopped early: the clips cover the log up to where it breaks off")
+        raise report.stopped_by
 
 
 def register(app: typer.Typer) -> None:

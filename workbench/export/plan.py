@@ -27,8 +27,8 @@ def safe_stem(text: str) -> str:
     Path separators, ``..``, control and shell characters all become ``_``; an empty result
     becomes ``clip``.
     """
-    stem = _UNSAFE.sub("_", text).strip("._-")
-    stem = re.sub(r"\.{2,}", "_", stem)[:_MAX_STEM].rstrip("._-")
+    stem = _UNSAFE.sub("_", re.sub(r"\.{2,}", "_", text))
+    stem = re.sub(r"_{2,}", "_", stem).strip("._-")[:_MAX_STEM].rstrip("._-")
     return stem or "clip"
 
 
