@@ -79,7 +79,9 @@ class _ClipFile:
             schema = self.writer.register_schema(
                 codec.schema_name, codec.schema_encoding, codec.schema_data
             )
-            channel = self.writer.register_channel(EVENT_TOPIC, codec.message_encoding, schema)
+            channel = self.writer.register_channel(
+                EVENT_TOPIC, codec.message_encoding, schema, codec.channel_metadata
+            )
             data = codec.encode(request.start_ns, request.end_ns, request.event)
             self.writer.add_message(channel, request.start_ns, data, request.start_ns)
             self.messages += 1
@@ -245,7 +247,11 @@ class _Cut:
             clip.finish(attachments, [*metadata, *request.metadata.items(), ("clip", record)])
             outcomes.append(
                 ClipOutcome(
-                    request, written=True, messages=clip.messages, per_topic=dict(clip.per_topic)
+                    request,
+                    written=True,
+                    messages=clip.messages,
+                    per_topic=dict(clip.per_topic),
+                    profile=self.profile,
                 )
             )
         return outcomes

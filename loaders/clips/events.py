@@ -52,12 +52,15 @@ class EventCodec:
         self.profile = profile
         if profile in {"ros1", "ros2"}:
             version = 1 if profile == "ros1" else 2
-            text = _store(version).generate_msgdef(_MSGTYPE, ros_version=version)[0]
+            text, digest = _store(version).generate_msgdef(_MSGTYPE, ros_version=version)
+            #: Channel metadata (ROS 1: the definition's MD5, as ROS 1 tools expect).
+            self.channel_metadata = {"md5sum": digest} if version == 1 else {}
             self.schema_name = "foxglove_msgs/Event" if version == 1 else _MSGTYPE
             self.schema_encoding = f"ros{version}msg"
             self.message_encoding = "ros1" if version == 1 else "cdr"
             self.schema_data = text.encode()
         else:
+            self.channel_metadata = {}
             self.schema_name = "foxglove.Event"
             self.schema_encoding = "protobuf"
             self.message_encoding = "protobuf"

@@ -77,6 +77,7 @@ class ClipOutcome:
         messages: Messages copied (including the event message).
         per_topic: Messages copied per source topic.
         reason: Why the clip was not written (``None`` when written).
+        profile: The clip's MCAP profile (the log's: ``ros1``, ``ros2``, ``""``, ...).
     """
 
     request: ClipRequest
@@ -84,3 +85,4 @@ class ClipOutcome:
     messages: int
     per_topic: dict[str, int]
     reason: str | None = None
+    profile: str = ""

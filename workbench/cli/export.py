@@ -42,7 +42,7 @@ __all__ = ["register"]
 def _summary_lines(summary: ExportSummary) -> list[str]:
     lines = []
     for clip in summary.clips:
-        files = [p.name for p in (clip.mcap, clip.openlabel, clip.rrd, clip.png) if p]
+        files = [p.name for p in (clip.mcap, clip.bag, clip.openlabel, clip.rrd, clip.png) if p]
         state = "ok" if clip.problem is None else f"NOT WRITTEN: {clip.problem}"
         lines.append(
             f"  {clip.plan.stem}: {clip.messages} message(s) {state}  [{', '.join(files)}]"

@@ -14,7 +14,7 @@ import tempfile
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from loaders.clips import ClipRequest, write_clips
+from loaders.clips import ClipRequest, write_clips, write_ros1_bag
 from loaders.message_logs.mapsource import sidecar_map
 from loaders.open import is_rosbag2_dir
 
@@ -25,7 +25,7 @@ if TYPE_CHECKING:
     from workbench.export.plan import ClipPlan
     from workbench.incidents import IncidentReport
 
-__all__ = ["MESSAGE_LOG_SUFFIXES", "write_raw_clips"]
+__all__ = ["MESSAGE_LOG_SUFFIXES", "write_raw_clips", "write_ros1_bags"]
 
 #: Inputs whose own messages are copied into the clips.
 MESSAGE_LOG_SUFFIXES = frozenset({".mcap", ".bag", ".db3"})
@@ -102,3 +102,18 @@ def write_raw_clips(
             source_name=log.name,
             on_message=on_message,
         )
+
+
+def write_ros1_bags(outcomes: Sequence[ClipOutcome]) -> dict[Path, Path]:
+    """``<stem>.bag`` beside every written ``ros1`` clip (rosbags reads no ROS 1 MCAP).
+
+    Returns:
+        The bag of each MCAP clip that has one.
+    """
+    bags = {}
+    for outcome in outcomes:
+        if outcome.written and outcome.profile == "ros1":
+            clip = outcome.request.path
+            bags[clip] = clip.with_suffix(".bag")
+            write_ros1_bag(clip, bags[clip])
+    return bags

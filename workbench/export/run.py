@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING, Any
 
 from workbench.annotations.openlabel import export_openlabel, write_openlabel
 from workbench.errors import WorkbenchError
-from workbench.export.raw import write_raw_clips
+from workbench.export.raw import write_raw_clips, write_ros1_bags
 from workbench.export.views import write_recordings, write_thumbnails
 
 if TYPE_CHECKING:
@@ -42,6 +42,7 @@ _CSV_FIELDS = (
     "clip_end_ns",
     "messages",
     "mcap",
+    "bag",
     "openlabel",
     "rrd",
     "png",
@@ -51,10 +52,11 @@ _CSV_FIELDS = (
 
 @dataclass(frozen=True, slots=True)
 class ExportedClip:
-    """The files of one clip (``None``: not written, see ``problem``)."""
+    """The files of one clip (``None``: not written, see ``problem``; ``bag``: ROS 1 logs)."""
 
     plan: ClipPlan
     mcap: Path | None
+    bag: Path | None
     openlabel: Path
     rrd: Path | None
     png: Path | None
@@ -66,6 +68,7 @@ class ExportedClip:
         """The clip's entry in ``clips.json`` (file names relative to the directory)."""
         files = {
             "mcap": self.mcap,
+            "bag": self.bag,
             "openlabel": self.openlabel,
             "rrd": self.rrd,
             "png": self.png,
@@ -99,7 +102,7 @@ class ExportSummary:
     @property
     def bytes_written(self) -> int:
         """Size of every file written."""
-        paths = [p for c in self.clips for p in (c.mcap, c.openlabel, c.rrd, c.png) if p]
+        paths = [p for c in self.clips for p in (c.mcap, c.bag, c.openlabel, c.rrd, c.png) if p]
         return sum(p.stat().st_size for p in paths if p.is_file())
 
 
@@ -192,6 +195,7 @@ def export_clips(
         topics=topics,
         on_message=on_bytes,
     )
+    bags = write_ros1_bags(raw)
     readable = [p for p, outcome in zip(plans, raw, strict=True) if outcome.written]
     if on_clip is not None:
         for _ in plans:
@@ -209,6 +213,7 @@ def export_clips(
             ExportedClip(
                 plan,
                 outcome.request.path if outcome.written else None,
+                bags.get(outcome.request.path),
                 openlabel,
                 None if rrd is None else rrd[0],
                 pngs.get(plan.stem),

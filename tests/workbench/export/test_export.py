@@ -138,6 +138,9 @@ def test_ros1_bag_clip_keeps_its_profile_and_re_evaluates(tmp_path: Path) -> Non
         assert copied == Counter(
             r for r in source if clip["clip_start_ns"] <= r[1] <= clip["clip_end_ns"]
         )
+        with AnyReader([tmp_path / "out" / clip["files"]["bag"]]) as reader:
+            twin = Counter((c.topic, t, bytes(raw)) for c, t, raw in reader.messages())
+        assert twin == Counter(_records(path))  # the same records, readable by rosbags
         report = find_incidents(IncidentRequest(path, engines=("rss",)))
         assert any(
             i.engine == clip["engine"]
