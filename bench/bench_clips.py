@@ -123,6 +123,24 @@ def cut(log: str, out: str, start: str, end: str) -> dict[str, float]:
     }
 
 
+def export_cli(log: str, out: str) -> dict[str, float]:
+    """``workbench export LOG --all`` (RSS incidents, MCAP clips only): wall time, peak RSS."""
+    from workbench.cli.main import main  # noqa: PLC0415 - child-process entry point
+
+    started = time.perf_counter()
+    args = ["export", log, "--all", "--engines", "rss", "--no-rrd", "--no-thumbnails"]
+    args += ["--map", "sample_logs/highway_cut_in.osm", "--out", out]
+    args += ["--store", str(Path(out).parent / "labels.sqlite")]
+    try:
+        main(args)
+    except SystemExit as done:
+        if done.code not in (None, 0):
+            raise
+    elapsed = time.perf_counter() - started
+    index = json.loads((Path(out) / "clips.json").read_text())
+    return {"s": elapsed, "clips": len(index), "rss_mib": _peak_mib()}
+
+
 def _peak_mib() -> float:
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
 
@@ -151,6 +169,8 @@ def run(*, quick: bool) -> str:
         clips = run_json(
             _CHILD.format("cut"), str(log), str(out), str(made["start"]), str(made["end"])
         )
+        _drop_caches()
+        whole = run_json(_CHILD.format("export_cli"), str(log), str(Path(tmp) / "export"))
     ratio = clips["s"] / read["s"]
     cache = "emptied before each step (both read from disk)" if cold else "warm (not root)"
     rows = [
@@ -164,8 +184,13 @@ def run(*, quick: bool) -> str:
             f"| cut {clips['written']} clips in one pass (`write_clips`) | {clips['s']:.2f} | "
             f"{clips['rss_mib']:.0f} | {clips['messages']} |"
         ),
+        (
+            "| `workbench export --all --engines rss --no-rrd --no-thumbnails` (finds the "
+            f"incidents, then writes {whole['clips']:.0f} MCAP clips) | {whole['s']:.2f} | "
+            f"{whole['rss_mib']:.0f} | |"
+        ),
     ]
-    facts = json.dumps({"read": read, "cut": clips}, sort_keys=True)
+    facts = json.dumps({"read": read, "cut": clips, "export": whole}, sort_keys=True)
     return (
         "## Clip export from a large log\n\n"
         f"Log: {made['bytes'] / _MIB:.0f} MiB ROS 2 MCAP (sample drive repeated, 10 Hz 160 KiB "
@@ -173,6 +198,8 @@ def run(*, quick: bool) -> str:
         f"{clips['out_mib']:.0f} MiB written. Page cache: {cache}.\n\n"
         + "\n".join(rows)
         + f"\n\nCut time / read time: **{ratio:.2f}** (target: at most 2); "
-        "peak RSS target: under 400 MB.\n\n"
+        "peak RSS target: under 400 MB. The whole command also evaluates every frame to find "
+        "the incidents (its own pass, the cost of `workbench incidents`); the clips then take "
+        "the one pass measured above.\n\n"
         f"<!-- {facts} -->\n"
     )
