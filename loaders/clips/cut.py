@@ -151,7 +151,7 @@ def write_clips(
         requests: The windows to cut (may overlap).
         topics: Topics to copy (``None``: all).
         map_file: A map attached to every clip (besides the log's own attachments; left out
-            when the log already holds an attachment of that name).
+            when the log already holds an attachment of that name or those bytes).
         source_name: Name of the log recorded in each clip's ``clip`` metadata record.
         on_message: Called with each copied message's payload size (bytes), for progress.
 
@@ -179,7 +179,9 @@ def write_clips(
         except CorruptLogError as err:
             cut.broke = err
         attachments = source.attachments()
-        if map_file is not None and all(a[0] != map_file[0] for a in attachments):
+        if map_file is not None and all(
+            a[0] != map_file[0] and a[2] != map_file[2] for a in attachments
+        ):
             attachments.append((*map_file, time.time_ns(), start))
         return cut.finish(attachments, source.metadata(), source_name or log.name)
     finally:

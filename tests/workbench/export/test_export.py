@@ -12,6 +12,7 @@ from typing import Any
 import jsonschema
 import numpy as np
 import pytest
+import rerun as rr
 from mcap.reader import NonSeekingReader, make_reader
 from mcap.writer import Writer
 from PIL import Image
@@ -82,6 +83,8 @@ def test_clip_reads_whole_with_rosbags_and_carries_the_event(mcap_export) -> Non
         (_, _, raw) = next(iter(reader.messages(connections=[conn])))
         event: Any = reader.deserialize(raw, conn.msgtype)
     assert count == clip["messages"]
+    info = rr.chunk.McapReader(out / clip["files"]["mcap"]).info()  # Rerun's own MCAP import
+    assert (info.message_count, info.attachment_count) == (clip["messages"], 1)
     pairs = {p.key: p.value for p in event.metadata}
     assert pairs["incident_id"] == clip["id"]
     assert pairs["engine"] == clip["engine"]
