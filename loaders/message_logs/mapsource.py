@@ -18,7 +18,7 @@ if TYPE_CHECKING:
     from loaders.maps.model import LaneMap
     from loaders.message_logs.source import MessageSource
 
-__all__ = ["find_map", "read_map"]
+__all__ = ["find_map", "read_map", "sidecar_map"]
 
 
 def read_map(source: Path | bytes, name: str) -> LaneMap:
@@ -48,6 +48,11 @@ def _sidecars(path: Path) -> list[Path]:
     return [path.with_suffix(".osm")]
 
 
+def sidecar_map(path: Path) -> Path | None:
+    """The map file lying beside the log (``LOG.osm``; in a bag directory ``map.osm``), if any."""
+    return next((c for c in _sidecars(path) if c.is_file()), None)
+
+
 def find_map(
     path: Path, source: MessageSource, explicit: Path | None
 ) -> tuple[str, LaneMap] | None:
@@ -58,7 +63,7 @@ def find_map(
         return str(explicit), read_map(explicit, str(explicit))
     for name, data in source.attachments():
         return f"attachment {name}", read_map(data, f"{path}#{name}")
-    for candidate in _sidecars(path):
-        if candidate.is_file():
-            return str(candidate), read_map(candidate, str(candidate))
+    candidate = sidecar_map(path)
+    if candidate is not None:
+        return str(candidate), read_map(candidate, str(candidate))
     return None

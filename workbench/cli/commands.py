@@ -20,6 +20,7 @@ COMMAND_MODULES: tuple[str, ...] = (
     "workbench.cli.label",
     "workbench.cli.labels",
     "workbench.cli.review",
+    "workbench.cli.export",
     "workbench.cli.engines",
     "workbench.cli.conformance",
     "workbench.cli.samples",

@@ -49,6 +49,7 @@ __all__ = [
     "StoreOption",
     "find_with_progress",
     "incident_request",
+    "with_checked_incidents",
     "with_incidents",
 ]
 
@@ -68,9 +69,7 @@ ReachOption = Annotated[
 RssParamsOption = Annotated[
     Path | None, typer.Option("--rss-params", help="TOML with RSS dynamics and [scene] settings.")
 ]
-ReachRulesArg = Annotated[
-    ReachRulesOption, typer.Option("--reach-rules", help=REACH_RULES_HELP)
-]
+ReachRulesArg = Annotated[ReachRulesOption, typer.Option("--reach-rules", help=REACH_RULES_HELP)]
 ReachTrajectoryArg = Annotated[
     ReachTrajectoryOption, typer.Option("--reach-trajectory", help=REACH_TRAJECTORY_HELP)
 ]
@@ -179,12 +178,16 @@ _SHARED = (
 )
 
 
-def with_incidents(command: Callable[..., None]) -> Callable[..., None]:
+def with_incidents(
+    command: Callable[..., None], *, check: Callable[..., None] | None = None
+) -> Callable[..., None]:
     """Give a command the incident options; it gets the drive's ``report`` found with them.
 
     The command declares ``log`` and ``report`` (not a CLI parameter) and its own options; the
     returned function's signature (what typer reads) has ``log``, the command's options and
     the shared ones, so every incident command finds incidents, and so ids, the same way.
+    ``check`` (see :func:`with_checked_incidents`) sees the command's own options first, so a
+    bad choice fails before the drive is evaluated.
     """
     hints = typing.get_type_hints(command, include_extras=True, localns={"IncidentReport": Any})
     own = [
@@ -196,9 +199,18 @@ def with_incidents(command: Callable[..., None]) -> Callable[..., None]:
     @functools.wraps(command)
     def run(**kwargs: Any) -> None:
         shared = {p.name: kwargs.pop(p.name) for p in _SHARED}
+        if check is not None:
+            check(**kwargs)
         command(report=find_with_progress(incident_request(kwargs["log"], **shared)), **kwargs)
 
     params = [*own, *_SHARED]
     run.__signature__ = inspect.Signature(params)  # type: ignore[attr-defined]
     run.__annotations__ = {p.name: p.annotation for p in params}
     return run
+
+
+def with_checked_incidents(
+    check: Callable[..., None],
+) -> Callable[[Callable[..., None]], Callable[..., None]]:
+    """:func:`with_incidents` whose ``check`` validates the command's options first."""
+    return functools.partial(with_incidents, check=check)

@@ -84,20 +84,28 @@ PRED_STEP, PRED_POINTS = 10, 7
 class MessageFactory:
     """Message constructors bound to one typestore (ROS 1 Noetic or ROS 2 Humble)."""
 
-    def __init__(self, store: Typestore, ros_version: int) -> None:
-        """Bind to ``store``; ``ros_version`` selects the header layout."""
+    def __init__(self, store: Typestore, ros_version: int, *, quantised: bool = True) -> None:
+        """Bind to ``store``; ``ros_version`` selects the header layout.
+
+        ``quantised=False`` keeps every float as given (converted drives, whose values come
+        from a file and must survive the round trip bit for bit).
+        """
         self.ts = store
         self.ros1 = ros_version == 1
         self._t = store.types
+        self._quantised = quantised
 
     def new(self, name: str, **fields: Any) -> Any:
         """Construct message type ``name`` from keyword fields.
 
-        The one place every ROS message is built: each float field (and float array) is
-        rounded to the grid of :mod:`workbench.samples.quantise` (quaternion components to
-        1e-9, everything else to 1e-6 of its unit), so the serialised bytes do not depend on
-        last-bit differences of the math before.
+        The one place every ROS message is built: unless the factory was made with
+        ``quantised=False``, each float field (and float array) is rounded to the grid of
+        :mod:`workbench.samples.quantise` (quaternion components to 1e-9, everything else to
+        1e-6 of its unit), so the serialised bytes do not depend on last-bit differences of
+        the math before.
         """
+        if not self._quantised:
+            return self._t[name](**fields)
         steps = ANGLE_STEPS if name == "geometry_msgs/msg/Quaternion" else STEPS_PER_UNIT
         return self._t[name](**{key: quantise_field(v, steps) for key, v in fields.items()})
 

@@ -29,7 +29,7 @@ from workbench.samples.ros_messages import (
 from workbench.samples.ros_objects import objects_message, plan_message
 
 if TYPE_CHECKING:
-    from collections.abc import Iterator
+    from collections.abc import Iterable, Iterator, Mapping, Sequence
     from pathlib import Path
 
     from workbench.samples.scenario import Scenario
@@ -40,6 +40,7 @@ __all__ = [
     "topic_types",
     "write_bag",
     "write_mcap",
+    "write_ros2_mcap",
     "write_rosbag2",
 ]
 
@@ -91,10 +92,24 @@ def _messages(sc: Scenario, ros_version: int) -> Iterator[tuple[str, int, Any]]:
             yield topics[-1], t_ns, plan_message(f, plan_kind, sc, k, t_ns)
 
 
-def write_mcap(sc: Scenario, path: Path, osm: bytes) -> None:
-    """ROS 2 CDR MCAP (zstd, 256 KiB chunks) with the map attachment and ``drive`` metadata."""
+def write_ros2_mcap(
+    path: Path,
+    types: Mapping[str, str],
+    messages: Iterable[tuple[str, int, Any]],
+    *,
+    attachments: Sequence[tuple[str, str, bytes]] = (),
+    metadata: Mapping[str, str] | None = None,
+) -> None:
+    """ROS 2 CDR MCAP (zstd, 256 KiB chunks): the one MCAP writer of ROS 2 messages.
+
+    Args:
+        path: Output file.
+        types: Topic -> message type, in channel order.
+        messages: ``(topic, t_ns, message)`` in log-time order; log time = publish time.
+        attachments: ``(name, media type, bytes)``, stamped with the first message time.
+        metadata: The ``drive`` metadata record, if any.
+    """
     store = typestore(2)
-    types = topic_types(sc, 2)
     with path.open("wb") as stream:
         writer = McapWriter(stream, chunk_size=_CHUNK_SIZE, compression=CompressionType.ZSTD)
         writer.start(profile="ros2", library=f"rss-workbench samples {GENERATOR_VERSION}")
@@ -107,13 +122,29 @@ def write_mcap(sc: Scenario, path: Path, osm: bytes) -> None:
             )
             channels[topic] = writer.register_channel(topic, "cdr", schema)
         counts = dict.fromkeys(types, 0)
-        for topic, t_ns, msg in _messages(sc, 2):
+        first_ns: int | None = None
+        for topic, t_ns, msg in messages:
+            first_ns = t_ns if first_ns is None else first_ns
             data = store.serialize_cdr(msg, types[topic])
             writer.add_message(channels[topic], t_ns, bytes(data), t_ns, counts[topic])
             counts[topic] += 1
-        writer.add_attachment(T0_NS, T0_NS, f"{sc.name}.osm", "application/xml", osm)
-        writer.add_metadata("drive", drive_metadata(sc))
+        for name, media_type, content in attachments:
+            t_ns = first_ns or 0
+            writer.add_attachment(t_ns, t_ns, name, media_type, content)
+        if metadata is not None:
+            writer.add_metadata("drive", dict(metadata))
         writer.finish()  # type: ignore[no-untyped-call]
+
+
+def write_mcap(sc: Scenario, path: Path, osm: bytes) -> None:
+    """ROS 2 CDR MCAP (zstd, 256 KiB chunks) with the map attachment and ``drive`` metadata."""
+    write_ros2_mcap(
+        path,
+        topic_types(sc, 2),
+        _messages(sc, 2),
+        attachments=[(f"{sc.name}.osm", "application/xml", osm)],
+        metadata=drive_metadata(sc),
+    )
 
 
 def write_bag(sc: Scenario, path: Path) -> None:

@@ -97,6 +97,7 @@ def replay_drive(
     incident_settings: IncidentSettings | None = None,
     verdicts: Mapping[str, str] | None = None,
     connect: str | None = None,
+    selection: tuple[int, int] | None = None,
 ) -> ReplaySummary:
     """Send a drive's map, frames and engine verdicts to exactly one destination.
 
@@ -120,6 +121,8 @@ def replay_drive(
             markers sent after the last frame).
         verdicts: Review verdict per incident id, shown on the lanes and markers.
         connect: Stream to a running viewer's gRPC proxy (``rerun+http://HOST:PORT/proxy``).
+        selection: ``(first, last)`` frame of an incident: the blueprint's time panel selects
+            and loops over it (a clip's review blueprint).
 
     Returns:
         Counts and timings of the replay.
@@ -130,7 +133,7 @@ def replay_drive(
     first = next(chunks, None)
     ego_start = (first.frames[0].ego.x_m, first.frames[0].ego.y_m) if first else None
     rec = rr.RecordingStream(APPLICATION_ID, recording_id=recording_id(drive, start_ns, end_ns))
-    blueprint = replay_blueprint(ego_start, engines=run.engine_names)
+    blueprint = replay_blueprint(ego_start, engines=run.engine_names, selection=selection)
     detector = ViolationDetector(drive.info.path.name)
     path = drive.info.path
     incidents = IncidentDetector(

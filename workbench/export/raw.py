@@ -1,0 +1,119 @@
+"""The MCAP clip of each plan: the log's own messages, or the workbench's frame messages.
+
+Message logs (MCAP, ROS 1 bag, rosbag2, bare ``.db3``) are cut with
+:func:`loaders.clips.write_clips`: raw records copied, one pass for all clips. Drives that
+are not message logs (CommonRoad, ScenarioArchitect) are first written as a ROS 2 MCAP of
+the workbench's own frame messages over the clips' span
+(:func:`workbench.samples.drive_mcap.write_drive_mcap`) and cut from there.
+"""
+
+from __future__ import annotations
+
+import json
+import tempfile
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from loaders.clips import ClipRequest, write_clips, write_ros1_bag
+from loaders.message_logs.mapsource import sidecar_map
+from loaders.open import is_rosbag2_dir
+
+if TYPE_CHECKING:
+    from collections.abc import Callable, Collection, Sequence
+
+    from loaders.clips import ClipOutcome, MapAttachment
+    from workbench.export.plan import ClipPlan
+    from workbench.incidents import IncidentReport
+
+__all__ = ["MESSAGE_LOG_SUFFIXES", "write_raw_clips", "write_ros1_bags"]
+
+#: Inputs whose own messages are copied into the clips.
+MESSAGE_LOG_SUFFIXES = frozenset({".mcap", ".bag", ".db3"})
+_MEDIA_TYPES = {".osm": "application/vnd.openstreetmap.data+xml", ".xodr": "application/xml"}
+
+
+def _map_attachment(log: Path, explicit: Path | None) -> MapAttachment | None:
+    path = explicit or (sidecar_map(log) if log.exists() else None)
+    if path is None or not path.is_file():
+        return None
+    return (path.name, _MEDIA_TYPES.get(path.suffix.lower(), "application/xml"), path.read_bytes())
+
+
+def _requests(
+    plans: Sequence[ClipPlan], out_dir: Path, report: IncidentReport
+) -> list[ClipRequest]:
+    drive = {
+        "log": report.log.name,
+        "drive_sha256": report.drive_hash,
+        "settings": json.dumps(report.settings, sort_keys=True),
+    }
+    return [
+        ClipRequest(
+            out_dir / f"{p.stem}.mcap",
+            p.start_ns,
+            p.end_ns,
+            p.event(),
+            {"drive": drive, "incident": p.event()},
+        )
+        for p in plans
+    ]
+
+
+def write_raw_clips(
+    report: IncidentReport,
+    plans: Sequence[ClipPlan],
+    out_dir: Path,
+    *,
+    map_path: Path | None,
+    write_frames: Callable[[Path, int, int], None],
+    topics: Collection[str] | None = None,
+    on_message: Callable[[int], None] | None = None,
+) -> list[ClipOutcome]:
+    """Write ``<stem>.mcap`` for every plan into ``out_dir``.
+
+    Args:
+        report: The drive's incidents (log, content hash, settings).
+        plans: The clips.
+        out_dir: Output directory (exists).
+        map_path: The ``--map`` file, attached to every clip (else the map beside the log).
+        write_frames: For drives that are not message logs: ``write_frames(path, start_ns,
+            end_ns)`` writes the drive's frames of that span as a ROS 2 MCAP at ``path``.
+        topics: Topics to copy (``None``: all).
+        on_message: Progress, with each copied message's size in bytes.
+
+    Returns:
+        One outcome per plan.
+    """
+    log = report.log
+    requests = _requests(plans, out_dir, report)
+    attachment = _map_attachment(log, map_path)
+    if log.suffix.lower() in MESSAGE_LOG_SUFFIXES or is_rosbag2_dir(log):
+        return write_clips(log, requests, topics=topics, map_file=attachment, on_message=on_message)
+    start = min(p.start_ns for p in plans)
+    end = max(p.end_ns for p in plans)
+    with tempfile.TemporaryDirectory(prefix=".frames-", dir=out_dir) as tmp:
+        frames_log = Path(tmp) / f"{log.stem}.mcap"
+        write_frames(frames_log, start, end)
+        return write_clips(
+            frames_log,
+            requests,
+            topics=topics,
+            map_file=attachment,
+            source_name=log.name,
+            on_message=on_message,
+        )
+
+
+def write_ros1_bags(outcomes: Sequence[ClipOutcome]) -> dict[Path, Path]:
+    """``<stem>.bag`` beside every written ``ros1`` clip (rosbags reads no ROS 1 MCAP).
+
+    Returns:
+        The bag of each MCAP clip that has one.
+    """
+    bags = {}
+    for outcome in outcomes:
+        if outcome.written and outcome.profile == "ros1":
+            clip = outcome.request.path
+            bags[clip] = clip.with_suffix(".bag")
+            write_ros1_bag(clip, bags[clip])
+    return bags
