@@ -297,10 +297,10 @@ def _merging(f: FrameContext, box: int, max_m: float) -> Connecting | None:
 def connecting_routes(f: FrameContext, box: int, max_m: float) -> list[Connecting]:
     """Connecting routes between the ego and ``box`` within ``max_m`` (module docstring).
 
-    The routes of the frame's tree (from the ego's anchor lane); where it reaches none of
-    the object's lanes, the routes of the first further root's tree that gives any
-    (``FrameContext.other_trees``: the ego's centre on overlapping junction lanes), before
-    the merging search.
+    The typed routes of the frame's tree (from the ego's anchor lane); where it gives
+    none, those of the first further root's tree that gives any
+    (``FrameContext.other_trees``: lanes the ego occupies that no link joins to its
+    anchor); only where the anchor's tree reaches no lane of the object, the merging search.
     """
     direct, found = _direct(f, box, max_m, f.tree)
     if direct:

@@ -33,7 +33,7 @@ if TYPE_CHECKING:
     from rss.scene.match_records import Matches
     from rss.scene.prepared import PreparedGraph
 
-__all__ = ["create_scene", "scene_boxes"]
+__all__ = ["create_scene", "more_roots", "scene_boxes"]
 
 _MIN_RELEVANT_M = 100.0
 #: A lane at right angles to the ego's heading (within this cosine) gives no route root.
@@ -61,8 +61,8 @@ def more_roots(
     a route tree from the anchor alone misses what is reached only from them (Town01
     drive cross-check: seed 1 drive 6 frame 22, the anchor switches from 2180149 to the
     overlapping 2010149 and the car behind on 180149, a predecessor of 2180149 only, gets
-    no connecting route; seed 2 drive 7 frames 33-35, the car ahead on 100149 is reached
-    from the overlapping 2320149 only). Lanes at right angles to the heading are left
+    no connecting route; seed 2 drive 7 frames 33-35, the car ahead on 100151 is reached
+    from the overlapping 2320151 only). Lanes at right angles to the heading are left
     out (no orientation).
 
     Returns:

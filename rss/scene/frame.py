@@ -110,9 +110,10 @@ class FrameContext:
         headings: Per box, the heading of each touched lane's point order at its centre.
         ego_velocity: ``(vx, vy)`` of the ego in the map frame.
         once: What this frame computes once.
-        other_trees: Connecting routes from the further lanes the ego's centre lies in
-            (overlapping junction lanes, ``rss.scene.create.more_roots``), asked only for
-            an object ``tree`` reaches no lane of.
+        other_trees: Connecting routes from the further lanes the ego occupies that no
+            link joins to its anchor (overlapping junction lanes,
+            ``rss.scene.create.more_roots``), asked only for an object ``tree`` gives no
+            typed route to.
     """
 
     prep: PreparedGraph
