@@ -29,6 +29,7 @@ from typing import TYPE_CHECKING
 from rss.scene.junction_pairs import conflict
 from rss.scene.memo import memoised
 from rss.scene.roadarea import lane_heading
+from rss.scene.routes import RouteTree  # noqa: TC001 - a dataclass field type, read at run time when compiled (mypyc)
 
 if TYPE_CHECKING:
     from rss.scene.frame import FrameContext
@@ -67,6 +68,8 @@ class Connecting:
         feasibility: ad-map's heading feasibility of the route (:func:`feasibility`),
             rated only where there are several direct routes (1.0 otherwise: a single
             route, and ``MERGING``, is never filtered).
+        tree: The route tree ``target`` is reached in, when not the frame's own
+            (:func:`connecting_routes`: a further root of the ego).
     """
 
     kind: Kind
@@ -74,6 +77,7 @@ class Connecting:
     length_m: float
     through_intersection: bool
     feasibility: float = 1.0
+    tree: RouteTree | None = dataclasses.field(default=None, compare=False, repr=False)
 
 
 #: ad-rss drops connecting routes below this heading feasibility while others remain.
@@ -91,33 +95,37 @@ def heading_rating(yaw_rad: float, road_rad: float) -> float:
     return 1.0 - 2.0 * d / math.pi
 
 
-def feasibility(f: FrameContext, box: int, target: int, *, first: int, last: int) -> float:
+def feasibility(
+    f: FrameContext, box: int, target: int, *, first: int, last: int, tree: RouteTree
+) -> float:
     """Heading feasibility of the tree route to ``target`` (ad-map ``getHeadingFeasibility``).
 
     The product of the two vehicles' :func:`heading_rating` against the lane heading
-    where the route leaves the ego's region (its anchor lane) and where it enters the
+    where the route leaves the ego's region (the tree's root lane) and where it enters the
     object's region in ``target``; ``first`` / ``last`` are the route's first and last
     longitudinal moves (+1 ahead along the ego's direction, -1 behind).
     """
     m, prep = f.matches, f.prep
-    ego_lane = m.anchors[0]
+    ego_lane = tree.root_pos[0]
     reg = next(r for r in m.regions(0) if r.lane == ego_lane)
     ahead = (first > 0) == f.forward(0)
     ego_road = lane_heading(prep, f.memo, ego_lane, reg.lon_max if ahead else reg.lon_min)
     reg = next(r for r in m.regions(box) if r.lane == target)
-    along = (last > 0) == f.tree.forward[target]
+    along = (last > 0) == tree.forward[target]
     obj_road = lane_heading(prep, f.memo, target, reg.lon_min if along else reg.lon_max)
     yaw = float(f.objects.yaw_rad[box - 1])
     return heading_rating(f.ego.yaw_rad, ego_road) * heading_rating(yaw, obj_road)
 
 
-def _direct(f: FrameContext, box: int, max_m: float) -> tuple[list[Connecting], bool]:
-    """Typed tree routes to the object's lanes; also whether any route was found."""
-    m, tree, prep = f.matches, f.tree, f.prep
+def _direct(
+    f: FrameContext, box: int, max_m: float, tree: RouteTree
+) -> tuple[list[Connecting], bool]:
+    """Typed routes of ``tree`` to the object's lanes; also whether any route was found."""
+    m, prep = f.matches, f.prep
+    pos0 = tree.root_pos[1]
+    own = tree is f.tree
     yaw = float(f.objects.yaw_rad[box - 1])
     half = 0.5 * (f.ego.length_m + float(f.objects.length_m[box - 1]))
-    s0 = float(m.anchor_s[0])
-    pos0 = s0 if f.forward(0) else 1.0 - s0
     out: list[Connecting] = []
     moves: dict[int, tuple[int, int]] = {}
     found = False
@@ -153,16 +161,21 @@ def _direct(f: FrameContext, box: int, max_m: float) -> tuple[list[Connecting], 
         else:
             continue
         through = any(inside[x] for x in tree.path(lane))
-        out.append(Connecting(kind, lane, gap, through))
+        out.append(Connecting(kind, lane, gap, through, tree=None if own else tree))
         moves[lane] = (first, last)
-    kept = _drop_longer(f, out)
+    kept = _drop_longer(f, out, tree)
     if len(kept) < 2:  # noqa: PLR2004 - a single route is kept whatever its feasibility
         return kept, found
     rated = [
         dataclasses.replace(
             cr,
             feasibility=feasibility(
-                f, box, cr.target, first=moves[cr.target][0], last=moves[cr.target][1]
+                f,
+                box,
+                cr.target,
+                first=moves[cr.target][0],
+                last=moves[cr.target][1],
+                tree=tree,
             ),
         )
         for cr in kept
@@ -209,7 +222,7 @@ def _drop_infeasible(routes: list[Connecting]) -> list[Connecting]:
     return [cr for cr in routes if cr in kept]
 
 
-def _drop_longer(f: FrameContext, routes: list[Connecting]) -> list[Connecting]:
+def _drop_longer(f: FrameContext, routes: list[Connecting], tree: RouteTree) -> list[Connecting]:
     """Drop routes that extend a shorter one (ad-map ``filterDuplicatedConnectingRoutes``).
 
     A route is a longer version of a shorter one when it passes through the other's target
@@ -219,7 +232,7 @@ def _drop_longer(f: FrameContext, routes: list[Connecting]) -> list[Connecting]:
     g = f.prep.graph
     kept: list[Connecting] = []
     for cr in sorted(routes, key=lambda c: c.length_m):
-        near = {*f.tree.path(cr.target), *g.successors[cr.target], *g.predecessors[cr.target]}
+        near = {*tree.path(cr.target), *g.successors[cr.target], *g.predecessors[cr.target]}
         if any(k.target in near for k in kept):
             continue
         kept.append(cr)
@@ -282,9 +295,21 @@ def _merging(f: FrameContext, box: int, max_m: float) -> Connecting | None:
 
 
 def connecting_routes(f: FrameContext, box: int, max_m: float) -> list[Connecting]:
-    """Connecting routes between the ego and ``box`` within ``max_m`` (module docstring)."""
-    direct, found = _direct(f, box, max_m)
-    if found:
+    """Connecting routes between the ego and ``box`` within ``max_m`` (module docstring).
+
+    The typed routes of the frame's tree (from the ego's anchor lane); where it gives
+    none, those of the first further root's tree that gives any
+    (``FrameContext.other_trees``: lanes the ego occupies that no link joins to its
+    anchor); only where the anchor's tree reaches no lane of the object, the merging search.
+    """
+    direct, found = _direct(f, box, max_m, f.tree)
+    if direct:
         return direct
+    for tree in f.other_trees:
+        other, _ = _direct(f, box, max_m, tree)
+        if other:
+            return other
+    if found:
+        return []
     merge = _merging(f, box, max_m)
     return [] if merge is None else [merge]

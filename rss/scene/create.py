@@ -12,6 +12,7 @@ The result feeds ``rss.batch.stack_constellations`` and ``rss.engine.check_frame
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -32,9 +33,11 @@ if TYPE_CHECKING:
     from rss.scene.match_records import Matches
     from rss.scene.prepared import PreparedGraph
 
-__all__ = ["create_scene", "scene_boxes"]
+__all__ = ["create_scene", "more_roots", "scene_boxes"]
 
 _MIN_RELEVANT_M = 100.0
+#: A lane at right angles to the ego's heading (within this cosine) gives no route root.
+_ACROSS_COS = 1e-6
 
 
 def scene_boxes(ego: SceneEgo, objects: SceneObjects) -> BoxArrays:
@@ -46,6 +49,42 @@ def scene_boxes(ego: SceneEgo, objects: SceneObjects) -> BoxArrays:
         length_m=np.concatenate([[ego.length_m], objects.length_m]),
         width_m=np.concatenate([[ego.width_m], objects.width_m]),
     )
+
+
+def more_roots(
+    prep: PreparedGraph, matches: Matches, ego: SceneEgo
+) -> list[tuple[int, bool, float]]:
+    """Lanes the ego occupies besides the anchor that no link joins to it.
+
+    ad-map starts connecting routes from every lane the ego's box occupies; in a junction
+    the ego overlaps lanes that are neither neighbours nor successors of its anchor, and
+    a route tree from the anchor alone misses what is reached only from them (Town01
+    drive cross-check: seed 1 drive 6 frame 22, the anchor switches from 2180149 to the
+    overlapping 2010149 and the car behind on 180149, a predecessor of 2180149 only, gets
+    no connecting route; seed 2 drive 7 frames 33-35, the car ahead on 100151 is reached
+    from the overlapping 2320151 only). Lanes at right angles to the heading are left
+    out (no orientation).
+
+    Returns:
+        ``(lane, forward, start)`` per further root: ``forward`` whether the ego heads
+        along the lane's point order, ``start`` the middle of its region there (point
+        order).
+    """
+    anchor = matches.anchors[0]
+    g = prep.graph
+    linked = {
+        anchor,
+        *g.successors[anchor],
+        *g.predecessors[anchor],
+        int(g.left_neighbour[anchor]),
+        int(g.right_neighbour[anchor]),
+    }
+    out = []
+    for r in matches.regions(0):
+        cos = math.cos(ego.yaw_rad - r.heading_rad)
+        if r.lane not in linked and abs(cos) >= _ACROSS_COS:
+            out.append((r.lane, cos >= 0.0, 0.5 * (r.lon_min + r.lon_max)))
+    return out
 
 
 def create_scene(
@@ -108,6 +147,10 @@ def create_scene(
         horizon_m=horizon,
         start=float(matches.anchor_s[0]),
     )
+    frame.other_trees = [
+        connect(prep, memo, lane, forward=fwd, horizon_m=horizon, start=start)
+        for lane, fwd, start in more_roots(prep, matches, ego)
+    ]
     out: list[Constellation] = []
     areas: list[tuple[tuple[int, float, float], ...]] = []
     if road_boundaries:

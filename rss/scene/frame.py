@@ -110,6 +110,10 @@ class FrameContext:
         headings: Per box, the heading of each touched lane's point order at its centre.
         ego_velocity: ``(vx, vy)`` of the ego in the map frame.
         once: What this frame computes once.
+        other_trees: Connecting routes from the further lanes the ego occupies that no
+            link joins to its anchor (overlapping junction lanes,
+            ``rss.scene.create.more_roots``), asked only for an object ``tree`` gives no
+            typed route to.
     """
 
     prep: PreparedGraph
@@ -122,6 +126,7 @@ class FrameContext:
     headings: dict[int, dict[int, float]]
     ego_velocity: tuple[float, float]
     once: FrameMemo = field(default_factory=FrameMemo)
+    other_trees: list[RouteTree] = field(default_factory=list)
 
     def forward(self, box: int) -> bool:
         """Whether the box heads along its anchor lane's point order (once per box)."""

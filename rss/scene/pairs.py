@@ -127,7 +127,8 @@ def _corridor(
     ad-rss 5.0 swaps the two vehicles' route headings on a route of an object following
     the ego; reproduced under ``[scene] reproduce_adrss_5_0_defects``.
     """
-    plans, ends = corridor_plans(f.prep, f.memo, f.tree, cr.target, f.matches, (0, i + 1))
+    tree = f.tree if cr.tree is None else cr.tree
+    plans, ends = corridor_plans(f.prep, f.memo, tree, cr.target, f.matches, (0, i + 1))
     swap = cr.kind == Kind.OBJECT_FOLLOWS and f.settings.reproduce_adrss_5_0_defects
     return f.constellation(kind, i, plans, None, ends, swap_headings=swap)
 
@@ -222,11 +223,12 @@ def _route_pair(
 
 def _debug_object(f: FrameContext, box: int, routes: list[Connecting]) -> None:
     for cr in routes:
+        t = f.tree if cr.tree is None else cr.tree
         path = (
             " > ".join(
-                f"{f.prep.graph.ids[x]}[k{f.tree.k[x]} {'f' if f.tree.forward[x] else 'r'}"
-                f" {f.tree.first[x]}{f.tree.last[x]}]"
-                for x in f.tree.path(cr.target)
+                f"{f.prep.graph.ids[x]}[k{t.k[x]} {'f' if t.forward[x] else 'r'}"
+                f" {t.first[x]}{t.last[x]}]"
+                for x in t.path(cr.target)
             )
             if cr.target >= 0
             else "-"

@@ -59,6 +59,8 @@ class RouteTree:
             behind, 0 none: a lateral neighbour of the ego's lane).
         last: The last longitudinal move (+1: the lane is travelled along the road-area
             direction, -1 against it, 0 none).
+        root_pos: The root lane and the ego's position on it along the road-area
+            direction, in [0, 1].
     """
 
     k: dict[int, int] = field(default_factory=dict)
@@ -68,6 +70,7 @@ class RouteTree:
     cost_m: dict[int, float] = field(default_factory=dict)
     first: dict[int, int] = field(default_factory=dict)
     last: dict[int, int] = field(default_factory=dict)
+    root_pos: tuple[int, float] = (-1, 0.5)
 
     def path(self, lane: int) -> list[int]:
         """Lanes from the root to ``lane`` (which must be reached)."""
@@ -148,6 +151,7 @@ def connect(
     tree = RouteTree()
     lengths = prep.centre_length_m
     pos0 = start if forward else 1.0 - start
+    tree.root_pos = (root, pos0)
     # (cost, counter, lane, k, j, forward, parent, entry position, first move, last move)
     heap: list[tuple[float, int, int, int, int, bool, int, float, int, int]] = [
         (0.0, 0, root, 0, 0, forward, -1, pos0, 0, 0)
