@@ -25,7 +25,17 @@ if TYPE_CHECKING:
     from loaders.drive import Drive
     from loaders.records import Frame
 
-__all__ = ["ENGINES", "assert_same_frames", "ego_size_of", "verdict_records"]
+__all__ = [
+    "ENGINES",
+    "assert_same_frames",
+    "assert_same_verdicts",
+    "ego_size_of",
+    "verdict_records",
+]
+
+#: Relative tolerance of the margins: RSS's is a distance ratio computed from yaws that pass
+#: through a quaternion (1e-12 rad), so its last bits may differ on another CPU or path.
+MARGIN_RTOL = 1e-9
 
 #: Every engine of the acceptance run.
 ENGINES = ("rss", "unstructured", "reachsets")
@@ -82,3 +92,14 @@ def verdict_records(
             for k in range(len(chunk.frames))
         ]
     return records, margins
+
+
+def assert_same_verdicts(
+    got: tuple[list[dict[str, Any]], list[tuple[float, ...]]],
+    want: tuple[list[dict[str, Any]], list[tuple[float, ...]]],
+) -> None:
+    """Equal per-frame records; margins equal within :data:`MARGIN_RTOL`."""
+    assert got[0] == want[0]
+    assert len(got[1]) == len(want[1])
+    for k, (a, b) in enumerate(zip(got[1], want[1], strict=True)):
+        np.testing.assert_allclose(a, b, rtol=MARGIN_RTOL, atol=0, err_msg=f"frame {k} margins")
