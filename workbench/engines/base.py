@@ -130,6 +130,9 @@ class EngineSpec:
         record: The engine's part of the pinned per-frame JSON line, from one verdict.
         sink: Rerun sink factory (sends static configuration on creation).
         views: Extra viewer panels (plots) shown while the engine runs.
+        incident_facts: Factory of a collector of the engine's own severity facts per incident
+            (``workbench.incidents.FactCollector``: ``add(frame, t_ns, verdict, object_id)``,
+            ``facts()``), or ``None``.
     """
 
     name: str
@@ -141,3 +144,4 @@ class EngineSpec:
     record: Callable[[Any], dict[str, Any]]
     sink: Callable[[rr.RecordingStream], EngineSink]
     views: Callable[[], list[rrb.View]]
+    incident_facts: Callable[[], Any] | None = None

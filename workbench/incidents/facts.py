@@ -18,6 +18,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any, Protocol
 
+from workbench.errors import WorkbenchError
+
 if TYPE_CHECKING:
     from collections.abc import Callable, Mapping
 
@@ -52,5 +54,15 @@ def unregister_facts(engine: str, factory: Callable[[], FactCollector]) -> None:
 
 
 def collectors_for(engine: str) -> list[FactCollector]:
-    """Fresh collectors for one incident of ``engine``."""
-    return [factory() for factory in _FACTORIES.get(engine, [])]
+    """Fresh collectors for one incident of ``engine``.
+
+    The engine's own (``EngineSpec.incident_facts``) first, then the registered ones.
+    """
+    from workbench.engines.registry import engine as spec_of  # noqa: PLC0415 - light start-up
+
+    try:
+        own = spec_of(engine).incident_facts
+    except WorkbenchError:  # an engine unregistered since (tests), or a name never registered
+        own = None
+    factories = ([own] if own is not None else []) + _FACTORIES.get(engine, [])
+    return [factory() for factory in factories]

@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING
 import rerun.blueprint as rrb
 
 from workbench.engines.base import EngineSpec
+from workbench.engines.rss.incident_facts import RssIncidentFacts
 from workbench.engines.rss.record import rss_record
 
 if TYPE_CHECKING:
@@ -58,4 +59,5 @@ SPEC = EngineSpec(
     record=rss_record,
     sink=_sink,
     views=_views,
+    incident_facts=RssIncidentFacts,
 )

@@ -1,0 +1,92 @@
+"""RSS facts of an incident: who must act, the worst severity, the compliance shortfall.
+
+One collector per incident sees the incident's unsafe frames of its one object and keeps:
+
+- ``responsible``: who had to act over the incident (``ego``, ``object`` or ``both``);
+- ``distance_ratio_min``: the worst current / safe distance ratio;
+- ``ttc_min_s``: the smallest longitudinal time to collision (``None``: never closing);
+- ``required_decel_max_mps2``: the largest deceleration the situation demanded;
+- ``shortfall_max_mps2``, ``shortfall_party``, ``response_due_ns``: the largest amount by
+  which a party that had to act accelerated above its restriction once its response was due,
+  which party, and when its response was due (``None``: every due response was proper);
+- ``severity_rank``: :func:`~workbench.engines.rss.severity_order.severity_key` of the above
+  and the duration (docs/rss.md, "Severity"), smallest = most severe.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from workbench.engines.rss.severity_order import severity_key
+from workbench.engines.rss.verdict import RssVerdict
+
+__all__ = ["RssIncidentFacts"]
+
+_PARTIES = {"ego": 1, "object": 2, "both": 3}
+_NAMES = {1: "ego", 2: "object", 3: "both"}
+
+
+class RssIncidentFacts:
+    """Collects the RSS facts of one incident (``workbench.incidents.FactCollector``)."""
+
+    def __init__(self) -> None:
+        """Start empty."""
+        self._parties = 0
+        self._ratio = math.inf
+        self._ttc = math.inf
+        self._decel = 0.0
+        self._shortfall: float | None = None
+        self._party: str | None = None
+        self._due: int | None = None
+        self._first: int | None = None
+        self._last: int | None = None
+        self._seen = False
+
+    def add(self, frame: int, t_ns: int, verdict: object, object_id: str) -> None:
+        """One unsafe frame of the incident (its object: ``object_id``).
+
+        Verdicts that are not :class:`RssVerdict` (summaries) carry no facts and are skipped.
+        """
+        del frame
+        if not isinstance(verdict, RssVerdict):
+            return
+        self._seen = True
+        self._first = t_ns if self._first is None else self._first
+        self._last = t_ns
+        self._parties |= _PARTIES.get(verdict.responsibility().get(object_id, ""), 0)
+        facts = verdict.severity().get(object_id)
+        if facts is not None:
+            self._ratio = min(self._ratio, facts.distance_ratio)
+            self._ttc = min(self._ttc, facts.ttc_s)
+            self._decel = max(self._decel, facts.required_decel_mps2)
+        for label, duty in verdict.obligations:
+            short = duty.shortfall_mps2
+            if label == object_id and short is not None and short > (self._shortfall or 0.0):
+                self._shortfall, self._party, self._due = short, duty.party, duty.due_ns
+
+    def facts(self) -> dict[str, Any]:
+        """The facts by name (JSON-ready: no infinities); none without an RSS verdict."""
+        if not self._seen:
+            return {}
+        duration_s = 0.0 if self._first is None else ((self._last or 0) - self._first) / 1e9
+        ratio = None if math.isinf(self._ratio) else round(self._ratio, 6)
+        ttc = None if math.isinf(self._ttc) else round(self._ttc, 6)
+        return {
+            "responsible": _NAMES.get(self._parties),
+            "distance_ratio_min": ratio,
+            "ttc_min_s": ttc,
+            "required_decel_max_mps2": round(self._decel, 6),
+            "shortfall_max_mps2": None if self._shortfall is None else round(self._shortfall, 6),
+            "shortfall_party": self._party,
+            "response_due_ns": self._due,
+            "severity_rank": list(
+                severity_key(
+                    shortfall_mps2=self._shortfall,
+                    distance_ratio=self._ratio,
+                    ttc_s=None if math.isinf(self._ttc) else self._ttc,
+                    required_decel_mps2=self._decel,
+                    duration_s=duration_s,
+                )
+            ),
+        }
