@@ -52,6 +52,7 @@ class ReviewApp(App[None]):
         Binding("t", "ask('tag')", "tag"),
         Binding("n", "ask('note')", "note"),
         Binding("z", "undo", "undo"),
+        Binding("w", "what_if", "what-if profile"),
         Binding("j", "step(1)", "next"),
         Binding("k", "step(-1)", "prev"),
         Binding("q", "quit", "quit"),
@@ -63,6 +64,7 @@ class ReviewApp(App[None]):
         self.session = session
         self.viewer = viewer or NoViewer()
         self._asking: str | None = None
+        self._what_if_index = -1
 
     def compose(self) -> ComposeResult:
         """Title, table, facts, prompt, key help."""
@@ -174,6 +176,20 @@ class ReviewApp(App[None]):
             return
         self._redraw_row(incident)
         self._go(self.session.index)
+
+    def action_what_if(self) -> None:
+        """Re-evaluate the incident under the next RSS parameter profile and say the outcome."""
+        from rss.profiles import PROFILES  # noqa: PLC0415 - light start-up
+        from workbench.incidents.whatif import what_if  # noqa: PLC0415
+
+        incident, request = self.session.current, self.session.report.request
+        if incident is None or request is None:
+            return
+        names = sorted(PROFILES)
+        self._what_if_index = (self._what_if_index + 1) % len(names)
+        outcome = what_if(request, incident, names[self._what_if_index])
+        self.query_one("#facts", Static).update(self._facts(incident) + "\n" + outcome.line())
+        self.notify(outcome.line())
 
     def action_ask(self, what: str) -> None:
         """Open the prompt for a tag or a note."""
