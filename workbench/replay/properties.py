@@ -6,12 +6,19 @@ Pure: no Rerun import. Properties appear in the viewer's recording panel and in
 
 from __future__ import annotations
 
+import platform
+from importlib import metadata
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
+    from collections.abc import Sequence
+
     from loaders.drive import DriveInfo
 
-__all__ = ["PropertyValue", "drive_properties", "recording_name"]
+__all__ = ["PropertyValue", "drive_properties", "recording_name", "software_properties"]
+
+#: Distributions whose versions decide the verdicts and the recording.
+_VERSIONED = ("rss-workbench", "rerun-sdk", "numpy", "shapely", "mcap", "rosbags")
 
 PropertyValue = str | int | float
 
@@ -49,3 +56,24 @@ def drive_properties(info: DriveInfo) -> dict[str, dict[str, PropertyValue]]:
     if info.notes:
         out["notes"] = {key: str(value) for key, value in sorted(info.notes.items())}
     return out
+
+
+def _version(distribution: str) -> str:
+    try:
+        return metadata.version(distribution)
+    except metadata.PackageNotFoundError:
+        return "not installed"
+
+
+def software_properties(engines: Sequence[str]) -> dict[str, dict[str, PropertyValue]]:
+    """``software``: the engines that ran and the versions of what produced the recording.
+
+    The engines are part of ``rss-workbench``: their version is the workbench's.
+    """
+    software: dict[str, PropertyValue] = {
+        "engines": ", ".join(engines) or "none",
+        "python": platform.python_version(),
+    }
+    for distribution in _VERSIONED:
+        software[distribution.replace("-", "_")] = _version(distribution)
+    return {"software": software}

@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 
 from workbench.engines.registry import engine
 from workbench.replay.layout import layout_chunk, layout_map
-from workbench.replay.properties import drive_properties, recording_name
+from workbench.replay.properties import drive_properties, recording_name, software_properties
 from workbench.replay.sink import RerunSink
 
 if TYPE_CHECKING:
@@ -84,7 +84,7 @@ class RerunDriveSink:
         self._scene.send_static(
             name=recording_name(info),
             start_ns=start_ns,
-            properties=drive_properties(info),
+            properties={**drive_properties(info), **software_properties(self._names)},
             map_layout=layout_map(lane_map) if lane_map is not None else None,
         )
         return {name: engine(name).sink(self.recording) for name in self._names}

@@ -2,11 +2,13 @@
 
 import contextlib
 import socket
+from importlib import metadata
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 import pytest
+import rerun as rr
 from rerun.chunk import RrdReader
 
 from loaders import open_drive
@@ -64,6 +66,9 @@ def test_replay_writes_entities_timelines_and_properties(tmp_path):
     assert props["property:drive:ego_topic"] == [["/ego/odom"]]
     assert props["property:RecordingInfo:name"] == [["fake_drive.mcap (fake)"]]
     assert props["property:RecordingInfo:start_time"] == [[T0_NS]]
+    assert props["property:software:rss_workbench"] == [[metadata.version("rss-workbench")]]
+    assert props["property:software:rerun_sdk"] == [[rr.__version__]]
+    assert props["property:software:engines"] == [["none"]]  # no engine ran
 
 
 def test_no_wall_clock_timeline_and_a_default_blueprint(tmp_path):
