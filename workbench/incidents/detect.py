@@ -38,6 +38,9 @@ class IncidentDetector:
         self.frame_times: list[tuple[int, int]] = []
         #: Ego position ``(x, y)`` [m] at the first frame of each incident (chunks only).
         self.ego_at_start_m: dict[int, tuple[float, float]] = {}
+        #: Positions ``(x, y)`` [m] of the frame's culprits at the first frame of each
+        #: incident, by object id (chunks only): where the review camera looks.
+        self.objects_at_start_m: dict[int, dict[str, tuple[float, float]]] = {}
 
     def add(self, frame: int, t_ns: int, verdicts: Mapping[str, Verdict]) -> bool:
         """Add one frame's verdicts per engine (frames in time order).
@@ -64,8 +67,16 @@ class IncidentDetector:
     def add_chunk(self, chunk: Chunk) -> None:
         """Add every frame of a driver chunk."""
         for k, frame in enumerate(chunk.frames):
-            if self.add(frame.index, frame.t_ns, {n: v[k] for n, v in chunk.verdicts.items()}):
+            verdicts = {n: v[k] for n, v in chunk.verdicts.items()}
+            if self.add(frame.index, frame.t_ns, verdicts):
                 self.ego_at_start_m[frame.index] = (frame.ego.x_m, frame.ego.y_m)
+                culprits = {c for v in verdicts.values() if not v.is_safe for c in v.culprits}
+                actors = frame.actors
+                self.objects_at_start_m[frame.index] = {
+                    str(oid): (float(actors.x_m[j]), float(actors.y_m[j]))
+                    for j, oid in enumerate(actors.ids.tolist())
+                    if oid in culprits
+                }
 
     def _incident(self, run: Run[IncidentKey]) -> Incident:
         engine, obj, cause = run.key

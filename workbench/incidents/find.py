@@ -138,6 +138,8 @@ class IncidentReport:
         start_ns: The drive's first time stamp.
         stopped_by: The loader error that ended a truncated log early, if any.
         ego_at_start_m: Ego position ``(x, y)`` [m] at each incident's first frame.
+        objects_at_start_m: Positions ``(x, y)`` [m] of the culprits at each incident's first
+            frame, by object id.
         request: What the incidents were found with.
     """
 
@@ -149,6 +151,9 @@ class IncidentReport:
     start_ns: int
     stopped_by: LoaderError | None = None
     ego_at_start_m: Mapping[int, tuple[float, float]] = field(default_factory=dict)
+    objects_at_start_m: Mapping[int, Mapping[str, tuple[float, float]]] = field(
+        default_factory=dict
+    )
     request: IncidentRequest | None = None
 
     def find(self, incident_id: str) -> Incident | None:
@@ -190,5 +195,6 @@ def find_incidents(
         start_ns=start_ns,
         stopped_by=run.stopped_by,
         ego_at_start_m=dict(detector.ego_at_start_m),
+        objects_at_start_m=dict(detector.objects_at_start_m),
         request=request,
     )

@@ -18,6 +18,7 @@ state lanes (``EngineSpec.state_origin``), empty until the engine logs its resul
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING
 
 import rerun.blueprint as rrb
@@ -29,7 +30,7 @@ from workbench.replay.sink import FRAME_TIMELINE, TIME_TIMELINE
 if TYPE_CHECKING:
     from collections.abc import Sequence
 
-__all__ = ["TRAIL_FRAMES", "TRAIL_SECONDS", "replay_blueprint"]
+__all__ = ["TRAIL_FRAMES", "TRAIL_SECONDS", "incident_eye", "replay_blueprint"]
 
 #: The ego trail shows this many past frames on the ``frame`` timeline ...
 TRAIL_FRAMES = 100
@@ -38,6 +39,10 @@ TRAIL_SECONDS = 10.0
 
 #: Camera offset from the ego: behind (-x), above (+z); metres, map frame.
 _EYE_OFFSET_M = (-25.0, 0.0, 60.0)
+#: Ground radius [m] the default eye shows around its target, and the margin kept around the
+#: actors of an incident when the eye is pulled back to show them all.
+_FRAME_RADIUS_M = 30.0
+_FRAME_MARGIN_M = 10.0
 
 
 def _trail_ranges() -> rrb.VisibleTimeRanges:
@@ -70,11 +75,29 @@ def _time_panel(selection: tuple[int, int] | None) -> rrb.TimePanel:
     )
 
 
+def incident_eye(
+    ego_m: tuple[float, float], actors_m: Sequence[tuple[float, float]] = ()
+) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
+    """Eye ``position`` and ``look_target`` [m] that frame the ego and the actors involved.
+
+    The target is the centroid of the ego and the actors; the eye keeps the replay's offset
+    (behind and above), scaled up when the actors are far apart so all of them stay in view.
+    """
+    points = [ego_m, *actors_m]
+    cx = sum(p[0] for p in points) / len(points)
+    cy = sum(p[1] for p in points) / len(points)
+    spread = max(math.hypot(p[0] - cx, p[1] - cy) for p in points)
+    dx, dy, dz = _EYE_OFFSET_M
+    scale = max(1.0, (spread + _FRAME_MARGIN_M) / _FRAME_RADIUS_M)
+    return (cx + dx * scale, cy + dy * scale, dz * scale), (cx, cy, 0.0)
+
+
 def replay_blueprint(
     ego_start_m: tuple[float, float] | None = None,
     engines: Sequence[str] = (),
     *,
     selection: tuple[int, int] | None = None,
+    focus_m: Sequence[tuple[float, float]] = (),
 ) -> rrb.Blueprint:
     """The default blueprint: scene, plots, engine result views, time panel on ``frame``.
 
@@ -89,17 +112,19 @@ def replay_blueprint(
         selection: ``(first, last)`` frame of an incident under review: the time panel
             selects and loops over it, the incidents tab is active and the camera stays put
             at ``ego_start_m`` (pass the ego's position at the incident's start).
+        focus_m: With ``selection``: the positions of the actors involved at the incident's
+            start; the camera frames them with the ego (:func:`incident_eye`).
     """
     x0, y0 = ego_start_m or (0.0, 0.0)
-    dx, dy, dz = _EYE_OFFSET_M
+    position, target = incident_eye((x0, y0), focus_m if selection is not None else ())
     scene = rrb.Spatial3DView(
         name="scene",
         origin="/world",
         line_grid=rrb.LineGrid3D(visible=False),
         eye_controls=rrb.EyeControls3D(
             kind=rrb.Eye3DKind.Orbital,
-            position=(x0 + dx, y0 + dy, dz),
-            look_target=(x0, y0, 0.0),
+            position=position,
+            look_target=target,
             eye_up=(0.0, 0.0, 1.0),
             # A live viewer pulls a tracking eye in to the ego's box (about 4 m): for one
             # incident the camera stays where the incident starts instead.

@@ -108,6 +108,7 @@ def _replay_and_review(
             ego_start_m=ego_start,
             engines=names,
             ego_at_m=session.report.ego_at_start_m,
+            objects_at_m=session.report.objects_at_start_m,
         )
         try:
             run_review(session, link)

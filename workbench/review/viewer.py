@@ -60,23 +60,29 @@ class RerunLink:
         ego_start_m: tuple[float, float] | None,
         engines: Sequence[str],
         ego_at_m: Mapping[int, tuple[float, float]] | None = None,
+        objects_at_m: Mapping[int, Mapping[str, tuple[float, float]]] | None = None,
     ) -> None:
         """Connect to the viewer's gRPC proxy ``url`` (``rerun+http://HOST:PORT/proxy``).
 
         ``ego_at_m``: the ego's position per incident start frame; the camera starts behind
-        it (else at ``ego_start_m``, the drive's first position).
+        it (else at ``ego_start_m``, the drive's first position). ``objects_at_m``: the
+        culprits' positions per incident start frame; the camera frames the incident's objects
+        with the ego.
         """
         self.recording = rr.RecordingStream(application_id, recording_id=recording_id)
         self.recording.connect_grpc(url)
         self._ego_start = ego_start_m
         self._ego_at = dict(ego_at_m or {})
+        self._objects_at = dict(objects_at_m or {})
         self._engines = tuple(engines)
 
     def show(self, incident: Incident) -> None:
         """Send a blueprint selecting the incident's frames."""
         selection = (incident.start_frame, incident.end_frame)
         ego = self._ego_at.get(incident.start_frame, self._ego_start)
-        blueprint = replay_blueprint(ego, self._engines, selection=selection)
+        at_start = self._objects_at.get(incident.start_frame, {})
+        focus = [at_start[o] for o in incident.objects if o in at_start]
+        blueprint = replay_blueprint(ego, self._engines, selection=selection, focus_m=focus)
         self.recording.send_blueprint(blueprint, make_active=True)
 
     def mark(self, incident: Incident, verdict: str | None) -> None:

@@ -75,3 +75,17 @@ def test_an_incident_that_the_highway_profile_clears() -> None:
     outcome = what_if(reference, cleared[0], "highway")
     assert not outcome.stays
     assert outcome.line() == "what-if highway: no longer an incident"
+
+
+def test_incident_start_positions_are_the_frames_actors(report) -> None:
+    drive = REQUEST.open_drive()
+    try:
+        frames = {f.index: f for f in drive.frames()}
+    finally:
+        drive.close()
+    for incident in report.incidents:
+        at = report.objects_at_start_m[incident.start_frame]
+        frame = frames[incident.start_frame]
+        for obj in incident.objects:
+            j = frame.actors.ids.tolist().index(obj)
+            assert at[obj] == (float(frame.actors.x_m[j]), float(frame.actors.y_m[j]))
