@@ -42,7 +42,8 @@ def main() -> None:
         drive = request.open_drive()
         try:
             first = next(iter(drive.frames()))
-            replay_drive(drive, connect=url, engines=request.runners(drive, full_geometry=True))
+            runners, ego = request.engines_for(drive, full_geometry=True)
+            replay_drive(drive, connect=url, engines=runners, ego_size=ego)
             rid = recording_id(drive, None, None)
         finally:
             drive.close()

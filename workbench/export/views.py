@@ -53,13 +53,14 @@ def write_recordings(
             selection = _selection(plan, report, first.index)
             verdicts = {} if plan.label is None else {plan.incident.id: plan.label.verdict}
             path = out_dir / f"{plan.stem}.rrd"
+            runners, ego = request.engines_for(drive, full_geometry=True)
             replay_drive(
                 drive,
                 out=path,
                 start_ns=plan.start_ns,
                 end_ns=plan.end_ns + 1,
-                engines=request.runners(drive, full_geometry=True),
-                ego_size=request.ego_size(drive),
+                engines=runners,
+                ego_size=ego,
                 incident_settings=request.settings,
                 verdicts=verdicts,
                 selection=selection,

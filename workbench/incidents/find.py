@@ -18,7 +18,7 @@ if TYPE_CHECKING:
     from loaders.drive import Drive
     from loaders.errors import LoaderError
     from workbench.driver.run import EgoSize
-    from workbench.engines.base import EngineRunner, EngineSettings
+    from workbench.engines.base import EngineRunner
     from workbench.incidents.model import Incident
 
 __all__ = ["IncidentReport", "IncidentRequest", "find_incidents"]
@@ -71,39 +71,30 @@ class IncidentRequest:
             ego_topic=self.ego_topic,
         )
 
-    def engine_settings(self, drive: Drive, *, full_geometry: bool = False) -> EngineSettings:
-        """The engines' settings for an opened drive (the ``auto`` profile reads its map).
+    def engines_for(
+        self, drive: Drive, *, full_geometry: bool = False
+    ) -> tuple[list[EngineRunner], EgoSize | None]:
+        """Fresh runners of the requested engines for an opened drive, and the ego size.
 
-        ``full_geometry``: compute what a viewer draws too (replays), not only the verdicts.
+        The parameters are read once (the ``auto`` profile reads the drive's map); the ego
+        size is the one ``--rss-params [scene]`` gives, if any. ``full_geometry``: compute
+        what a viewer draws too (replays), not only the verdicts.
 
         Raises:
-            WorkbenchError: Unreadable ``--rss-params``.
+            WorkbenchError: Unknown engine or unreadable ``--rss-params``.
             RssParameterError: Bad parameters or an unknown profile.
         """
-        from workbench.engines import EngineSettings  # noqa: PLC0415 - light start-up
+        from workbench.engines import EngineSettings, build_runners  # noqa: PLC0415
 
-        return EngineSettings(
-            rss_params=load_rss_params(self.rss_params, self.rss_profile, drive.lane_map),
+        params = load_rss_params(self.rss_params, self.rss_profile, drive.lane_map)
+        settings = EngineSettings(
+            rss_params=params,
             reach_method=self.reach_method,
             reach_rules=self.reach_rules,
             reach_trajectory=self.reach_trajectory,
             full_geometry=full_geometry,
         )
-
-    def runners(self, drive: Drive, *, full_geometry: bool = False) -> list[EngineRunner]:
-        """Fresh runners of the requested engines for an opened drive.
-
-        Raises:
-            WorkbenchError: Unknown engine or unreadable ``--rss-params``.
-        """
-        from workbench.engines import build_runners  # noqa: PLC0415 - light start-up
-
-        settings = self.engine_settings(drive, full_geometry=full_geometry)
-        return build_runners(list(self.engines), drive.lane_map, settings)
-
-    def ego_size(self, drive: Drive) -> EgoSize | None:
-        """The ego size the settings give the drive (``--rss-params [scene]``), if any."""
-        return ego_size(self.engine_settings(drive).rss_params)
+        return build_runners(list(self.engines), drive.lane_map, settings), ego_size(params)
 
     def record(self) -> dict[str, Any]:
         """The settings that produced the incidents, as stored beside every label."""
@@ -162,13 +153,16 @@ class IncidentReport:
 
 
 def find_incidents(
-    request: IncidentRequest, progress: Callable[[int], None] | None = None
+    request: IncidentRequest,
+    progress: Callable[[int], None] | None = None,
+    window: tuple[int | None, int | None] = (None, None),
 ) -> IncidentReport:
     """Evaluate the drive with the requested engines and merge the verdicts into incidents.
 
     Args:
         request: Drive and settings.
         progress: Called with the number of frames evaluated after each chunk.
+        window: ``(start_ns, end_ns)``: only the frames in ``[start_ns, end_ns)``.
 
     Raises:
         WorkbenchError: Missing log, unknown engine, unreadable settings file.
@@ -177,7 +171,8 @@ def find_incidents(
     drive_hash = drive_content_hash(request.log) if request.log.exists() else ""
     drive = request.open_drive()
     try:
-        run = DriveRun(drive, request.runners(drive), ego_size=request.ego_size(drive))
+        runners, ego = request.engines_for(drive)
+        run = DriveRun(drive, runners, start_ns=window[0], end_ns=window[1], ego_size=ego)
         detector = IncidentDetector(drive_hash, request.settings)
         for chunk in run:
             detector.add_chunk(chunk)

@@ -11,8 +11,7 @@ import dataclasses
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from workbench.driver.run import DriveRun
-from workbench.incidents.detect import IncidentDetector
+from workbench.incidents.find import find_incidents
 
 if TYPE_CHECKING:
     from workbench.incidents.find import IncidentRequest
@@ -55,23 +54,10 @@ def what_if(request: IncidentRequest, incident: Incident, profile: str) -> WhatI
     """
     other = dataclasses.replace(request, engines=(incident.engine,), rss_profile=profile)
     margin_ns = round(MARGIN_S * 1e9)
-    drive = other.open_drive()
-    try:
-        run = DriveRun(
-            drive,
-            other.runners(drive),
-            start_ns=incident.start_ns - margin_ns,
-            end_ns=incident.end_ns + margin_ns + 1,
-            ego_size=other.ego_size(drive),
-        )
-        detector = IncidentDetector("", other.settings)
-        for chunk in run:
-            detector.add_chunk(chunk)
-    finally:
-        drive.close()
+    window = (incident.start_ns - margin_ns, incident.end_ns + margin_ns + 1)
     matches = tuple(
         i
-        for i in detector.incidents()
+        for i in find_incidents(other, window=window).incidents
         if i.objects == incident.objects
         and i.start_ns <= incident.end_ns
         and i.end_ns >= incident.start_ns

@@ -59,16 +59,17 @@ def review_in_viewer(
         raise WorkbenchError("this review session has no drive to replay")
     drive = request.open_drive()
     try:
+        runners, ego = request.engines_for(drive, full_geometry=True)
         _replay_and_review(
             session,
             drive,
-            request.runners(drive, full_geometry=True),
+            runners,
             serve=serve,
             connect=connect,
             bind=bind,
             ports=ports,
             incident_settings=request.settings,
-            ego=request.ego_size(drive),
+            ego=ego,
             announce=announce,
         )
     finally:

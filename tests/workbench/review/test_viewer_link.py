@@ -81,8 +81,8 @@ def test_each_incident_shown_selects_its_frames_in_the_live_recording(viewer_url
     client = _connect(viewer_url)
     drive = request.open_drive()
     try:
-        runners = request.runners(drive, full_geometry=True)  # the settings the report used
-        summary = replay_drive(drive, connect=viewer_url, engines=runners)
+        runners, ego = request.engines_for(drive, full_geometry=True)  # the report's settings
+        summary = replay_drive(drive, connect=viewer_url, engines=runners, ego_size=ego)
         rid = recording_id(drive, None, None)
     finally:
         drive.close()
