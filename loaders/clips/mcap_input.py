@@ -44,8 +44,9 @@ class McapClipInput:
         self.path = path
         self._file = path.open("rb")
         self._channels: dict[int, ChannelSpec] = {}
+        reader = SeekingReader(self._file)
         try:
-            self.profile = SeekingReader(self._file).get_header().profile
+            self.profile = reader.get_header().profile
         except MCAP_ERRORS as err:
             self._file.close()
             raise CorruptLogError(path, f"cannot read the MCAP header: {err}", offset=0) from err
@@ -54,15 +55,13 @@ class McapClipInput:
         #: The indexed reader, or ``None`` when the summary is unreadable (read as a stream).
         self._indexed: SeekingReader | None = None
         try:
-            self._file.seek(0)
-            reader = SeekingReader(self._file)
             summary = reader.get_summary()
-            if summary is not None:
-                self._indexed = reader
-                if summary.chunk_indexes:
-                    self.compression = summary.chunk_indexes[0].compression
         except MCAP_ERRORS:
-            self._indexed = None
+            summary = None
+        if summary is not None:
+            self._indexed = reader
+            if summary.chunk_indexes:
+                self.compression = summary.chunk_indexes[0].compression
         #: Whether time windows are read through the index (else as one stream).
         self.indexed = self._indexed is not None
 
@@ -107,9 +106,7 @@ class McapClipInput:
                     ending_at=end_ns,
                     log_time_order=False,  # file order: sorting would read the whole file first
                 )
-            first = next(records, None)
-            while first is not None:
-                schema, channel, message = first
+            for schema, channel, message in records:
                 last = message.log_time
                 yield RawMessage(
                     self._spec(schema, channel),
@@ -118,7 +115,6 @@ class McapClipInput:
                     message.publish_time,
                     message.sequence,
                 )
-                first = next(records, None)
         except MCAP_ERRORS as err:
             raise CorruptLogError(
                 self.path,
@@ -128,21 +124,26 @@ class McapClipInput:
             ) from err
 
     def attachments(self) -> list[tuple[str, str, bytes, int, int]]:
-        """``(name, media_type, data, create_time, log_time)`` of every readable attachment."""
+        """``(name, media_type, data, create_time, log_time)`` of every readable attachment.
+
+        They are found through the summary: a file without a readable one has none left.
+        """
+        if self._indexed is None:
+            return []
         try:
-            self._file.seek(0)
             return [
                 (a.name, a.media_type, bytes(a.data), a.create_time, a.log_time)
-                for a in SeekingReader(self._file).iter_attachments()
+                for a in self._indexed.iter_attachments()
             ]
         except MCAP_ERRORS:
             return []
 
     def metadata(self) -> list[tuple[str, dict[str, str]]]:
-        """``(name, pairs)`` of every readable metadata record."""
+        """``(name, pairs)`` of every readable metadata record (through the summary)."""
+        if self._indexed is None:
+            return []
         try:
-            self._file.seek(0)
-            return [(m.name, dict(m.metadata)) for m in SeekingReader(self._file).iter_metadata()]
+            return [(m.name, dict(m.metadata)) for m in self._indexed.iter_metadata()]
         except MCAP_ERRORS:
             return []
 
