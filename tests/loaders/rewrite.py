@@ -105,6 +105,12 @@ def _autoware(package: str, kind: str) -> Callable[[Any, Any], Any]:
     return make
 
 
+def _size(ts: Any, obj: Any) -> Any:
+    """The object's box dimensions as a ``Vector3`` (length, width, height)."""
+    x, y, z = obj.shape.dimensions[:3]
+    return build(ts, "geometry_msgs/msg/Vector3", x=x, y=y, z=z)
+
+
 def _markers(ts: Any, msg: Any) -> Any:
     markers = [
         build(
@@ -115,13 +121,7 @@ def _markers(ts: Any, msg: Any) -> Any:
             id=int(obj.id),
             type=1,
             pose=_pose(ts, obj.pose),
-            scale=build(
-                ts,
-                "geometry_msgs/msg/Vector3",
-                x=obj.shape.dimensions[0],
-                y=obj.shape.dimensions[1],
-                z=obj.shape.dimensions[2],
-            ),
+            scale=_size(ts, obj),
         )
         for obj in msg.objects
     ]
@@ -138,13 +138,7 @@ def _jsk(ts: Any, msg: Any) -> Any:
             "jsk_recognition_msgs/msg/BoundingBox",
             header=msg.header,
             pose=_pose(ts, obj.pose),
-            dimensions=build(
-                ts,
-                "geometry_msgs/msg/Vector3",
-                x=obj.shape.dimensions[0],
-                y=obj.shape.dimensions[1],
-                z=obj.shape.dimensions[2],
-            ),
+            dimensions=_size(ts, obj),
             value=1.0,
             label=int(obj.id),
         )
