@@ -17,16 +17,11 @@ import pytest
 from loaders import open_drive
 from tests.workbench.engines.helpers import record
 from workbench.engines import EngineSettings, build_runners
+from workbench.samples.generate import SCENARIOS as SAMPLE_BUILDERS
 
 SAMPLES = Path(__file__).resolve().parents[4] / "sample_logs"
-SCENARIOS = [
-    "highway_cut_in",
-    "hard_braking_lead",
-    "wrong_way_oncoming",
-    "urban_intersection",
-    "pedestrian_crossing",
-    "parking_lot",
-]
+#: Every road sample, in generation order.
+SCENARIOS = list(SAMPLE_BUILDERS)
 
 
 def _frames(name: str) -> list[dict[str, Any]]:

@@ -16,16 +16,11 @@ from loaders.open import open_drive
 from tests.workbench.engines.helpers import record, run_cli, step
 from workbench.cli.main import main
 from workbench.engines.rss.runner import RssRunner
+from workbench.samples.generate import SCENARIOS as SAMPLE_BUILDERS
 
 SAMPLES = Path(__file__).resolve().parents[4] / "sample_logs"
-SCENARIOS = [
-    "highway_cut_in",
-    "hard_braking_lead",
-    "wrong_way_oncoming",
-    "urban_intersection",
-    "pedestrian_crossing",
-    "parking_lot",
-]
+#: Every road sample, in generation order.
+SCENARIOS = list(SAMPLE_BUILDERS)
 PINNED = {
     "is_safe",
     "dangerous_objects",
