@@ -3,20 +3,13 @@ from pathlib import Path
 
 import pytest
 
+from tests.workbench.cli_runs import run_workbench as _run
 from workbench.annotations import LabelStore
-from workbench.cli.main import main
 from workbench.incidents import drive_content_hash
 
 SAMPLES = Path(__file__).resolve().parents[3] / "sample_logs"
 LOG = SAMPLES / "hard_braking_lead.mcap"
 ENGINES = ["--engines", "rss"]
-
-
-def _run(args: list[str]) -> int:
-    with pytest.raises(SystemExit) as info:
-        main(args)
-    code = info.value.code
-    return 0 if code is None else int(code)
 
 
 @pytest.fixture

@@ -4,6 +4,7 @@ from pathlib import Path
 import jsonschema
 import pytest
 
+from tests.workbench.cli_runs import run_workbench as _run
 from workbench.annotations import LabelStore
 from workbench.annotations.openlabel import (
     OpenLabelError,
@@ -11,18 +12,10 @@ from workbench.annotations.openlabel import (
     import_openlabel,
     write_openlabel,
 )
-from workbench.cli.main import main
 from workbench.incidents import IncidentReport, IncidentRequest, find_incidents
 
 SAMPLES = Path(__file__).resolve().parents[3] / "sample_logs"
 LOG = SAMPLES / "highway_cut_in.mcap"
-
-
-def _run(args: list[str]) -> int:
-    with pytest.raises(SystemExit) as info:
-        main(args)
-    code = info.value.code
-    return 0 if code is None else int(code)
 
 
 @pytest.fixture(scope="module")

@@ -4,16 +4,9 @@ from pathlib import Path
 
 import pytest
 
-from workbench.cli.main import main
+from tests.workbench.cli_runs import run_workbench as _run
 
 SAMPLES = Path(__file__).resolve().parents[3] / "sample_logs"
-
-
-def _run(args: list[str]) -> int:
-    with pytest.raises(SystemExit) as info:
-        main(args)
-    code = info.value.code
-    return 0 if code is None else int(code)
 
 
 def test_evaluate_writes_pinned_per_frame_records(tmp_path, capsys):

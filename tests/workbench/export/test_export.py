@@ -21,19 +21,12 @@ from rosbags.highlevel import AnyReader
 from loaders.clips import EVENT_TOPIC
 from loaders.message_logs.mapsource import read_map
 from tests.conftest import running_in_ci
-from workbench.cli.main import main
+from tests.workbench.cli_runs import run_workbench as _run
 from workbench.incidents import IncidentRequest, find_incidents
 
 SAMPLES = Path(__file__).resolve().parents[3] / "sample_logs"
 FRAME_NS = 50_000_000  # the samples' ego rate: 20 Hz
 RERUN = Path(sys.executable).parent / "rerun"
-
-
-def _run(args: list[str]) -> int:
-    with pytest.raises(SystemExit) as info:
-        main(args)
-    code = info.value.code
-    return 0 if code is None else int(code)
 
 
 def _export(log: Path, out: Path, *extra: str) -> list[dict[str, Any]]:

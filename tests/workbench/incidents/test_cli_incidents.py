@@ -1,19 +1,10 @@
 import json
 from pathlib import Path
 
-import pytest
-
-from workbench.cli.main import main
+from tests.workbench.cli_runs import run_workbench as _run
 
 SAMPLES = Path(__file__).resolve().parents[3] / "sample_logs"
 LOG = SAMPLES / "hard_braking_lead.mcap"
-
-
-def _run(args: list[str]) -> int:
-    with pytest.raises(SystemExit) as info:
-        main(args)
-    code = info.value.code
-    return 0 if code is None else int(code)
 
 
 def test_incidents_cover_exactly_the_unsafe_frames_of_evaluate(tmp_path, capsys):

@@ -1,20 +1,11 @@
 import json
 from pathlib import Path
 
-import pytest
-
-from workbench.cli.main import main
+from tests.workbench.cli_runs import run_workbench as _run
 from workbench.review import loop
 
 LOG = Path(__file__).resolve().parents[3] / "sample_logs" / "hard_braking_lead.mcap"
 ARGS = ["--engines", "rss,reachsets", "--reach-method", "simple"]
-
-
-def _run(args: list[str]) -> int:
-    with pytest.raises(SystemExit) as info:
-        main(args)
-    code = info.value.code
-    return 0 if code is None else int(code)
 
 
 def test_review_walks_the_filtered_incidents_worst_first(tmp_path, monkeypatch, capsys):

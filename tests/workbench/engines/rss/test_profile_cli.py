@@ -7,14 +7,9 @@ from pathlib import Path
 
 import pytest
 
-from tests.workbench.engines.helpers import run_cli
-from workbench.cli.main import main
+from tests.workbench.cli_runs import run_workbench as _run
 
 SAMPLES = Path(__file__).resolve().parents[4] / "sample_logs"
-
-
-def _run(args: list[str]) -> int:
-    return run_cli(main, args)
 
 
 @pytest.mark.parametrize(

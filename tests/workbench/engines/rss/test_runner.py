@@ -13,8 +13,8 @@ from typing import Any
 import pytest
 
 from loaders.open import open_drive
-from tests.workbench.engines.helpers import record, run_cli, step
-from workbench.cli.main import main
+from tests.workbench.cli_runs import run_workbench as _run
+from tests.workbench.engines.helpers import record, step
 from workbench.engines.rss.runner import RssRunner
 from workbench.samples.generate import SCENARIOS as SAMPLE_BUILDERS
 
@@ -90,10 +90,6 @@ def test_scenarios_flag_the_expected_actor_when_expected(evaluated):
     assert any(5.0 <= t <= 8.0 for t in lead)
     # free flow: nobody but the scenario's culprit is ever dangerous on the highway
     assert {d for f in evaluated["highway_cut_in"] for d in f["dangerous_objects"]} == {"1"}
-
-
-def _run(args: list[str]) -> int:
-    return run_cli(main, args)
 
 
 @pytest.mark.parametrize(

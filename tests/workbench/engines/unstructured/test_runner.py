@@ -22,9 +22,9 @@ from rss.params import ConstellationCreationMode, RssParams, SceneSettings
 from rss.params import ObjectClass as DynClass
 from rss.unstructured import UnstructuredMemory
 from tests.rss.unstructured.frames_check import assert_same_memory, assert_same_result
+from tests.workbench.cli_runs import run_workbench as _run
 from tests.workbench.engines.helpers import record, step
 from tests.workbench.fakes import straight_road
-from workbench.cli.main import main
 from workbench.engines.ids import EGO_OBJECT_ID, IdMap
 from workbench.engines.unstructured.adapter import UnstructuredScope, frame_to_agents
 from workbench.engines.unstructured.runner import UnstructuredRunner
@@ -264,13 +264,6 @@ def test_step_many_equals_step_by_step_on_the_sample_drives(name):
 
 
 # --- CLI and golden files --------------------------------------------------------------------
-
-
-def _run(args: list[str]) -> int:
-    with pytest.raises(SystemExit) as info:
-        main(args)
-    code = info.value.code
-    return 0 if code is None else int(code)
 
 
 def _golden_frames(lines: list[dict[str, Any]]) -> list[dict[str, Any]]:
