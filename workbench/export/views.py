@@ -44,33 +44,31 @@ def write_recordings(
         LoaderError: The drive cannot be read.
     """
     written: dict[str, tuple[Path, tuple[int, int]]] = {}
-    for plan in plans:
-        drive = request.open_drive()
-        try:
+    drive = request.open_drive()  # once: the map is read once for every window
+    try:
+        for plan in plans:
             first = next(iter(drive.frames(plan.start_ns, plan.end_ns + 1)), None)
-            if first is None:
-                continue
-            selection = _selection(plan, report, first.index)
-            verdicts = {} if plan.label is None else {plan.incident.id: plan.label.verdict}
-            path = out_dir / f"{plan.stem}.rrd"
-            runners, ego = request.engines_for(drive, full_geometry=True)
-            replay_drive(
-                drive,
-                out=path,
-                start_ns=plan.start_ns,
-                end_ns=plan.end_ns + 1,
-                engines=runners,
-                ego_size=ego,
-                incident_settings=request.settings,
-                verdicts=verdicts,
-                selection=selection,
-            )
-            if path.is_file():
-                written[plan.stem] = (path, selection)
-        finally:
-            drive.close()
-        if on_clip is not None:
-            on_clip()
+            if first is not None:
+                selection = _selection(plan, report, first.index)
+                path = out_dir / f"{plan.stem}.rrd"
+                runners, ego = request.engines_for(drive, full_geometry=True)
+                replay_drive(
+                    drive,
+                    out=path,
+                    start_ns=plan.start_ns,
+                    end_ns=plan.end_ns + 1,
+                    engines=runners,
+                    ego_size=ego,
+                    incident_settings=request.settings,
+                    verdicts={} if plan.label is None else {plan.incident.id: plan.label.verdict},
+                    selection=selection,
+                )
+                if path.is_file():
+                    written[plan.stem] = (path, selection)
+            if on_clip is not None:
+                on_clip()
+    finally:
+        drive.close()
     return written
 
 
