@@ -47,16 +47,14 @@ def _requests(
         "drive_sha256": report.drive_hash,
         "settings": json.dumps(report.settings, sort_keys=True),
     }
-    return [
-        ClipRequest(
-            out_dir / f"{p.stem}.mcap",
-            p.start_ns,
-            p.end_ns,
-            p.event(),
-            {"drive": drive, "incident": p.event()},
+    requests = []
+    for p in plans:
+        event = p.event()  # the event message and the metadata record carry the same pairs
+        metadata = {"drive": drive, "incident": event}
+        requests.append(
+            ClipRequest(out_dir / f"{p.stem}.mcap", p.start_ns, p.end_ns, event, metadata)
         )
-        for p in plans
-    ]
+    return requests
 
 
 def write_raw_clips(
