@@ -53,6 +53,13 @@ LOSS_NOTES: dict[str, tuple[str, str]] = {
             "DELETE/DELETEALL): only boxes are objects"
         ),
     ),
+    "first_detections_at_rest": (
+        "first detections taken at rest",
+        (
+            "objects of a type without velocity seen for the first time whose next message "
+            "came after the frame was emitted (or never): velocity 0 assumed"
+        ),
+    ),
     "ignored_service_channels": (
         "service-event channels ignored",
         "recorded service calls, never a drive topic",
@@ -65,7 +72,7 @@ def _count(value: str) -> int:
 
 
 def _singular(what: str) -> str:
-    for plural in ("messages", "channels", "markers"):
+    for plural in ("messages", "channels", "markers", "detections"):
         what = what.replace(plural, plural[:-1], 1)
     return what
 

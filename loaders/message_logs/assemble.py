@@ -10,12 +10,13 @@ their neighbours (``prev -> nxt``); below 1 cm of travel the previous heading is
 from __future__ import annotations
 
 import math
+from collections import deque
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
 
 from loaders.errors import CorruptLogError, InvalidValueError
 from loaders.message_logs.kinematics import ego_kinematics
-from loaders.message_logs.matching import ObjectBuffer, match_objects
+from loaders.message_logs.matching import FirstDetections, ObjectBuffer, match_objects
 from loaders.message_logs.samples import EgoSample, EgoWithObjects, ObjectColumns, PlanSample
 from loaders.records import EgoState, Frame
 
@@ -26,7 +27,10 @@ if TYPE_CHECKING:
     from loaders.drive import TopicRoles
     from loaders.records import ActorTable, Plan
 
-__all__ = ["AssemblyOptions", "FrameAssembler"]
+__all__ = ["MAX_HELD", "AssemblyOptions", "FrameAssembler"]
+
+#: Frames held at most while first detections wait for their topic's next message.
+MAX_HELD = 64
 
 
 @dataclass(frozen=True, slots=True)
@@ -56,6 +60,7 @@ class _Pending:
     sample: EgoSample
     actors: ActorTable
     plan: Plan | None
+    first: FirstDetections
 
 
 class FrameAssembler:
@@ -85,6 +90,7 @@ class FrameAssembler:
         self._prev: _Pending | None = None
         self._cur: _Pending | None = None
         self._index = 0
+        self._held: deque[tuple[Frame, FirstDetections]] = deque()
         self._last_yaw = 0.0
         self.skipped_invalid = 0
         self.skipped_out_of_order = 0
@@ -93,6 +99,9 @@ class FrameAssembler:
         self.ego_without_pose = 0
         #: Entries of object messages that are not objects (``MarkerArray`` non-box markers).
         self.ignored_markers = 0
+        #: Frame rows of first detections (types without velocity) whose velocity stayed 0:
+        #: the object's next message came after the frame was emitted, or never.
+        self.first_detections_at_rest = 0
 
     @property
     def unused_objects(self) -> int:
@@ -120,11 +129,12 @@ class FrameAssembler:
         yaw = math.atan2(dy, dx) if math.hypot(dx, dy) >= 0.01 else self._last_yaw  # noqa: PLR2004 - 1 cm
         return replace(pending, sample=replace(pending.sample, yaw_rad=yaw))
 
-    def _emit(self, nxt: _Pending | None) -> Frame | None:
+    def _emit(self, nxt: _Pending | None) -> None:
+        """Complete the current frame (its kinematics need ``nxt``) and hold it."""
         cur = self._cur
         if cur is None:
             self._cur = nxt
-            return None
+            return
         prev = self._prev
         cur = self._track(cur, prev, nxt)
         self._last_yaw = cur.sample.yaw_rad
@@ -138,28 +148,45 @@ class FrameAssembler:
         ego = EgoState(s.x_m, s.y_m, s.z_m, s.yaw_rad, speed, accel, yaw_rate, *(s.size_m or ()))
         self._prev, self._cur = cur, nxt
         if not self._in_window(cur.t_ns):
-            return None
-        frame = Frame(self._index, cur.t_ns, ego, cur.actors, cur.plan)
+            return
+        self._held.append((Frame(self._index, cur.t_ns, ego, cur.actors, cur.plan), cur.first))
         self._index += 1
-        return frame
 
-    def _on_ego(self, topic: str, log_ns: int, sample: EgoSample) -> Frame | None:
+    def _release(self, *, final: bool) -> Iterator[Frame]:
+        """Yield the held frames whose first detections are settled, in order.
+
+        A frame waits until every object topic with a first detection in it has a newer
+        message (the forward difference is then known, or the object is gone), at most
+        ``MAX_HELD`` frames; ``final`` releases all.
+        """
+        held = self._held
+        while held and (final or len(held) > MAX_HELD or held[0][1].settled()):
+            frame, first = held.popleft()
+            actors, left = first.fill(frame.actors)
+            self.first_detections_at_rest += left
+            for buf in self._buffers:
+                buf.prune(frame.t_ns - self._opt.tolerance_ns)
+            yield replace(frame, actors=actors) if actors is not frame.actors else frame
+
+    def _on_ego(self, topic: str, log_ns: int, sample: EgoSample) -> None:
         t_ns = self._time(log_ns, sample.stamp_ns)
         if self._cur is not None and t_ns <= self._cur.t_ns:
             self.skipped_out_of_order += 1
-            return None
+            return
         pose = (sample.x_m, sample.y_m, 0.0 if sample.heading_from_track else sample.yaw_rad)
         if not all(math.isfinite(v) for v in pose):
             if self._opt.invalid_ego == "skip":
                 self.skipped_invalid += 1
-                return None
+                return
             raise InvalidValueError(
                 self._path, "non-finite ego pose (x, y, yaw)", topic=topic, t_ns=t_ns, value=pose
             )
-        actors = match_objects(self._buffers, t_ns, self._opt.tolerance_ns, self._opt.exclude_id)
+        actors, first = match_objects(
+            self._buffers, t_ns, self._opt.tolerance_ns, self._opt.exclude_id
+        )
         plan = self._plan[1] if self._plan is not None and self._plan[0] <= t_ns else None
         self._plan_used = self._plan_used or plan is not None
-        return self._emit(_Pending(t_ns, sample, actors, plan))
+        self._emit(_Pending(t_ns, sample, actors, plan, first))
 
     def _decode(self, topic: str, log_ns: int, msg: Any) -> Any:
         try:
@@ -169,23 +196,22 @@ class FrameAssembler:
                 self._path, f"cannot decode message: {err!r}", topic=topic, t_ns=log_ns
             ) from err
 
-    def _on_message(self, topic: str, log_ns: int, decoded: Any) -> Frame | None:
-        """File one decoded message; the frame it completes, if any."""
+    def _on_message(self, topic: str, log_ns: int, decoded: Any) -> None:
+        """File one decoded message (completing the frame before it, for an ego message)."""
         if isinstance(decoded, EgoWithObjects):  # OSI: the objects first, then the ego
             buffer = self._by_topic.get(topic)
             if buffer is not None:
                 buffer.update(self._time(log_ns, decoded.ego.stamp_ns), decoded.objects)
             decoded = decoded.ego
         if isinstance(decoded, EgoSample):
-            return self._on_ego(topic, log_ns, decoded)
-        if isinstance(decoded, ObjectColumns):
+            self._on_ego(topic, log_ns, decoded)
+        elif isinstance(decoded, ObjectColumns):
             self.ignored_markers += decoded.ignored
             self._by_topic[topic].update(self._time(log_ns, decoded.stamp_ns), decoded)
         elif isinstance(decoded, PlanSample):
             self._plans_unused += int(self._plan is not None and not self._plan_used)
             self._plan = (self._time(log_ns, decoded.stamp_ns), decoded.plan)
             self._plan_used = False
-        return None
 
     def run(self, messages: Iterable[tuple[str, int, Any]]) -> Iterator[Frame]:
         """Yield frames from the message stream.
@@ -199,14 +225,11 @@ class FrameAssembler:
                 if decoded is None:  # the message only updated decoder state (TF, IMU)
                     self.ego_without_pose += int(topic == self._roles.ego)
                     continue
-                frame = self._on_message(topic, log_ns, decoded)
-                if frame is not None:
-                    yield frame
+                self._on_message(topic, log_ns, decoded)
+                yield from self._release(final=False)
         except (CorruptLogError, InvalidValueError):
-            frame = self._emit(None)
-            if frame is not None:
-                yield frame
+            self._emit(None)
+            yield from self._release(final=True)
             raise
-        frame = self._emit(None)
-        if frame is not None:
-            yield frame
+        self._emit(None)
+        yield from self._release(final=True)

@@ -108,6 +108,7 @@ class LogDrive:
                 ("unused_plan_messages", assembler.unused_plans),
                 ("ego_messages_without_pose", assembler.ego_without_pose),
                 ("ignored_markers", assembler.ignored_markers),
+                ("first_detections_at_rest", assembler.first_detections_at_rest),
             ):
                 if count:
                     notes[key] = str(count)

@@ -10,11 +10,15 @@ t_m`` is recorded per row::
                   <--> match_dt (extrapolated by v * match_dt)
 
 Message types without velocity get one by finite differences per id between consecutive
-messages of the topic; an id seen for the first time gets velocity 0.
+messages of the topic. An id seen for the first time has no previous position: its
+velocity is the forward difference to the topic's next message holding it, filled in when
+the topic's next message arrives (the frame waits for it, at most ``MAX_HELD`` frames,
+:meth:`FirstDetections.fill`); an id seen once only keeps velocity 0 and is counted.
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -26,7 +30,7 @@ if TYPE_CHECKING:
 
     from loaders.message_logs.samples import ObjectColumns
 
-__all__ = ["ObjectBuffer", "match_objects"]
+__all__ = ["FirstDetections", "ObjectBuffer", "match_objects"]
 
 
 class ObjectBuffer:
@@ -41,6 +45,12 @@ class ObjectBuffer:
         self.used = False
         #: Messages replaced before any frame took them.
         self.unused = 0
+        #: Ids of the buffered message without a velocity yet (first detections of a
+        #: type without velocity).
+        self.first_seen: frozenset[str] = frozenset()
+        #: Forward-difference velocities of first detections, by the stamp of the message
+        #: they were first seen in, then id (pruned by :meth:`prune`).
+        self.forward: dict[int, dict[str, tuple[float, float]]] = {}
 
     def update(self, t_ns: int, cols: ObjectColumns) -> None:
         """Replace the buffer with a newer message (estimating velocities if needed)."""
@@ -48,14 +58,22 @@ class ObjectBuffer:
             vx = np.zeros(len(cols.ids))
             vy = np.zeros(len(cols.ids))
             old = self.columns
+            first = set(cols.ids)
             if old is not None and self.t_ns is not None and t_ns > self.t_ns:
                 dt = (t_ns - self.t_ns) / 1e9
                 where = {oid: k for k, oid in enumerate(old.ids)}
+                ahead: dict[str, tuple[float, float]] = {}
                 for k, oid in enumerate(cols.ids):
                     j = where.get(oid)
                     if j is not None:
                         vx[k] = (cols.x_m[k] - old.x_m[j]) / dt
                         vy[k] = (cols.y_m[k] - old.y_m[j]) / dt
+                        first.discard(oid)
+                        if oid in self.first_seen:
+                            ahead[oid] = (float(vx[k]), float(vy[k]))
+                if ahead:
+                    self.forward[self.t_ns] = ahead
+            self.first_seen = frozenset(first)
             object.__setattr__(cols, "vx_mps", vx)
             object.__setattr__(cols, "vy_mps", vy)
         if self.columns is not None and not self.used:
@@ -67,16 +85,61 @@ class ObjectBuffer:
         """Messages no frame took so far, counting the one buffered now."""
         return self.unused + int(self.columns is not None and not self.used)
 
+    def prune(self, before_ns: int) -> None:
+        """Forget forward velocities of messages stamped before ``before_ns``."""
+        for t in [t for t in self.forward if t < before_ns]:
+            del self.forward[t]
+
+
+@dataclass(slots=True)
+class FirstDetections:
+    """Rows of one frame's actor table still without velocity (first detections).
+
+    Attributes:
+        rows: ``(row, buffer, message stamp [ns], object id)`` per such row.
+    """
+
+    rows: list[tuple[int, ObjectBuffer, int, str]] = field(default_factory=list)
+
+    def settled(self) -> bool:
+        """Whether every row's topic has a message newer than the row's (or none wait)."""
+        return all(buf.t_ns is not None and buf.t_ns > t for _, buf, t, _ in self.rows)
+
+    def fill(self, actors: ActorTable) -> tuple[ActorTable, int]:
+        """``actors`` with the forward velocities known by now; and the rows left at 0.
+
+        A filled row is extrapolated by its velocity over its ``match_dt_ns`` like every
+        other row.
+        """
+        if not self.rows:
+            return actors, 0
+        vx, vy = actors.vx_mps.copy(), actors.vy_mps.copy()
+        x, y = actors.x_m.copy(), actors.y_m.copy()
+        left = 0
+        for row, buf, t_msg, oid in self.rows:
+            v = buf.forward.get(t_msg, {}).get(oid)
+            if v is None:
+                left += 1
+                continue
+            dt = actors.match_dt_ns[row] / 1e9
+            vx[row], vy[row] = v
+            x[row] += v[0] * dt
+            y[row] += v[1] * dt
+        columns = {f: getattr(actors, f) for f in ActorTable.__dataclass_fields__}
+        columns.update(vx_mps=vx, vy_mps=vy, x_m=x, y_m=y)  # finite: validity unchanged
+        return ActorTable.from_columns(**columns), left
+
 
 def match_objects(
     buffers: list[ObjectBuffer],
     t_ns: int,
     tolerance_ns: int,
     exclude_id: str | None = None,
-) -> ActorTable:
+) -> tuple[ActorTable, FirstDetections]:
     """Build the actor table of a frame at ``t_ns`` from the buffers (see module docstring).
 
-    Ids are prefixed with ``<topic>:`` when more than one object topic is in use.
+    Ids are prefixed with ``<topic>:`` when more than one object topic is in use. Also
+    returns the rows that are first detections without a velocity yet.
     """
     parts = []
     for buf in buffers:
@@ -89,13 +152,20 @@ def match_objects(
         buf.used = True  # an empty list is used too: the frame has no objects of the topic
         if not cols.ids:
             continue
-        parts.append((buf.topic, dt_ns, cols))
+        parts.append((buf, dt_ns, cols))
+    first = FirstDetections()
     if not parts:
-        return ActorTable.empty()
+        return ActorTable.empty(), first
     prefix = len(buffers) > 1
     ids: list[str] = []
     columns: dict[str, list[NDArray[Any]]] = {}
-    for topic, dt_ns, cols in parts:
+    for buf, dt_ns, cols in parts:
+        topic = buf.topic
+        first.rows.extend(
+            (len(ids) + k, buf, t_ns - dt_ns, oid)
+            for k, oid in enumerate(cols.ids)
+            if oid in buf.first_seen
+        )
         ids.extend(f"{topic}:{i}" for i in cols.ids) if prefix else ids.extend(cols.ids)
         dt = dt_ns / 1e9
         values: dict[str, NDArray[Any]] = {
@@ -116,6 +186,8 @@ def match_objects(
     merged = {name: np.concatenate(chunks) for name, chunks in columns.items()}
     if exclude_id is not None:
         keep = np.array([i != exclude_id for i in ids], dtype=bool)
+        new_row = np.cumsum(keep) - 1
+        first.rows = [(int(new_row[r]), b, t, o) for r, b, t, o in first.rows if keep[r]]
         ids = [i for i in ids if i != exclude_id]
         merged = {name: value[keep] for name, value in merged.items()}
-    return ActorTable.from_columns(ids=ids, **merged)
+    return ActorTable.from_columns(ids=ids, **merged), first
