@@ -5,6 +5,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 import pytest
+from rerun.chunk import RrdReader
 
 from workbench.engines.reachsets.verdict import ReachVerdict
 from workbench.engines.registry import engine
@@ -13,11 +14,12 @@ from workbench.engines.unstructured.verdict import UnstructuredVerdict
 
 if TYPE_CHECKING:
     from collections.abc import Callable
+    from pathlib import Path
 
     from loaders.records import Frame
     from workbench.engines.base import EngineRunner
 
-__all__ = ["record", "run_cli", "step"]
+__all__ = ["forward_fill", "record", "rrd_states", "run_cli", "step"]
 
 
 def step(runner: EngineRunner, frame: Frame) -> Any:
@@ -37,3 +39,21 @@ def run_cli(main: Callable[[list[str]], object], args: list[str]) -> int:
         main(args)
     code = info.value.code
     return 0 if code is None else int(code)
+
+
+def rrd_states(path: Path, entity: str) -> dict[int, str]:
+    """The state changes of one state lane of an ``.rrd``: frame -> state."""
+    store = RrdReader(path).store().stream().collect()
+    table = store.reader(index="frame", contents=entity).to_arrow_table().to_pydict()
+    column = f"{entity}:StateChange:state"
+    return {f: s[0] for f, s in zip(table["frame"], table[column], strict=True) if s}
+
+
+def forward_fill(changes: dict[int, str], frames: list[int]) -> list[str | None]:
+    """The state in each of ``frames`` from a lane's changes (None before the first)."""
+    out: list[str | None] = []
+    current = None
+    for f in frames:
+        current = changes.get(f, current)
+        out.append(current)
+    return out

@@ -40,6 +40,10 @@ def _views() -> list[rrb.View]:
     return [
         rrb.TimeSeriesView(name="rss acceleration limits [m/s²]", origin="/plots/rss/acceleration"),
         rrb.TimeSeriesView(name="rss distance vs safe [m]", origin="/plots/rss/distances"),
+        rrb.TimeSeriesView(
+            name="rss proper response: allowed vs measured accel [m/s²]",
+            origin="/plots/rss/compliance",
+        ),
     ]
 
 

@@ -12,9 +12,13 @@ Entity paths::
                                       lateral_left, lateral_right)
     plots/rss/acceleration/<bound>    Scalars, acceleration restrictions [m/s²]
     plots/rss/distances/<id>/<kind>   Scalars, lon/lat distance and safe distance [m]
+    rss/structured/duty/<id>          StateChange who must act (``duties``)
+    plots/rss/compliance/<id>/<party>_allowed|_measured
+                                      Scalars, longitudinal acceleration the proper response
+                                      allows vs the measured one [m/s²] (``duties``)
 
 Per-object lanes carry only changes; an object that leaves every constellation gets one
-"not relevant" entry, also across chunk boundaries.
+"not relevant" entry ("no duty" on its duty lane), also across chunk boundaries.
 """
 
 from __future__ import annotations
@@ -24,16 +28,18 @@ from typing import TYPE_CHECKING
 import numpy as np
 import rerun as rr
 
+from workbench.engines.rss.duties import DUTY_STATES, NO_DUTY, layout_duties
 from workbench.engines.rss.layout import FRAME_STATES, OBJECT_STATES, RESPONSE_LANES, layout_rss
 from workbench.replay.sink import send_strips, state_configuration, time_index
 from workbench.replay.strips import StripColumns
 
 if TYPE_CHECKING:
-    from collections.abc import Sequence
+    from collections.abc import Callable, Sequence
 
     from numpy.typing import NDArray
 
     from loaders.records import Frame
+    from workbench.engines.rss.duties import DutyColumns
     from workbench.engines.rss.layout import RssColumns
     from workbench.engines.rss.verdict import RssVerdict
     from workbench.replay.layout import ChunkLayout
@@ -51,6 +57,20 @@ def object_path(object_id: str) -> str:
     return f"rss/structured/objects/{rr.escape_entity_path_part(object_id)}"
 
 
+def duty_path(object_id: str) -> str:
+    """Entity path of an object's duty lane (who must act)."""
+    return f"rss/structured/duty/{rr.escape_entity_path_part(object_id)}"
+
+
+class _Lanes:
+    """Per-object state lanes that carry only changes, with an idle value on leaving."""
+
+    def __init__(self, path: Callable[[str], str], states: dict[str, int], idle: str) -> None:
+        self.path, self.idle = path, idle
+        self.config = state_configuration(states)
+        self.last: dict[str, str] = {}
+
+
 class RssSink:
     """Sends structured RSS columns on the ``frame`` and ``log_time`` timelines."""
 
@@ -62,8 +82,8 @@ class RssSink:
             colors = {v: _RESPONSE_COLORS[v] for v in values}
             path = f"rss/structured/response/{lane}"
             recording.log(path, state_configuration(colors), static=True)
-        self._last: dict[str, str] = {}
-        self._object_config = state_configuration(OBJECT_STATES)
+        self._objects = _Lanes(object_path, OBJECT_STATES, _NOT_RELEVANT)
+        self._duties = _Lanes(duty_path, DUTY_STATES, NO_DUTY)
         self._profile_sent = False
 
     def _states(
@@ -76,21 +96,43 @@ class RssSink:
         )
 
     def _object_lanes(
-        self, frame: NDArray[np.int64], t_ns: NDArray[np.int64], lanes: dict[str, list[str]]
+        self,
+        frame: NDArray[np.int64],
+        t_ns: NDArray[np.int64],
+        lanes: dict[str, list[str]],
+        kind: _Lanes,
     ) -> None:
-        for object_id in sorted(set(self._last) - set(lanes)):
-            if self._last[object_id] != _NOT_RELEVANT:
-                self._states(object_path(object_id), frame[:1], t_ns[:1], [_NOT_RELEVANT])
-                self._last[object_id] = _NOT_RELEVANT
+        last, idle = kind.last, kind.idle
+        for object_id in sorted(set(last) - set(lanes)):
+            if last[object_id] != idle:
+                self._states(kind.path(object_id), frame[:1], t_ns[:1], [idle])
+                last[object_id] = idle
         for object_id, states in sorted(lanes.items()):
-            if object_id not in self._last:
-                self.recording.log(object_path(object_id), self._object_config, static=True)
-            prev = [self._last.get(object_id, _NOT_RELEVANT), *states[:-1]]
+            if object_id not in last:
+                self.recording.log(kind.path(object_id), kind.config, static=True)
+            prev = [last.get(object_id, idle), *states[:-1]]
             change = np.flatnonzero([s != p for s, p in zip(states, prev, strict=True)])
             if len(change):
                 picked = [states[k] for k in change]
-                self._states(object_path(object_id), frame[change], t_ns[change], picked)
-            self._last[object_id] = states[-1]
+                self._states(kind.path(object_id), frame[change], t_ns[change], picked)
+            last[object_id] = states[-1]
+
+    def _series(
+        self,
+        prefix: str,
+        frame: NDArray[np.int64],
+        t_ns: NDArray[np.int64],
+        series: dict[str, tuple[NDArray[np.int64], NDArray[np.float64]]],
+    ) -> None:
+        """Scalars per ``"<object id>/<name>"`` at their chunk rows."""
+        for key, (rows, values) in series.items():
+            object_id, kind = key.rsplit("/", 1)
+            path = f"{prefix}/{rr.escape_entity_path_part(object_id)}/{kind}"
+            self.recording.send_columns(
+                path,
+                indexes=time_index(frame[rows], t_ns[rows]),
+                columns=rr.Scalars.columns(scalars=values),
+            )
 
     def send_columns(
         self, frame: NDArray[np.int64], t_ns: NDArray[np.int64], cols: RssColumns
@@ -124,7 +166,7 @@ class RssSink:
         self._states(STATE_PATH, frame, t_ns, cols.frame_state)
         for lane, names in cols.responses.items():
             self._states(f"rss/structured/response/{lane}", frame, t_ns, names)
-        self._object_lanes(frame, t_ns, cols.object_states)
+        self._object_lanes(frame, t_ns, cols.object_states, self._objects)
         for name, values in cols.accel.items():
             keep = np.isfinite(values)
             if keep.any():
@@ -133,14 +175,14 @@ class RssSink:
                     indexes=time_index(frame[keep], t_ns[keep]),
                     columns=rr.Scalars.columns(scalars=values[keep]),
                 )
-        for key, (rows, values) in cols.distances.items():
-            object_id, kind = key.rsplit("/", 1)
-            path = f"plots/rss/distances/{rr.escape_entity_path_part(object_id)}/{kind}"
-            rec.send_columns(
-                path,
-                indexes=time_index(frame[rows], t_ns[rows]),
-                columns=rr.Scalars.columns(scalars=values),
-            )
+        self._series("plots/rss/distances", frame, t_ns, cols.distances)
+
+    def send_duties(
+        self, frame: NDArray[np.int64], t_ns: NDArray[np.int64], cols: DutyColumns
+    ) -> None:
+        """Send one chunk's duty lanes and compliance series."""
+        self._object_lanes(frame, t_ns, cols.duty_states, self._duties)
+        self._series("plots/rss/compliance", frame, t_ns, cols.compliance)
 
     def send_chunk(
         self, frames: Sequence[Frame], layout: ChunkLayout, verdicts: Sequence[RssVerdict]
@@ -156,3 +198,4 @@ class RssSink:
             self.recording.send_property("rss", values)
             self._profile_sent = True
         self.send_columns(layout.frame, layout.t_ns, layout_rss(frames, verdicts))
+        self.send_duties(layout.frame, layout.t_ns, layout_duties(verdicts))

@@ -11,7 +11,7 @@ from loaders import open_drive
 from loaders.drive import Drive
 from loaders.records import Frame
 from rss.model import ConstellationType
-from tests.workbench.engines.helpers import record, step
+from tests.workbench.engines.helpers import forward_fill, record, rrd_states, step
 from workbench.engines.rss.layout import layout_rss
 from workbench.engines.rss.runner import RssRunner
 from workbench.engines.rss.sink import object_path
@@ -141,22 +141,6 @@ def test_constellation_types_are_named_in_the_labels(cut_in):
     assert all(": same dir  lon " in label for label in cols.link_labels)
 
 
-def _states(path: Path, entity: str) -> dict[int, str]:
-    store = RrdReader(path).store().stream().collect()
-    table = store.reader(index="frame", contents=entity).to_arrow_table().to_pydict()
-    column = f"{entity}:StateChange:state"
-    return {f: s[0] for f, s in zip(table["frame"], table[column], strict=True) if s}
-
-
-def _forward_fill(changes: dict[int, str], frames: list[int]) -> list[str | None]:
-    out: list[str | None] = []
-    current = None
-    for f in frames:
-        current = changes.get(f, current)
-        out.append(current)
-    return out
-
-
 def test_replay_logs_state_lanes_constellations_and_plots(tmp_path, cut_in):
     frames, outputs = cut_in
     path = tmp_path / "rss.rrd"
@@ -167,15 +151,15 @@ def test_replay_logs_state_lanes_constellations_and_plots(tmp_path, cut_in):
     assert summary.unsafe_frames == {"rss": sum(not o.is_safe for o in outputs)}
     cols = layout_rss(frames, outputs)
     index = [f.index for f in frames]
-    frame_states = _states(path, "/rss/structured/state")
+    frame_states = rrd_states(path, "/rss/structured/state")
     assert [frame_states[i] for i in index] == cols.frame_state
     # object lanes carry only changes, also across chunk boundaries (7 frames); filled
     # forward they give the layout's per-frame state
     for object_id, states in cols.object_states.items():
-        changes = _states(path, "/" + object_path(object_id))
+        changes = rrd_states(path, "/" + object_path(object_id))
         first = next(k for k, s in enumerate(states) if s != "not relevant")
         assert min(changes) == index[first]
-        assert _forward_fill(changes, index)[first:] == states[first:]
+        assert forward_fill(changes, index)[first:] == states[first:]
         flips = sum(a != b for a, b in zip(states[first:], states[first + 1 :], strict=False))
         assert len(changes) == 1 + flips
     store = RrdReader(path).store().stream().collect()
