@@ -116,7 +116,10 @@ PROFILES: dict[str, Profile] = {
         Profile(
             name="highway",
             summary="review of recorded drives on fast roads (auto's choice there)",
-            source="docs/rss.md, Parameter profiles (legal reaction time; project calibration)",
+            source=(
+                "docs/rss.md, Parameter profiles (legal reaction time; project calibration "
+                "checked on NGSIM US-101)"
+            ),
             tables={
                 "ego": {**_HIGHWAY_VEHICLE, "response_time": 0.5},
                 "vehicle": _HIGHWAY_VEHICLE,
