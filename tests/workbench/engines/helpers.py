@@ -16,10 +16,11 @@ if TYPE_CHECKING:
     from collections.abc import Callable
     from pathlib import Path
 
+    from loaders.drive import Drive
     from loaders.records import Frame
     from workbench.engines.base import EngineRunner
 
-__all__ = ["forward_fill", "record", "rrd_states", "run_cli", "step"]
+__all__ = ["forward_fill", "open_window", "record", "rrd_states", "run_cli", "step"]
 
 
 def step(runner: EngineRunner, frame: Frame) -> Any:
@@ -57,3 +58,13 @@ def forward_fill(changes: dict[int, str], frames: list[int]) -> list[str | None]
         current = changes.get(f, current)
         out.append(current)
     return out
+
+
+def open_window(log: Path, window_s: tuple[float, float]) -> Drive:
+    """``log`` opened on ``window_s`` seconds from its start (``[start, end)``)."""
+    from loaders import open_drive  # noqa: PLC0415 - only the window tests need it
+
+    drive = open_drive(log)
+    t0 = drive.info.start_ns
+    drive.close()
+    return open_drive(log, window=(t0 + int(window_s[0] * 1e9), t0 + int(window_s[1] * 1e9)))

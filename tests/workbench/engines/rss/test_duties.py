@@ -6,10 +6,8 @@ import numpy as np
 import pytest
 from rerun.chunk import RrdReader
 
-from loaders import open_drive
-from loaders.drive import Drive
 from loaders.records import Frame
-from tests.workbench.engines.helpers import forward_fill, rrd_states, step
+from tests.workbench.engines.helpers import forward_fill, open_window, rrd_states, step
 from workbench.engines.rss.duties import NO_DUTY, layout_duties
 from workbench.engines.rss.runner import RssRunner
 from workbench.engines.rss.sink import duty_path
@@ -23,16 +21,9 @@ WINDOW_S = (4.0, 8.0)
 LEAD = "00000000000000000000000000000001"
 
 
-def _open_window() -> Drive:
-    drive = open_drive(LOG)
-    t0 = drive.info.start_ns
-    drive.close()
-    return open_drive(LOG, window=(t0 + int(WINDOW_S[0] * 1e9), t0 + int(WINDOW_S[1] * 1e9)))
-
-
 @pytest.fixture(scope="module")
 def braking() -> tuple[list[Frame], list[RssVerdict]]:
-    drive = _open_window()
+    drive = open_window(LOG, WINDOW_S)
     runner = RssRunner(drive.lane_map)
     frames = list(drive.frames())
     verdicts = [step(runner, f) for f in frames]
@@ -77,7 +68,7 @@ def test_compliance_series_hold_each_obligation(braking):
 def test_replay_logs_duty_lanes_and_compliance_plots(tmp_path, braking):
     frames, verdicts = braking
     path = tmp_path / "duties.rrd"
-    drive = _open_window()
+    drive = open_window(LOG, WINDOW_S)
     replay_drive(drive, out=path, send_frames=7, engines=[RssRunner(drive.lane_map)])
     drive.close()
     cols = layout_duties(verdicts)

@@ -8,10 +8,9 @@ import shapely
 from rerun.chunk import RrdReader
 
 from loaders import open_drive
-from loaders.drive import Drive
 from loaders.records import Frame
 from rss.model import ConstellationType
-from tests.workbench.engines.helpers import forward_fill, record, rrd_states, step
+from tests.workbench.engines.helpers import forward_fill, open_window, record, rrd_states, step
 from workbench.engines.rss.layout import layout_rss
 from workbench.engines.rss.runner import RssRunner
 from workbench.engines.rss.sink import object_path
@@ -24,16 +23,9 @@ CUT_IN = SAMPLES / "highway_cut_in.mcap"
 WINDOW_S = (4.0, 9.0)
 
 
-def _open_window() -> Drive:
-    drive = open_drive(CUT_IN)
-    t0 = drive.info.start_ns
-    drive.close()
-    return open_drive(CUT_IN, window=(t0 + int(WINDOW_S[0] * 1e9), t0 + int(WINDOW_S[1] * 1e9)))
-
-
 @pytest.fixture(scope="module")
 def cut_in() -> tuple[list[Frame], list[RssVerdict]]:
-    drive = _open_window()
+    drive = open_window(CUT_IN, WINDOW_S)
     runner = RssRunner(drive.lane_map, outlines=True)
     frames = list(drive.frames())
     outputs = [step(runner, f) for f in frames]
@@ -144,7 +136,7 @@ def test_constellation_types_are_named_in_the_labels(cut_in):
 def test_replay_logs_state_lanes_constellations_and_plots(tmp_path, cut_in):
     frames, outputs = cut_in
     path = tmp_path / "rss.rrd"
-    drive = _open_window()
+    drive = open_window(CUT_IN, WINDOW_S)
     runner = RssRunner(drive.lane_map, outlines=True)
     summary = replay_drive(drive, out=path, send_frames=7, engines=[runner])
     drive.close()
