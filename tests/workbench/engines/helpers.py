@@ -20,7 +20,7 @@ if TYPE_CHECKING:
     from loaders.records import Frame
     from workbench.engines.base import EngineRunner
 
-__all__ = ["forward_fill", "open_window", "record", "rrd_states", "run_cli", "step"]
+__all__ = ["forward_fill", "open_window", "record", "rrd_states", "rss_window", "run_cli", "step"]
 
 
 def step(runner: EngineRunner, frame: Frame) -> Any:
@@ -68,3 +68,18 @@ def open_window(log: Path, window_s: tuple[float, float]) -> Drive:
     t0 = drive.info.start_ns
     drive.close()
     return open_drive(log, window=(t0 + int(window_s[0] * 1e9), t0 + int(window_s[1] * 1e9)))
+
+
+def rss_window(
+    log: Path, window_s: tuple[float, float], *, outlines: bool = False
+) -> tuple[list[Frame], list[RssVerdict]]:
+    """The frames of ``log`` in ``window_s`` and a fresh ``RssRunner``'s verdicts on them."""
+    from workbench.engines.rss.runner import RssRunner  # noqa: PLC0415 - heavy, on demand
+
+    drive = open_window(log, window_s)
+    try:
+        runner = RssRunner(drive.lane_map, outlines=outlines)
+        frames = list(drive.frames())
+        return frames, [step(runner, f) for f in frames]
+    finally:
+        drive.close()

@@ -7,7 +7,7 @@ import pytest
 from rerun.chunk import RrdReader
 
 from loaders.records import Frame
-from tests.workbench.engines.helpers import forward_fill, open_window, rrd_states, step
+from tests.workbench.engines.helpers import forward_fill, open_window, rrd_states, rss_window
 from workbench.engines.rss.duties import NO_DUTY, layout_duties
 from workbench.engines.rss.runner import RssRunner
 from workbench.engines.rss.sink import duty_path
@@ -23,12 +23,7 @@ LEAD = "00000000000000000000000000000001"
 
 @pytest.fixture(scope="module")
 def braking() -> tuple[list[Frame], list[RssVerdict]]:
-    drive = open_window(LOG, WINDOW_S)
-    runner = RssRunner(drive.lane_map)
-    frames = list(drive.frames())
-    verdicts = [step(runner, f) for f in frames]
-    drive.close()
-    return frames, verdicts
+    return rss_window(LOG, WINDOW_S)
 
 
 def test_duty_lanes_name_who_must_act_in_every_frame(braking):

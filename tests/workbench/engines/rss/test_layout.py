@@ -10,7 +10,14 @@ from rerun.chunk import RrdReader
 from loaders import open_drive
 from loaders.records import Frame
 from rss.model import ConstellationType
-from tests.workbench.engines.helpers import forward_fill, open_window, record, rrd_states, step
+from tests.workbench.engines.helpers import (
+    forward_fill,
+    open_window,
+    record,
+    rrd_states,
+    rss_window,
+    step,
+)
 from workbench.engines.rss.layout import layout_rss
 from workbench.engines.rss.runner import RssRunner
 from workbench.engines.rss.sink import object_path
@@ -25,12 +32,7 @@ WINDOW_S = (4.0, 9.0)
 
 @pytest.fixture(scope="module")
 def cut_in() -> tuple[list[Frame], list[RssVerdict]]:
-    drive = open_window(CUT_IN, WINDOW_S)
-    runner = RssRunner(drive.lane_map, outlines=True)
-    frames = list(drive.frames())
-    outputs = [step(runner, f) for f in frames]
-    drive.close()
-    return frames, outputs
+    return rss_window(CUT_IN, WINDOW_S, outlines=True)
 
 
 def test_layout_follows_the_engine_frame_by_frame(cut_in):
