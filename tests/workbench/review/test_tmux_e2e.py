@@ -69,7 +69,16 @@ def _start(session: str, store: Path, home: Path, *, viewer: bool = True) -> Non
     env = f"PYTHONPATH={shlex.quote(str(ROOT))} HOME={shlex.quote(str(home))} CI=1"
     run = f"env {env} {shlex.join(command)}"
     shell = f"cd {shlex.quote(str(ROOT))} && {run}; echo REVIEW-EXIT $?; sleep 600"
-    _tmux("new-session", "-d", "-s", session, "-x", "160", "-y", "40", shell)
+    # a tmux server whose last session was just killed may still be exiting: the first
+    # new-session can fail then; the next one starts a fresh server
+    for attempt in range(5):
+        try:
+            _tmux("new-session", "-d", "-s", session, "-x", "160", "-y", "40", shell)
+            break
+        except subprocess.CalledProcessError as err:
+            if attempt == 4:  # the last attempt
+                pytest.fail(f"tmux new-session failed: {err.stderr}")
+            time.sleep(0.5)
     _tmux("resize-window", "-t", session, "-x", "160", "-y", "40")
 
 
