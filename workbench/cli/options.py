@@ -11,14 +11,20 @@ __all__ = [
     "EGO_TOPIC_HELP",
     "REACH_RULES_HELP",
     "REACH_TRAJECTORY_HELP",
+    "GrpcPortOption",
     "ReachMethodOption",
     "ReachRulesOption",
     "ReachTrajectoryOption",
     "RssProfileOption",
+    "WebPortOption",
 ]
 
 #: Help of ``--ego-topic`` (info, evaluate, replay).
 EGO_TOPIC_HELP = "Ego topic of a ROS/MCAP log (over the profile and the detected one)."
+
+#: ``--grpc-port`` / ``--web-port`` of a served viewer (replay, review).
+GrpcPortOption = Annotated[int, typer.Option("--grpc-port", help="--serve: gRPC port.")]
+WebPortOption = Annotated[int, typer.Option("--web-port", help="--serve: web page port.")]
 
 #: ``--rss-profile NAME`` (info, evaluate, replay, demo); ``None`` = ``auto``.
 #: (``--profile`` already names the loaders' TOML topic profile on these commands.)

@@ -13,10 +13,12 @@ from workbench.cli.options import (
     EGO_TOPIC_HELP,
     REACH_RULES_HELP,
     REACH_TRAJECTORY_HELP,
+    GrpcPortOption,
     ReachMethodOption,
     ReachRulesOption,
     ReachTrajectoryOption,
     RssProfileOption,
+    WebPortOption,
 )
 from workbench.cli.progress import run_with_progress
 from workbench.drives import default_output, ego_size, load_rss_params, open_log
@@ -66,6 +68,8 @@ def replay(
         str,
         typer.Option("--bind", help="Address --serve listens on; 0.0.0.0 exposes it to the LAN."),
     ] = "127.0.0.1",
+    grpc_port: GrpcPortOption = 9876,
+    web_port: WebPortOption = 9090,
     start: Annotated[
         float | None, typer.Option("--start", help="Seconds from the drive start.")
     ] = None,
@@ -123,6 +127,7 @@ def replay(
             on_served=_wait_for_ctrl_c,
             engines=runners,
             bind=bind,
+            ports=(grpc_port, web_port),
             ego_size=ego_size(params),
         )
     finally:

@@ -16,6 +16,7 @@ from workbench.cli.incident_options import (
     StoreOption,
     with_incidents,
 )
+from workbench.cli.options import GrpcPortOption, WebPortOption  # noqa: TC001 - typer reads them
 from workbench.errors import WorkbenchError
 
 if TYPE_CHECKING:
@@ -50,8 +51,8 @@ def review(
     obj: ObjectFilter = None,
     cause: CauseFilter = None,
     max_margin: MarginFilter = None,
-    grpc_port: Annotated[int, typer.Option("--grpc-port", help="--serve: gRPC port.")] = 9876,
-    web_port: Annotated[int, typer.Option("--web-port", help="--serve: web page port.")] = 9090,
+    grpc_port: GrpcPortOption = 9876,
+    web_port: WebPortOption = 9090,
 ) -> None:
     """Review a drive's incidents in a terminal UI (keys: c f u t n z j k q)."""
     from workbench.annotations import (  # noqa: PLC0415

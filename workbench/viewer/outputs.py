@@ -8,11 +8,14 @@ the caller asks otherwise.
 from __future__ import annotations
 
 import contextlib
+import ctypes
+import importlib.util
 import os
 import signal
 import socket
 import subprocess
 import sys
+import threading
 import time
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -141,6 +144,30 @@ def _wait_for_port(host: str, port: int, proc: subprocess.Popen[bytes], timeout_
     raise ReplayError(f"the Rerun server did not listen on {host}:{port} within {timeout_s} s")
 
 
+#: ``prctl`` option: the signal the kernel sends a process when its parent dies.
+_PR_SET_PDEATHSIG = 1
+
+
+def _die_with_parent() -> None:  # pragma: no cover - runs in the child before exec
+    """Child side: ask Linux to SIGTERM this process when the workbench process dies."""
+    ctypes.CDLL(None, use_errno=True).prctl(_PR_SET_PDEATHSIG, int(signal.SIGTERM), 0, 0, 0)
+
+
+def _viewer_binary() -> str:
+    """The Rerun viewer binary itself (rerun-sdk's ``rerun_cli/rerun``), else the script.
+
+    The ``rerun`` script only runs that binary as its child; started directly, the binary
+    is the process that the parent-death signal reaches.
+    """
+    spec = importlib.util.find_spec("rerun_cli")
+    if spec is not None and spec.origin is not None:
+        binary = Path(spec.origin).with_name("rerun")
+        if binary.is_file():
+            return str(binary)
+    script = Path(sys.executable).with_name("rerun")
+    return str(script) if script.exists() else "rerun"
+
+
 def _serve(
     rec: rr.RecordingStream,
     blueprint: rr.blueprint.Blueprint,
@@ -154,16 +181,23 @@ def _serve(
     viewer's own server binds both the gRPC proxy and the web page to ``bind``.
     """
     grpc_port, web_port = ports
-    viewer = Path(sys.executable).with_name("rerun")
-    exe = str(viewer) if viewer.exists() else "rerun"
+    exe = _viewer_binary()
     cmd = [exe, "--serve-web", "--bind", bind, "--port", str(grpc_port)]
     cmd += ["--web-viewer-port", str(web_port)]
     with _viewer_analytics_off():
         try:
-            # Own session: the ``rerun`` entry point runs the viewer binary as a child, and the
-            # whole group must stop with the replay.
+            # Own session, stopped as a group with the replay; on Linux also stopped by the
+            # kernel when this process dies without cleaning up (SIGKILL): the parent-death
+            # signal belongs to the creating thread, so only the main thread asks for it.
+            linked = (
+                sys.platform == "linux" and threading.current_thread() is threading.main_thread()
+            )
             proc = subprocess.Popen(  # noqa: S603 - fixed argv, no shell
-                cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True
+                cmd,
+                stdout=subprocess.DEVNULL,
+                stderr=subprocess.DEVNULL,
+                start_new_session=True,
+                preexec_fn=_die_with_parent if linked else None,  # noqa: PLW1509 - only prctl
             )
         except OSError as err:
             raise ReplayError(f"cannot start the Rerun server {exe}: {err.strerror}") from err

@@ -2,6 +2,9 @@
 
 import contextlib
 import socket
+import subprocess
+import sys
+import time
 from importlib import metadata
 from pathlib import Path
 from typing import Any
@@ -154,3 +157,30 @@ def test_truncated_log_keeps_the_readable_frames_in_the_rrd(tmp_path):
     assert summary.frames > 100
     rows = _rows(_store(out), "/world/ego")
     assert rows.num_rows == summary.frames
+
+
+@pytest.mark.skipif(sys.platform != "linux", reason="the parent-death signal is Linux's prctl")
+def test_a_killed_replay_takes_its_served_viewer_with_it(tmp_path):
+    # SIGKILL leaves no chance to clean up: the kernel's parent-death signal stops the server
+    grpc_port, web_port = _free_port(), _free_port()
+    sample = Path(__file__).resolve().parents[3] / "sample_logs" / "hard_braking_lead.mcap"
+    cmd = [sys.executable, "-c", "from workbench.cli.main import main; main()", "replay"]
+    cmd += [str(sample), "--end", "1", "--serve"]
+    cmd += ["--grpc-port", str(grpc_port), "--web-port", str(web_port)]
+    replay = subprocess.Popen(  # noqa: S603 - this interpreter, fixed arguments
+        cmd, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, cwd=tmp_path, text=True
+    )
+    try:
+        assert replay.stdout is not None
+        for line in replay.stdout:  # the URL is printed once the server listens
+            if "press Ctrl-C" in line:
+                break
+        assert _listeners(grpc_port), "the server should be listening"
+        replay.kill()
+        replay.wait()
+        deadline = time.monotonic() + 10.0
+        while _listeners(grpc_port) and time.monotonic() < deadline:
+            time.sleep(0.1)
+        assert _listeners(grpc_port) == set(), "the viewer outlived the killed replay"
+    finally:
+        replay.kill()
