@@ -77,6 +77,7 @@ def export(
 ) -> None:
     """Write a clip per incident: MCAP of the window's messages, OpenLABEL, .rrd, PNG."""
     from workbench.annotations import LabelStore, default_store_path  # noqa: PLC0415
+    from workbench.annotations.elsewhere import elsewhere_note  # noqa: PLC0415
     from workbench.export import Selection, export_clips, plan_clips  # noqa: PLC0415
 
     request = report.request
@@ -84,6 +85,9 @@ def export(
         raise WorkbenchError(f"{log}: the incidents carry no request to replay")
     with LabelStore(store or default_store_path()) as labels:
         found = labels.labels(report.drive_hash)
+    note = elsewhere_note(report, found)
+    if note:
+        typer.echo(f"note: {note}", err=True)
     selection = Selection(tuple(incident or ()), verdict, all_)
     plans = plan_clips(report, found, selection, round(margin * 1e9))
     if not plans:

@@ -60,6 +60,7 @@ def review(
         default_reviewer,
         default_store_path,
     )
+    from workbench.annotations.elsewhere import elsewhere_note  # noqa: PLC0415
     from workbench.incidents import filter_incidents  # noqa: PLC0415
     from workbench.review import ReviewSession  # noqa: PLC0415
     from workbench.review.loop import review_in_viewer, run_review  # noqa: PLC0415
@@ -73,9 +74,12 @@ def review(
         causes=cause or (),
         max_margin=max_margin,
     )
-    report = dataclasses.replace(report, incidents=tuple(chosen))
     path = store or default_store_path()
     with LabelStore(path) as labels:
+        note = elsewhere_note(report, labels.labels(report.drive_hash))  # before the filters
+        if note:
+            typer.echo(f"note: {note}", err=True)
+        report = dataclasses.replace(report, incidents=tuple(chosen))
         session = ReviewSession(report, labels, reviewer or default_reviewer())
         if not (spawn or serve or connect):
             run_review(session)
