@@ -77,15 +77,16 @@ def export(
 ) -> None:
     """Write a clip per incident: MCAP of the window's messages, OpenLABEL, .rrd, PNG."""
     from workbench.annotations import LabelStore, default_store_path  # noqa: PLC0415
-    from workbench.annotations.elsewhere import elsewhere_note  # noqa: PLC0415
+    from workbench.annotations.attach import elsewhere_note, labels_for  # noqa: PLC0415
     from workbench.export import Selection, export_clips, plan_clips  # noqa: PLC0415
 
     request = report.request
     if request is None:
         raise WorkbenchError(f"{log}: the incidents carry no request to replay")
     with LabelStore(store or default_store_path()) as labels:
-        found = labels.labels(report.drive_hash)
-    note = elsewhere_note(report, found)
+        stored = labels.labels(report.drive_hash)
+    found = labels_for(report, stored)
+    note = elsewhere_note(report, stored)
     if note:
         typer.echo(f"note: {note}", err=True)
     selection = Selection(tuple(incident or ()), verdict, all_)

@@ -30,12 +30,13 @@ def export(
 ) -> None:
     """Write a drive's incidents and their labels as OpenLABEL (incidents as actions)."""
     from workbench.annotations import LabelStore, default_store_path  # noqa: PLC0415
-    from workbench.annotations.elsewhere import elsewhere_note  # noqa: PLC0415
+    from workbench.annotations.attach import elsewhere_note, labels_for  # noqa: PLC0415
     from workbench.annotations.openlabel import export_openlabel, write_openlabel  # noqa: PLC0415
 
     with LabelStore(store or default_store_path()) as labels:
-        found = labels.labels(report.drive_hash)
-    note = elsewhere_note(report, found)
+        stored = labels.labels(report.drive_hash)
+    found = labels_for(report, stored)
+    note = elsewhere_note(report, stored)
     if note:
         typer.echo(f"note: {note} (not in this file)", err=True)
     write_openlabel(export_openlabel(report, found), out)

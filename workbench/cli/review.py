@@ -60,7 +60,7 @@ def review(
         default_reviewer,
         default_store_path,
     )
-    from workbench.annotations.elsewhere import elsewhere_note  # noqa: PLC0415
+    from workbench.annotations.attach import elsewhere_note  # noqa: PLC0415
     from workbench.incidents import filter_incidents  # noqa: PLC0415
     from workbench.review import ReviewSession  # noqa: PLC0415
     from workbench.review.loop import review_in_viewer, run_review  # noqa: PLC0415

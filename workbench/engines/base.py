@@ -133,6 +133,10 @@ class EngineSpec:
         incident_facts: Factory of a collector of the engine's own severity facts per incident
             (``workbench.incidents.FactCollector``: ``add(frame, t_ns, verdict, object_id)``,
             ``facts()``), or ``None``.
+        join_causes: When set, the engine's incidents are one per object and unsafe run,
+            whatever causes its frames name, and this joins the causes of a run (in order of
+            appearance) into the incident's cause; ``None``: a change of cause starts a new
+            incident.
     """
 
     name: str
@@ -145,3 +149,4 @@ class EngineSpec:
     sink: Callable[[rr.RecordingStream], EngineSink]
     views: Callable[[], list[rrb.View]]
     incident_facts: Callable[[], Any] | None = None
+    join_causes: Callable[[Sequence[str]], str] | None = None

@@ -1,15 +1,22 @@
-"""Incidents from the driver's chunks: runs of unsafe frames per engine, object and cause."""
+"""Incidents from the driver's chunks: runs of unsafe frames per engine, object and cause.
+
+An engine whose spec joins causes (``EngineSpec.join_causes``: structured RSS) keys its
+incidents per object only: a change of cause inside a run does not split it, the incident's
+cause joins the causes of its frames, and its ``legacy_ids`` are the ids the pieces had when
+each cause made its own incident (labels written then still find the incident).
+"""
 
 from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from workbench.errors import WorkbenchError
 from workbench.incidents.facts import collectors_for
 from workbench.incidents.model import Incident, IncidentSettings, Severity, incident_id
 from workbench.sinks.runs import Run, RunMerger
 
 if TYPE_CHECKING:
-    from collections.abc import Mapping
+    from collections.abc import Callable, Mapping, Sequence
 
     from workbench.driver.run import Chunk
     from workbench.engines.base import Verdict
@@ -41,6 +48,20 @@ class IncidentDetector:
         #: Positions ``(x, y)`` [m] of the frame's culprits at the first frame of each
         #: incident, by object id (chunks only): where the review camera looks.
         self.objects_at_start_m: dict[int, dict[str, tuple[float, float]]] = {}
+        self._joins: dict[str, Callable[[Sequence[str]], str] | None] = {}
+        #: Per run of an engine that joins causes (by key and start frame): ``(frame,
+        #: cause)`` where the cause changed, in order.
+        self._trails: dict[tuple[IncidentKey, int], list[tuple[int, str]]] = {}
+
+    def _join_of(self, engine: str) -> Callable[[Sequence[str]], str] | None:
+        if engine not in self._joins:
+            from workbench.engines.registry import engine as spec_of  # noqa: PLC0415
+
+            try:
+                self._joins[engine] = spec_of(engine).join_causes
+            except WorkbenchError:  # not a registered engine (tests)
+                self._joins[engine] = None
+        return self._joins[engine]
 
     def add(self, frame: int, t_ns: int, verdicts: Mapping[str, Verdict]) -> bool:
         """Add one frame's verdicts per engine (frames in time order).
@@ -53,15 +74,21 @@ class IncidentDetector:
         for engine, verdict in verdicts.items():
             if verdict.is_safe:
                 continue
+            cause = "" if self._join_of(engine) else verdict.cause
             for obj in verdict.culprits or ("",):
-                hits[engine, obj, verdict.cause] = verdict
+                hits[engine, obj, cause] = verdict
         started = False
         for run in self._runs.add(frame, t_ns, hits):
             if run.unsafe_frames == 1:
                 started = True
                 run.extra = list(collectors_for(run.key[0]))
+            verdict = hits[run.key]
+            if self._join_of(run.key[0]):
+                trail = self._trails.setdefault((run.key, run.start_frame), [])
+                if not trail or trail[-1][1] != verdict.cause:
+                    trail.append((frame, verdict.cause))
             for collector in run.extra:
-                collector.add(frame, t_ns, hits[run.key], run.key[1])
+                collector.add(frame, t_ns, verdict, run.key[1])
         return started
 
     def add_chunk(self, chunk: Chunk) -> None:
@@ -81,6 +108,15 @@ class IncidentDetector:
     def _incident(self, run: Run[IncidentKey]) -> Incident:
         engine, obj, cause = run.key
         objects = (obj,) if obj else ()
+        trail = self._trails.get((run.key, run.start_frame), [])
+        legacy = tuple(
+            dict.fromkeys(
+                incident_id(self.drive_hash, engine, objects, piece, frame)
+                for frame, piece in trail
+            )
+        )
+        join = self._join_of(engine)
+        shown = join([piece for _, piece in trail]) if join and trail else cause
         facts: dict[str, Fact] = {}
         for collector in run.extra:
             facts.update(collector.facts())
@@ -94,12 +130,13 @@ class IncidentDetector:
             id=incident_id(self.drive_hash, engine, objects, cause, run.start_frame),
             engine=engine,
             objects=objects,
-            cause=cause,
+            cause=shown,
             start_frame=run.start_frame,
             end_frame=run.end_frame,
             start_ns=run.start_ns,
             end_ns=run.end_ns,
             severity=severity,
+            legacy_ids=legacy,
         )
 
     def incidents(self) -> list[Incident]:

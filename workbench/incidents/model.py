@@ -82,18 +82,21 @@ def incident_id(
 
 @dataclass(frozen=True, slots=True)
 class Incident:
-    """A run of unsafe frames of one engine, object and cause.
+    """A run of unsafe frames of one engine, object and cause (RSS: per object).
 
     Attributes:
         id: Stable id (:func:`incident_id`): the same drive and settings give the same ids.
         engine: Engine name.
         objects: The object involved (one id; empty when the verdict named none).
-        cause: The verdict's cause (rule or response).
+        cause: The verdicts' cause (rule or response; RSS: the union of its frames').
         start_frame: First unsafe frame.
         end_frame: Last unsafe frame (inclusive).
         start_ns: Time of the first unsafe frame.
         end_ns: Time of the last unsafe frame.
         severity: Severity facts.
+        legacy_ids: Ids the pieces of this incident had before its engine's incidents were
+            one per object (``EngineSpec.join_causes``): a new piece per change of cause.
+            Used to find labels written then; not in the pinned JSON.
     """
 
     id: str
@@ -105,6 +108,7 @@ class Incident:
     start_ns: int
     end_ns: int
     severity: Severity
+    legacy_ids: tuple[str, ...] = ()
 
     @property
     def duration_s(self) -> float:

@@ -8,8 +8,11 @@ first; a new session resumes at the worst incident nobody has labelled yet.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
+
+from workbench.annotations.attach import labels_for
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -37,7 +40,7 @@ class ReviewSession:
         self.store = store
         self.reviewer = reviewer
         self.incidents: Sequence[Incident] = report.incidents
-        self.labels: dict[str, Label] = store.labels(report.drive_hash)
+        self.labels: dict[str, Label] = labels_for(report, store.labels(report.drive_hash))
         self._pending: dict[str, Pending] = {}
         self._undo: list[tuple[int, str]] = []
         self.index = self.resume_index()
@@ -133,9 +136,11 @@ class ReviewSession:
             return None
         event, incident_id = self._undo.pop()
         after = self.store.undo(event)
-        if after is None:
+        self.index = next(k for k, i in enumerate(self.incidents) if i.id == incident_id)
+        if after is None:  # its label from before, if any (also one of a legacy id)
             self.labels.pop(incident_id, None)
+            alone = dataclasses.replace(self.report, incidents=(self.incidents[self.index],))
+            self.labels.update(labels_for(alone, self.store.labels(self.report.drive_hash)))
         else:
             self.labels[incident_id] = after
-        self.index = next(k for k, i in enumerate(self.incidents) if i.id == incident_id)
         return self.current

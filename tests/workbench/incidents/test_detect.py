@@ -8,6 +8,7 @@ from workbench.incidents import (
     Incident,
     IncidentDetector,
     IncidentSettings,
+    incident_id,
     register_facts,
     unregister_facts,
 )
@@ -31,20 +32,50 @@ def _detect(frames, drive_hash="h1", settings=None) -> list[Incident]:
 
 
 def test_unsafe_frames_split_per_engine_object_and_cause():
+    brake, away = "unstructured: brake", "unstructured: drive-away"
     frames = [
-        {"rss": SAFE},
-        {"rss": _verdict(("a", "b"))},
-        {"rss": _verdict(("a",))},
-        {"rss": _verdict(("a",), cause="RSS BrakeMinCorrect")},
-        {"rss": SAFE, "reachsets": _verdict((), cause="reach-set collision", margin=0.4)},
+        {"unstructured": SAFE},
+        {"unstructured": _verdict(("a", "b"), cause=brake)},
+        {"unstructured": _verdict(("a",), cause=brake)},
+        {"unstructured": _verdict(("a",), cause=away)},
+        {"unstructured": SAFE, "reachsets": _verdict((), cause="reach-set collision", margin=0.4)},
     ]
     found = {(i.engine, i.objects, i.cause): (i.start_frame, i.end_frame) for i in _detect(frames)}
     assert found == {
-        ("rss", ("a",), "RSS BrakeMin"): (1, 2),
-        ("rss", ("b",), "RSS BrakeMin"): (1, 1),
-        ("rss", ("a",), "RSS BrakeMinCorrect"): (3, 3),
+        ("unstructured", ("a",), brake): (1, 2),
+        ("unstructured", ("b",), brake): (1, 1),
+        ("unstructured", ("a",), away): (3, 3),
         ("reachsets", (), "reach-set collision"): (4, 4),
     }
+    assert all(i.legacy_ids == () for i in _detect(frames))
+
+
+def test_rss_incidents_are_one_per_object_with_the_union_of_the_responses():
+    # the frame's responses change with other objects (b) and over the approach: one
+    # incident per object and run; its cause joins the frames' (BrakeMin over BrakeMinCorrect)
+    lon, both = "RSS lon BrakeMinCorrect", "RSS lon BrakeMin, lat-left BrakeMin"
+    frames = [
+        {"rss": _verdict(("a",), cause=lon)},
+        {"rss": _verdict(("a", "b"), cause=both)},
+        {"rss": _verdict(("a",), cause=lon)},
+        {"rss": SAFE},
+        {"rss": _verdict(("a",), cause=lon)},
+    ]
+    found = _detect(frames)
+    runs = {(i.objects, i.cause): (i.start_frame, i.end_frame) for i in found}
+    assert runs == {
+        (("a",), "RSS lon BrakeMin, lat-left BrakeMin"): (0, 2),
+        (("b",), both): (1, 1),
+        (("a",), lon): (4, 4),
+    }
+    # the ids each piece had when every cause made its own incident (labels written then)
+    first = next(i for i in found if i.objects == ("a",) and i.start_frame == 0)
+    assert first.legacy_ids == (
+        incident_id("h1", "rss", ("a",), lon, 0),
+        incident_id("h1", "rss", ("a",), both, 1),
+        incident_id("h1", "rss", ("a",), lon, 2),
+    )
+    assert first.id not in first.legacy_ids
 
 
 def test_ids_are_stable_and_depend_on_the_drive_content():

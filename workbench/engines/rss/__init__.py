@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING
 import rerun.blueprint as rrb
 
 from workbench.engines.base import EngineSpec
+from workbench.engines.rss.causes import CAUSES, join_causes
 from workbench.engines.rss.incident_facts import RssIncidentFacts
 from workbench.engines.rss.record import rss_record
 
@@ -53,15 +54,11 @@ SPEC = EngineSpec(
     short="rss",
     state_origin="/rss/structured",
     # the proper responses an unsafe frame demands, e.g. "RSS lon BrakeMin, lat-left BrakeMin"
-    causes=(
-        "RSS lon BrakeMinCorrect",
-        "RSS lon BrakeMin",
-        "RSS lat-left BrakeMin",
-        "RSS lat-right BrakeMin",
-    ),
+    causes=CAUSES,
     build=_build,
     record=rss_record,
     sink=_sink,
     views=_views,
     incident_facts=RssIncidentFacts,
+    join_causes=join_causes,
 )

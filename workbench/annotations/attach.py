@@ -1,4 +1,8 @@
-"""Labels of a drive whose incidents the current settings do not find: named, never dropped.
+"""Which stored labels belong to which incident; the rest named, never dropped.
+
+:func:`labels_for` gives each incident its label: the one stored under its id, else the
+latest one stored under one of its ``legacy_ids`` (an RSS incident of a workbench version
+that split incidents at every change of cause).
 
 An incident id depends on the drive and on every setting that decides the incidents
 (engines, RSS profile, reach rules, files, merging; :meth:`IncidentRequest.record`), and on
@@ -19,16 +23,32 @@ if TYPE_CHECKING:
     from workbench.annotations.store import Label
     from workbench.incidents import IncidentReport
 
-__all__ = ["elsewhere_note", "labels_elsewhere"]
+__all__ = ["elsewhere_note", "labels_elsewhere", "labels_for"]
 
 #: Differing settings named in the note, most frequent first.
 _NAMED = 3
 
 
+def labels_for(report: IncidentReport, labels: Mapping[str, Label]) -> dict[str, Label]:
+    """Each incident's label by incident id (``labels``: the drive's stored labels by id).
+
+    An incident without a label of its own takes the latest label of its legacy ids.
+    """
+    out: dict[str, Label] = {}
+    for incident in report.incidents:
+        label = labels.get(incident.id)
+        if label is None:
+            older = [labels[i] for i in incident.legacy_ids if i in labels]
+            label = max(older, key=lambda x: (x.labelled_ns, x.event_id), default=None)
+        if label is not None:
+            out[incident.id] = label
+    return out
+
+
 def labels_elsewhere(report: IncidentReport, labels: Mapping[str, Label]) -> list[Label]:
-    """The labels of ``report``'s drive for incidents it does not hold, by incident id."""
-    found = {incident.id for incident in report.incidents}
-    return [label for key, label in sorted(labels.items()) if key not in found]
+    """The drive's stored labels of no incident (nor of a legacy id of one), by incident id."""
+    known = {i for incident in report.incidents for i in (incident.id, *incident.legacy_ids)}
+    return [label for key, label in sorted(labels.items()) if key not in known]
 
 
 def _value(value: Any) -> str:
