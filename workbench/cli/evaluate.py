@@ -115,8 +115,10 @@ def evaluate(
     finally:
         drive.close()
     found = list(done.violations)
+    profiles = "".join(f" ({n} profile {p})" for n, p in done.profiles.items())
     typer.echo(
-        f"{done.frames} frames evaluated with {', '.join(names)}; {done.unsafe_frames} unsafe"
+        f"{done.frames} frames evaluated with {', '.join(names)}{profiles}; "
+        f"{done.unsafe_frames} unsafe"
     )
     echo_losses(drive.info.notes, verbose=verbose)
     if found:

@@ -32,6 +32,8 @@ class Evaluation:
         violations: Violation intervals over those frames.
         stopped_by: The loader error that ended a truncated or corrupted log early, if any;
             everything above covers the frames read before it.
+        profiles: The parameter profile each engine's verdicts named (RSS: e.g.
+            ``highway``), for the engines whose verdicts name one.
     """
 
     frames: int
@@ -39,6 +41,7 @@ class Evaluation:
     violations: tuple[Violation, ...]
     unsafe_per_engine: Mapping[str, int] = field(default_factory=dict)
     stopped_by: LoaderError | None = None
+    profiles: Mapping[str, str] = field(default_factory=dict)
 
 
 def evaluate_drive(
@@ -83,4 +86,5 @@ def evaluate_drive(
         violations=tuple(detector.violations()),
         unsafe_per_engine={n: detector.unsafe_per_engine.get(n, 0) for n in run.engine_names},
         stopped_by=run.stopped_by,
+        profiles={n: p for n, p in detector.profiles.items() if p},
     )

@@ -37,6 +37,8 @@ class Violation:
         end_ns: Time of the last unsafe frame.
         worst_margin: Smallest engine margin within the interval.
         labels: Every label seen within the interval, sorted.
+        profile: The parameter profile the engine's verdicts name (RSS: ``RssVerdict.profile``,
+            e.g. ``highway``); ``""`` for engines whose verdicts name none.
     """
 
     id: str
@@ -50,6 +52,7 @@ class Violation:
     end_ns: int
     worst_margin: float
     labels: list[str] = field(default_factory=list)
+    profile: str = ""
 
     @property
     def frames(self) -> int:
@@ -79,6 +82,8 @@ class ViolationDetector:
         self.unsafe_frames = 0
         #: Unsafe frames per engine, in the order the engines first appeared.
         self.unsafe_per_engine: dict[str, int] = {}
+        #: The parameter profile each engine's verdicts name (``profile``; ``""``: none).
+        self.profiles: dict[str, str] = {}
 
     def add(self, frame: int, t_ns: int, verdicts: Mapping[str, Verdict]) -> None:
         """Add one frame's verdicts (frames in order)."""
@@ -88,6 +93,8 @@ class ViolationDetector:
             self.unsafe_per_engine[engine] = self.unsafe_per_engine.get(engine, 0) + (
                 not out.is_safe
             )
+            if engine not in self.profiles:
+                self.profiles[engine] = str(getattr(out, "profile", "") or "")
         self._runs.add(frame, t_ns, {e: v for e, v in verdicts.items() if not v.is_safe})
 
     def add_chunk(self, chunk: Chunk) -> None:
@@ -110,6 +117,7 @@ class ViolationDetector:
                 end_ns=run.end_ns,
                 worst_margin=run.worst_margin,
                 labels=sorted(run.causes),
+                profile=self.profiles.get(run.key, ""),
             )
             for run in self._runs.runs()
         ]

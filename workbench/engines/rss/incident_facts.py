@@ -9,6 +9,7 @@ One collector per incident sees the incident's unsafe frames of its one object a
 - ``shortfall_max_mps2``, ``shortfall_party``, ``response_due_ns``: the largest amount by
   which a party that had to act accelerated above its restriction once its response was due,
   which party, and when its response was due (``None``: every due response was proper);
+- ``profile``: the RSS parameter profile the frames were checked with (``RssVerdict.profile``);
 - ``severity_rank``: :func:`~workbench.engines.rss.severity_order.severity_key` of the above
   and the duration (docs/rss.md, "Severity"), smallest = most severe.
 """
@@ -42,6 +43,7 @@ class RssIncidentFacts:
         self._first: int | None = None
         self._last: int | None = None
         self._seen = False
+        self._profile = ""
 
     def add(self, frame: int, t_ns: int, verdict: object, object_id: str) -> None:
         """One unsafe frame of the incident (its object: ``object_id``).
@@ -52,6 +54,7 @@ class RssIncidentFacts:
         if not isinstance(verdict, RssVerdict):
             return
         self._seen = True
+        self._profile = self._profile or verdict.profile
         self._first = t_ns if self._first is None else self._first
         self._last = t_ns
         self._parties |= _PARTIES.get(verdict.responsibility().get(object_id, ""), 0)
@@ -80,6 +83,7 @@ class RssIncidentFacts:
             "shortfall_max_mps2": None if self._shortfall is None else round(self._shortfall, 6),
             "shortfall_party": self._party,
             "response_due_ns": self._due,
+            "profile": self._profile,
             "severity_rank": list(
                 severity_key(
                     shortfall_mps2=self._shortfall,
