@@ -205,8 +205,9 @@ def _junction_neighbours(lanes: dict[str, Lane], ids: tuple[str, ...]) -> None:
     of the other in the same order, or two left / two right borders in opposite orders).
     Only the ends count: connecting roads of one junction side by side on coinciding
     reference lines share whole borders, but two overlapping junction lanes whose borders
-    meet only at their ends are linked as well (Town01: 1840151 / 1830151, 1280149 /
-    1310151, 2470149 / 2530149; all 72 junction lanes then have ad-map's neighbours).
+    meet only at their ends are linked as well (Town01: 184_0_1 / 183_0_1, 128_0_-1 /
+    131_0_1, 247_0_-1 / 253_0_-1; all 72 junction lanes then have ad-map's drivable
+    neighbours).
     """
     ends = {
         (lane_id, side): getattr(lanes[lane_id], f"{side}_m")[[0, -1]]
