@@ -40,11 +40,9 @@ if TYPE_CHECKING:
 
 __all__ = ["read_opendrive"]
 
-#: Borders of two junction lanes with common end points (within ``_SHARED_END_M``) and
-#: closer than this everywhere are shared (neighbours): connecting roads of one junction
-#: built from different curves (arc / spiral) deviate by up to ~0.2 m in between.
-_SHARED_BORDER_M = 0.3
-_SHARED_END_M = 0.05
+#: Two junction lanes whose borders have both end points in common (each coordinate
+#: closer than this, m) share that border (neighbours), as ad-map's reader links them.
+_SHARED_END_M = 1e-3
 _KINDS = {
     "driving": LaneKind.ROAD,
     "biking": LaneKind.BICYCLE,
@@ -199,35 +197,32 @@ class _Builder:
         return LaneMap(lanes=out, source=self.label, format="opendrive", intersections=groups)
 
 
-def _resampled(line: NDArray[np.float64], n: int = 9) -> NDArray[np.float64]:
-    steps = np.hypot(*np.diff(line, axis=0).T)
-    s = np.concatenate([[0.0], np.cumsum(steps)])
-    at = np.linspace(0.0, s[-1], n)
-    return np.stack([np.interp(at, s, line[:, 0]), np.interp(at, s, line[:, 1])], axis=1)
-
-
 def _junction_neighbours(lanes: dict[str, Lane], ids: tuple[str, ...]) -> None:
     """Link lanes of different junction roads that share a border as neighbours.
 
-    Connecting roads of one junction often run side by side on coinciding reference
-    lines (one per direction); ad-map treats such lanes as neighbours, so lateral
-    cross-sections inside junctions span both.
+    ad-map's rule (``opendrive_junctions.contact``): a border of one lane and a border of
+    the other have both end points in common (the left border of one and the right border
+    of the other in the same order, or two left / two right borders in opposite orders).
+    Only the ends count: connecting roads of one junction side by side on coinciding
+    reference lines share whole borders, but two overlapping junction lanes whose borders
+    meet only at their ends are linked as well (Town01: 184_0_1 / 183_0_1, 128_0_-1 /
+    131_0_1, 247_0_-1 / 253_0_-1; all 72 junction lanes then have ad-map's drivable
+    neighbours).
     """
-    sides = {
-        (lane_id, side): _resampled(getattr(lanes[lane_id], f"{side}_m"))
+    ends = {
+        (lane_id, side): getattr(lanes[lane_id], f"{side}_m")[[0, -1]]
         for lane_id in ids
         for side in ("left", "right")
     }
-    for (a, side_a), line_a in sides.items():
+    for (a, side_a), ends_a in ends.items():
         if getattr(lanes[a], f"{side_a}_neighbour") is not None:
             continue
-        for (b, side_b), line_b in sides.items():
+        for (b, side_b), ends_b in ends.items():
             if b.split("_")[0] == a.split("_")[0]:
                 continue
             opposite = side_a == side_b
-            other = line_b[::-1] if opposite else line_b
-            gaps = np.hypot(*(line_a - other).T)
-            if max(gaps[0], gaps[-1]) < _SHARED_END_M and float(gaps.max()) < _SHARED_BORDER_M:
+            other = ends_b[::-1] if opposite else ends_b
+            if float(np.abs(ends_a - other).max()) < _SHARED_END_M:
                 lanes[a] = _replace(
                     lanes[a], **{f"{side_a}_neighbour": b, f"{side_a}_neighbour_opposite": opposite}
                 )

@@ -297,19 +297,16 @@ def _merging(f: FrameContext, box: int, max_m: float) -> Connecting | None:
 def connecting_routes(f: FrameContext, box: int, max_m: float) -> list[Connecting]:
     """Connecting routes between the ego and ``box`` within ``max_m`` (module docstring).
 
-    The typed routes of the frame's tree (from the ego's anchor lane); where it gives
-    none, those of the first further root's tree that gives any
-    (``FrameContext.other_trees``: lanes the ego occupies that no link joins to its
-    anchor); only where the anchor's tree reaches no lane of the object, the merging search.
+    The typed routes of the frame's tree (from the ego's anchor lane) and of every further
+    root's tree (``FrameContext.other_trees``: lanes the ego occupies that no link joins
+    to its anchor), as ad-map routes from every region the ego occupies. Only
+    where the anchor's tree reaches no lane of the object and no tree gives a typed
+    route, the merging search.
     """
     direct, found = _direct(f, box, max_m, f.tree)
-    if direct:
-        return direct
     for tree in f.other_trees:
-        other, _ = _direct(f, box, max_m, tree)
-        if other:
-            return other
-    if found:
-        return []
+        direct += _direct(f, box, max_m, tree)[0]
+    if direct or found:
+        return direct
     merge = _merging(f, box, max_m)
     return [] if merge is None else [merge]

@@ -24,6 +24,7 @@ from rss.scene.segment_plans import (
     cut_at,
     cut_window,
     fresh_ends,
+    lane_window,
     plan_lanes,
 )
 
@@ -34,7 +35,7 @@ if TYPE_CHECKING:
     from rss.scene.prepared import PreparedGraph
     from rss.scene.routes import RouteTree
 
-__all__ = ["corridor_plans"]
+__all__ = ["admap_beside_ends", "corridor_plans"]
 
 
 def _cross_section(prep: PreparedGraph, base: Step, j: int, j_lo: int, j_hi: int) -> list[Step]:
@@ -127,3 +128,71 @@ def _layout(
         if kept:
             out.append(kept)
     return tuple(out)
+
+
+def admap_beside_ends(
+    prep: PreparedGraph, tree: RouteTree, target: int, matches: Matches, box: int
+) -> list[dict[int, tuple[int, float]]]:
+    """Where ad-map's connecting routes between two vehicles beside each other end.
+
+    For an opposing object on the opposite neighbour of an ego lane whose region overlaps
+    the ego's longitudinally (no gap to cut the road area at), ad-map still plans a route
+    from each region of the ego to the object and drops the two vehicles' regions from
+    its ends (``dropStartRegion`` / ``dropEndRegion``) only where the route keeps a
+    length. From the region beside the object it runs from the ego's front (its rear
+    where the front lies beyond the object's far end) to the object's near end (its far
+    end where that lies behind the start); from a region on the lane before (the ego
+    straddling the two) from that lane's end to the object's near end. The headings at
+    the two ends are the vehicles' route headings, and ad-rss merges the constellations
+    of the routes into their worst case (measured with the oracle, Town01 drive
+    cross-check, seed 1 drives 1, 4 and 7)::
+
+        road-area direction ──▶      ego rear ┌──ego──┐ front
+                                     near  ┌────object─────┐ far
+        route from the region beside:            ├───────▶ (ego front to object far end)
+
+    Returns per route ``{0: (ego lane, position), box: (object lane, position)}`` in each
+    lane's point order (as :func:`cut_between`); none where the ego occupies no opposite
+    neighbour of ``target``.
+    """
+    g = prep.graph
+    region = next((r for r in matches.regions(box) if r.lane == target), None)
+    if region is None or target not in tree.forward:
+        return []
+    fwd_o = tree.forward[target]
+    near_o, far_o = lane_window(region.lon_min, region.lon_max, forward=fwd_o)
+    at_near = near_o if fwd_o else 1.0 - near_o
+    beside = [
+        ego
+        for ego in matches.regions(0)
+        if ego.lane in tree.forward
+        and (
+            (target == g.left_neighbour[ego.lane] and g.left_opposite[ego.lane])
+            or (target == g.right_neighbour[ego.lane] and g.right_opposite[ego.lane])
+        )
+    ]
+    if not beside:
+        return []
+    ego = beside[0]
+    lane = ego.lane
+    fwd = tree.forward[lane]
+    rear, front = lane_window(ego.lon_min, ego.lon_max, forward=fwd)
+    near, far = (_on_lane(prep, (target, fwd_o), p, (lane, fwd)) for p in (near_o, far_o))
+    start = front if front < far else rear
+    end = near_o if near > start else far_o
+    out = [{0: (lane, start if fwd else 1.0 - start), box: (target, end if fwd_o else 1.0 - end)}]
+    for r in matches.regions(0):
+        before = r.lane in tree.forward and lane in (
+            g.successors[r.lane] if tree.forward[r.lane] else g.predecessors[r.lane]
+        )
+        if before:
+            out.append({0: (r.lane, 1.0 if tree.forward[r.lane] else 0.0), box: (target, at_near)})
+    return out
+
+
+def _on_lane(prep: PreparedGraph, source: Step, p: float, lane: Step) -> float:
+    """Road-area position on ``lane`` beside road-area position ``p`` of ``source``."""
+    t = p if source[1] else 1.0 - p
+    guess = p if lane[1] else 1.0 - p
+    at = prep.aligner.aligned(source[0], t, lane[0], guess)
+    return at if lane[1] else 1.0 - at

@@ -112,8 +112,8 @@ class FrameContext:
         once: What this frame computes once.
         other_trees: Connecting routes from the further lanes the ego occupies that no
             link joins to its anchor (overlapping junction lanes,
-            ``rss.scene.create.more_roots``), asked only for an object ``tree`` gives no
-            typed route to.
+            ``rss.scene.create.more_roots``), asked for every object; their routes join
+            those of ``tree`` (``rss.scene.connecting.connecting_routes``).
     """
 
     prep: PreparedGraph

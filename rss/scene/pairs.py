@@ -28,7 +28,7 @@ import numpy as np
 
 from rss.model import ConstellationType
 from rss.scene.connecting import Connecting, Kind, connecting_routes
-from rss.scene.corridor import corridor_plans
+from rss.scene.corridor import admap_beside_ends, corridor_plans
 from rss.scene.cut_areas import cut_area_spans
 from rss.scene.frame import BuiltConstellation, FrameContext, ego_routes
 from rss.scene.junction_pairs import IntersectionPair, intersection_pair
@@ -121,16 +121,24 @@ def _following(
 
 def _corridor(
     f: FrameContext, i: int, cr: Connecting, kind: ConstellationType
-) -> BuiltConstellation | None:
-    """A same/opposite-direction constellation along the connecting route ``cr``.
+) -> list[BuiltConstellation | None]:
+    """Same/opposite-direction constellations along the connecting route ``cr``.
 
-    ad-rss 5.0 swaps the two vehicles' route headings on a route of an object following
-    the ego; reproduced under ``[scene] reproduce_adrss_5_0_defects``.
+    One, but under ``[scene] reproduce_adrss_5_0_defects``, where ad-rss 5.0's speeds
+    differ: it swaps the two vehicles' route headings on a route of an object following
+    the ego, and resolves the speeds of an opposing object beside the ego along the ends
+    of ad-map's routes between the two, one constellation per route
+    (:func:`admap_beside_ends`).
     """
     tree = f.tree if cr.tree is None else cr.tree
     plans, ends = corridor_plans(f.prep, f.memo, tree, cr.target, f.matches, (0, i + 1))
-    swap = cr.kind == Kind.OBJECT_FOLLOWS and f.settings.reproduce_adrss_5_0_defects
-    return f.constellation(kind, i, plans, None, ends, swap_headings=swap)
+    compat = f.settings.reproduce_adrss_5_0_defects
+    if compat and ends is None and cr.kind == Kind.OPPOSING:
+        routes = admap_beside_ends(f.prep, tree, cr.target, f.matches, i + 1)
+        if routes:
+            return [f.constellation(kind, i, plans, None, e) for e in routes]
+    swap = cr.kind == Kind.OBJECT_FOLLOWS and compat
+    return [f.constellation(kind, i, plans, None, ends, swap_headings=swap)]
 
 
 @dataclass(slots=True)
@@ -152,15 +160,17 @@ class _Pair:
 
         SameDirection falls back to a predicted route through both vehicles.
         """
-        key = (kind, cr.target)
+        key = (kind, cr.target, -1 if cr.tree is None else cr.tree.root_pos[0])
         if key in self.out:
             return
-        c = _corridor(self.f, self.i, cr, kind)
+        c, *more = _corridor(self.f, self.i, cr, kind)
         if c is None and kind == ConstellationType.SameDirection:
             if not self.obj_routes:
                 self.obj_routes = self.f.routes(self.i + 1, self.reach_m)
             c = _following(self.f, self.i, self.ego_routes, self.obj_routes)
         self.out[key] = c
+        for n, extra in enumerate(more):
+            self.out[(*key, n)] = extra
 
     def add_intersection(
         self, routes: tuple[tuple[Step, ...], tuple[Step, ...]], kind: ConstellationType | None

@@ -144,3 +144,37 @@ def test_junction_roads_on_one_reference_line_are_opposite_neighbours(junction, 
         assert a.left_neighbour is None
         assert b.left_neighbour is None
     assert a.right_neighbour is None
+
+
+def test_junction_lanes_meeting_only_at_their_ends_are_neighbours():
+    """ad-map links junction lanes by their borders' end points only (Town01 1840151 /
+    1830151 overlap, their borders apart by more than a metre in between)."""
+    bend = 0.1
+    curvature = 2.0 * math.sin(bend) / 50.0
+    arc = f"""
+  <road id="11" length="{2 * bend / curvature}" junction="7">
+    <planView><geometry s="0" x="50" y="0" hdg="{math.pi + bend}" length="{2 * bend / curvature}">
+      <arc curvature="{-curvature}"/></geometry></planView>
+    <lanes><laneSection s="0">
+      <center><lane id="0" type="none"/></center>
+      <right><lane id="-1" type="driving"><width sOffset="0" a="3.5" b="0" c="0" d="0"/></lane></right>
+    </laneSection></lanes>
+  </road>"""
+    m = read_opendrive(_doc(_one_lane_road("10", 0.0, 0.0, "7"), arc))
+    a, b = m.lanes["10_0_-1"], m.lanes["11_0_-1"]
+    assert float(np.abs(a.left_m[:, 1]).max()) < 1e-9
+    assert float(np.abs(b.left_m[:, 1]).max()) > 1.0
+    assert (a.left_neighbour, b.left_neighbour) == ("11_0_-1", "10_0_-1")
+    assert a.left_neighbour_opposite
+    assert b.left_neighbour_opposite
+
+
+def test_town01_overlapping_junction_lanes_are_neighbours(external_dir):
+    # the three pairs the whole-border rule left apart; with them all 72 junction lanes
+    # have ad-map's left / right drivable neighbours (compared with the oracle's contacts)
+    town = read_opendrive(external_dir / "maps" / "Town01.xodr")
+    for a, b in (("184_0_1", "183_0_1"), ("128_0_-1", "131_0_1"), ("247_0_-1", "253_0_-1")):
+        ends = {town.lanes[a].left_neighbour, town.lanes[a].right_neighbour}
+        back = {town.lanes[b].left_neighbour, town.lanes[b].right_neighbour}
+        assert b in ends
+        assert a in back

@@ -200,7 +200,9 @@ def beside_on_curve(mine: dict[str, Any], theirs: dict[str, Any]) -> bool:
     of longitudinal distance 0 (the vehicles beside each other on opposite neighbour
     lanes) and the same lateral distance; only the lateral speeds differ, which ad-rss
     resolves along its connecting route's end headings instead of the road direction at
-    each vehicle (up to 25 degrees apart on Town01's junction curves).
+    each vehicle (up to 25 degrees apart on Town01's junction curves). The default mode
+    keeps the road direction; the compatibility mode reproduces ad-rss
+    (``rss.scene.corridor.admap_beside_ends``).
     """
     missed = set(theirs["dangerous"]) - set(mine["dangerous"])
     for obj in missed:

@@ -320,9 +320,9 @@ def test_town01_against_ad_rss_map_integration(
     # pairs with ad-rss' swapped route headings, 99.7 % outside those and the 51 pairs where
     # ad-map's turn-direction defect is in play), lateral within 0.2 m 100 % / within 1 cm
     # 100 % (ad-map's lane widths, lattice points for lateral extremes), longitudinal within
-    # 0.5 m and within 1 cm 100 % (its tie rule, aligned cuts of neighbour lanes, lane-end
-    # rule, unsimplified borders, lane changes costing the centre-line distance in the route
-    # search), median 0.02 mm
+    # 0.5 m 100 % and within 1 cm 99.6 % (239 / 240, pair 21 off; its tie rule, aligned
+    # cuts of neighbour lanes, lane-end rule, unsimplified borders, lane changes costing
+    # the centre-line distance in the route search), median 0.02 mm
     assert stats["types"] >= 0.985
     assert stats["verdicts"] >= 0.94
     assert stats["verdicts_without_swapped_headings"] >= 0.985
@@ -344,7 +344,7 @@ def test_town01_compat_mode_reproduces_ad_rss(
     sys.stderr.write(f"ad-rss map integration cross-check, compat mode: {stats}\n")
     # measured (docs/rss_scene.md): types 99.8 % (pair 473: ad-map's duplicate filter of
     # routes to lanes side by side), verdicts 100 %, lateral within 0.2 m and 1 cm 100 %,
-    # longitudinal within 0.5 m and 1 cm 100 %
+    # longitudinal within 0.5 m 100 %, within 1 cm 99.6 % (pair 21)
     assert stats["types"] >= 0.996
     assert stats["verdicts"] >= 0.996
     assert stats["lat_within_0_2"] >= 0.995

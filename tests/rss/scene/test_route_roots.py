@@ -19,7 +19,7 @@ from rss.params import RestrictSpeedLimitMode, SceneSettings
 from rss.scene import SceneMemo, create_scene, prepare
 from rss.scene.create import more_roots, scene_boxes
 from rss.scene.matching import match_boxes
-from tests.rss.scene.drive_crosscheck import frame_inputs
+from tests.rss.scene.drive_crosscheck import frame_inputs, our_drive
 from tests.rss.scene.town01_drives import drives as make_drives
 from workbench.engines.rss.adapter import lane_graph_from_map
 
@@ -67,3 +67,24 @@ def test_oncoming_car_beside_the_other_lane_is_opposite(town01: PreparedGraph) -
     # seed 2 (gap 0) drive 18 frame 25: the oncoming car on 188_0_-1, the opposite
     # neighbour of 193_0_1 (ad-rss: OppositeDirection at distance 0); no constellation before
     assert _types(town01, (2, 0.0, 18, 25), 1) == {ConstellationType.OppositeDirection.name}
+
+
+def test_routes_of_every_root_join_and_merge(town01: PreparedGraph) -> None:
+    # seed 2 (gap 0) drive 14 frame 18: the ego straddles 179_0_1, 193_0_1, 188_0_-1 and
+    # 184_0_1; the anchor's tree already reaches the oncoming car 6, but the route from
+    # 193_0_1 is shorter and lies on the other side: ad-rss merges the two
+    # OppositeDirection constellations to 40.44 m / lateral 0 m, dangerous (before: the
+    # anchor's route only, 41.48 m / 1.61 m, safe)
+    drive = {"frames": [make_drives(town01, 2, 15, 0.0)[14]["frames"][18]]}
+    (frame,) = our_drive(town01, drive, SETTINGS)
+    car = next(s for s in frame["situations"] if s["id"] == 6 and s["type"] == "OppositeDirection")
+    assert car["lon_d"] == pytest.approx(40.44, abs=0.01)
+    assert car["lat_d"] == pytest.approx(0.0, abs=1e-9)
+    assert 6 in frame["dangerous"]
+
+
+def test_oncoming_car_on_the_overlapping_junction_lane_is_opposite(town01: PreparedGraph) -> None:
+    # seed 2 (gap 0) drive 18 frame 27: the car on 183_0_1, which ad-map links to the ego's
+    # 184_0_1 as its neighbour (their borders meet at both ends; ad-rss: OppositeDirection
+    # 0.00 m / 2.07 m, dangerous); no constellation before the reader linked them
+    assert _types(town01, (2, 0.0, 18, 27), 1) == {ConstellationType.OppositeDirection.name}
