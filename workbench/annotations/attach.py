@@ -1,6 +1,6 @@
 """Which stored labels belong to which incident; the rest named, never dropped.
 
-:func:`labels_for` gives each incident its label: the one stored under its id, else the
+:func:`label_of` gives an incident its label: the one stored under its id, else the
 latest one stored under one of its ``legacy_ids`` (an RSS incident of a workbench version
 that split incidents at every change of cause).
 
@@ -21,28 +21,27 @@ if TYPE_CHECKING:
     from collections.abc import Mapping
 
     from workbench.annotations.store import Label
-    from workbench.incidents import IncidentReport
+    from workbench.incidents import Incident, IncidentReport
 
-__all__ = ["elsewhere_note", "labels_elsewhere", "labels_for"]
+__all__ = ["elsewhere_note", "label_of", "labels_elsewhere", "labels_for"]
 
 #: Differing settings named in the note, most frequent first.
 _NAMED = 3
 
 
-def labels_for(report: IncidentReport, labels: Mapping[str, Label]) -> dict[str, Label]:
-    """Each incident's label by incident id (``labels``: the drive's stored labels by id).
+def label_of(incident: Incident, labels: Mapping[str, Label]) -> Label | None:
+    """The incident's label: its own, else the latest label of its legacy ids, else ``None``."""
+    own = labels.get(incident.id)
+    if own is not None:
+        return own
+    older = [labels[i] for i in incident.legacy_ids if i in labels]
+    return max(older, key=lambda x: (x.labelled_ns, x.event_id), default=None)
 
-    An incident without a label of its own takes the latest label of its legacy ids.
-    """
-    out: dict[str, Label] = {}
-    for incident in report.incidents:
-        label = labels.get(incident.id)
-        if label is None:
-            older = [labels[i] for i in incident.legacy_ids if i in labels]
-            label = max(older, key=lambda x: (x.labelled_ns, x.event_id), default=None)
-        if label is not None:
-            out[incident.id] = label
-    return out
+
+def labels_for(report: IncidentReport, labels: Mapping[str, Label]) -> dict[str, Label]:
+    """Each labelled incident's :func:`label_of` by id (``labels``: the drive's, by id)."""
+    found = {i.id: label_of(i, labels) for i in report.incidents}
+    return {key: label for key, label in found.items() if label is not None}
 
 
 def labels_elsewhere(report: IncidentReport, labels: Mapping[str, Label]) -> list[Label]:

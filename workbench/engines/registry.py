@@ -29,6 +29,7 @@ __all__ = [
     "ENTRY_POINT_GROUP",
     "build_runners",
     "engine",
+    "find",
     "names",
     "parse_engines",
     "register",
@@ -85,18 +86,23 @@ def names() -> tuple[str, ...]:
     return tuple(_SPECS)
 
 
+def find(name: str) -> EngineSpec | None:
+    """The spec of engine ``name``; ``None`` when none of that name is registered."""
+    _load()
+    return _SPECS.get(name)
+
+
 def engine(name: str) -> EngineSpec:
     """The spec of engine ``name``.
 
     Raises:
         WorkbenchError: No such engine (the message lists the known ones).
     """
-    _load()
-    try:
-        return _SPECS[name]
-    except KeyError:
+    spec = find(name)
+    if spec is None:
         known = ", ".join(_SPECS)
-        raise WorkbenchError(f"--engines: unknown engine {name!r} (known: {known})") from None
+        raise WorkbenchError(f"--engines: unknown engine {name!r} (known: {known})")
+    return spec
 
 
 def parse_engines(text: str) -> list[str]:

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from workbench.errors import WorkbenchError
 from workbench.incidents.facts import collectors_for
 from workbench.incidents.model import Incident, IncidentSettings, Severity, incident_id
 from workbench.sinks.runs import Run, RunMerger
@@ -55,12 +54,10 @@ class IncidentDetector:
 
     def _join_of(self, engine: str) -> Callable[[Sequence[str]], str] | None:
         if engine not in self._joins:
-            from workbench.engines.registry import engine as spec_of  # noqa: PLC0415
+            from workbench.engines.registry import find  # noqa: PLC0415 - light start-up
 
-            try:
-                self._joins[engine] = spec_of(engine).join_causes
-            except WorkbenchError:  # not a registered engine (tests)
-                self._joins[engine] = None
+            spec = find(engine)
+            self._joins[engine] = None if spec is None else spec.join_causes
         return self._joins[engine]
 
     def add(self, frame: int, t_ns: int, verdicts: Mapping[str, Verdict]) -> bool:

@@ -18,8 +18,6 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any, Protocol
 
-from workbench.errors import WorkbenchError
-
 if TYPE_CHECKING:
     from collections.abc import Callable, Mapping
 
@@ -58,11 +56,9 @@ def collectors_for(engine: str) -> list[FactCollector]:
 
     The engine's own (``EngineSpec.incident_facts``) first, then the registered ones.
     """
-    from workbench.engines.registry import engine as spec_of  # noqa: PLC0415 - light start-up
+    from workbench.engines.registry import find  # noqa: PLC0415 - light start-up
 
-    try:
-        own = spec_of(engine).incident_facts
-    except WorkbenchError:  # an engine unregistered since (tests), or a name never registered
-        own = None
+    spec = find(engine)
+    own = None if spec is None else spec.incident_facts
     factories = ([own] if own is not None else []) + _FACTORIES.get(engine, [])
     return [factory() for factory in factories]

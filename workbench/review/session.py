@@ -8,11 +8,10 @@ first; a new session resumes at the worst incident nobody has labelled yet.
 
 from __future__ import annotations
 
-import dataclasses
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from workbench.annotations.attach import labels_for
+from workbench.annotations.attach import label_of, labels_for
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -138,9 +137,11 @@ class ReviewSession:
         after = self.store.undo(event)
         self.index = next(k for k, i in enumerate(self.incidents) if i.id == incident_id)
         if after is None:  # its label from before, if any (also one of a legacy id)
-            self.labels.pop(incident_id, None)
-            alone = dataclasses.replace(self.report, incidents=(self.incidents[self.index],))
-            self.labels.update(labels_for(alone, self.store.labels(self.report.drive_hash)))
+            before = label_of(self.incidents[self.index], self.store.labels(self.report.drive_hash))
+            if before is None:
+                self.labels.pop(incident_id, None)
+            else:
+                self.labels[incident_id] = before
         else:
             self.labels[incident_id] = after
         return self.current
