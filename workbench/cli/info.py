@@ -15,8 +15,10 @@ from workbench.drives import load_rss_params, rss_profile_line
 
 if TYPE_CHECKING:
     from loaders.drive import Drive
+    from loaders.errors import LoaderError
+    from workbench.quality import Finding
 
-__all__ = ["info", "register", "render_info"]
+__all__ = ["info", "quality_table", "register", "render_info"]
 
 
 def render_info(drive: Drive, console: Console, frames: int | None = None) -> None:
@@ -60,6 +62,53 @@ def render_info(drive: Drive, console: Console, frames: int | None = None) -> No
     console.print(table)
 
 
+def quality_table(findings: tuple[Finding, ...], title: str) -> Table:
+    """Rich table of a drive's data-quality findings: one row per object and kind, worst first."""
+    from workbench.quality.summary import summarize  # noqa: PLC0415 - only with --quality
+
+    table = Table(title=title)
+    for column in ("object", "kind", "runs", "frames", "first-last", "worst", "bound", "unit"):
+        table.add_column(column, justify="right" if column in {"runs", "frames"} else "left")
+    for row in summarize(findings):
+        worst = row.worst
+        table.add_row(
+            row.object_id,
+            str(row.kind),
+            str(row.runs),
+            str(row.frames),
+            f"{row.first_frame}-{row.last_frame}",
+            f"{worst.value:.2f} (frame {worst.start_frame}-{worst.end_frame})",
+            f"{worst.bound:.2f}",
+            worst.unit,
+        )
+    return table
+
+
+def _quality(drive: Drive, console: Console) -> LoaderError | None:
+    """Read every frame, check the objects' data and print the table (docs/data_quality.md)."""
+    from loaders import LoaderError  # noqa: PLC0415
+    from workbench.quality import TrackCollector, check_tracks  # noqa: PLC0415
+    from workbench.quality.summary import kind_counts  # noqa: PLC0415
+
+    collector = TrackCollector()
+    stopped: LoaderError | None = None
+    try:
+        collector.add(drive.frames())
+    except LoaderError as err:
+        stopped = err
+    tracks = collector.tracks()
+    findings = check_tracks(tracks)
+    objects = len({f.object_id for f in findings})
+    title = f"data quality: {len(findings)} finding(s) on {objects} of {len(tracks.ids)} objects"
+    if findings:
+        console.print(quality_table(findings, title))
+    else:
+        console.print(title)
+    counts = ", ".join(f"{kind} {n}" for kind, n in kind_counts(findings).items())
+    console.print(f"findings per kind: {counts}")
+    return stopped
+
+
 def info(
     log: Annotated[
         Path, typer.Argument(help="Drive: .mcap, .bag, rosbag2 dir or .db3, .osi, .xml, .saa/.scn")
@@ -77,13 +126,22 @@ def info(
         Path | None,
         typer.Option("--rss-params", help="TOML with RSS dynamics and [scene] settings."),
     ] = None,
+    quality: Annotated[
+        bool,
+        typer.Option(
+            "--quality",
+            help="Check every object's data (speed vs positions, acceleration, jerk, heading, "
+            "jumps) and list the findings per object and kind.",
+        ),
+    ] = False,
 ) -> None:
     """Show format, duration, frame count, topics with types, counts and roles, and the map.
 
     The frame count is what ``evaluate`` will produce: the role topics are read once,
     without the engines, to count the frames and the messages that make none (printed on
     the same line ``evaluate`` prints; ``--verbose`` details them). A damaged log ends the
-    command with its error after the summary.
+    command with its error after the summary. ``--quality`` reads every frame once more and
+    lists the implausible data per object and kind (docs/data_quality.md).
     """
     from loaders import LoaderError, open_drive  # noqa: PLC0415 - keeps CLI start-up light
     from loaders.losses import count_frames  # noqa: PLC0415
@@ -100,6 +158,8 @@ def info(
         render_info(drive, console, frames)
         chosen = "auto -> " if rss_profile in {None, "auto"} and rss_params is None else ""
         console.print(f"rss profile {chosen}{rss_profile_line(params)}")
+        if quality and stopped is None:
+            stopped = _quality(drive, console)
     finally:
         drive.close()
     echo_losses(drive.info.notes, verbose=verbose)
