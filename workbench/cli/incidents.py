@@ -71,6 +71,7 @@ def incidents(
 ) -> None:
     """List a drive's incidents (unsafe runs per engine, object and cause), worst first."""
     from workbench.incidents import filter_incidents, write_incidents  # noqa: PLC0415
+    from workbench.quality.output import write_quality  # noqa: PLC0415
 
     found = filter_incidents(
         report.incidents,
@@ -84,6 +85,7 @@ def incidents(
     if out is not None:
         write_incidents(found, out)
         typer.echo(f"wrote {out}")
+        typer.echo(f"wrote {write_quality(report.findings, found, out)} (data quality)")
     if report.stopped_by is not None:
         typer.echo(f"stopped early: the incidents cover {len(report.frame_times)} frames")
         raise report.stopped_by

@@ -12,6 +12,8 @@ from typing import TYPE_CHECKING
 
 from workbench.incidents.facts import collectors_for
 from workbench.incidents.model import Incident, IncidentSettings, Severity, incident_id
+from workbench.quality import TrackCollector, check_tracks
+from workbench.quality.suspect import flag_suspects
 from workbench.sinks.runs import Run, RunMerger
 
 if TYPE_CHECKING:
@@ -20,6 +22,7 @@ if TYPE_CHECKING:
     from workbench.driver.run import Chunk
     from workbench.engines.base import Verdict
     from workbench.incidents.model import Fact
+    from workbench.quality import Finding
 
 __all__ = ["IncidentDetector", "IncidentKey"]
 
@@ -51,6 +54,8 @@ class IncidentDetector:
         #: Per run of an engine that joins causes (by key and start frame): ``(frame,
         #: cause)`` where the cause changed, in order.
         self._trails: dict[tuple[IncidentKey, int], list[tuple[int, str]]] = {}
+        #: Every object's states (chunks only), for the data-quality checks.
+        self.tracks = TrackCollector()
 
     def _join_of(self, engine: str) -> Callable[[Sequence[str]], str] | None:
         if engine not in self._joins:
@@ -90,6 +95,7 @@ class IncidentDetector:
 
     def add_chunk(self, chunk: Chunk) -> None:
         """Add every frame of a driver chunk."""
+        self.tracks.add(chunk.frames)
         for k, frame in enumerate(chunk.frames):
             verdicts = {n: v[k] for n, v in chunk.verdicts.items()}
             if self.add(frame.index, frame.t_ns, verdicts):
@@ -136,9 +142,17 @@ class IncidentDetector:
             legacy_ids=legacy,
         )
 
-    def incidents(self) -> list[Incident]:
-        """Incidents at least ``min_duration_s`` long, worst first (ties: start, id)."""
+    def findings(self) -> tuple[Finding, ...]:
+        """The data-quality findings of the frames added by chunk (docs/data_quality.md)."""
+        return check_tracks(self.tracks.tracks())
+
+    def incidents(self, findings: Sequence[Finding] | None = None) -> list[Incident]:
+        """Incidents at least ``min_duration_s`` long, worst first (ties: start, id).
+
+        ``data_suspect`` is set from ``findings`` (default: :meth:`findings`).
+        """
         min_ns = round(self.settings.min_duration_s * 1e9)
         found = [self._incident(r) for r in self._runs.runs() if r.end_ns - r.start_ns >= min_ns]
+        found = flag_suspects(found, self.findings() if findings is None else findings)
         found.sort(key=lambda i: (*i.severity.rank_key(), i.start_ns, i.id))
         return found

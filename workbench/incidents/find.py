@@ -20,6 +20,7 @@ if TYPE_CHECKING:
     from workbench.driver.run import EgoSize
     from workbench.engines.base import EngineRunner
     from workbench.incidents.model import Incident
+    from workbench.quality import Finding
 
 __all__ = ["IncidentReport", "IncidentRequest", "find_incidents"]
 
@@ -132,6 +133,7 @@ class IncidentReport:
         objects_at_start_m: Positions ``(x, y)`` [m] of the culprits at each incident's first
             frame, by object id.
         request: What the incidents were found with.
+        findings: The drive's data-quality findings (:mod:`workbench.quality`).
     """
 
     log: Path
@@ -146,6 +148,7 @@ class IncidentReport:
         default_factory=dict
     )
     request: IncidentRequest | None = None
+    findings: tuple[Finding, ...] = ()
 
     def find(self, incident_id: str) -> Incident | None:
         """The incident of that id, if the drive has one."""
@@ -181,15 +184,17 @@ def find_incidents(
         start_ns = drive.info.start_ns
     finally:
         drive.close()
+    findings = detector.findings()
     return IncidentReport(
         log=request.log,
         drive_hash=drive_hash,
         settings=request.record(),
-        incidents=tuple(detector.incidents()),
+        incidents=tuple(detector.incidents(findings)),
         frame_times=tuple(detector.frame_times),
         start_ns=start_ns,
         stopped_by=run.stopped_by,
         ego_at_start_m=dict(detector.ego_at_start_m),
         objects_at_start_m=dict(detector.objects_at_start_m),
         request=request,
+        findings=findings,
     )

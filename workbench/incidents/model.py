@@ -97,6 +97,9 @@ class Incident:
         legacy_ids: Ids the pieces of this incident had before its engine's incidents were
             one per object (``EngineSpec.join_causes``): a new piece per change of cause.
             Used to find labels written then; not in the pinned JSON.
+        data_suspect: Reasons why the incident's facts rest on implausible data (a
+            data-quality finding of its objects or the ego overlapping its frames,
+            :mod:`workbench.quality.suspect`); empty = clean.
     """
 
     id: str
@@ -109,6 +112,7 @@ class Incident:
     end_ns: int
     severity: Severity
     legacy_ids: tuple[str, ...] = ()
+    data_suspect: tuple[str, ...] = ()
 
     @property
     def duration_s(self) -> float:

@@ -46,6 +46,7 @@ class Kind(enum.StrEnum):
     ID_JUMP = "id_jump"
 
 
+_TINY = 1e-9
 #: Unit of each kind's value and bound.
 UNITS = {
     Kind.SPEED_MISMATCH: "m/s",
@@ -82,6 +83,11 @@ class Finding:
     frames: int
     value: float
     bound: float
+
+    @property
+    def excess(self) -> float:
+        """How far beyond its bound the worst value is: ``|value| / |bound|`` (> 1)."""
+        return abs(self.value) / max(abs(self.bound), _TINY)
 
     @property
     def unit(self) -> str:
@@ -217,7 +223,7 @@ def _runs(
     new[1:] = (np.diff(rows) != 1) | (tracks.obj[rows[1:]] != tracks.obj[rows[:-1]])
     starts = np.flatnonzero(new)
     ends = np.append(starts[1:], rows.size)
-    score = np.abs(value[rows]) / np.maximum(np.abs(bound[rows]), 1e-9)
+    score = np.abs(value[rows]) / np.maximum(np.abs(bound[rows]), _TINY)
     out = []
     for s, e in zip(starts.tolist(), ends.tolist(), strict=True):
         run = rows[s:e]

@@ -38,10 +38,6 @@ class ObjectKindSummary:
     worst: Finding
 
 
-def _excess(f: Finding) -> float:
-    return abs(f.value) / max(abs(f.bound), 1e-9)
-
-
 def summarize(findings: Iterable[Finding]) -> list[ObjectKindSummary]:
     """One row per object and kind, worst (farthest beyond its bound) first."""
     groups: dict[tuple[str, Kind], list[Finding]] = {}
@@ -55,11 +51,11 @@ def summarize(findings: Iterable[Finding]) -> list[ObjectKindSummary]:
             frames=sum(f.frames for f in group),
             first_frame=min(f.start_frame for f in group),
             last_frame=max(f.end_frame for f in group),
-            worst=max(group, key=_excess),
+            worst=max(group, key=lambda f: f.excess),
         )
         for (obj, kind), group in groups.items()
     ]
-    return sorted(rows, key=lambda r: (-_excess(r.worst), r.object_id, r.kind))
+    return sorted(rows, key=lambda r: (-r.worst.excess, r.object_id, r.kind))
 
 
 def kind_counts(findings: Iterable[Finding]) -> dict[str, int]:
