@@ -140,10 +140,13 @@ def check_tracks(tracks: Tracks, bounds: QualityBounds | None = None) -> tuple[F
 
     flags: list[tuple[Kind, NDArray[np.bool_], NDArray[np.float64], NDArray[np.float64]]] = []
     flags.append((Kind.SPEED_MISMATCH, *_speed(tracks, b)))
-    accel = window_slope(tracks, tracks.speed_mps, b.window_half_ns)
+    back, ahead = neighbours(tracks, b.chord_span_ns)
+    accel, jerk = _worse(
+        _derivatives(tracks, tracks.speed_mps, b),
+        _derivatives(tracks, chord_speed(tracks, back, ahead), b),
+    )
     top = np.where(accel >= 0, per_obs("accel_mps2"), -per_obs("brake_mps2"))
     flags.append((Kind.ACCEL, np.abs(accel) > np.abs(top), accel, top))
-    jerk = window_slope(tracks, accel, b.window_half_ns)
     jerk_top = per_obs("jerk_mps3")
     flags.append((Kind.JERK, np.abs(jerk) > jerk_top, np.abs(jerk), jerk_top))
     flags.append((Kind.HEADING, *_heading(tracks, b, np.degrees(per_obs("slip_rad")))))
@@ -155,6 +158,26 @@ def check_tracks(tracks: Tracks, bounds: QualityBounds | None = None) -> tuple[F
     found = [f for kind, hit, value, bound in flags for f in _runs(tracks, kind, hit, value, bound)]
     order = {k: n for n, k in enumerate(Kind)}
     return tuple(sorted(found, key=lambda f: (f.object_id, order[f.kind], f.start_frame)))
+
+
+def _derivatives(
+    tracks: Tracks, speed_mps: NDArray[np.float64], b: QualityBounds
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Acceleration and jerk of a speed series: window slopes, ``(M,)`` each (NaN: none)."""
+    accel = window_slope(tracks, speed_mps, b.window_half_ns)
+    return accel, window_slope(tracks, accel, b.window_half_ns)
+
+
+def _worse(
+    recorded: tuple[NDArray[np.float64], NDArray[np.float64]],
+    positions: tuple[NDArray[np.float64], NDArray[np.float64]],
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Per observation the larger magnitude of the recorded speed's and the positions'."""
+    out = []
+    for a, p in zip(recorded, positions, strict=True):
+        pick = np.isnan(a) | (np.abs(np.nan_to_num(p)) > np.abs(a))
+        out.append(np.where(pick, p, a))
+    return out[0], out[1]
 
 
 def _speed(

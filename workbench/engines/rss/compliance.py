@@ -5,23 +5,29 @@ each such party (ego, object): since when it had to act without a break (``since
 its response was due (``since + rho`` of that party's dynamics: the RSS response time), the
 longitudinal restriction of its proper response (``brake_min`` for ``BrakeMin``,
 ``brake_min_correct`` for ``BrakeMinCorrect``: its acceleration must stay at or below it),
-its measured longitudinal acceleration, and once due the shortfall
-``max(0, measured - required)`` [m/s²] (0: complied; a party at standstill, below
-:data:`STOPPED_MPS`, has complied). A response that restricts only laterally is listed with
-no requirement (lateral acceleration is not measured).
+its measured longitudinal acceleration, and once due the shortfall [m/s²] (0: complied). A
+response that restricts only laterally is listed with no requirement (lateral acceleration
+is not measured).
 
-Measured acceleration: the least-squares slope of the recorded speed over the samples of
-the last :data:`WINDOW_NS` (0.5 s) up to and including the frame — a causal first-order
-Savitzky-Golay derivative: it averages the finite differences of the window (noise down by
-about the square root of the sample count) and lags the true acceleration by about 0.25 s.
-The ego's speed is the log's ``EgoState.speed_mps``; an object's is the magnitude of its
-map-frame velocity (its acceleration along its path, not along the lane). ``None`` with
-fewer than two samples in the window.
+Measured on filtered motion, only while the response is due and the danger lasts: a
+constant-acceleration least-squares fit of the party's **positions** over the samples of
+the current duty since its response was due, at most the last :data:`FIT_WINDOW_NS` (1 s):
+``p(tau) = p0 + v tau + a tau^2 / 2`` in x and y (a causal second-order Savitzky-Golay
+filter). The recorded speed is not used: on real traffic it disagrees with the positions
+(docs/data_quality.md), and its noise made shortfalls of 8-10 m/s² out of nothing. The
+measurement is the fitted acceleration along the fitted direction of motion; it needs
+:data:`MIN_SAMPLES` samples over at least :data:`MIN_SPAN_NS` (``None`` before: the first
+half second after the response was due is not judged). Shortfall ``max(0, measured -
+required)``, where a party cannot be asked to brake harder than stopping within the fit
+allows (``required`` raised to ``-v_start / span``, ``v_start`` the fitted speed at the
+fit's start: a creeping or stopping party complies by standing); a party whose fitted speed
+is below :data:`STOPPED_MPS` has complied.
 """
 
 from __future__ import annotations
 
 import collections
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -41,10 +47,28 @@ if TYPE_CHECKING:
     from rss.params import RssParams
     from workbench.engines.rss.verdict import RssVerdict
 
-__all__ = ["STOPPED_MPS", "WINDOW_NS", "ComplianceTracker", "Obligation", "slope"]
+__all__ = [
+    "FIT_WINDOW_NS",
+    "MIN_SAMPLES",
+    "MIN_SPAN_NS",
+    "STOPPED_MPS",
+    "WINDOW_NS",
+    "ComplianceTracker",
+    "FittedMotion",
+    "Obligation",
+    "fit_motion",
+    "shortfall_of",
+    "slope",
+]
 
-#: Window of the acceleration estimate [ns].
+#: Window of the speed-slope estimate :func:`slope` [ns] (tools/ngsim_accelerations.py).
 WINDOW_NS = 500_000_000
+#: Longest stretch of positions the compliance fit uses [ns].
+FIT_WINDOW_NS = 1_000_000_000
+#: Shortest stretch (since the response was due) the compliance fit judges [ns].
+MIN_SPAN_NS = 500_000_000
+#: Fewest samples the compliance fit judges.
+MIN_SAMPLES = 5
 #: Below this speed a party is at standstill: its braking duty is fulfilled [m/s].
 STOPPED_MPS = 0.1
 _BRAKE_MIN = int(LongitudinalResponse.BrakeMin)
@@ -68,36 +92,102 @@ def slope(t_ns: NDArray[np.int64], speed_mps: NDArray[np.float64]) -> float | No
     return float(np.dot(dt, speed_mps - speed_mps.mean()) / denominator)
 
 
+@dataclass(frozen=True, slots=True)
+class FittedMotion:
+    """A constant-acceleration fit of positions.
+
+    Attributes:
+        accel_mps2: Fitted acceleration along the fitted direction of motion (at the middle
+            of the fit) [m/s²].
+        speed_start_mps: Fitted speed at the first sample (the middle's, changed at the
+            acceleration along the path).
+        speed_end_mps: Fitted speed at the last sample (likewise).
+        span_s: Last minus first sample time [s].
+    """
+
+    accel_mps2: float
+    speed_start_mps: float
+    speed_end_mps: float
+    span_s: float
+
+
+def fit_motion(
+    t_ns: NDArray[np.int64], x_m: NDArray[np.float64], y_m: NDArray[np.float64]
+) -> FittedMotion | None:
+    """Least-squares ``p(tau) = p0 + v tau + a tau^2 / 2`` in x and y; ``None`` when too short.
+
+    Args:
+        t_ns: ``(K,)`` sample times, increasing.
+        x_m: ``(K,)`` positions x (map frame).
+        y_m: ``(K,)`` positions y.
+
+    Returns:
+        The fit, or ``None`` with fewer than :data:`MIN_SAMPLES` samples or a span shorter
+        than :data:`MIN_SPAN_NS`.
+    """
+    if t_ns.size < MIN_SAMPLES or int(t_ns[-1] - t_ns[0]) < MIN_SPAN_NS:
+        return None
+    tau = (t_ns - t_ns[0]) / 1e9
+    mid = 0.5 * float(tau[-1])
+    tau = tau - mid
+    design = np.column_stack((np.ones_like(tau), tau, 0.5 * tau * tau))
+    coef, *_ = np.linalg.lstsq(design, np.column_stack((x_m, y_m)), rcond=None)
+    v_mid, accel = coef[1], coef[2]
+    speed = float(np.hypot(*v_mid))
+    along = float(np.dot(accel, v_mid) / speed) if speed > 0.0 else 0.0
+    return FittedMotion(
+        accel_mps2=along,
+        speed_start_mps=max(0.0, speed - along * mid),
+        speed_end_mps=max(0.0, speed + along * mid),
+        span_s=2.0 * mid,
+    )
+
+
 class ComplianceTracker:
-    """Keeps the last :data:`WINDOW_NS` of recorded speeds and the runs of duties."""
+    """Keeps the last :data:`FIT_WINDOW_NS` of positions and the runs of duties."""
 
     def __init__(self, params: RssParams) -> None:
         """Start with no history (a fresh replay)."""
         self._params = params
-        self._frames: collections.deque[tuple[int, float, NDArray[np.str_], NDArray[np.float64]]]
+        self._frames: collections.deque[
+            tuple[int, float, float, NDArray[np.str_], NDArray[np.float64], NDArray[np.float64]]
+        ]
         self._frames = collections.deque()
         self._since: dict[tuple[str, str], int] = {}
 
     def _push(self, frame: Frame) -> None:
         actors = frame.actors
-        speed = np.where(actors.valid, np.hypot(actors.vx_mps, actors.vy_mps), np.nan)
-        self._frames.append((frame.t_ns, abs(frame.ego.speed_mps), actors.ids, speed))
-        while self._frames and self._frames[0][0] < frame.t_ns - WINDOW_NS:
+        x = np.where(actors.valid, actors.x_m, np.nan)
+        y = np.where(actors.valid, actors.y_m, np.nan)
+        self._frames.append((frame.t_ns, frame.ego.x_m, frame.ego.y_m, actors.ids, x, y))
+        while self._frames and self._frames[0][0] < frame.t_ns - FIT_WINDOW_NS:
             self._frames.popleft()
 
-    def _speeds(self, label: str | None) -> tuple[NDArray[np.int64], NDArray[np.float64]]:
+    def _positions(
+        self, label: str | None, from_ns: int
+    ) -> tuple[NDArray[np.int64], NDArray[np.float64], NDArray[np.float64]]:
+        """Times and positions of the ego (``None``) or an object from ``from_ns`` on."""
         times: list[int] = []
-        speeds: list[float] = []
-        for t_ns, ego_speed, ids, actor_speed in self._frames:
+        xs: list[float] = []
+        ys: list[float] = []
+        for t_ns, ego_x, ego_y, ids, x, y in self._frames:
+            if t_ns < from_ns:
+                continue
             if label is None:
                 times.append(t_ns)
-                speeds.append(ego_speed)
+                xs.append(ego_x)
+                ys.append(ego_y)
                 continue
             rows = np.flatnonzero(ids == label)
-            if rows.size and np.isfinite(actor_speed[rows[0]]):
+            if rows.size and np.isfinite(x[rows[0]]):
                 times.append(t_ns)
-                speeds.append(float(actor_speed[rows[0]]))
-        return np.asarray(times, dtype=np.int64), np.asarray(speeds, dtype=np.float64)
+                xs.append(float(x[rows[0]]))
+                ys.append(float(y[rows[0]]))
+        return (
+            np.asarray(times, dtype=np.int64),
+            np.asarray(xs, dtype=np.float64),
+            np.asarray(ys, dtype=np.float64),
+        )
 
     def obligations(
         self, frames: Sequence[Frame], verdicts: Sequence[RssVerdict]
@@ -118,12 +208,10 @@ class ComplianceTracker:
         for (label, party), response in sorted(duties.items()):
             if party == "ego":
                 dyn = self._params.for_class(ObjectClass.EGO)
-                t, v = self._speeds(None)
             else:
                 code = classes.get(label)
                 cls = ObjectClass.UNKNOWN if code is None else dynamics_class(FrameClass(code))
                 dyn = self._params.for_class(cls)
-                t, v = self._speeds(label)
             since = self._since[(label, party)]
             due = since + round(dyn.response_time_s * 1e9)
             required = (
@@ -133,13 +221,21 @@ class ComplianceTracker:
                 if response == _BRAKE_MIN_CORRECT
                 else None
             )
-            measured = slope(t, v)
+            motion = fit_motion(*self._positions(None if party == "ego" else label, due))
+            measured = None if motion is None else motion.accel_mps2
             shortfall = None
-            if required is not None and measured is not None and frame.t_ns >= due:
-                stopped = v.size > 0 and v[-1] < STOPPED_MPS
-                shortfall = 0.0 if stopped else max(0.0, measured - required)
+            if required is not None and motion is not None and frame.t_ns >= due:
+                shortfall = shortfall_of(motion, required)
             out.append((label, Obligation(party, since, due, required, measured, shortfall)))
         return tuple(out)
+
+
+def shortfall_of(motion: FittedMotion, required_mps2: float) -> float:
+    """``max(0, measured - required)``; a party may stop instead of braking (0 at standstill)."""
+    if motion.speed_end_mps < STOPPED_MPS:
+        return 0.0
+    reachable = max(required_mps2, -motion.speed_start_mps / motion.span_s)
+    return max(0.0, motion.accel_mps2 - reachable)
 
 
 def _duties(verdict: RssVerdict) -> dict[tuple[str, str], int]:

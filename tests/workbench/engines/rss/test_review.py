@@ -91,17 +91,30 @@ def test_the_ego_is_responsible_and_its_response_is_due_after_its_response_time(
 
 def test_measured_deceleration_and_shortfall(braking):
     by_time = {round(_t(f), 2): r["compliance"].get(LEAD, [None])[0] for f, r in braking}
-    # the ego brakes at -6 m/s² from 6 s: once the 0.5 s window is inside the braking
-    # phase, the measurement is -6 and the response complies
-    for t in (6.6, 7.0, 7.5):
+    # the ego brakes at -6 m/s² from 6 s; its response is due at 5.95 s: once the fit of
+    # its positions since then covers only the braking phase, it measures -6 and complies
+    for t in (7.0, 7.5):
         duty = by_time[t]
         assert duty is not None
         assert duty["measured_mps2"] == pytest.approx(-6.0, abs=1e-3)
         assert duty["shortfall_mps2"] == pytest.approx(0.0, abs=1e-3)
-    # at 6.0 s the response (due at 5.95 s) has not started yet: short by the whole 6 m/s²
-    late = by_time[6.0]
-    assert late is not None
-    assert late["shortfall_mps2"] == pytest.approx(6.0, abs=0.3)
+    # the first half second after the response was due is not judged
+    for t in (5.95, 6.0, 6.2, 6.4):
+        duty = by_time[t]
+        assert duty is not None
+        assert duty["measured_mps2"] is None
+        assert duty["shortfall_mps2"] is None
+    # at 6.45 s the fit spans 5.95-6.45 s: one sample before the braking began, so the
+    # response is short by the least-squares fit's difference to -6
+    frames = [f for f, _ in braking if 5.95 - 1e-6 <= _t(f) <= 6.45 + 1e-6]
+    tau = np.array([_t(f) for f in frames]) - 6.2
+    x = np.array([f.ego.x_m for f in frames])
+    expected = 2.0 * np.polyfit(tau, x, 2)[0]  # the ego drives along +x
+    first = by_time[6.45]
+    assert first is not None
+    assert first["measured_mps2"] == pytest.approx(expected, abs=1e-6)
+    assert -6.0 < expected < -5.0
+    assert first["shortfall_mps2"] == pytest.approx(expected + 6.0, abs=1e-6)
 
 
 def test_margin_is_the_worst_distance_ratio(braking):
