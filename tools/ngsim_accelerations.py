@@ -2,8 +2,8 @@
 
 The check behind the ``highway`` RSS profile's acceleration values (docs/rss.md, "Parameter
 profiles"): each vehicle's speed series (the ego's and every object's, per CommonRoad
-scenario) is turned into accelerations the way proper-response compliance measures them —
-the least-squares slope of the speed over the last 0.5 s
+scenario) is turned into accelerations the way proper-response compliance measured them —
+the least-squares slope of the speed over the last 0.5 s (it now fits positions)
 (:func:`workbench.engines.rss.compliance.slope`) — and the percentiles over all vehicles are
 printed::
 
