@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING, BinaryIO, Protocol
 from mcap.writer import CompressionType, Writer
 
 from loaders.clips.bag_input import BagClipInput
+from loaders.clips.errors import ClipWriteError
 from loaders.clips.events import EVENT_TOPIC, event_codec
 from loaders.clips.mcap_input import McapClipInput, RawMessage
 from loaders.clips.model import ChannelSpec, ClipOutcome, ClipRequest
@@ -63,8 +64,11 @@ class _ClipFile:
     def __init__(self, request: ClipRequest, profile: str, compression: str) -> None:
         self.request = request
         self.part = request.path.with_name(request.path.name + ".part")
-        self.part.parent.mkdir(parents=True, exist_ok=True)
-        self._file: BinaryIO = self.part.open("wb")
+        try:
+            self.part.parent.mkdir(parents=True, exist_ok=True)
+            self._file: BinaryIO = self.part.open("wb")
+        except OSError as err:
+            raise ClipWriteError(request.path, err.strerror or type(err).__name__) from err
         self.writer = Writer(
             self._file, compression=_COMPRESSION.get(compression, CompressionType.ZSTD)
         )
@@ -120,13 +124,16 @@ class _ClipFile:
         attachments: Sequence[tuple[str, str, bytes, int, int]],
         metadata: Sequence[tuple[str, dict[str, str]]],
     ) -> None:
-        for name, media_type, data, create_time, log_time in attachments:
-            self.writer.add_attachment(create_time, log_time, name, media_type, data)
-        for name, pairs in metadata:
-            self.writer.add_metadata(name, pairs)
-        self.writer.finish()  # type: ignore[no-untyped-call]
-        self._file.close()
-        self.part.replace(self.request.path)
+        try:
+            for name, media_type, data, create_time, log_time in attachments:
+                self.writer.add_attachment(create_time, log_time, name, media_type, data)
+            for name, pairs in metadata:
+                self.writer.add_metadata(name, pairs)
+            self.writer.finish()  # type: ignore[no-untyped-call]
+            self._file.close()
+            self.part.replace(self.request.path)
+        except OSError as err:
+            raise ClipWriteError(self.request.path, err.strerror or type(err).__name__) from err
         self.done = True
 
     def discard(self) -> None:

@@ -24,6 +24,7 @@ import math
 from typing import TYPE_CHECKING, Any
 
 from workbench.errors import WorkbenchError
+from workbench.outputs import write_json
 
 if TYPE_CHECKING:
     from pathlib import Path
@@ -140,14 +141,7 @@ def write_openlabel(doc: dict[str, Any], path: Path) -> None:
     Raises:
         WorkbenchError: The file cannot be written.
     """
-    tmp = path.with_name(f".{path.name}.tmp")
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        tmp.write_text(json.dumps(doc, indent=2) + "\n")
-        tmp.replace(path)
-    except OSError as err:
-        tmp.unlink(missing_ok=True)
-        raise WorkbenchError(f"{path}: cannot write OpenLABEL ({err.strerror})") from err
+    write_json(path, doc, "OpenLABEL")
 
 
 def _field(items: Any, name: str, where: str) -> Any:

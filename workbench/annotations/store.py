@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Any, Self
 
 from workbench.annotations.errors import StoreCorruptError, StoreError, StoreLockedError
 from workbench.annotations.schema import SCHEMA_VERSION, VERDICTS, migrate, schema_version
+from workbench.outputs import json_text
 
 if TYPE_CHECKING:
     from collections.abc import Iterator, Sequence
@@ -173,11 +174,11 @@ class LabelStore:
             drive_hash,
             incident_id,
             verdict,
-            json.dumps(sorted(set(tags))),
+            json_text(sorted(set(tags))),
             note,
             reviewer,
             when,
-            json.dumps(settings or {}, sort_keys=True),
+            json_text(settings or {}, sort_keys=True),
         )
         with self._write() as conn:
             cursor = conn.execute(

@@ -25,6 +25,9 @@ if TYPE_CHECKING:
 
 __all__ = ["register"]
 
+#: Largest --margin (s): a day, beyond any drive.
+_MAX_MARGIN_S = 86_400.0
+
 
 def _summary_lines(summary: ExportSummary) -> list[str]:
     lines = []
@@ -37,13 +40,18 @@ def _summary_lines(summary: ExportSummary) -> list[str]:
     return lines
 
 
-def _check(*, incident: list[str] | None, verdict: str | None, all_: bool, **_: object) -> None:
-    """The choice of incidents, checked before the drive is evaluated."""
+def _check(
+    *, incident: list[str] | None, verdict: str | None, all_: bool, margin: float, **_: object
+) -> None:
+    """The choice of incidents and the margin, checked before the drive is evaluated."""
     from workbench.annotations import VERDICTS  # noqa: PLC0415 - light start-up
     from workbench.export import Selection  # noqa: PLC0415
 
     if verdict is not None and verdict not in VERDICTS:
         msg = f"--verdict {verdict!r}: choose one of {', '.join(VERDICTS)}"
+        raise WorkbenchError(msg)
+    if not 0.0 <= margin <= _MAX_MARGIN_S:  # also NaN
+        msg = f"--margin {margin}: give a number of seconds from 0 to {_MAX_MARGIN_S:.0f}"
         raise WorkbenchError(msg)
     Selection(tuple(incident or ()), verdict, all_).check()
 
@@ -64,7 +72,7 @@ def export(
     all_: Annotated[bool, typer.Option("--all", help="Export every incident.")] = False,
     margin: Annotated[
         float,
-        typer.Option("--margin", help="Seconds kept before and after each incident.", min=0.0),
+        typer.Option("--margin", help="Seconds kept before and after each incident."),
     ] = 3.0,
     topics: Annotated[
         str | None, typer.Option("--topics", help="Comma-separated topics to copy (all if unset).")

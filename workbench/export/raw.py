@@ -9,7 +9,6 @@ the workbench's own frame messages over the clips' span
 
 from __future__ import annotations
 
-import json
 import tempfile
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -17,6 +16,7 @@ from typing import TYPE_CHECKING
 from loaders.clips import ClipRequest, write_clips, write_ros1_bag
 from loaders.message_logs.mapsource import sidecar_map
 from loaders.open import is_rosbag2_dir
+from workbench.outputs import json_text
 
 if TYPE_CHECKING:
     from collections.abc import Callable, Collection, Sequence
@@ -45,7 +45,7 @@ def _requests(
     drive = {
         "log": report.log.name,
         "drive_sha256": report.drive_hash,
-        "settings": json.dumps(report.settings, sort_keys=True),
+        "settings": json_text(report.settings, sort_keys=True),
     }
     requests = []
     for p in plans:

@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import csv
 import io
-import json
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
 
@@ -19,6 +18,7 @@ from workbench.annotations.openlabel import export_openlabel, write_openlabel
 from workbench.errors import WorkbenchError
 from workbench.export.raw import write_raw_clips, write_ros1_bags
 from workbench.export.views import write_recordings, write_thumbnails
+from workbench.outputs import write_json, write_text
 
 if TYPE_CHECKING:
     from collections.abc import Callable, Collection, Sequence
@@ -134,22 +134,9 @@ def _write_index(out_dir: Path, clips: Sequence[ExportedClip]) -> tuple[Path, Pa
                 "problem": record["problem"] or "",
             }
         )
-    written = []
-    for name, text in (
-        ("clips.json", json.dumps(records, indent=2) + "\n"),
-        ("clips.csv", rows.getvalue()),
-    ):
-        path = out_dir / name
-        tmp = out_dir / f".{name}.tmp"
-        try:
-            tmp.write_text(text)
-            tmp.replace(path)
-        except OSError as err:
-            tmp.unlink(missing_ok=True)
-            msg = f"{path}: cannot write the clip index ({err.strerror})"
-            raise WorkbenchError(msg) from err
-        written.append(path)
-    return written[0], written[1]
+    write_json(out_dir / "clips.json", records, "the clip index")
+    write_text(out_dir / "clips.csv", rows.getvalue(), "the clip index")
+    return out_dir / "clips.json", out_dir / "clips.csv"
 
 
 def export_clips(
