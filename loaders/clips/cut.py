@@ -9,7 +9,6 @@ the single pass, so a log is read once however many clips it yields. A clip is w
 from __future__ import annotations
 
 import contextlib
-import time
 from typing import TYPE_CHECKING, BinaryIO, Protocol
 
 from mcap.writer import CompressionType, Writer
@@ -27,8 +26,9 @@ if TYPE_CHECKING:
 
 __all__ = ["MapAttachment", "write_clips"]
 
-#: ``(name, media_type, data)`` of a map attached to every clip.
-MapAttachment = tuple[str, str, bytes]
+#: ``(name, media_type, data, create_time_ns)`` of a map attached to every clip (its log time
+#: is each clip's start, so that a clip's bytes depend on nothing but its window).
+MapAttachment = tuple[str, str, bytes, int]
 
 
 #: Beyond any log time (ns).
@@ -86,7 +86,8 @@ class _ClipFile:
             channel = self.writer.register_channel(
                 EVENT_TOPIC, codec.message_encoding, schema, codec.channel_metadata
             )
-            data = codec.encode(request.start_ns, request.end_ns, request.event)
+            start_ns, end_ns = request.event_span_ns or (request.start_ns, request.end_ns)
+            data = codec.encode(start_ns, end_ns, request.event)
             self.writer.add_message(channel, request.start_ns, data, request.start_ns)
             self.messages += 1
 
@@ -186,11 +187,11 @@ def write_clips(
         except CorruptLogError as err:
             cut.broke = err
         attachments = source.attachments()
-        if map_file is not None and all(
-            a[0] != map_file[0] and a[2] != map_file[2] for a in attachments
+        if map_file is not None and any(
+            a[0] == map_file[0] or a[2] == map_file[2] for a in attachments
         ):
-            attachments.append((*map_file, time.time_ns(), start))
-        return cut.finish(attachments, source.metadata(), source_name or log.name)
+            map_file = None
+        return cut.finish(attachments, source.metadata(), source_name or log.name, map_file)
     finally:
         cut.discard_unfinished()
         source.close()
@@ -233,6 +234,7 @@ class _Cut:
         attachments: list[tuple[str, str, bytes, int, int]],
         metadata: list[tuple[str, dict[str, str]]],
         source_name: str,
+        map_file: MapAttachment | None,
     ) -> list[ClipOutcome]:
         outcomes = []
         for index, request in enumerate(self.requests):
@@ -253,7 +255,10 @@ class _Cut:
                 "start_ns": str(request.start_ns),
                 "end_ns": str(request.end_ns),
             }
-            clip.finish(attachments, [*metadata, *request.metadata.items(), ("clip", record)])
+            own = [] if map_file is None else [(*map_file, request.start_ns)]
+            clip.finish(
+                [*attachments, *own], [*metadata, *request.metadata.items(), ("clip", record)]
+            )
             outcomes.append(
                 ClipOutcome(
                     request,

@@ -32,7 +32,7 @@ _MAX_MARGIN_S = 86_400.0
 def _summary_lines(summary: ExportSummary) -> list[str]:
     lines = []
     for clip in summary.clips:
-        files = [p.name for p in (clip.mcap, clip.bag, clip.openlabel, clip.rrd, clip.png) if p]
+        files = [p.name for p in clip.files.values() if p]
         state = "ok" if clip.problem is None else f"NOT WRITTEN: {clip.problem}"
         lines.append(
             f"  {clip.plan.stem}: {clip.messages} message(s) {state}  [{', '.join(files)}]"
@@ -81,12 +81,22 @@ def export(
     thumbnails: Annotated[
         bool, typer.Option("--thumbnails/--no-thumbnails", help="Render a PNG per clip.")
     ] = True,
+    force: Annotated[
+        bool, typer.Option("--force", help="Replace an earlier export in --out.")
+    ] = False,
+    without_map: Annotated[
+        bool,
+        typer.Option(
+            "--without-map", help="Export a damaged log whose map cannot be read, without one."
+        ),
+    ] = False,
     store: StoreOption = None,
 ) -> None:
     """Write a clip per incident: MCAP of the window's messages, OpenLABEL, .rrd, PNG."""
     from workbench.annotations import LabelStore, default_store_path  # noqa: PLC0415
     from workbench.annotations.attach import elsewhere_note, labels_for  # noqa: PLC0415
     from workbench.export import Selection, export_clips, plan_clips  # noqa: PLC0415
+    from workbench.export.inputs import check_inputs  # noqa: PLC0415
 
     request = report.request
     if request is None:
@@ -99,10 +109,13 @@ def export(
         typer.echo(f"note: {note}", err=True)
     selection = Selection(tuple(incident or ()), verdict, all_)
     plans = plan_clips(report, found, selection, round(margin * 1e9))
-    if not plans:
-        typer.echo(f"{log}: no incident to export ({len(report.incidents)} found, none chosen)")
-        return
     chosen = [t.strip() for t in topics.split(",") if t.strip()] if topics else None
+    if not plans:
+        check_inputs(report, request, chosen, without_map=without_map)  # export_clips does too
+        typer.echo(f"{log}: no incident to export ({len(report.incidents)} found, none chosen)")
+        if report.stopped_by is not None:
+            raise report.stopped_by
+        return
     steps = len(plans) * (1 + int(rrd) + int(rrd and thumbnails))
     with Progress(
         TextColumn("[bold]{task.description}"),
@@ -123,6 +136,8 @@ def export(
             topics=chosen,
             recordings=rrd,
             thumbnails=thumbnails,
+            force=force,
+            without_map=without_map,
             on_bytes=lambda n: bar.advance(copied, n),
             on_clip=lambda: bar.advance(clips),
         )

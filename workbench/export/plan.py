@@ -7,6 +7,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from workbench.errors import WorkbenchError
+from workbench.outputs import finite, json_text
 
 if TYPE_CHECKING:
     from collections.abc import Mapping, Sequence
@@ -77,26 +78,30 @@ class ClipPlan:
     end_ns: int
 
     def event(self) -> dict[str, str]:
-        """The incident and its label as the clip's event key/value pairs."""
+        """The incident and its label as the clip's event key/value pairs.
+
+        Lists (``objects``, ``tags``) are JSON arrays: an id or a tag may hold a comma.
+        """
         i, label = self.incident, self.label
         pairs = {
             "incident_id": i.id,
             "engine": i.engine,
-            "objects": ",".join(i.objects),
+            "objects": json_text(list(i.objects)),
             "cause": i.cause,
             "start_ns": str(i.start_ns),
             "end_ns": str(i.end_ns),
             "start_frame": str(i.start_frame),
             "end_frame": str(i.end_frame),
         }
-        for name, value in i.severity.record().items():
+        for name, value in finite(i.severity.record()).items():
             pairs[f"severity.{name}"] = "" if value is None else str(value)
         if label is not None:
             pairs |= {
                 "verdict": label.verdict,
-                "tags": ",".join(label.tags),
+                "tags": json_text(list(label.tags)),
                 "note": label.note,
                 "reviewer": label.reviewer,
+                "labelled_ns": str(label.labelled_ns),
             }
         return pairs
 
@@ -108,6 +113,8 @@ class ClipPlan:
             "verdict": None if label is None else label.verdict,
             "tags": [] if label is None else list(label.tags),
             "note": "" if label is None else label.note,
+            "reviewer": None if label is None else label.reviewer,
+            "labelled_ns": None if label is None else label.labelled_ns,
             "clip_start_ns": self.start_ns,
             "clip_end_ns": self.end_ns,
         }

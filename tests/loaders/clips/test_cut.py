@@ -54,7 +54,7 @@ def test_clips_hold_exactly_the_window(tmp_path: Path, log: str, source_records)
     source = source_records(SAMPLES / log)
     t0 = min(t for _, t, _ in source)
     requests = _requests(tmp_path, t0)
-    outcomes = write_clips(SAMPLES / log, requests, map_file=("map.osm", "text/xml", b"<osm/>"))
+    outcomes = write_clips(SAMPLES / log, requests, map_file=("map.osm", "text/xml", b"<osm/>", 7))
     assert [o.written for o in outcomes] == [True, True, True]
     for outcome in outcomes:
         request = outcome.request

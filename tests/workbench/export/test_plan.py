@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import pytest
@@ -64,7 +65,7 @@ def test_selection_by_id_and_by_verdict() -> None:
     chosen = plan_clips(report, {"c": label}, Selection(verdict="confirmed"), 0)
     assert [p.incident.id for p in chosen] == ["c"]
     assert chosen[0].event()["verdict"] == "confirmed"
-    assert chosen[0].event()["tags"] == "late"
+    assert json.loads(chosen[0].event()["tags"]) == ["late"]
     assert plan_clips(report, {"c": label}, Selection(verdict="follow_up"), 0) == []
 
 
