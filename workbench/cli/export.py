@@ -41,11 +41,18 @@ def _summary_lines(summary: ExportSummary) -> list[str]:
 
 
 def _check(
-    *, incident: list[str] | None, verdict: str | None, all_: bool, margin: float, **_: object
+    *,
+    incident: list[str] | None,
+    verdict: str | None,
+    all_: bool,
+    window: str | None,
+    margin: float,
+    **_: object,
 ) -> None:
-    """The choice of incidents and the margin, checked before the drive is evaluated."""
+    """The choice of clips and the margin, checked before the drive is evaluated."""
     from workbench.annotations import VERDICTS  # noqa: PLC0415 - light start-up
     from workbench.export import Selection  # noqa: PLC0415
+    from workbench.export.window import parse_window  # noqa: PLC0415
 
     if verdict is not None and verdict not in VERDICTS:
         msg = f"--verdict {verdict!r}: choose one of {', '.join(VERDICTS)}"
@@ -53,7 +60,9 @@ def _check(
     if not 0.0 <= margin <= _MAX_MARGIN_S:  # also NaN
         msg = f"--margin {margin}: give a number of seconds from 0 to {_MAX_MARGIN_S:.0f}"
         raise WorkbenchError(msg)
-    Selection(tuple(incident or ()), verdict, all_).check()
+    Selection(tuple(incident or ()), verdict, all_, window).check()
+    if window is not None:
+        parse_window(window)
 
 
 @with_checked_incidents(_check)
@@ -70,6 +79,13 @@ def export(
         typer.Option("--verdict", help="Export the incidents labelled so (confirmed, ...)."),
     ] = None,
     all_: Annotated[bool, typer.Option("--all", help="Export every incident.")] = False,
+    window: Annotated[
+        str | None,
+        typer.Option(
+            "--window",
+            help="One clip of START:END, incident or not: seconds (12.5:20) or frames (#250:#400).",
+        ),
+    ] = None,
     margin: Annotated[
         float,
         typer.Option("--margin", help="Seconds kept before and after each incident."),
@@ -97,6 +113,7 @@ def export(
     from workbench.annotations.attach import elsewhere_note, labels_for  # noqa: PLC0415
     from workbench.export import Selection, export_clips, plan_clips  # noqa: PLC0415
     from workbench.export.inputs import check_inputs  # noqa: PLC0415
+    from workbench.export.window import parse_window, plan_window  # noqa: PLC0415
 
     request = report.request
     if request is None:
@@ -107,8 +124,11 @@ def export(
     note = elsewhere_note(report, stored)
     if note:
         typer.echo(f"note: {note}", err=True)
-    selection = Selection(tuple(incident or ()), verdict, all_)
-    plans = plan_clips(report, found, selection, round(margin * 1e9))
+    if window is not None:
+        plans = [plan_window(report, parse_window(window))]
+    else:
+        selection = Selection(tuple(incident or ()), verdict, all_)
+        plans = plan_clips(report, found, selection, round(margin * 1e9))
     chosen = [t.strip() for t in topics.split(",") if t.strip()] if topics else None
     if not plans:
         check_inputs(report, request, chosen, without_map=without_map)  # export_clips does too
@@ -138,6 +158,7 @@ def export(
             thumbnails=thumbnails,
             force=force,
             without_map=without_map,
+            labels=found,
             on_bytes=lambda n: bar.advance(copied, n),
             on_clip=lambda: bar.advance(clips),
         )

@@ -25,8 +25,10 @@ __all__ = ["INDEX_CSV", "INDEX_JSON", "clear_directory", "write_index"]
 
 INDEX_JSON = "clips.json"
 INDEX_CSV = "clips.csv"
-#: Files an export writes besides the index: ``NNN_<id>.<kind>``.
-_CLIP_FILE = re.compile(r"^\d{3}_[A-Za-z0-9._-]+\.(mcap|bag|rrd|png|osm|xodr|openlabel\.json)$")
+#: Files an export writes besides the index: ``NNN_<id>.<kind>``, ``window_<frames>.<kind>``.
+_CLIP_FILE = re.compile(
+    r"^(\d{3}|window)_[A-Za-z0-9._-]+\.(mcap|bag|rrd|png|osm|xodr|openlabel\.json)$"
+)
 _CSV_FIELDS = (
     "stem",
     "id",

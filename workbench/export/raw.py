@@ -56,8 +56,8 @@ def _requests(
     requests = []
     for p in plans:
         event = p.event()  # the event message and the metadata record carry the same pairs
-        metadata = {"drive": drive, "incident": event}
-        span = (p.incident.start_ns, p.incident.end_ns)
+        metadata = {"drive": drive, "incident": event} if event else {"drive": drive}
+        span = None if p.incident is None else (p.incident.start_ns, p.incident.end_ns)
         requests.append(
             ClipRequest(out_dir / f"{p.stem}.mcap", p.start_ns, p.end_ns, event, metadata, span)
         )

@@ -20,9 +20,10 @@ from workbench.export.raw import map_attachment, write_raw_clips, write_ros1_bag
 from workbench.export.views import write_recordings, write_thumbnails
 
 if TYPE_CHECKING:
-    from collections.abc import Callable, Collection, Sequence
+    from collections.abc import Callable, Collection, Mapping, Sequence
     from pathlib import Path
 
+    from workbench.annotations import Label
     from workbench.export.plan import ClipPlan
     from workbench.incidents import IncidentReport, IncidentRequest
 
@@ -107,15 +108,24 @@ def _frames_writer(request: IncidentRequest) -> Callable[[Path, int, int], None]
     return write
 
 
-def _openlabel(report: IncidentReport, plan: ClipPlan) -> dict[str, Any]:
+def _openlabel(
+    report: IncidentReport, plan: ClipPlan, windows_labels: Mapping[str, Label]
+) -> dict[str, Any]:
     """The clip's OpenLABEL: its incident and label, naming the source drive and the window.
 
     ``labels import`` of it attaches the label to the source drive (``drive_sha256``).
     """
-    labels = {} if plan.label is None else {plan.incident.id: plan.label}
-    doc = export_openlabel(replace(report, incidents=(plan.incident,)), labels)
+    if plan.incident is None:  # a window: the incidents it overlaps, with their labels
+        held = tuple(
+            i for i in report.incidents if i.end_ns >= plan.start_ns and i.start_ns <= plan.end_ns
+        )
+        labels = {i.id: label for i in held if (label := windows_labels.get(i.id)) is not None}
+    else:
+        held = (plan.incident,)
+        labels = {} if plan.label is None else {plan.incident.id: plan.label}
+    doc = export_openlabel(replace(report, incidents=held), labels)
     doc["openlabel"]["metadata"]["clip"] = {
-        "incident_id": plan.incident.id,
+        "incident_id": None if plan.incident is None else plan.incident.id,
         "stem": plan.stem,
         "source": report.log.name,
         "start_ns": plan.start_ns,
@@ -135,6 +145,7 @@ def export_clips(
     thumbnails: bool = True,
     force: bool = False,
     without_map: bool = False,
+    labels: Mapping[str, Label] | None = None,
     on_bytes: Callable[[int], None] | None = None,
     on_clip: Callable[[], None] | None = None,
 ) -> ExportSummary:
@@ -152,6 +163,8 @@ def export_clips(
         thumbnails: Render a PNG per ``.rrd`` (needs a Vulkan driver; skipped with the reason).
         force: Replace an earlier export in ``out_dir`` (else refuse).
         without_map: Export a damaged log whose map cannot be read (else refuse).
+        labels: The drive's labels by incident id, for the OpenLABEL of a window
+            (``--window``), which holds the incidents it overlaps.
         on_bytes: Progress: bytes of each message copied.
         on_clip: Progress: called once per clip and step (MCAP pass, ``.rrd``, thumbnail).
 
@@ -160,6 +173,7 @@ def export_clips(
             holds an earlier export (without ``force``) or cannot be written.
         LoaderError: The drive cannot be opened at all.
     """
+    labels = labels or {}
     check_inputs(report, request, topics, without_map=without_map)
     clear_directory(out_dir, force=force)
     raw = write_raw_clips(
@@ -181,7 +195,7 @@ def export_clips(
     clips = []
     for plan, outcome in zip(plans, raw, strict=True):
         openlabel = out_dir / f"{plan.stem}.openlabel.json"
-        write_openlabel(_openlabel(report, plan), openlabel)
+        write_openlabel(_openlabel(report, plan, labels), openlabel)
         rrd = rrds.get(plan.stem)
         bag, beside = bags.get(outcome.request.path, (None, None))
         clips.append(

@@ -77,10 +77,14 @@ def write_recordings(
     drive = request.open_drive()  # once: the map is read once for every window
     try:
         for plan in plans:
-            selection = (plan.incident.start_frame, plan.incident.end_frame)
+            incident = plan.incident
+            selection = plan.frames or (0, 0)
+            if incident is not None:
+                selection = (incident.start_frame, incident.end_frame)
             runners, ego = request.engines_for(drive, full_geometry=True)
             lead_start_ns, offset = lead_in(report, plan.start_ns)
-            verdicts = {} if plan.label is None else {plan.incident.id: plan.label.verdict}
+            label = plan.label
+            verdicts = {} if incident is None or label is None else {incident.id: label.verdict}
             path = out_dir / f"{plan.stem}.rrd"
             replay = functools.partial(
                 replay_drive,
