@@ -27,11 +27,26 @@ if TYPE_CHECKING:
     from workbench.export.plan import ClipPlan
     from workbench.incidents import IncidentReport, IncidentRequest
 
-__all__ = ["write_recordings", "write_thumbnails"]
+__all__ = ["LEAD_IN_NS", "incident_focus_m", "lead_in", "write_recordings", "write_thumbnails"]
 
 
 #: Longest lead-in evaluated before a clip's window to warm the engines up [ns].
 LEAD_IN_NS = 10_000_000_000
+
+
+def incident_focus_m(
+    report: IncidentReport, plan: ClipPlan
+) -> tuple[tuple[float, float], list[tuple[float, float]]] | None:
+    """Ego and incident objects' positions ``(x, y)`` [m] at the incident's first frame.
+
+    ``None`` for a window without incident, or when the detector recorded no position.
+    """
+    incident = plan.incident
+    if incident is None or incident.start_frame not in report.ego_at_start_m:
+        return None
+    objects = report.objects_at_start_m.get(incident.start_frame, {})
+    ego = report.ego_at_start_m[incident.start_frame]
+    return ego, [xy for oid, xy in sorted(objects.items()) if oid in incident.objects]
 
 
 def lead_in(report: IncidentReport, start_ns: int) -> tuple[int, int]:
@@ -97,6 +112,7 @@ def write_recordings(
                 verdicts=verdicts,
                 selection=selection,
                 lead_in=(plan.start_ns, offset),
+                focus_m=incident_focus_m(report, plan),
             )
             if _record(path, replay):
                 written[plan.stem] = (path, selection)
