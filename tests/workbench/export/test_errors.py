@@ -46,3 +46,17 @@ def test_unwritable_openlabel_target(tmp_path: Path, capsys: pytest.CaptureFixtu
     (tmp_path / "file").write_text("")
     line = _error(capsys, [*args, str(tmp_path / "file" / "labels.json")])
     assert "cannot write OpenLABEL" in line
+
+
+def test_huge_inputs_are_one_line(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    out = str(tmp_path / "out")
+    line = _error(capsys, ["export", LOG, "--window", "1e309:1e310", "--out", out])
+    assert "--window 1e309:1e310" in line
+    line = _error(capsys, ["export", LOG, "--window", f"#{10**30}:#{10**31}", "--out", out])
+    assert "no frame within --window" in line
+    store = str(tmp_path / "labels.sqlite")
+    label = ["label", LOG, "rss-x", "--verdict", "confirmed", "--engines", "rss"]
+    line = _error(capsys, [*label, "--store", store])
+    assert "no incident 'rss-x'" in line
+    line = _error(capsys, ["export", LOG, "--incident", "x" * 100_000, "--out", out])
+    assert "no incident" in line
