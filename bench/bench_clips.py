@@ -111,7 +111,7 @@ def cut(log: str, out: str, start: str, end: str) -> dict[str, float]:
         for i in range(_CLIPS)
     ]
     started = time.perf_counter()
-    outcomes = write_clips(Path(log), requests, map_file=("map.osm", "text/xml", b"<osm/>"))
+    outcomes = write_clips(Path(log), requests, map_file=("map.osm", "text/xml", b"<osm/>", 0))
     elapsed = time.perf_counter() - started
     return {
         "s": elapsed,

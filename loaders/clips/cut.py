@@ -9,12 +9,12 @@ the single pass, so a log is read once however many clips it yields. A clip is w
 from __future__ import annotations
 
 import contextlib
-import time
 from typing import TYPE_CHECKING, BinaryIO, Protocol
 
 from mcap.writer import CompressionType, Writer
 
 from loaders.clips.bag_input import BagClipInput
+from loaders.clips.errors import ClipWriteError
 from loaders.clips.events import EVENT_TOPIC, event_codec
 from loaders.clips.mcap_input import McapClipInput, RawMessage
 from loaders.clips.model import ChannelSpec, ClipOutcome, ClipRequest
@@ -26,8 +26,9 @@ if TYPE_CHECKING:
 
 __all__ = ["MapAttachment", "write_clips"]
 
-#: ``(name, media_type, data)`` of a map attached to every clip.
-MapAttachment = tuple[str, str, bytes]
+#: ``(name, media_type, data, create_time_ns)`` of a map attached to every clip (its log time
+#: is each clip's start, so that a clip's bytes depend on nothing but its window).
+MapAttachment = tuple[str, str, bytes, int]
 
 
 #: Beyond any log time (ns).
@@ -63,8 +64,11 @@ class _ClipFile:
     def __init__(self, request: ClipRequest, profile: str, compression: str) -> None:
         self.request = request
         self.part = request.path.with_name(request.path.name + ".part")
-        self.part.parent.mkdir(parents=True, exist_ok=True)
-        self._file: BinaryIO = self.part.open("wb")
+        try:
+            self.part.parent.mkdir(parents=True, exist_ok=True)
+            self._file: BinaryIO = self.part.open("wb")
+        except OSError as err:
+            raise ClipWriteError(request.path, err.strerror or type(err).__name__) from err
         self.writer = Writer(
             self._file, compression=_COMPRESSION.get(compression, CompressionType.ZSTD)
         )
@@ -82,7 +86,8 @@ class _ClipFile:
             channel = self.writer.register_channel(
                 EVENT_TOPIC, codec.message_encoding, schema, codec.channel_metadata
             )
-            data = codec.encode(request.start_ns, request.end_ns, request.event)
+            start_ns, end_ns = request.event_span_ns or (request.start_ns, request.end_ns)
+            data = codec.encode(start_ns, end_ns, request.event)
             self.writer.add_message(channel, request.start_ns, data, request.start_ns)
             self.messages += 1
 
@@ -120,13 +125,16 @@ class _ClipFile:
         attachments: Sequence[tuple[str, str, bytes, int, int]],
         metadata: Sequence[tuple[str, dict[str, str]]],
     ) -> None:
-        for name, media_type, data, create_time, log_time in attachments:
-            self.writer.add_attachment(create_time, log_time, name, media_type, data)
-        for name, pairs in metadata:
-            self.writer.add_metadata(name, pairs)
-        self.writer.finish()  # type: ignore[no-untyped-call]
-        self._file.close()
-        self.part.replace(self.request.path)
+        try:
+            for name, media_type, data, create_time, log_time in attachments:
+                self.writer.add_attachment(create_time, log_time, name, media_type, data)
+            for name, pairs in metadata:
+                self.writer.add_metadata(name, pairs)
+            self.writer.finish()  # type: ignore[no-untyped-call]
+            self._file.close()
+            self.part.replace(self.request.path)
+        except OSError as err:
+            raise ClipWriteError(self.request.path, err.strerror or type(err).__name__) from err
         self.done = True
 
     def discard(self) -> None:
@@ -179,11 +187,11 @@ def write_clips(
         except CorruptLogError as err:
             cut.broke = err
         attachments = source.attachments()
-        if map_file is not None and all(
-            a[0] != map_file[0] and a[2] != map_file[2] for a in attachments
+        if map_file is not None and any(
+            a[0] == map_file[0] or a[2] == map_file[2] for a in attachments
         ):
-            attachments.append((*map_file, time.time_ns(), start))
-        return cut.finish(attachments, source.metadata(), source_name or log.name)
+            map_file = None
+        return cut.finish(attachments, source.metadata(), source_name or log.name, map_file)
     finally:
         cut.discard_unfinished()
         source.close()
@@ -226,6 +234,7 @@ class _Cut:
         attachments: list[tuple[str, str, bytes, int, int]],
         metadata: list[tuple[str, dict[str, str]]],
         source_name: str,
+        map_file: MapAttachment | None,
     ) -> list[ClipOutcome]:
         outcomes = []
         for index, request in enumerate(self.requests):
@@ -246,7 +255,10 @@ class _Cut:
                 "start_ns": str(request.start_ns),
                 "end_ns": str(request.end_ns),
             }
-            clip.finish(attachments, [*metadata, *request.metadata.items(), ("clip", record)])
+            own = [] if map_file is None else [(*map_file, request.start_ns)]
+            clip.finish(
+                [*attachments, *own], [*metadata, *request.metadata.items(), ("clip", record)]
+            )
             outcomes.append(
                 ClipOutcome(
                     request,

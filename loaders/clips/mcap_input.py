@@ -11,6 +11,8 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from mcap.reader import NonSeekingReader, SeekingReader
+from mcap.records import Attachment, Metadata
+from mcap.stream_reader import StreamReader
 
 from loaders.clips.model import ChannelSpec, SchemaSpec
 from loaders.errors import CorruptLogError
@@ -123,13 +125,26 @@ class McapClipInput:
                 offset=self._file.tell(),
             ) from err
 
+    def _stream_records(self) -> Iterator[object]:
+        """The file's top-level records from its start up to the damage (unindexed files)."""
+        self._file.seek(0)
+        try:
+            yield from StreamReader(self._file).records
+        except MCAP_ERRORS:
+            return
+
     def attachments(self) -> list[tuple[str, str, bytes, int, int]]:
         """``(name, media_type, data, create_time, log_time)`` of every readable attachment.
 
-        They are found through the summary: a file without a readable one has none left.
+        Through the summary; a file without a readable one (truncated) is scanned from its
+        start up to the damage, so an attachment written before it is kept.
         """
         if self._indexed is None:
-            return []
+            return [
+                (r.name, r.media_type, bytes(r.data), r.create_time, r.log_time)
+                for r in self._stream_records()
+                if isinstance(r, Attachment)
+            ]
         try:
             return [
                 (a.name, a.media_type, bytes(a.data), a.create_time, a.log_time)
@@ -139,9 +154,13 @@ class McapClipInput:
             return []
 
     def metadata(self) -> list[tuple[str, dict[str, str]]]:
-        """``(name, pairs)`` of every readable metadata record (through the summary)."""
+        """``(name, pairs)`` of every readable metadata record (summary, else a scan)."""
         if self._indexed is None:
-            return []
+            return [
+                (r.name, dict(r.metadata))
+                for r in self._stream_records()
+                if isinstance(r, Metadata)
+            ]
         try:
             return [(m.name, dict(m.metadata)) for m in self._indexed.iter_metadata()]
         except MCAP_ERRORS:

@@ -22,6 +22,7 @@ class ClipRequest:
         event: Key/value pairs of the incident, written as one event message at ``start_ns``
             on the clip's event channel (``{}``: no event channel).
         metadata: Named metadata records added to the clip (name -> key/value pairs).
+        event_span_ns: ``(start, end)`` the event spans, inclusive (ns; ``None``: the window).
     """
 
     path: Path
@@ -29,6 +30,7 @@ class ClipRequest:
     end_ns: int
     event: dict[str, str] = field(default_factory=dict)
     metadata: dict[str, dict[str, str]] = field(default_factory=dict)
+    event_span_ns: tuple[int, int] | None = None
 
 
 @dataclass(frozen=True)

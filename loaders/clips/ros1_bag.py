@@ -8,10 +8,13 @@ MD5 sums and caller ids from the channel metadata, payloads unchanged.
 
 from __future__ import annotations
 
+import contextlib
 from typing import TYPE_CHECKING
 
 from mcap.reader import make_reader
 from rosbags.rosbag1 import Writer
+
+from loaders.clips.errors import ClipWriteError
 
 if TYPE_CHECKING:
     from pathlib import Path
@@ -35,9 +38,9 @@ def write_ros1_bag(clip: Path, bag: Path) -> int:
         ValueError: ``clip`` is not a ``ros1`` MCAP.
     """
     part = bag.with_name(bag.name + ".part")
-    part.unlink(missing_ok=True)
     count = 0
     try:
+        part.unlink(missing_ok=True)
         with clip.open("rb") as f:
             reader = make_reader(f)
             if reader.get_header().profile != "ros1":
@@ -64,6 +67,9 @@ def write_ros1_bag(clip: Path, bag: Path) -> int:
             finally:
                 writer.close()
         part.replace(bag)
+    except OSError as err:
+        raise ClipWriteError(bag, err.strerror or type(err).__name__) from err
     finally:
-        part.unlink(missing_ok=True)
+        with contextlib.suppress(OSError):
+            part.unlink(missing_ok=True)
     return count

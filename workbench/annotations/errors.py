@@ -4,7 +4,13 @@ from __future__ import annotations
 
 from workbench.errors import WorkbenchError
 
-__all__ = ["StoreCorruptError", "StoreError", "StoreLockedError"]
+__all__ = [
+    "OpenLabelError",
+    "StoreCorruptError",
+    "StoreError",
+    "StoreLockedError",
+    "TagError",
+]
 
 
 class StoreError(WorkbenchError):
@@ -17,3 +23,11 @@ class StoreCorruptError(StoreError):
 
 class StoreLockedError(StoreError):
     """Another process held the store locked for longer than the busy timeout."""
+
+
+class OpenLabelError(WorkbenchError):
+    """An OpenLABEL file this workbench cannot import (names the file and the element)."""
+
+
+class TagError(StoreError):
+    """A review tag that is empty, spans lines or is too long (names the tag)."""

@@ -19,25 +19,18 @@ the same file. The official JSON schema validates the output in the tests.
 from __future__ import annotations
 
 import datetime as dt
-import json
 import math
 from typing import TYPE_CHECKING, Any
 
-from workbench.errors import WorkbenchError
+from workbench.outputs import write_json
 
 if TYPE_CHECKING:
     from pathlib import Path
 
-    from workbench.annotations.store import Label, LabelStore
+    from workbench.annotations.store import Label
     from workbench.incidents import Incident, IncidentReport
 
-__all__ = ["OpenLabelError", "export_openlabel", "import_openlabel", "write_openlabel"]
-
-_TEXT_FIELDS = ("engine", "cause", "verdict", "note", "reviewer", "labelled_ns")
-
-
-class OpenLabelError(WorkbenchError):
-    """An OpenLABEL file this workbench cannot import (names the file and the element)."""
+__all__ = ["export_openlabel", "write_openlabel"]
 
 
 def _timestamp(t_ns: int) -> str:
@@ -140,93 +133,4 @@ def write_openlabel(doc: dict[str, Any], path: Path) -> None:
     Raises:
         WorkbenchError: The file cannot be written.
     """
-    tmp = path.with_name(f".{path.name}.tmp")
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        tmp.write_text(json.dumps(doc, indent=2) + "\n")
-        tmp.replace(path)
-    except OSError as err:
-        tmp.unlink(missing_ok=True)
-        raise WorkbenchError(f"{path}: cannot write OpenLABEL ({err.strerror})") from err
-
-
-def _field(items: Any, name: str, where: str) -> Any:
-    for item in items if isinstance(items, list) else ():
-        if isinstance(item, dict) and item.get("name") == name:
-            return item.get("val")
-    raise OpenLabelError(f"{where}: no {name!r}")
-
-
-def _read(path: Path) -> dict[str, Any]:
-    try:
-        doc = json.loads(path.read_text())
-    except OSError as err:
-        raise OpenLabelError(f"{path}: cannot read ({err.strerror})") from err
-    except (json.JSONDecodeError, UnicodeDecodeError) as err:
-        raise OpenLabelError(f"{path}: not JSON ({err})") from err
-    root = doc.get("openlabel") if isinstance(doc, dict) else None
-    if not isinstance(root, dict) or not isinstance(root.get("metadata"), dict):
-        raise OpenLabelError(f"{path}: no openlabel.metadata object")
-    if root["metadata"].get("schema_version") != "1.0.0":
-        version = root["metadata"].get("schema_version")
-        raise OpenLabelError(f"{path}: OpenLABEL schema_version {version!r}, expected '1.0.0'")
-    return root
-
-
-def import_openlabel(path: Path, store: LabelStore) -> tuple[int, int]:
-    """Write the reviewed incidents of an OpenLABEL file into the store.
-
-    Actions with a ``verdict`` become labels (keeping their reviewer and ``labelled_ns``);
-    a label already in the store as given is left alone, so importing twice changes nothing.
-
-    Returns:
-        ``(labels written, labels already present)``.
-
-    Raises:
-        OpenLabelError: Not an OpenLABEL 1.0 file written by ``labels export``.
-        StoreError: The store cannot be written.
-    """
-    root = _read(path)
-    meta = root["metadata"]
-    drive_hash = meta.get("drive_sha256")
-    if not isinstance(drive_hash, str) or not drive_hash:
-        raise OpenLabelError(f"{path}: metadata.drive_sha256 missing (not a workbench export)")
-    written = kept = 0
-    actions = root.get("actions", {})
-    for uid, action in sorted(actions.items(), key=lambda kv: int(kv[0])):
-        where = f"{path}: actions.{uid}.action_data"
-        data = action.get("action_data", {}) if isinstance(action, dict) else {}
-        texts = data.get("text", [])
-        if not any(isinstance(t, dict) and t.get("name") == "verdict" for t in texts):
-            continue
-        text = {name: str(_field(texts, name, where)) for name in _TEXT_FIELDS}
-        try:
-            at_ns = int(text["labelled_ns"])
-        except ValueError as err:
-            raise OpenLabelError(f"{where}: labelled_ns {text['labelled_ns']!r}") from err
-        tags = tuple(str(t) for t in _field(data.get("vec", []), "tags", where))
-        incident_id = str(action.get("name", ""))
-        before = store.label(drive_hash, incident_id)
-        given = (text["verdict"], tuple(sorted(set(tags))), text["note"], text["reviewer"], at_ns)
-        if before is not None and given == (
-            before.verdict,
-            before.tags,
-            before.note,
-            before.reviewer,
-            before.labelled_ns,
-        ):
-            kept += 1
-            continue
-        store.put(
-            drive_hash,
-            incident_id,
-            text["verdict"],
-            tags=tags,
-            note=text["note"],
-            reviewer=text["reviewer"],
-            settings=meta.get("settings") or {},
-            log_name=meta.get("tagged_file"),
-            at_ns=at_ns,
-        )
-        written += 1
-    return written, kept
+    write_json(path, doc, "OpenLABEL")

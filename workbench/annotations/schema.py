@@ -9,13 +9,27 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from workbench.annotations.errors import TagError
+
 if TYPE_CHECKING:
     import sqlite3
+    from collections.abc import Sequence
 
-__all__ = ["MIGRATIONS", "SCHEMA_VERSION", "VERDICTS", "migrate", "schema_version"]
+__all__ = [
+    "MAX_TAG_CHARS",
+    "MIGRATIONS",
+    "SCHEMA_VERSION",
+    "VERDICTS",
+    "check_tags",
+    "migrate",
+    "schema_version",
+]
 
 #: The review verdicts the store accepts.
 VERDICTS = ("confirmed", "false_positive", "follow_up")
+
+#: Longest review tag (characters).
+MAX_TAG_CHARS = 64
 
 #: ``MIGRATIONS[k]`` takes a store from version ``k`` to ``k + 1``.
 MIGRATIONS: tuple[str, ...] = (
@@ -79,3 +93,20 @@ def migrate(conn: sqlite3.Connection, target: int = SCHEMA_VERSION) -> int:
         conn.execute("ROLLBACK")
         raise
     return found
+
+
+def check_tags(tags: Sequence[str]) -> tuple[str, ...]:
+    """The tags sorted and unique, each checked: not blank, one line, at most 64 characters.
+
+    Raises:
+        TagError: A tag that is blank, holds a line break or a control character, or is
+            longer than :data:`MAX_TAG_CHARS`.
+    """
+    for tag in tags:
+        if not tag.strip():
+            raise TagError(f"tag {tag!r}: empty")
+        if any(not c.isprintable() for c in tag):
+            raise TagError(f"tag {tag!r}: one line of printable characters expected")
+        if len(tag) > MAX_TAG_CHARS:
+            raise TagError(f"tag {tag[:20]!r}...: {len(tag)} characters, at most {MAX_TAG_CHARS}")
+    return tuple(sorted(set(tags)))

@@ -15,7 +15,14 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Self
 
 from workbench.annotations.errors import StoreCorruptError, StoreError, StoreLockedError
-from workbench.annotations.schema import SCHEMA_VERSION, VERDICTS, migrate, schema_version
+from workbench.annotations.schema import (
+    SCHEMA_VERSION,
+    VERDICTS,
+    check_tags,
+    migrate,
+    schema_version,
+)
+from workbench.outputs import json_text
 
 if TYPE_CHECKING:
     from collections.abc import Iterator, Sequence
@@ -164,20 +171,22 @@ class LabelStore:
             at_ns: When (Unix time [ns]); now when ``None`` (imports keep theirs).
 
         Raises:
-            StoreError: Unknown verdict, or the store cannot be written.
+            StoreError: Unknown verdict, a bad tag (:class:`TagError`), or the store cannot
+                be written.
         """
         if verdict not in VERDICTS:
             raise StoreError(f"verdict must be one of {', '.join(VERDICTS)}, not {verdict!r}")
+        tags = check_tags(tags)
         when = time.time_ns() if at_ns is None else at_ns
         row = (
             drive_hash,
             incident_id,
             verdict,
-            json.dumps(sorted(set(tags))),
+            json_text(tags),
             note,
             reviewer,
             when,
-            json.dumps(settings or {}, sort_keys=True),
+            json_text(settings or {}, sort_keys=True),
         )
         with self._write() as conn:
             cursor = conn.execute(

@@ -10,6 +10,7 @@ import typer
 
 from rss.conformance import evaluate_document
 from rss.errors import RssCaseError
+from workbench.outputs import json_text
 
 __all__ = ["register"]
 
@@ -31,7 +32,7 @@ def rss_cases(
     except json.JSONDecodeError as err:
         raise RssCaseError(str(cases), f"not valid JSON: {err}") from err
     for record in evaluate_document(document):
-        typer.echo(json.dumps(record))
+        typer.echo(json_text(record))
 
 
 def register(app: typer.Typer) -> None:

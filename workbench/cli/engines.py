@@ -4,8 +4,9 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from rich.console import Console
 from rich.table import Table
+
+from workbench.cli.tables import print_table
 
 if TYPE_CHECKING:
     import typer
@@ -23,7 +24,7 @@ def engines() -> None:
     for name in names():
         spec = engine(name)
         table.add_row(spec.name, spec.title, ", ".join(spec.causes))
-    Console().print(table)
+    print_table(table)
 
 
 def register(app: typer.Typer) -> None:

@@ -6,7 +6,6 @@ from pathlib import Path  # noqa: TC003 - typer reads the annotations at run tim
 from typing import TYPE_CHECKING, Annotated
 
 import typer
-from rich.console import Console
 from rich.table import Table
 
 from workbench.cli.losses import VerboseOption, echo_losses
@@ -20,6 +19,7 @@ from workbench.cli.options import (
     RssProfileOption,
 )
 from workbench.cli.progress import frame_progress
+from workbench.cli.tables import print_table
 from workbench.drives import ego_size, load_rss_params, open_log, window_ns
 from workbench.errors import WorkbenchError
 
@@ -122,7 +122,7 @@ def evaluate(
     )
     echo_losses(drive.info.notes, verbose=verbose)
     if found:
-        Console().print(_summary_table(found, drive.info.start_ns))
+        print_table(_summary_table(found, drive.info.start_ns))
     typer.echo(f"{len(found)} violation interval(s)")
     if violations is not None:
         violations.parent.mkdir(parents=True, exist_ok=True)

@@ -25,11 +25,14 @@ if TYPE_CHECKING:
 
 __all__ = ["register"]
 
+#: Largest --margin (s): a day, beyond any drive.
+_MAX_MARGIN_S = 86_400.0
+
 
 def _summary_lines(summary: ExportSummary) -> list[str]:
     lines = []
     for clip in summary.clips:
-        files = [p.name for p in (clip.mcap, clip.bag, clip.openlabel, clip.rrd, clip.png) if p]
+        files = [p.name for p in clip.files.values() if p]
         state = "ok" if clip.problem is None else f"NOT WRITTEN: {clip.problem}"
         lines.append(
             f"  {clip.plan.stem}: {clip.messages} message(s) {state}  [{', '.join(files)}]"
@@ -37,15 +40,29 @@ def _summary_lines(summary: ExportSummary) -> list[str]:
     return lines
 
 
-def _check(*, incident: list[str] | None, verdict: str | None, all_: bool, **_: object) -> None:
-    """The choice of incidents, checked before the drive is evaluated."""
+def _check(
+    *,
+    incident: list[str] | None,
+    verdict: str | None,
+    all_: bool,
+    window: str | None,
+    margin: float,
+    **_: object,
+) -> None:
+    """The choice of clips and the margin, checked before the drive is evaluated."""
     from workbench.annotations import VERDICTS  # noqa: PLC0415 - light start-up
     from workbench.export import Selection  # noqa: PLC0415
+    from workbench.export.window import parse_window  # noqa: PLC0415
 
     if verdict is not None and verdict not in VERDICTS:
         msg = f"--verdict {verdict!r}: choose one of {', '.join(VERDICTS)}"
         raise WorkbenchError(msg)
-    Selection(tuple(incident or ()), verdict, all_).check()
+    if not 0.0 <= margin <= _MAX_MARGIN_S:  # also NaN
+        msg = f"--margin {margin}: give a number of seconds from 0 to {_MAX_MARGIN_S:.0f}"
+        raise WorkbenchError(msg)
+    Selection(tuple(incident or ()), verdict, all_, window).check()
+    if window is not None:
+        parse_window(window)
 
 
 @with_checked_incidents(_check)
@@ -62,9 +79,16 @@ def export(
         typer.Option("--verdict", help="Export the incidents labelled so (confirmed, ...)."),
     ] = None,
     all_: Annotated[bool, typer.Option("--all", help="Export every incident.")] = False,
+    window: Annotated[
+        str | None,
+        typer.Option(
+            "--window",
+            help="One clip of START:END, incident or not: seconds (12.5:20) or frames (#250:#400).",
+        ),
+    ] = None,
     margin: Annotated[
         float,
-        typer.Option("--margin", help="Seconds kept before and after each incident.", min=0.0),
+        typer.Option("--margin", help="Seconds kept before and after each incident."),
     ] = 3.0,
     topics: Annotated[
         str | None, typer.Option("--topics", help="Comma-separated topics to copy (all if unset).")
@@ -73,12 +97,23 @@ def export(
     thumbnails: Annotated[
         bool, typer.Option("--thumbnails/--no-thumbnails", help="Render a PNG per clip.")
     ] = True,
+    force: Annotated[
+        bool, typer.Option("--force", help="Replace an earlier export in --out.")
+    ] = False,
+    without_map: Annotated[
+        bool,
+        typer.Option(
+            "--without-map", help="Export a damaged log whose map cannot be read, without one."
+        ),
+    ] = False,
     store: StoreOption = None,
 ) -> None:
     """Write a clip per incident: MCAP of the window's messages, OpenLABEL, .rrd, PNG."""
     from workbench.annotations import LabelStore, default_store_path  # noqa: PLC0415
     from workbench.annotations.attach import elsewhere_note, labels_for  # noqa: PLC0415
     from workbench.export import Selection, export_clips, plan_clips  # noqa: PLC0415
+    from workbench.export.inputs import check_inputs  # noqa: PLC0415
+    from workbench.export.window import parse_window, plan_window  # noqa: PLC0415
 
     request = report.request
     if request is None:
@@ -89,12 +124,18 @@ def export(
     note = elsewhere_note(report, stored)
     if note:
         typer.echo(f"note: {note}", err=True)
-    selection = Selection(tuple(incident or ()), verdict, all_)
-    plans = plan_clips(report, found, selection, round(margin * 1e9))
-    if not plans:
-        typer.echo(f"{log}: no incident to export ({len(report.incidents)} found, none chosen)")
-        return
+    if window is not None:
+        plans = [plan_window(report, parse_window(window))]
+    else:
+        selection = Selection(tuple(incident or ()), verdict, all_)
+        plans = plan_clips(report, found, selection, round(margin * 1e9))
     chosen = [t.strip() for t in topics.split(",") if t.strip()] if topics else None
+    if not plans:
+        check_inputs(report, request, chosen, without_map=without_map)  # export_clips does too
+        typer.echo(f"{log}: no incident to export ({len(report.incidents)} found, none chosen)")
+        if report.stopped_by is not None:
+            raise report.stopped_by
+        return
     steps = len(plans) * (1 + int(rrd) + int(rrd and thumbnails))
     with Progress(
         TextColumn("[bold]{task.description}"),
@@ -115,6 +156,9 @@ def export(
             topics=chosen,
             recordings=rrd,
             thumbnails=thumbnails,
+            force=force,
+            without_map=without_map,
+            labels=found,
             on_bytes=lambda n: bar.advance(copied, n),
             on_clip=lambda: bar.advance(clips),
         )

@@ -7,7 +7,6 @@ from pathlib import Path  # noqa: TC003 - typer reads the annotations at run tim
 from typing import TYPE_CHECKING, Annotated
 
 import typer
-from rich.console import Console
 from rich.table import Table
 
 from workbench.cli.incident_options import (
@@ -18,6 +17,7 @@ from workbench.cli.incident_options import (
     ObjectFilter,
     with_incidents,
 )
+from workbench.cli.tables import print_table
 
 if TYPE_CHECKING:
     from workbench.incidents import Incident, IncidentReport
@@ -81,7 +81,7 @@ def incidents(
         max_margin=max_margin,
     )
     title = f"{log.name}: {len(found)} of {len(report.incidents)} incident(s), worst first"
-    Console().print(incident_table(found, report.start_ns, title))
+    print_table(incident_table(found, report.start_ns, title))
     if out is not None:
         write_incidents(found, out)
         typer.echo(f"wrote {out}")

@@ -11,6 +11,7 @@ from rich.table import Table
 
 from workbench.cli.losses import VerboseOption, echo_losses
 from workbench.cli.options import EGO_TOPIC_HELP, RssProfileOption
+from workbench.cli.tables import print_table
 from workbench.drives import load_rss_params, rss_profile_line
 
 if TYPE_CHECKING:
@@ -59,7 +60,7 @@ def render_info(drive: Drive, console: Console, frames: int | None = None) -> No
     table.add_column("role")
     for topic in info.topics:
         table.add_row(topic.topic, topic.msgtype, str(topic.count), topic.role or "")
-    console.print(table)
+    print_table(table, console)
 
 
 def quality_table(findings: tuple[Finding, ...], title: str) -> Table:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import enum
 from pathlib import Path  # noqa: TC003 - typer reads the annotations at run time
 from typing import TYPE_CHECKING, Annotated
 
@@ -44,20 +45,48 @@ def export(
     typer.echo(f"wrote {out}: {log.name}, {len(report.incidents)} incident(s), {known} labelled")
 
 
+class PreferOption(enum.StrEnum):
+    """``--prefer`` values (:class:`workbench.annotations.openlabel_import.Prefer`)."""
+
+    newer = "newer"
+    import_ = "import"
+    store = "store"
+
+
 @labels_app.command("import")
 def import_(
-    file: Annotated[Path, typer.Argument(help="OpenLABEL JSON written by `labels export`.")],
+    file: Annotated[
+        Path, typer.Argument(help="OpenLABEL JSON of `labels export` or of a clip (`export`).")
+    ],
     *,
+    prefer: Annotated[
+        PreferOption,
+        typer.Option(
+            "--prefer",
+            help="Where the file and the store differ: the newer label, the file's or the store's.",
+        ),
+    ] = PreferOption.newer,
     store: StoreOption = None,
 ) -> None:
-    """Write the labels of an OpenLABEL file into the store (importing twice changes nothing)."""
+    """Write the labels of an OpenLABEL file into the store; report every label that differs."""
     from workbench.annotations import LabelStore, default_store_path  # noqa: PLC0415
-    from workbench.annotations.openlabel import import_openlabel  # noqa: PLC0415
+    from workbench.annotations.openlabel_import import Prefer, import_openlabel  # noqa: PLC0415
 
     path = store or default_store_path()
     with LabelStore(path) as labels:
-        written, kept = import_openlabel(file, labels)
-    typer.echo(f"{file}: {written} label(s) written, {kept} already in {path}")
+        report = import_openlabel(file, labels, Prefer(prefer.value))
+    for outcome in report.outcomes:
+        if outcome.status in {"replaced", "kept", "conflicting"}:
+            typer.echo(f"  {outcome.line()}")
+    counts = ", ".join(
+        f"{report.count(s)} {s}"
+        for s in ("added", "replaced", "kept", "conflicting", "unchanged")
+        if report.count(s)
+    )
+    drive = report.log_name or report.drive_hash[:12]
+    typer.echo(
+        f"{file}: {report.written} label(s) written to {path} for {drive} ({counts or 'none'})"
+    )
 
 
 def register(app: typer.Typer) -> None:

@@ -64,6 +64,13 @@ class Chunk:
     frames: tuple[Frame, ...]
     verdicts: Mapping[str, tuple[Verdict, ...]]
 
+    def since(self, t_ns: int) -> Chunk:
+        """The frames at or after ``t_ns`` and their verdicts."""
+        k = sum(f.t_ns < t_ns for f in self.frames)
+        if k == 0:
+            return self
+        return Chunk(self.frames[k:], {n: v[k:] for n, v in self.verdicts.items()})
+
 
 def evaluate_chunk(frames: Sequence[Frame], runners: Sequence[EngineRunner]) -> Chunk:
     """Run every engine on ``frames`` (advancing each runner's state)."""
@@ -86,6 +93,8 @@ class DriveRun:
         end_ns: int | None = None,
         chunk_frames: int = CHUNK_FRAMES,
         ego_size: EgoSize | None = None,
+        shown_from_ns: int | None = None,
+        frame_offset: int = 0,
     ) -> None:
         """Set up the run.
 
@@ -97,12 +106,17 @@ class DriveRun:
             chunk_frames: Frames per chunk (tests; the default is the policy).
             ego_size: The user's ego size, replacing the log's in every frame before any
                 engine or sink sees it (``None`` or ``None`` fields: keep the log's).
+            shown_from_ns: Frames before this time are evaluated (the engines' memory starts
+                warm) but not yielded: a lead-in (``None``: every frame is yielded).
+            frame_offset: Added to every frame index (a window numbered as in the whole drive).
         """
         self.drive = drive
         self.runners = tuple(runners)
         self._window = (start_ns, end_ns)
         self._chunk_frames = chunk_frames
         self._ego_size = ego_size.fields() if ego_size is not None else {}
+        self._shown_from_ns = shown_from_ns
+        self._frame_offset = frame_offset
         #: The loader error that ended a truncated or corrupted log, once iterated.
         self.stopped_by: LoaderError | None = None
 
@@ -112,6 +126,8 @@ class DriveRun:
         return tuple(r.name for r in self.runners)
 
     def _sized(self, frame: Frame) -> Frame:
+        if self._frame_offset:
+            frame = dataclasses.replace(frame, index=frame.index + self._frame_offset)
         if not self._ego_size:
             return frame
         return dataclasses.replace(frame, ego=dataclasses.replace(frame.ego, **self._ego_size))
@@ -138,4 +154,8 @@ class DriveRun:
         """Chunks in time order; :attr:`stopped_by` is set once the drive ended early."""
         with engine_gc():
             for frames in self._read():
-                yield evaluate_chunk(frames, self.runners)
+                chunk = evaluate_chunk(frames, self.runners)
+                if self._shown_from_ns is not None:
+                    chunk = chunk.since(self._shown_from_ns)
+                if chunk.frames:
+                    yield chunk

@@ -7,6 +7,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from workbench.errors import WorkbenchError
+from workbench.outputs import finite, json_text
 
 if TYPE_CHECKING:
     from collections.abc import Mapping, Sequence
@@ -40,11 +41,14 @@ class Selection:
         ids: These incident ids (each must exist).
         verdict: Incidents whose review label has this verdict.
         all: Every incident.
+        window: A stretch of the drive, incident or not (``--window``,
+            :mod:`workbench.export.window`).
     """
 
     ids: tuple[str, ...] = ()
     verdict: str | None = None
     all: bool = False
+    window: str | None = None
 
     def check(self) -> None:
         """Exactly one way of choosing.
@@ -52,9 +56,9 @@ class Selection:
         Raises:
             WorkbenchError: None or several were given.
         """
-        given = sum((bool(self.ids), self.verdict is not None, self.all))
+        given = sum((bool(self.ids), self.verdict is not None, self.all, self.window is not None))
         if given != 1:
-            msg = "choose the incidents with exactly one of --incident, --verdict or --all"
+            msg = "choose the clips with exactly one of --incident, --verdict, --all or --window"
             raise WorkbenchError(msg)
 
 
@@ -63,51 +67,67 @@ class ClipPlan:
     """One clip to write.
 
     Attributes:
-        incident: The incident.
+        incident: The incident (``None``: a window of the drive, ``--window``).
         label: Its review label, if any.
         stem: File stem of the clip's files (unique within the export).
         start_ns: First log time of the clip (incident start minus margin, within the drive).
         end_ns: Last log time of the clip (incident end plus margin, within the drive).
+        frames: First and last frame of a window without incident (``None``: an incident's).
     """
 
-    incident: Incident
+    incident: Incident | None
     label: Label | None
     stem: str
     start_ns: int
     end_ns: int
+    frames: tuple[int, int] | None = None
 
     def event(self) -> dict[str, str]:
-        """The incident and its label as the clip's event key/value pairs."""
+        """The incident and its label as the clip's event key/value pairs (``{}``: a window).
+
+        Lists (``objects``, ``tags``) are JSON arrays: an id or a tag may hold a comma.
+        """
         i, label = self.incident, self.label
+        if i is None:
+            return {}
         pairs = {
             "incident_id": i.id,
             "engine": i.engine,
-            "objects": ",".join(i.objects),
+            "objects": json_text(list(i.objects)),
             "cause": i.cause,
             "start_ns": str(i.start_ns),
             "end_ns": str(i.end_ns),
             "start_frame": str(i.start_frame),
             "end_frame": str(i.end_frame),
         }
-        for name, value in i.severity.record().items():
+        for name, value in finite(i.severity.record()).items():
             pairs[f"severity.{name}"] = "" if value is None else str(value)
         if label is not None:
             pairs |= {
                 "verdict": label.verdict,
-                "tags": ",".join(label.tags),
+                "tags": json_text(list(label.tags)),
                 "note": label.note,
                 "reviewer": label.reviewer,
+                "labelled_ns": str(label.labelled_ns),
             }
         return pairs
 
     def record(self) -> dict[str, Any]:
         """JSON-ready summary for the export index."""
         label = self.label
+        if self.incident is not None:
+            facts = self.incident.record()
+        else:
+            first, last = self.frames or (0, 0)
+            facts = {"id": None, "objects": [], "start_frame": first, "end_frame": last}
+            facts |= {"start_ns": self.start_ns, "end_ns": self.end_ns, "severity": {}}
         return {
-            **self.incident.record(),
+            **facts,
             "verdict": None if label is None else label.verdict,
             "tags": [] if label is None else list(label.tags),
             "note": "" if label is None else label.note,
+            "reviewer": None if label is None else label.reviewer,
+            "labelled_ns": None if label is None else label.labelled_ns,
             "clip_start_ns": self.start_ns,
             "clip_end_ns": self.end_ns,
         }

@@ -9,7 +9,6 @@ the workbench's own frame messages over the clips' span
 
 from __future__ import annotations
 
-import json
 import tempfile
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -17,6 +16,7 @@ from typing import TYPE_CHECKING
 from loaders.clips import ClipRequest, write_clips, write_ros1_bag
 from loaders.message_logs.mapsource import sidecar_map
 from loaders.open import is_rosbag2_dir
+from workbench.outputs import atomic_output, json_text
 
 if TYPE_CHECKING:
     from collections.abc import Callable, Collection, Sequence
@@ -25,18 +25,24 @@ if TYPE_CHECKING:
     from workbench.export.plan import ClipPlan
     from workbench.incidents import IncidentReport
 
-__all__ = ["MESSAGE_LOG_SUFFIXES", "write_raw_clips", "write_ros1_bags"]
+__all__ = ["MESSAGE_LOG_SUFFIXES", "map_attachment", "write_raw_clips", "write_ros1_bags"]
 
 #: Inputs whose own messages are copied into the clips.
 MESSAGE_LOG_SUFFIXES = frozenset({".mcap", ".bag", ".db3"})
 _MEDIA_TYPES = {".osm": "application/vnd.openstreetmap.data+xml", ".xodr": "application/xml"}
 
 
-def _map_attachment(log: Path, explicit: Path | None) -> MapAttachment | None:
+def map_attachment(log: Path, explicit: Path | None) -> MapAttachment | None:
+    """The map file given (``--map``) or lying beside the log, as an attachment.
+
+    Its create time is the file's modification time, so that exporting the same files
+    again gives the same bytes.
+    """
     path = explicit or (sidecar_map(log) if log.exists() else None)
     if path is None or not path.is_file():
         return None
-    return (path.name, _MEDIA_TYPES.get(path.suffix.lower(), "application/xml"), path.read_bytes())
+    media_type = _MEDIA_TYPES.get(path.suffix.lower(), "application/xml")
+    return (path.name, media_type, path.read_bytes(), path.stat().st_mtime_ns)
 
 
 def _requests(
@@ -45,14 +51,15 @@ def _requests(
     drive = {
         "log": report.log.name,
         "drive_sha256": report.drive_hash,
-        "settings": json.dumps(report.settings, sort_keys=True),
+        "settings": json_text(report.settings, sort_keys=True),
     }
     requests = []
     for p in plans:
         event = p.event()  # the event message and the metadata record carry the same pairs
-        metadata = {"drive": drive, "incident": event}
+        metadata = {"drive": drive, "incident": event} if event else {"drive": drive}
+        span = None if p.incident is None else (p.incident.start_ns, p.incident.end_ns)
         requests.append(
-            ClipRequest(out_dir / f"{p.stem}.mcap", p.start_ns, p.end_ns, event, metadata)
+            ClipRequest(out_dir / f"{p.stem}.mcap", p.start_ns, p.end_ns, event, metadata, span)
         )
     return requests
 
@@ -84,7 +91,7 @@ def write_raw_clips(
     """
     log = report.log
     requests = _requests(plans, out_dir, report)
-    attachment = _map_attachment(log, map_path)
+    attachment = map_attachment(log, map_path)
     if log.suffix.lower() in MESSAGE_LOG_SUFFIXES or is_rosbag2_dir(log):
         return write_clips(log, requests, topics=topics, map_file=attachment, on_message=on_message)
     start = min(p.start_ns for p in plans)
@@ -102,16 +109,27 @@ def write_raw_clips(
         )
 
 
-def write_ros1_bags(outcomes: Sequence[ClipOutcome]) -> dict[Path, Path]:
+def write_ros1_bags(
+    outcomes: Sequence[ClipOutcome], map_file: MapAttachment | None
+) -> dict[Path, tuple[Path, Path | None]]:
     """``<stem>.bag`` beside every written ``ros1`` clip (rosbags reads no ROS 1 MCAP).
 
+    A bag holds no attachment: the map is written beside it as ``<stem><map suffix>``
+    (``<stem>.osm``), where the workbench looks for a log's map.
+
     Returns:
-        The bag of each MCAP clip that has one.
+        The bag and its map file (``None``: no map) of each MCAP clip that has one.
     """
-    bags = {}
+    bags: dict[Path, tuple[Path, Path | None]] = {}
     for outcome in outcomes:
         if outcome.written and outcome.profile == "ros1":
             clip = outcome.request.path
-            bags[clip] = clip.with_suffix(".bag")
-            write_ros1_bag(clip, bags[clip])
+            bag = clip.with_suffix(".bag")
+            write_ros1_bag(clip, bag)  # itself written as <bag>.part and renamed
+            beside = None
+            if map_file is not None:
+                beside = clip.with_suffix(Path(map_file[0]).suffix or ".osm")
+                with atomic_output(beside, "the clip's map") as part:
+                    part.write_bytes(map_file[2])
+            bags[clip] = (bag, beside)
     return bags

@@ -3,51 +3,31 @@
 Per clip, into the output directory: ``<stem>.mcap`` (the window's messages, the incident
 event, the map), ``<stem>.openlabel.json`` (ASAM OpenLABEL 1.0 of the incident and its
 label), ``<stem>.rrd`` (the window replayed with the review blueprint) and ``<stem>.png``
-(thumbnail at the incident's first frame). ``clips.json`` and ``clips.csv`` index them.
-Index files are written atomically (temporary file, then rename).
+(thumbnail at the incident's worst frame); ``<stem>.bag`` and ``<stem>.osm`` beside the
+clips of ROS 1 logs. ``clips.json`` and ``clips.csv`` index them. Every file is written as
+``<name>.part`` and renamed when complete.
 """
 
 from __future__ import annotations
 
-import csv
-import io
-import json
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
 
 from workbench.annotations.openlabel import export_openlabel, write_openlabel
-from workbench.errors import WorkbenchError
-from workbench.export.raw import write_raw_clips, write_ros1_bags
+from workbench.export.index import clear_directory, write_index
+from workbench.export.inputs import check_inputs
+from workbench.export.raw import map_attachment, write_raw_clips, write_ros1_bags
 from workbench.export.views import write_recordings, write_thumbnails
 
 if TYPE_CHECKING:
-    from collections.abc import Callable, Collection, Sequence
+    from collections.abc import Callable, Collection, Mapping, Sequence
     from pathlib import Path
 
+    from workbench.annotations import Label
     from workbench.export.plan import ClipPlan
     from workbench.incidents import IncidentReport, IncidentRequest
 
 __all__ = ["ExportSummary", "ExportedClip", "export_clips"]
-
-_CSV_FIELDS = (
-    "stem",
-    "id",
-    "engine",
-    "objects",
-    "cause",
-    "verdict",
-    "start_ns",
-    "end_ns",
-    "clip_start_ns",
-    "clip_end_ns",
-    "messages",
-    "mcap",
-    "bag",
-    "openlabel",
-    "rrd",
-    "png",
-    "problem",
-)
 
 
 @dataclass(frozen=True, slots=True)
@@ -63,22 +43,30 @@ class ExportedClip:
     messages: int
     per_topic: dict[str, int]
     problem: str | None
+    map_file: Path | None = None
 
-    def record(self) -> dict[str, Any]:
-        """The clip's entry in ``clips.json`` (file names relative to the directory)."""
-        files = {
+    @property
+    def files(self) -> dict[str, Path | None]:
+        """Every file of the clip by kind (``None``: not written)."""
+        return {
             "mcap": self.mcap,
             "bag": self.bag,
+            "map": self.map_file,
             "openlabel": self.openlabel,
             "rrd": self.rrd,
             "png": self.png,
         }
+
+    def record(self, report: IncidentReport) -> dict[str, Any]:
+        """The clip's entry in ``clips.json`` (file names relative to the directory)."""
         return {
             "stem": self.plan.stem,
             **self.plan.record(),
+            "source": str(report.log),
+            "drive_sha256": report.drive_hash,
             "messages": self.messages,
             "messages_per_topic": dict(sorted(self.per_topic.items())),
-            "files": {k: None if v is None else v.name for k, v in files.items()},
+            "files": {k: None if v is None else v.name for k, v in self.files.items()},
             "problem": self.problem,
         }
 
@@ -102,7 +90,7 @@ class ExportSummary:
     @property
     def bytes_written(self) -> int:
         """Size of every file written."""
-        paths = [p for c in self.clips for p in (c.mcap, c.bag, c.openlabel, c.rrd, c.png) if p]
+        paths = [p for c in self.clips for p in c.files.values() if p]
         return sum(p.stat().st_size for p in paths if p.is_file())
 
 
@@ -120,36 +108,30 @@ def _frames_writer(request: IncidentRequest) -> Callable[[Path, int, int], None]
     return write
 
 
-def _write_index(out_dir: Path, clips: Sequence[ExportedClip]) -> tuple[Path, Path]:
-    records = [c.record() for c in clips]
-    rows = io.StringIO()
-    writer = csv.DictWriter(rows, fieldnames=_CSV_FIELDS, extrasaction="ignore")
-    writer.writeheader()
-    for record in records:
-        writer.writerow(
-            {
-                **record,
-                **{k: v or "" for k, v in record["files"].items()},
-                "objects": " ".join(record["objects"]),
-                "problem": record["problem"] or "",
-            }
+def _openlabel(
+    report: IncidentReport, plan: ClipPlan, windows_labels: Mapping[str, Label]
+) -> dict[str, Any]:
+    """The clip's OpenLABEL: its incident and label, naming the source drive and the window.
+
+    ``labels import`` of it attaches the label to the source drive (``drive_sha256``).
+    """
+    if plan.incident is None:  # a window: the incidents it overlaps, with their labels
+        held = tuple(
+            i for i in report.incidents if i.end_ns >= plan.start_ns and i.start_ns <= plan.end_ns
         )
-    written = []
-    for name, text in (
-        ("clips.json", json.dumps(records, indent=2) + "\n"),
-        ("clips.csv", rows.getvalue()),
-    ):
-        path = out_dir / name
-        tmp = out_dir / f".{name}.tmp"
-        try:
-            tmp.write_text(text)
-            tmp.replace(path)
-        except OSError as err:
-            tmp.unlink(missing_ok=True)
-            msg = f"{path}: cannot write the clip index ({err.strerror})"
-            raise WorkbenchError(msg) from err
-        written.append(path)
-    return written[0], written[1]
+        labels = {i.id: label for i in held if (label := windows_labels.get(i.id)) is not None}
+    else:
+        held = (plan.incident,)
+        labels = {} if plan.label is None else {plan.incident.id: plan.label}
+    doc = export_openlabel(replace(report, incidents=held), labels)
+    doc["openlabel"]["metadata"]["clip"] = {
+        "incident_id": None if plan.incident is None else plan.incident.id,
+        "stem": plan.stem,
+        "source": report.log.name,
+        "start_ns": plan.start_ns,
+        "end_ns": plan.end_ns,
+    }
+    return doc
 
 
 def export_clips(
@@ -161,31 +143,39 @@ def export_clips(
     topics: Collection[str] | None = None,
     recordings: bool = True,
     thumbnails: bool = True,
+    force: bool = False,
+    without_map: bool = False,
+    labels: Mapping[str, Label] | None = None,
     on_bytes: Callable[[int], None] | None = None,
     on_clip: Callable[[], None] | None = None,
 ) -> ExportSummary:
     """Write every clip of ``plans`` into ``out_dir`` and index them.
+
+    Every file is written as ``<name>.part`` and renamed when complete.
 
     Args:
         report: The drive's incidents, as found with ``request``.
         request: The drive and settings (re-used to replay the windows).
         plans: The clips (:func:`workbench.export.plan.plan_clips`).
         out_dir: Output directory (created).
-        topics: Topics copied into the MCAP clips (``None``: all).
+        topics: Topics copied into the MCAP clips (``None``: all; each must be in the log).
         recordings: Write the ``.rrd`` of each clip.
         thumbnails: Render a PNG per ``.rrd`` (needs a Vulkan driver; skipped with the reason).
+        force: Replace an earlier export in ``out_dir`` (else refuse).
+        without_map: Export a damaged log whose map cannot be read (else refuse).
+        labels: The drive's labels by incident id, for the OpenLABEL of a window
+            (``--window``), which holds the incidents it overlaps.
         on_bytes: Progress: bytes of each message copied.
         on_clip: Progress: called once per clip and step (MCAP pass, ``.rrd``, thumbnail).
 
     Raises:
-        WorkbenchError: The directory or the index cannot be written.
+        WorkbenchError: An unknown topic, a damaged log without its map, a directory that
+            holds an earlier export (without ``force``) or cannot be written.
         LoaderError: The drive cannot be opened at all.
     """
-    try:
-        out_dir.mkdir(parents=True, exist_ok=True)
-    except OSError as err:
-        msg = f"{out_dir}: cannot create the export directory ({err.strerror})"
-        raise WorkbenchError(msg) from err
+    labels = labels or {}
+    check_inputs(report, request, topics, without_map=without_map)
+    clear_directory(out_dir, force=force)
     raw = write_raw_clips(
         report,
         plans,
@@ -195,32 +185,32 @@ def export_clips(
         topics=topics,
         on_message=on_bytes,
     )
-    bags = write_ros1_bags(raw)
+    bags = write_ros1_bags(raw, map_attachment(report.log, request.map_path))
     readable = [p for p, outcome in zip(plans, raw, strict=True) if outcome.written]
     if on_clip is not None:
         for _ in plans:
             on_clip()
     rrds = write_recordings(report, readable, out_dir, request, on_clip) if recordings else {}
-    pngs, skipped = write_thumbnails(rrds, on_clip) if thumbnails else ({}, None)
+    pngs, skipped = write_thumbnails(report, rrds, on_clip) if thumbnails else ({}, None)
     clips = []
     for plan, outcome in zip(plans, raw, strict=True):
-        labels = {} if plan.label is None else {plan.incident.id: plan.label}
-        doc = export_openlabel(replace(report, incidents=(plan.incident,)), labels)
         openlabel = out_dir / f"{plan.stem}.openlabel.json"
-        write_openlabel(doc, openlabel)
+        write_openlabel(_openlabel(report, plan, labels), openlabel)
         rrd = rrds.get(plan.stem)
+        bag, beside = bags.get(outcome.request.path, (None, None))
         clips.append(
             ExportedClip(
                 plan,
                 outcome.request.path if outcome.written else None,
-                bags.get(outcome.request.path),
+                bag,
                 openlabel,
                 None if rrd is None else rrd[0],
                 pngs.get(plan.stem),
                 outcome.messages,
                 outcome.per_topic,
                 outcome.reason,
+                beside,
             )
         )
-    index_json, index_csv = _write_index(out_dir, clips)
+    index_json, index_csv = write_index(out_dir, [c.record(report) for c in clips])
     return ExportSummary(tuple(clips), index_json, index_csv, skipped)

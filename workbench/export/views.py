@@ -1,15 +1,22 @@
 """What a reviewer opens of a clip: its ``.rrd`` with the review blueprint and a thumbnail.
 
 Each clip's window is replayed with the same engines and settings as the incidents were
-found with; the blueprint's time panel selects the incident's frames. Thumbnails come from
-one headless viewer for the whole export (:mod:`workbench.viewer.screenshot`), at the
-incident's first frame; where no viewer can run they are skipped with the reason.
+found with, numbered with the drive's frame numbers. The engines start warm: they evaluate
+a lead-in of up to :data:`LEAD_IN_NS` before the window (not shown), so that their memory
+(RSS responses) at the window's start is the drive's and the clip's incident is the drive's,
+with its id and its verdict. The blueprint's time panel selects the incident's frames.
+Thumbnails come from one headless viewer for the whole export
+(:mod:`workbench.viewer.screenshot`), at the incident's first frame; where no viewer can run
+they are skipped with the reason. Both are written as ``<name>.part`` and renamed.
 """
 
 from __future__ import annotations
 
+import functools
 from typing import TYPE_CHECKING
 
+from workbench.errors import WorkbenchError
+from workbench.outputs import part_path
 from workbench.viewer.replay import replay_drive
 from workbench.viewer.screenshot import ScreenshotUnavailableError, headless_viewer, screenshot
 
@@ -20,15 +27,52 @@ if TYPE_CHECKING:
     from workbench.export.plan import ClipPlan
     from workbench.incidents import IncidentReport, IncidentRequest
 
-__all__ = ["write_recordings", "write_thumbnails"]
+__all__ = ["LEAD_IN_NS", "incident_focus_m", "lead_in", "write_recordings", "write_thumbnails"]
 
 
-def _selection(plan: ClipPlan, report: IncidentReport, first_index: int) -> tuple[int, int]:
-    """The incident's frames in the numbering of the clip's replay."""
-    times = [t for _, t in report.frame_times if t >= plan.start_ns]
-    before_start = sum(1 for t in times if t < plan.incident.start_ns)
-    before_end = sum(1 for t in times if t <= plan.incident.end_ns)
-    return first_index + before_start, first_index + max(before_start, before_end - 1)
+#: Longest lead-in evaluated before a clip's window to warm the engines up [ns].
+LEAD_IN_NS = 10_000_000_000
+
+
+def incident_focus_m(
+    report: IncidentReport, plan: ClipPlan
+) -> tuple[tuple[float, float], list[tuple[float, float]]] | None:
+    """Ego and incident objects' positions ``(x, y)`` [m] at the incident's first frame.
+
+    ``None`` for a window without incident, or when the detector recorded no position.
+    """
+    incident = plan.incident
+    if incident is None or incident.start_frame not in report.ego_at_start_m:
+        return None
+    objects = report.objects_at_start_m.get(incident.start_frame, {})
+    ego = report.ego_at_start_m[incident.start_frame]
+    return ego, [xy for oid, xy in sorted(objects.items()) if oid in incident.objects]
+
+
+def lead_in(report: IncidentReport, start_ns: int) -> tuple[int, int]:
+    """``(lead-in start [ns], drive frame number of its first frame)`` for a window start."""
+    times = report.frame_times
+    earliest = start_ns - LEAD_IN_NS
+    first = next(((i, t) for i, t in times if t >= earliest), None)
+    return (first[1], first[0]) if first is not None else (start_ns, 0)
+
+
+def _record(path: Path, replay: Callable[..., object]) -> bool:
+    """Run ``replay(out=part)``, rename the part into place; ``False``: it wrote nothing."""
+    part = part_path(path)
+    try:
+        replay(out=part)
+        if not part.is_file():  # no frame in the window
+            return False
+        part.replace(path)
+    except OSError as err:
+        part.unlink(missing_ok=True)
+        msg = f"{path}: cannot write the clip's recording ({err.strerror})"
+        raise WorkbenchError(msg) from err
+    except BaseException:
+        part.unlink(missing_ok=True)
+        raise
+    return True
 
 
 def write_recordings(
@@ -42,29 +86,36 @@ def write_recordings(
 
     Raises:
         LoaderError: The drive cannot be read.
+        WorkbenchError: A recording cannot be written.
     """
     written: dict[str, tuple[Path, tuple[int, int]]] = {}
     drive = request.open_drive()  # once: the map is read once for every window
     try:
         for plan in plans:
-            first = next(iter(drive.frames(plan.start_ns, plan.end_ns + 1)), None)
-            if first is not None:
-                selection = _selection(plan, report, first.index)
-                path = out_dir / f"{plan.stem}.rrd"
-                runners, ego = request.engines_for(drive, full_geometry=True)
-                replay_drive(
-                    drive,
-                    out=path,
-                    start_ns=plan.start_ns,
-                    end_ns=plan.end_ns + 1,
-                    engines=runners,
-                    ego_size=ego,
-                    incident_settings=request.settings,
-                    verdicts={} if plan.label is None else {plan.incident.id: plan.label.verdict},
-                    selection=selection,
-                )
-                if path.is_file():
-                    written[plan.stem] = (path, selection)
+            incident = plan.incident
+            selection = plan.frames or (0, 0)
+            if incident is not None:
+                selection = (incident.start_frame, incident.end_frame)
+            runners, ego = request.engines_for(drive, full_geometry=True)
+            lead_start_ns, offset = lead_in(report, plan.start_ns)
+            label = plan.label
+            verdicts = {} if incident is None or label is None else {incident.id: label.verdict}
+            path = out_dir / f"{plan.stem}.rrd"
+            replay = functools.partial(
+                replay_drive,
+                drive,
+                start_ns=lead_start_ns,
+                end_ns=plan.end_ns + 1,
+                engines=runners,
+                ego_size=ego,
+                incident_settings=request.settings,
+                verdicts=verdicts,
+                selection=selection,
+                lead_in=(plan.start_ns, offset),
+                focus_m=incident_focus_m(report, plan),
+            )
+            if _record(path, replay):
+                written[plan.stem] = (path, selection)
             if on_clip is not None:
                 on_clip()
     finally:
@@ -73,14 +124,21 @@ def write_recordings(
 
 
 def write_thumbnails(
+    report: IncidentReport,
     recordings: dict[str, tuple[Path, tuple[int, int]]],
     on_clip: Callable[[], None] | None = None,
 ) -> tuple[dict[str, Path], str | None]:
     """``<stem>.png`` beside each recording at the incident's first frame.
 
+    Args:
+        report: The drive's incidents.
+        recordings: ``{stem: (rrd, incident frames)}`` (:func:`write_recordings`).
+        on_clip: Progress: called once per thumbnail.
+
     Returns:
         The thumbnails by stem, and why there are none (``None`` when rendered).
     """
+    del report  # the framing on the incident's objects is left to the viewer's blueprint
     thumbnails: dict[str, Path] = {}
     if not recordings:
         return thumbnails, None
@@ -88,7 +146,12 @@ def write_thumbnails(
         with headless_viewer((1280, 720)) as viewer:
             for stem, (rrd, (first, _)) in recordings.items():
                 png = rrd.with_suffix(".png")
-                screenshot(viewer, rrd, png, first)
+                part = png.with_name(f"{png.stem}.part.png")  # the viewer writes .png only
+                try:
+                    screenshot(viewer, rrd, part, first)
+                    part.replace(png)
+                finally:
+                    part.unlink(missing_ok=True)
                 thumbnails[stem] = png
                 if on_clip is not None:
                     on_clip()

@@ -3,10 +3,10 @@
 from __future__ import annotations
 
 import csv
-import json
 from typing import TYPE_CHECKING, Any
 
 from workbench.errors import WorkbenchError
+from workbench.outputs import json_text
 
 if TYPE_CHECKING:
     from collections.abc import Collection, Iterable
@@ -87,7 +87,7 @@ def write_incidents(incidents: Iterable[Incident], path: Path) -> None:
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         if path.suffix == ".json":
-            tmp.write_text(json.dumps([i.record() for i in found], indent=2) + "\n")
+            tmp.write_text(json_text([i.record() for i in found], indent=2) + "\n")
         elif path.suffix == ".parquet":
             _write_parquet(flat_rows(found), tmp)
         else:

@@ -10,7 +10,6 @@ Channels (documented in ``docs/samples.md``):
 
 from __future__ import annotations
 
-import json
 import math
 from typing import TYPE_CHECKING, Any
 
@@ -29,6 +28,7 @@ from mcap.writer import CompressionType
 from mcap.writer import Writer as McapWriter
 from mcap_protobuf.schema import register_schema
 
+from workbench.outputs import json_text
 from workbench.samples.motion import DT_S
 from workbench.samples.quantise import ANGLE_STEPS, quantise
 from workbench.samples.ros_messages import T0_NS
@@ -118,7 +118,7 @@ def _plan(sc: Scenario, k: int, t_ns: int) -> bytes:
         "t_offset_s": [round((i - k) * DT_S, 3) for i in idx],
         "speed_mps": [round(quantise(m.speed_mps[i]), 4) for i in idx],
     }
-    return json.dumps(plan, separators=(",", ":")).encode()
+    return json_text(plan, compact=True).encode()
 
 
 def write_foxglove_mcap(sc: Scenario, path: Path, osm: bytes) -> None:
@@ -134,7 +134,7 @@ def write_foxglove_mcap(sc: Scenario, path: Path, osm: bytes) -> None:
             "/scene/objects", "protobuf", register_schema(writer, SceneUpdate)
         )
         plan_schema = writer.register_schema(
-            "rss_workbench.Plan", "jsonschema", json.dumps(PLAN_SCHEMA, sort_keys=True).encode()
+            "rss_workbench.Plan", "jsonschema", json_text(PLAN_SCHEMA, sort_keys=True).encode()
         )
         plan_ch = writer.register_channel("/planning/plan", "json", plan_schema)
         ego = sc.ego

@@ -12,13 +12,13 @@ otherwise; there is no ``.sas`` member (that one is a pickle of the GUI state).
 from __future__ import annotations
 
 import io
-import json
 import math
 import zipfile
 from typing import TYPE_CHECKING
 
 import numpy as np
 
+from workbench.outputs import json_text
 from workbench.samples.quantise import quantise
 
 if TYPE_CHECKING:
@@ -105,7 +105,7 @@ def _scn_text() -> str:
     rx, ry, _, _ = _pose(s_b, zeros + _HALF_WIDTH_M)
     left = [[_q4(a), _q4(b)] for a, b in zip(lx, ly, strict=True)]
     right = [[_q4(a), _q4(b)] for a, b in zip(rx, ry, strict=True)]
-    lines = [f"# bound_l:{json.dumps(left)}", f"# bound_r:{json.dumps(right)}", _COLUMNS]
+    lines = [f"# bound_l:{json_text(left)}", f"# bound_r:{json_text(right)}", _COLUMNS]
     for k in range(round(_DURATION_S / _DT_S) + 1):
         t = round(k * _DT_S, 1)
         s_ego = _EGO_V_MPS * t
@@ -121,9 +121,9 @@ def _scn_text() -> str:
             *(str(v) for v in ego_row[:4]),
             str(_EGO_V_MPS),
             "0.0",
-            json.dumps(perf),
-            json.dumps(emerg),
-            json.dumps([["veh_2", obj_state]]),
+            json_text(perf),
+            json_text(emerg),
+            json_text([["veh_2", obj_state]]),
             label,
             "null",
         ]

@@ -8,10 +8,10 @@ it is written beside the target and renamed; a failed run leaves no file behind.
 
 from __future__ import annotations
 
-import json
 from typing import TYPE_CHECKING, Any, Self, TextIO
 
 from workbench.engines.registry import engine
+from workbench.outputs import json_text, part_path
 
 if TYPE_CHECKING:
     from pathlib import Path
@@ -40,7 +40,7 @@ class PerFrameJsonl:
     def __init__(self, path: Path) -> None:
         """Remember the target; nothing is written before the block is entered."""
         self.path = path
-        self._tmp = path.with_name(f".{path.name}.tmp")
+        self._tmp = part_path(path)
         self._fh: TextIO | None = None
 
     def __enter__(self) -> Self:
@@ -53,7 +53,7 @@ class PerFrameJsonl:
         """Write the lines of one chunk."""
         assert self._fh is not None, "use PerFrameJsonl as a context manager"
         for line in frame_records(chunk):
-            self._fh.write(json.dumps(line) + "\n")
+            self._fh.write(json_text(line) + "\n")
 
     def __exit__(
         self,

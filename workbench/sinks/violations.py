@@ -4,11 +4,11 @@ from __future__ import annotations
 
 import csv
 import hashlib
-import json
 from dataclasses import asdict, dataclass, field
 from typing import TYPE_CHECKING
 
 from workbench.errors import WorkbenchError
+from workbench.outputs import atomic_output, write_json
 from workbench.sinks.runs import RunMerger
 
 if TYPE_CHECKING:
@@ -142,19 +142,17 @@ def write_violations(violations: list[Violation], path: Path) -> None:
         WorkbenchError: For any other suffix.
     """
     rows = [asdict(v) for v in violations]
-    tmp = path.with_name(f".{path.name}.tmp")
-    if path.suffix == ".json":
-        tmp.write_text(json.dumps(rows, indent=2) + "\n")
-    elif path.suffix == ".csv":
-        names = list(Violation.__dataclass_fields__)
-        with tmp.open("w", newline="") as fh:
-            writer = csv.DictWriter(fh, fieldnames=names)
-            writer.writeheader()
-            for row in rows:
-                row["objects"] = " ".join(row["objects"])
-                row["labels"] = " ".join(row["labels"])
-                writer.writerow(row)
-    else:
+    if path.suffix not in {".json", ".csv"}:
         msg = f"{path}: violations file must end in .json or .csv, not {path.suffix!r}"
         raise WorkbenchError(msg)
-    tmp.replace(path)
+    if path.suffix == ".json":
+        write_json(path, rows, "the violations")
+        return
+    names = list(Violation.__dataclass_fields__)
+    with atomic_output(path, "the violations") as tmp, tmp.open("w", newline="") as fh:
+        writer = csv.DictWriter(fh, fieldnames=names)
+        writer.writeheader()
+        for row in rows:
+            row["objects"] = " ".join(row["objects"])
+            row["labels"] = " ".join(row["labels"])
+            writer.writerow(row)

@@ -98,6 +98,8 @@ def replay_drive(
     verdicts: Mapping[str, str] | None = None,
     connect: str | None = None,
     selection: tuple[int, int] | None = None,
+    lead_in: tuple[int, int] | None = None,
+    focus_m: tuple[tuple[float, float], Sequence[tuple[float, float]]] | None = None,
 ) -> ReplaySummary:
     """Send a drive's map, frames and engine verdicts to exactly one destination.
 
@@ -123,17 +125,34 @@ def replay_drive(
         connect: Stream to a running viewer's gRPC proxy (``rerun+http://HOST:PORT/proxy``).
         selection: ``(first, last)`` frame of an incident: the blueprint's time panel selects
             and loops over it (a clip's review blueprint).
+        lead_in: ``(shown_from_ns, frame_offset)``: the frames before ``shown_from_ns`` warm
+            the engines up but are not sent; frame numbers are shifted by ``frame_offset``
+            (a clip numbered as its drive; :class:`~workbench.driver.run.DriveRun`).
+        focus_m: With ``selection``: ``(ego, objects)`` positions ``(x, y)`` [m] at the
+            incident's first frame; the camera frames them (else the ego at the first frame).
 
     Returns:
         Counts and timings of the replay.
     """
     t0 = time.perf_counter()
-    run = DriveRun(drive, engines, start_ns=start_ns, end_ns=end_ns, ego_size=ego_size)
+    shown_from_ns, frame_offset = lead_in or (None, 0)
+    run = DriveRun(
+        drive,
+        engines,
+        start_ns=start_ns,
+        end_ns=end_ns,
+        ego_size=ego_size,
+        shown_from_ns=shown_from_ns,
+        frame_offset=frame_offset,
+    )
     chunks = iter(run)
     first = next(chunks, None)
     ego_start = (first.frames[0].ego.x_m, first.frames[0].ego.y_m) if first else None
     rec = rr.RecordingStream(APPLICATION_ID, recording_id=recording_id(drive, start_ns, end_ns))
-    blueprint = replay_blueprint(ego_start, engines=run.engine_names, selection=selection)
+    ego_at, objects_at = focus_m or (ego_start, ())
+    blueprint = replay_blueprint(
+        ego_at, engines=run.engine_names, selection=selection, focus_m=objects_at
+    )
     detector = ViolationDetector(drive.info.path.name)
     path = drive.info.path
     incidents = IncidentDetector(

@@ -13,7 +13,7 @@ from mcap.reader import make_reader
 from mcap.writer import Writer
 from rosbags.highlevel import AnyReader
 
-from loaders.clips import EVENT_TOPIC, ClipRequest, write_clips
+from loaders.clips import EVENT_TOPIC, ClipRequest, ClipWriteError, write_clips
 
 SAMPLES = Path(__file__).resolve().parents[3] / "sample_logs"
 SECOND = 1_000_000_000
@@ -54,7 +54,7 @@ def test_clips_hold_exactly_the_window(tmp_path: Path, log: str, source_records)
     source = source_records(SAMPLES / log)
     t0 = min(t for _, t, _ in source)
     requests = _requests(tmp_path, t0)
-    outcomes = write_clips(SAMPLES / log, requests, map_file=("map.osm", "text/xml", b"<osm/>"))
+    outcomes = write_clips(SAMPLES / log, requests, map_file=("map.osm", "text/xml", b"<osm/>", 7))
     assert [o.written for o in outcomes] == [True, True, True]
     for outcome in outcomes:
         request = outcome.request
@@ -166,3 +166,12 @@ def test_no_requests_reads_nothing(tmp_path: Path) -> None:
     missing = tmp_path / "absent.mcap"
     assert write_clips(missing, []) == []
     shutil.rmtree(tmp_path)
+
+
+def test_an_unwritable_clip_is_one_typed_error_naming_it(tmp_path: Path) -> None:
+    (tmp_path / "file").write_text("")
+    target = tmp_path / "file" / "a.mcap"
+    with pytest.raises(ClipWriteError) as info:
+        write_clips(SAMPLES / "highway_cut_in.mcap", [ClipRequest(target, 0, 2**62)])
+    assert str(info.value).startswith(f"{target}: cannot write clip")
+    assert "\n" not in str(info.value)

@@ -5,13 +5,10 @@ import jsonschema
 import pytest
 
 from tests.workbench.cli_runs import run_workbench as _run
-from workbench.annotations import LabelStore
-from workbench.annotations.openlabel import (
-    OpenLabelError,
-    export_openlabel,
-    import_openlabel,
-    write_openlabel,
-)
+from workbench.annotations import Label, LabelStore
+from workbench.annotations.errors import OpenLabelError, TagError
+from workbench.annotations.openlabel import export_openlabel, write_openlabel
+from workbench.annotations.openlabel_import import Prefer, import_openlabel
 from workbench.incidents import IncidentReport, IncidentRequest, find_incidents
 
 SAMPLES = Path(__file__).resolve().parents[3] / "sample_logs"
@@ -93,8 +90,9 @@ def test_export_import_export_is_identical_and_import_is_idempotent(tmp_path, re
             export_openlabel(report, store.labels(report.drive_hash)), tmp_path / "1.json"
         )
     with LabelStore(tmp_path / "b.sqlite") as fresh:
-        assert import_openlabel(tmp_path / "1.json", fresh) == (2, 0)
-        assert import_openlabel(tmp_path / "1.json", fresh) == (0, 2)
+        assert import_openlabel(tmp_path / "1.json", fresh).count("added") == 2
+        again = import_openlabel(tmp_path / "1.json", fresh)
+        assert [o.status for o in again.outcomes] == ["unchanged", "unchanged"]
         write_openlabel(
             export_openlabel(report, fresh.labels(report.drive_hash)), tmp_path / "2.json"
         )
@@ -171,3 +169,65 @@ def test_bad_files_are_one_line_errors(tmp_path, text, message, capsys):
     err = capsys.readouterr().err
     assert message.split(":")[0] in err
     assert "Traceback" not in err
+
+
+def _file_with(tmp_path: Path, report: IncidentReport, verdict: str, at_ns: int) -> Path:
+    incident = report.incidents[0]
+    label = Label(report.drive_hash, incident.id, verdict, ("late",), "n", "ann", at_ns)
+    path = tmp_path / f"{verdict}-{at_ns}.json"
+    write_openlabel(export_openlabel(report, {incident.id: label}), path)
+    return path
+
+
+@pytest.mark.parametrize(
+    "case",
+    [
+        (1_000, Prefer.newer, "replaced", "confirmed"),  # the file's is newer
+        (3_000, Prefer.newer, "kept", "false_positive"),  # the store's is newer
+        (2_000, Prefer.newer, "conflicting", "false_positive"),  # same time: never replaced
+        (3_000, Prefer.import_, "replaced", "confirmed"),
+        (1_000, Prefer.store, "kept", "false_positive"),
+    ],
+)
+def test_import_keeps_the_newer_verdict_and_reports_the_conflict(tmp_path, report, case):
+    stored_ns, prefer, status, verdict_after = case
+    incident = report.incidents[0]
+    file = _file_with(tmp_path, report, "confirmed", 2_000)
+    with LabelStore(tmp_path / "l.sqlite") as store:
+        store.put(report.drive_hash, incident.id, "false_positive", reviewer="bob", at_ns=stored_ns)
+        result = import_openlabel(file, store, prefer)
+        (outcome,) = result.outcomes
+        assert (outcome.incident_id, outcome.status) == (incident.id, status)
+        assert outcome.stored is not None
+        assert outcome.stored.verdict == "false_positive"
+        after = store.label(report.drive_hash, incident.id)
+        assert after is not None
+        assert after.verdict == verdict_after
+        assert result.written == (status == "replaced")
+    line = outcome.line()
+    assert "false_positive" in line
+    assert "confirmed" in line
+
+
+def test_cli_import_names_each_differing_label(tmp_path, report, capsys):
+    incident = report.incidents[0]
+    file = _file_with(tmp_path, report, "confirmed", 2_000)
+    store = tmp_path / "l.sqlite"
+    with LabelStore(store) as labels:
+        labels.put(report.drive_hash, incident.id, "follow_up", at_ns=5_000)
+    assert _run(["labels", "import", str(file), "--store", str(store)]) == 0
+    out = capsys.readouterr().out
+    assert f"{incident.id}: kept: store follow_up" in out
+    assert "0 label(s) written" in out
+    assert _run(["labels", "import", str(file), "--store", str(store), "--prefer", "import"]) == 0
+    assert f"{incident.id}: replaced" in capsys.readouterr().out
+    with LabelStore(store) as labels:
+        after = labels.label(report.drive_hash, incident.id)
+    assert after is not None
+    assert after.verdict == "confirmed"
+
+
+@pytest.mark.parametrize("tag", ["", "  ", "two\nlines", "x" * 65])
+def test_bad_tags_are_refused(tmp_path, tag):
+    with LabelStore(tmp_path / "l.sqlite") as store, pytest.raises(TagError):
+        store.put("d", "i", "confirmed", tags=["ok", tag])

@@ -77,6 +77,7 @@ def test_truncated_log_keeps_every_evaluated_frame(tmp_path, capsys):
     assert f"cover the {len(lines)} readable frames" in captured.out
     assert json.loads(viol.read_text()) is not None
     assert not list(tmp_path.glob(".*.tmp"))
+    assert not list(tmp_path.glob("*.part"))
 
 
 def _unsafe_frames(tmp_path, name: str, extra: list[str]) -> int:

@@ -81,7 +81,10 @@ def test_clip_reads_whole_with_rosbags_and_carries_the_event(mcap_export) -> Non
     pairs = {p.key: p.value for p in event.metadata}
     assert pairs["incident_id"] == clip["id"]
     assert pairs["engine"] == clip["engine"]
-    assert event.start_time.sec * 10**9 + event.start_time.nanosec == clip["clip_start_ns"]
+    # the event spans the incident, not the clip's window
+    assert event.start_time.sec * 10**9 + event.start_time.nanosec == clip["start_ns"]
+    assert event.end_time.sec * 10**9 + event.end_time.nanosec == clip["end_ns"]
+    assert json.loads(pairs["objects"]) == clip["objects"]
 
 
 def test_clip_re_evaluates_to_the_same_incident(mcap_export) -> None:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import pytest
@@ -60,11 +61,13 @@ def test_windows_clamped_to_the_drive_and_names_unique() -> None:
 def test_selection_by_id_and_by_verdict() -> None:
     report = _report()
     label = Label("h", "c", "confirmed", ("late",), "note", "ann")
-    assert [p.incident.id for p in plan_clips(report, {}, Selection(ids=("c",)), 0)] == ["c"]
+    assert [p.event()["incident_id"] for p in plan_clips(report, {}, Selection(ids=("c",)), 0)] == [
+        "c"
+    ]
     chosen = plan_clips(report, {"c": label}, Selection(verdict="confirmed"), 0)
-    assert [p.incident.id for p in chosen] == ["c"]
+    assert [p.event()["incident_id"] for p in chosen] == ["c"]
     assert chosen[0].event()["verdict"] == "confirmed"
-    assert chosen[0].event()["tags"] == "late"
+    assert json.loads(chosen[0].event()["tags"]) == ["late"]
     assert plan_clips(report, {"c": label}, Selection(verdict="follow_up"), 0) == []
 
 

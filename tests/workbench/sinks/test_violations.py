@@ -63,6 +63,7 @@ def test_violations_written_as_json_and_csv(tmp_path):
         csv_rows = list(csv.DictReader(fh))
     assert [r["id"] for r in csv_rows] == [r["id"] for r in rows]
     assert not list(tmp_path.glob(".*.tmp"))
+    assert not list(tmp_path.glob("*.part"))
 
 
 def test_unknown_suffix_is_a_clear_error(tmp_path):
