@@ -15,7 +15,7 @@ if TYPE_CHECKING:
     from collections.abc import Callable, Mapping
     from pathlib import Path
 
-    from loaders.drive import Drive
+    from loaders.drive import Drive, DriveInfo
     from loaders.errors import LoaderError
     from workbench.driver.run import EgoSize
     from workbench.engines.base import EngineRunner
@@ -132,6 +132,7 @@ class IncidentReport:
         objects_at_start_m: Positions ``(x, y)`` [m] of the culprits at each incident's first
             frame, by object id.
         request: What the incidents were found with.
+        info: The drive's metadata after the pass (format, duration, loss notes).
     """
 
     log: Path
@@ -146,6 +147,7 @@ class IncidentReport:
         default_factory=dict
     )
     request: IncidentRequest | None = None
+    info: DriveInfo | None = None
 
     def find(self, incident_id: str) -> Incident | None:
         """The incident of that id, if the drive has one."""
@@ -178,7 +180,7 @@ def find_incidents(
             detector.add_chunk(chunk)
             if progress is not None:
                 progress(len(detector.frame_times))
-        start_ns = drive.info.start_ns
+        start_ns, info = drive.info.start_ns, drive.info
     finally:
         drive.close()
     return IncidentReport(
@@ -192,4 +194,5 @@ def find_incidents(
         ego_at_start_m=dict(detector.ego_at_start_m),
         objects_at_start_m=dict(detector.objects_at_start_m),
         request=request,
+        info=info,
     )

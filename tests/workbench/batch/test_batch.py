@@ -1,0 +1,195 @@
+"""``workbench batch`` on the local process pool: statuses, resume, killed workers and batches."""
+
+from __future__ import annotations
+
+import functools
+import json
+import os
+import signal
+import subprocess
+import sys
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import pytest
+
+from tests.workbench.batch.drives import BAD, GOOD, drive_rows, incident_rows, make_fleet
+from tests.workbench.cli_runs import run_workbench
+from workbench.batch import evaluate_log, open_pool, requests_for, run_batch
+from workbench.incidents import IncidentRequest
+
+if TYPE_CHECKING:
+    from collections.abc import Iterator
+
+#: Engines of every batch here (one keeps the suite short; the batch is engine-agnostic).
+ENGINES = "rss"
+
+
+@pytest.fixture(scope="module")
+def fleet(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    folder = tmp_path_factory.mktemp("fleet")
+    make_fleet(folder)
+    return folder
+
+
+@pytest.fixture(scope="module")
+def reference(fleet: Path) -> Path:
+    """A batch of the good drives only."""
+    out = fleet.parent / "reference"
+    logs = [str(fleet / name) for name in GOOD]
+    assert (
+        run_workbench(["batch", *logs, "--out", str(out), "--jobs", "2", "--engines", ENGINES]) == 0
+    )
+    return out
+
+
+@pytest.fixture(scope="module")
+def full(fleet: Path, reference: Path) -> Iterator[Path]:
+    del reference
+    out = fleet.parent / "full"
+    logs = [str(fleet / name) for name in (*GOOD, *BAD)]
+    assert (
+        run_workbench(["batch", *logs, "--out", str(out), "--jobs", "2", "--engines", ENGINES]) == 0
+    )
+    yield out
+
+
+def _good(rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    return [r for r in rows if Path(r["drive_path"]).name in GOOD]
+
+
+def test_bad_logs_fail_with_their_error_and_good_rows_are_unchanged(
+    fleet: Path, reference: Path, full: Path
+) -> None:
+    drives = drive_rows(full)
+    assert set(drives) == {*GOOD, *BAD}
+    for name in GOOD:
+        assert drives[name]["status"] == "ok", drives[name]
+        assert drives[name]["frames"] > 0
+        assert len(drives[name]["content_hash"]) == 64
+    for name, status in BAD.items():
+        assert drives[name]["status"] == status, drives[name]
+        assert name in drives[name]["error"]
+        assert drives[name]["error_type"].endswith("Error")
+    assert drives["half.mcap"]["frames"] > 0
+    assert drives["empty.bag"]["error_type"] == "EmptyLogError"
+    rows = incident_rows(full)
+    assert _good(rows) == incident_rows(reference)
+    assert {Path(r["drive_path"]).name for r in rows} <= {*GOOD, "half.mcap"}
+    assert all(r["drive_hash"] == drives[Path(r["drive_path"]).name]["content_hash"] for r in rows)
+    batch = json.loads((full / "batch.json").read_text())
+    assert batch["status_counts"] == {"ok": 2, "partial": 1, "empty": 0, "failed": 4}
+    assert sorted(Path(f["path"]).name for f in batch["failed"]) == sorted(
+        n for n, s in BAD.items() if s == "failed"
+    )
+    assert batch["settings"]["engines"] == ENGINES.split(",")
+    assert str(fleet) in batch["failed"][0]["path"]
+
+
+def test_summary_names_the_failed_logs(
+    fleet: Path, full: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    logs = [str(fleet / name) for name in (*GOOD, *BAD)]
+    assert (
+        run_workbench(["batch", *logs, "--out", str(full), "--jobs", "1", "--engines", ENGINES])
+        == 0
+    )
+    out = capsys.readouterr().out
+    assert "0 evaluated, 7 kept from an earlier run" in out
+    assert "2 ok, 1 partial, 0 empty, 4 failed" in out
+    for name, status in BAD.items():
+        assert any(line.startswith(f"{status}: ") and name in line for line in out.splitlines())
+
+
+def test_rerun_evaluates_only_changed_logs_or_settings(
+    fleet: Path, full: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    out = tmp_path / "copy"
+    logs = [str(fleet / name) for name in GOOD]
+    args = ["batch", *logs, "--out", str(out), "--jobs", "1", "--engines", ENGINES]
+    assert run_workbench(args) == 0
+    assert "2 evaluated, 0 kept" in capsys.readouterr().out
+    saa = fleet / GOOD[1]
+    original = saa.read_bytes()
+    try:
+        saa.write_bytes(original + b"\n")
+        assert run_workbench(args) == 0
+        assert "1 evaluated, 1 kept" in capsys.readouterr().out
+    finally:
+        saa.write_bytes(original)
+    assert run_workbench([*args, "--min-duration", "0.2"]) == 0
+    assert "2 evaluated, 0 kept" in capsys.readouterr().out
+    del full
+
+
+def _die_once(marker: str, request: IncidentRequest) -> dict[str, Any]:
+    """The first call anywhere kills its own worker process (SIGKILL); later ones evaluate."""
+    try:
+        fd = os.open(marker, os.O_CREAT | os.O_EXCL | os.O_WRONLY)
+    except FileExistsError:
+        return evaluate_log(request)
+    os.close(fd)
+    os.kill(os.getpid(), signal.SIGKILL)
+    raise AssertionError("unreachable")
+
+
+def test_a_killed_worker_is_replaced_and_the_tables_are_the_same(
+    fleet: Path, reference: Path, tmp_path: Path
+) -> None:
+    template = IncidentRequest(log=fleet, engines=tuple(ENGINES.split(",")))
+    requests = requests_for([fleet / name for name in GOOD], template)
+    marker = tmp_path / "killed"
+    with open_pool(None, 2) as pool:
+        summary = run_batch(
+            requests, tmp_path / "out", pool, task=functools.partial(_die_once, str(marker))
+        )
+    assert marker.exists()
+    assert [d["status"] for d in summary.drives] == ["ok", "ok"]
+    assert incident_rows(tmp_path / "out") == incident_rows(reference)
+
+
+def test_a_killed_batch_reruns_only_the_unfinished_logs(
+    fleet: Path, reference: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    out = tmp_path / "out"
+    logs = [str(fleet / name) for name in GOOD]
+    args = ["batch", *logs, "--out", str(out), "--jobs", "1", "--engines", ENGINES]
+    command = [sys.executable, "-c", "from workbench.cli.main import main; main()", *args]
+    proc = subprocess.Popen(  # noqa: S603 - our own CLI
+        command, start_new_session=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL
+    )
+    try:
+        proc.wait(timeout=0.5)
+    except subprocess.TimeoutExpired:
+        pass
+    records = out / "logs"
+    try:
+        for _ in range(1200):  # at most 120 s for the first log
+            if proc.poll() is not None or (records.is_dir() and any(records.glob("*.json"))):
+                break
+            try:
+                proc.wait(timeout=0.1)
+            except subprocess.TimeoutExpired:
+                pass
+    finally:
+        if proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGKILL)
+        proc.wait()
+    finished = len(list(records.glob("*.json")))
+    assert finished >= 1
+    assert run_workbench(args) == 0
+    assert f"{len(GOOD) - finished} evaluated, {finished} kept" in capsys.readouterr().out
+    assert incident_rows(out) == incident_rows(reference)
+
+
+def test_missing_extra_and_bad_cluster_are_one_line_errors(
+    fleet: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    log = str(fleet / GOOD[1])
+    monkeypatch.setitem(sys.modules, "ray", None)
+    assert run_workbench(["batch", log, "--out", str(tmp_path), "--cluster", "ray-local:1"]) == 2
+    err = capsys.readouterr().err
+    assert "pip install 'rss-workbench[ray]'" in err
+    assert len(err.strip().splitlines()) == 1
+    assert run_workbench(["batch", log, "--out", str(tmp_path), "--cluster", "spark://x"]) == 2
+    assert "expected tcp://HOST:PORT" in capsys.readouterr().err
