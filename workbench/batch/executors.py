@@ -17,6 +17,7 @@ because its worker was lost (the task itself never raises): the loop calls
 from __future__ import annotations
 
 import contextlib
+import logging
 import multiprocessing
 import os
 from concurrent.futures import BrokenExecutor, Future, ProcessPoolExecutor
@@ -184,9 +185,14 @@ def _ray(kind: str, where: str, cluster: str) -> Iterator[Pool]:
     ray = _need("ray", "ray", cluster)
     try:
         if kind == "ray-local":
-            ray.init(num_cpus=int(where), include_dashboard=False, log_to_driver=False)
+            ray.init(
+                num_cpus=int(where),
+                include_dashboard=False,
+                log_to_driver=False,
+                logging_level=logging.WARNING,
+            )
         else:
-            ray.init(address=where, log_to_driver=False)
+            ray.init(address=where, log_to_driver=False, logging_level=logging.WARNING)
     except (ConnectionError, RuntimeError) as err:
         raise BatchError(f"--cluster {cluster}: cannot start or reach Ray ({err})") from err
     try:

@@ -61,7 +61,7 @@ def expand_logs(arguments: Sequence[str]) -> list[Path]:
     out: dict[Path, None] = {}
     for argument in arguments:
         matches = [Path(m) for m in sorted(glob.glob(argument))]  # noqa: PTH207 - a user's pattern or [Path(argument)]
-        matches = [m.absolute() for m in matches]
+        matches = [m.resolve() for m in matches]
         for path in matches:
             if path.is_dir() and not _is_rosbag2(path):
                 out.update(dict.fromkeys(_walk(path)))
@@ -78,7 +78,7 @@ class BatchSummary:
     """What a batch did.
 
     Attributes:
-        drives: Every log's record (no incidents), in table order.
+        drives: Every log's record (no incidents), in table order (by path).
         evaluated: Logs evaluated by this run (the rest were fresh).
         skipped: Logs kept from an earlier run.
         executor: The pool's name.
@@ -150,7 +150,7 @@ def run_batch(
             results.put(record)
             if on_done is not None:
                 on_done(record)
-    logs = [r.log for r in requests]
+    logs = sorted((r.log for r in requests), key=str)
     batch = {
         "settings": requests[0].record() if requests else {},
         "settings_hash": s_hash,

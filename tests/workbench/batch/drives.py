@@ -13,14 +13,21 @@
 
 from __future__ import annotations
 
+import os
 import random
 import shutil
+import signal
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import pyarrow.parquet as pq
 
-__all__ = ["BAD", "GOOD", "ROOT", "drive_rows", "incident_rows", "make_fleet"]
+from workbench.batch import evaluate_log
+
+if TYPE_CHECKING:
+    from workbench.incidents import IncidentRequest
+
+__all__ = ["BAD", "GOOD", "ROOT", "die_once", "drive_rows", "incident_rows", "make_fleet"]
 
 ROOT = Path(__file__).resolve().parents[3]
 SAMPLES = ROOT / "sample_logs"
@@ -48,7 +55,8 @@ def make_fleet(folder: Path, *, bad: bool = True) -> list[Path]:
     (folder / "half.mcap").write_bytes(data[: len(data) * 6 // 10])
     shutil.copy(SAMPLES / "hard_braking_lead.osm", folder / "half.osm")
     (folder / "truncated.mcap").write_bytes(data[:3000])
-    (folder / "random.mcap").write_bytes(random.Random(30).randbytes(4096))
+    noise = random.Random(30).randbytes(4096)  # noqa: S311 - seeded test data
+    (folder / "random.mcap").write_bytes(noise)
     (folder / "empty.bag").write_bytes(b"")
     shutil.copy(SAMPLES / "hard_braking_lead.osm", folder / "wrong.xml")
     return [*logs, *(folder / name for name in BAD)]
@@ -56,10 +64,22 @@ def make_fleet(folder: Path, *, bad: bool = True) -> list[Path]:
 
 def incident_rows(results: Path) -> list[dict[str, Any]]:
     """``incidents.parquet`` as rows."""
-    return pq.read_table(results / "incidents.parquet").to_pylist()
+    rows: list[dict[str, Any]] = pq.read_table(results / "incidents.parquet").to_pylist()
+    return rows
 
 
 def drive_rows(results: Path) -> dict[str, dict[str, Any]]:
     """``drives.parquet`` by file name."""
     rows = pq.read_table(results / "drives.parquet").to_pylist()
     return {Path(r["path"]).name: r for r in rows}
+
+
+def die_once(marker: str, request: IncidentRequest) -> dict[str, Any]:
+    """The first call anywhere kills its own worker process (SIGKILL); later ones evaluate."""
+    try:
+        fd = os.open(marker, os.O_CREAT | os.O_EXCL | os.O_WRONLY)
+    except FileExistsError:
+        return evaluate_log(request)
+    os.close(fd)
+    os.kill(os.getpid(), signal.SIGKILL)
+    raise AssertionError("unreachable")

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import json
 import os
@@ -11,47 +12,20 @@ import sys
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-import pytest
-
-from tests.workbench.batch.drives import BAD, GOOD, drive_rows, incident_rows, make_fleet
+from tests.workbench.batch.conftest import ENGINES
+from tests.workbench.batch.drives import (
+    BAD,
+    GOOD,
+    die_once,
+    drive_rows,
+    incident_rows,
+)
 from tests.workbench.cli_runs import run_workbench
-from workbench.batch import evaluate_log, open_pool, requests_for, run_batch
+from workbench.batch import open_pool, requests_for, run_batch
 from workbench.incidents import IncidentRequest
 
 if TYPE_CHECKING:
-    from collections.abc import Iterator
-
-#: Engines of every batch here (one keeps the suite short; the batch is engine-agnostic).
-ENGINES = "rss"
-
-
-@pytest.fixture(scope="module")
-def fleet(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    folder = tmp_path_factory.mktemp("fleet")
-    make_fleet(folder)
-    return folder
-
-
-@pytest.fixture(scope="module")
-def reference(fleet: Path) -> Path:
-    """A batch of the good drives only."""
-    out = fleet.parent / "reference"
-    logs = [str(fleet / name) for name in GOOD]
-    assert (
-        run_workbench(["batch", *logs, "--out", str(out), "--jobs", "2", "--engines", ENGINES]) == 0
-    )
-    return out
-
-
-@pytest.fixture(scope="module")
-def full(fleet: Path, reference: Path) -> Iterator[Path]:
-    del reference
-    out = fleet.parent / "full"
-    logs = [str(fleet / name) for name in (*GOOD, *BAD)]
-    assert (
-        run_workbench(["batch", *logs, "--out", str(out), "--jobs", "2", "--engines", ENGINES]) == 0
-    )
-    yield out
+    import pytest
 
 
 def _good(rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
@@ -122,17 +96,6 @@ def test_rerun_evaluates_only_changed_logs_or_settings(
     del full
 
 
-def _die_once(marker: str, request: IncidentRequest) -> dict[str, Any]:
-    """The first call anywhere kills its own worker process (SIGKILL); later ones evaluate."""
-    try:
-        fd = os.open(marker, os.O_CREAT | os.O_EXCL | os.O_WRONLY)
-    except FileExistsError:
-        return evaluate_log(request)
-    os.close(fd)
-    os.kill(os.getpid(), signal.SIGKILL)
-    raise AssertionError("unreachable")
-
-
 def test_a_killed_worker_is_replaced_and_the_tables_are_the_same(
     fleet: Path, reference: Path, tmp_path: Path
 ) -> None:
@@ -141,7 +104,7 @@ def test_a_killed_worker_is_replaced_and_the_tables_are_the_same(
     marker = tmp_path / "killed"
     with open_pool(None, 2) as pool:
         summary = run_batch(
-            requests, tmp_path / "out", pool, task=functools.partial(_die_once, str(marker))
+            requests, tmp_path / "out", pool, task=functools.partial(die_once, str(marker))
         )
     assert marker.exists()
     assert [d["status"] for d in summary.drives] == ["ok", "ok"]
@@ -158,19 +121,15 @@ def test_a_killed_batch_reruns_only_the_unfinished_logs(
     proc = subprocess.Popen(  # noqa: S603 - our own CLI
         command, start_new_session=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL
     )
-    try:
+    with contextlib.suppress(subprocess.TimeoutExpired):
         proc.wait(timeout=0.5)
-    except subprocess.TimeoutExpired:
-        pass
     records = out / "logs"
     try:
         for _ in range(1200):  # at most 120 s for the first log
             if proc.poll() is not None or (records.is_dir() and any(records.glob("*.json"))):
                 break
-            try:
+            with contextlib.suppress(subprocess.TimeoutExpired):
                 proc.wait(timeout=0.1)
-            except subprocess.TimeoutExpired:
-                pass
     finally:
         if proc.poll() is None:
             os.killpg(proc.pid, signal.SIGKILL)
