@@ -16,6 +16,7 @@ from tests.workbench.batch.conftest import ENGINES
 from tests.workbench.batch.drives import (
     BAD,
     GOOD,
+    ROOT,
     die_once,
     drive_rows,
     incident_rows,
@@ -152,3 +153,23 @@ def test_missing_extra_and_bad_cluster_are_one_line_errors(
     assert len(err.strip().splitlines()) == 1
     assert run_workbench(["batch", log, "--out", str(tmp_path), "--cluster", "spark://x"]) == 2
     assert "expected tcp://HOST:PORT" in capsys.readouterr().err
+
+
+def test_a_log_without_frames_is_empty_and_one_losing_ego_messages_partial(
+    tmp_path: Path,
+) -> None:
+    """The /tf ego with a vehicle frame no transform reaches: no frame; the lidar: losses."""
+    from tests.loaders.ego_logs import write_variant  # noqa: PLC0415
+
+    bag = write_variant(ROOT, tmp_path, "tf", storage="bag")
+    for frame, status in (("nowhere", "empty"), ("lidar", "partial")):
+        profile = tmp_path / f"{frame}.toml"
+        profile.write_text(f'[tf]\nvehicle_frame = "{frame}"\n', encoding="utf-8")
+        out = tmp_path / frame
+        args = ["batch", str(bag), "--out", str(out), "--profile", str(profile)]
+        assert run_workbench([*args, "--jobs", "1", "--engines", ENGINES]) == 0
+        drive = drive_rows(out)[bag.name]
+        assert drive["status"] == status, drive
+        assert drive["frames_lost"] > 0
+        assert drive["error"] is None
+        assert (drive["frames"] == 0) == (status == "empty")
