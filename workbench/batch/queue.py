@@ -72,12 +72,13 @@ def read_table(results: Path, name: str) -> list[dict[str, Any]]:
 
 
 def incident_of(row: dict[str, Any]) -> Incident:
-    """The :class:`Incident` an ``incidents.parquet`` row holds (null facts left out)."""
-    facts = {
-        k.removeprefix("severity."): v
+    """The :class:`Incident` an ``incidents.parquet`` row holds (its facts in their order)."""
+    names = row.get("severity_names") or [
+        k.removeprefix("severity.")
         for k, v in row.items()
         if k.startswith("severity.") and v is not None
-    }
+    ]
+    facts: dict[str, Any] = {name: row.get(f"severity.{name}") for name in names}
     margin = facts.pop("worst_margin", None)
     severity = Severity(
         worst_margin=math.inf if margin is None else float(margin),

@@ -13,7 +13,8 @@ only, and loses only the logs in flight. ``incidents.parquet`` rows (schema
 :data:`INCIDENTS_SCHEMA`): ``drive_path``, ``drive_hash``, then the row of ``workbench
 incidents --out FILE.parquet`` (:func:`workbench.incidents.table.flat_rows`): ``id``,
 ``engine``, ``objects``, ``cause``, ``start_frame``, ``end_frame``, ``start_ns``, ``end_ns``,
-``duration_s`` and every severity fact as ``severity.<name>``.
+``duration_s`` and every severity fact as ``severity.<name>``; last ``severity_names``, the
+names of the incident's facts in their order.
 """
 
 from __future__ import annotations

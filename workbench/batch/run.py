@@ -14,6 +14,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from workbench.batch.executors import BatchError
+from workbench.batch.reports import request_record
 from workbench.batch.results import Results
 from workbench.batch.task import evaluate_log, failed_record
 from workbench.batch.versions import engine_versions, settings_hash
@@ -153,6 +154,7 @@ def run_batch(
     logs = sorted((r.log for r in requests), key=str)
     batch = {
         "settings": requests[0].record() if requests else {},
+        "request": request_record(requests[0]) if requests else None,
         "settings_hash": s_hash,
         "engine_versions": versions,
         "executor": pool.name,

@@ -41,12 +41,21 @@ def _count(value: str) -> int:
 
 
 def incident_rows(report: IncidentReport) -> list[dict[str, Any]]:
-    """The report's incidents as rows of ``incidents.parquet`` (drive path and hash first)."""
+    """The report's incidents as rows of ``incidents.parquet``.
+
+    Drive path and hash first, then the row of ``workbench incidents --out FILE.parquet``, then
+    ``severity_names``: the severity facts' names in their order.
+    """
     from workbench.incidents.table import flat_rows  # noqa: PLC0415 - worker-side import
 
     return [
-        {"drive_path": str(report.log), "drive_hash": report.drive_hash, **row}
-        for row in flat_rows(report.incidents)
+        {
+            "drive_path": str(report.log),
+            "drive_hash": report.drive_hash,
+            **row,
+            "severity_names": list(incident.severity.record()),
+        }
+        for incident, row in zip(report.incidents, flat_rows(report.incidents), strict=True)
     ]
 
 

@@ -7,6 +7,7 @@ it takes a drive; its fleet variant reads the batch's tables and never evaluates
 from __future__ import annotations
 
 import functools
+import inspect
 import math
 from typing import TYPE_CHECKING, Any
 
@@ -22,7 +23,7 @@ if TYPE_CHECKING:
 
     from workbench.batch.queue import FleetIncident
 
-__all__ = ["fleet_incidents", "fleet_table", "on_results"]
+__all__ = ["each_drive", "fleet_incidents", "fleet_table", "on_results"]
 
 
 def on_results(
@@ -105,3 +106,32 @@ def fleet_incidents(
     if out is not None:
         write_queue(found, out)
         typer.echo(f"wrote {out}")
+
+
+def each_drive(
+    command: Callable[..., None], out_for: Callable[[Path, str], Path], *, incidents_only: bool
+) -> Callable[..., None]:
+    """``command`` (made by ``with_incidents``) taking RESULTS_DIR too: run once per drive.
+
+    For a results directory the command's own function runs on each drive's report read
+    back from the batch (nothing is evaluated again), with ``--out`` replaced by
+    ``out_for(out, drive stem)``; the incident options are the batch's.
+
+    Args:
+        command: The decorated command (its ``__wrapped__`` is the command's own function).
+        out_for: Where one drive's output goes, from ``--out`` and a portable drive stem.
+        incidents_only: Skip drives without incidents.
+    """
+    own = command.__wrapped__  # type: ignore[attr-defined]
+    names = set(inspect.signature(own).parameters) - {"log", "report"}
+
+    def fleet(**kwargs: Any) -> None:
+        from workbench.batch.reports import drive_reports  # noqa: PLC0415
+        from workbench.export.plan import safe_stem  # noqa: PLC0415
+
+        base = {name: kwargs[name] for name in names}
+        for report in drive_reports(kwargs["log"], with_incidents_only=incidents_only):
+            stem = f"{safe_stem(report.log.name)}-{report.drive_hash[:8]}"
+            own(log=report.log, report=report, **{**base, "out": out_for(kwargs["out"], stem)})
+
+    return on_results(fleet)(command)
