@@ -6,6 +6,7 @@ import contextlib
 import functools
 import json
 import os
+import shutil
 import signal
 import subprocess
 import sys
@@ -77,24 +78,28 @@ def test_summary_names_the_failed_logs(
 
 
 def test_rerun_evaluates_only_changed_logs_or_settings(
-    fleet: Path, full: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+    fleet: Path, reference: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
     out = tmp_path / "copy"
+    shutil.copytree(reference, out)
     logs = [str(fleet / name) for name in GOOD]
     args = ["batch", *logs, "--out", str(out), "--jobs", "1", "--engines", ENGINES]
+    capsys.readouterr()
     assert run_workbench(args) == 0
-    assert "2 evaluated, 0 kept" in capsys.readouterr().out
-    saa = fleet / GOOD[1]
-    original = saa.read_bytes()
-    try:
-        saa.write_bytes(original + b"\n")
-        assert run_workbench(args) == 0
-        assert "1 evaluated, 1 kept" in capsys.readouterr().out
-    finally:
-        saa.write_bytes(original)
-    assert run_workbench([*args, "--min-duration", "0.2"]) == 0
-    assert "2 evaluated, 0 kept" in capsys.readouterr().out
-    del full
+    assert "0 evaluated, 2 kept" in capsys.readouterr().out
+    assert incident_rows(out) == incident_rows(reference)
+    assert run_workbench(["batch", logs[1], *args[3:], "--min-duration", "0.2"]) == 0
+    assert "1 evaluated, 0 kept" in capsys.readouterr().out
+    saa = tmp_path / GOOD[1]
+    shutil.copy(fleet / GOOD[1], saa)
+    own = ["batch", str(saa), "--out", str(tmp_path / "own"), "--jobs", "1", "--engines", ENGINES]
+    assert run_workbench(own) == 0
+    assert "1 evaluated, 0 kept" in capsys.readouterr().out
+    saa.write_bytes(saa.read_bytes() + b"\n")
+    assert run_workbench(own) == 0
+    assert "1 evaluated, 0 kept" in capsys.readouterr().out
+    assert run_workbench(own) == 0
+    assert "0 evaluated, 1 kept" in capsys.readouterr().out
 
 
 def test_a_killed_worker_is_replaced_and_the_tables_are_the_same(
