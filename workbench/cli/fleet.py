@@ -109,7 +109,11 @@ def fleet_incidents(
 
 
 def each_drive(
-    command: Callable[..., None], out_for: Callable[[Path, str], Path], *, incidents_only: bool
+    command: Callable[..., None],
+    out_for: Callable[[Path, str], Path] | None,
+    *,
+    incidents_only: bool,
+    worst_first: bool = False,
 ) -> Callable[..., None]:
     """``command`` (made by ``with_incidents``) taking RESULTS_DIR too: run once per drive.
 
@@ -119,8 +123,10 @@ def each_drive(
 
     Args:
         command: The decorated command (its ``__wrapped__`` is the command's own function).
-        out_for: Where one drive's output goes, from ``--out`` and a portable drive stem.
+        out_for: Where one drive's output goes, from ``--out`` and a portable drive stem
+            (``None``: the command has no ``--out``).
         incidents_only: Skip drives without incidents.
+        worst_first: Drives in the order of their worst incident.
     """
     own = command.__wrapped__  # type: ignore[attr-defined]
     names = set(inspect.signature(own).parameters) - {"log", "report"}
@@ -130,8 +136,13 @@ def each_drive(
         from workbench.export.plan import safe_stem  # noqa: PLC0415
 
         base = {name: kwargs[name] for name in names}
-        for report in drive_reports(kwargs["log"], with_incidents_only=incidents_only):
-            stem = f"{safe_stem(report.log.name)}-{report.drive_hash[:8]}"
-            own(log=report.log, report=report, **{**base, "out": out_for(kwargs["out"], stem)})
+        reports = drive_reports(
+            kwargs["log"], with_incidents_only=incidents_only, worst_first=worst_first
+        )
+        for report in reports:
+            if out_for is not None:
+                stem = f"{safe_stem(report.log.name)}-{report.drive_hash[:8]}"
+                base["out"] = out_for(kwargs["out"], stem)
+            own(log=report.log, report=report, **base)
 
     return on_results(fleet)(command)
