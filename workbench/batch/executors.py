@@ -4,9 +4,9 @@
 |---|---|---|
 | (none) | a local process pool, ``--jobs N`` workers | — |
 | ``tcp://HOST:PORT`` | a running Dask distributed scheduler | ``[dask]`` |
-| ``dask-local:N`` | a Dask ``LocalCluster`` of N single-threaded worker processes | ``[dask]`` |
+| ``dask-local:N`` | a ``LocalCluster``: N single-threaded processes on 127.0.0.1 | ``[dask]`` |
 | ``ray://HOST:PORT`` | a running Ray cluster (Ray Client) | ``[ray]`` |
-| ``ray-local:N`` | a local Ray instance with N CPUs | ``[ray]`` |
+| ``ray-local:N`` | a local Ray instance with N CPUs (on 127.0.0.1) | ``[ray]`` |
 
 Every pool hands out ``concurrent.futures.Future`` objects (Dask's ``get_executor``, Ray's
 ``ObjectRef.future()``), so the batch loop is the same for all. A future that fails did so
@@ -167,6 +167,7 @@ def _dask(kind: str, where: str, cluster: str) -> Iterator[Pool]:
                     processes=True,
                     dashboard_address=None,
                     host="127.0.0.1",
+                    silence_logs=logging.ERROR,
                 )
                 stack.enter_context(local)
                 client = stack.enter_context(distributed.Client(local))
@@ -182,10 +183,15 @@ def _dask(kind: str, where: str, cluster: str) -> Iterator[Pool]:
 @contextlib.contextmanager
 def _ray(kind: str, where: str, cluster: str) -> Iterator[Pool]:
     os.environ.setdefault("RAY_USAGE_STATS_ENABLED", "0")
+    if kind == "ray-local":
+        # Ray's single-machine mode (as on macOS): every address is 127.0.0.1, not the
+        # machine's network address.
+        os.environ.setdefault("RAY_ENABLE_WINDOWS_OR_OSX_CLUSTER", "0")
     ray = _need("ray", "ray", cluster)
     try:
         if kind == "ray-local":
             ray.init(
+                address="local",
                 num_cpus=int(where),
                 include_dashboard=False,
                 log_to_driver=False,
@@ -193,7 +199,7 @@ def _ray(kind: str, where: str, cluster: str) -> Iterator[Pool]:
             )
         else:
             ray.init(address=where, log_to_driver=False, logging_level=logging.WARNING)
-    except (ConnectionError, RuntimeError) as err:
+    except (ConnectionError, RuntimeError, ValueError) as err:
         raise BatchError(f"--cluster {cluster}: cannot start or reach Ray ({err})") from err
     try:
         yield _RayPool(ray, f"ray {cluster}")
