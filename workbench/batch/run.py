@@ -8,6 +8,7 @@ from __future__ import annotations
 import dataclasses
 import datetime as dt
 import glob
+import json
 from concurrent.futures import FIRST_COMPLETED, Future, wait
 from dataclasses import dataclass
 from pathlib import Path
@@ -83,12 +84,14 @@ class BatchSummary:
         evaluated: Logs evaluated by this run (the rest were fresh).
         skipped: Logs kept from an earlier run.
         executor: The pool's name.
+        versions: This command's engine versions as JSON text (as in ``drives.parquet``).
     """
 
     drives: list[dict[str, Any]]
     evaluated: int
     skipped: int
     executor: str
+    versions: str = ""
 
     @property
     def failed(self) -> list[dict[str, Any]]:
@@ -163,7 +166,8 @@ def run_batch(
         "evaluated": len(todo),
     }
     drives = results.assemble(logs, batch)
-    return BatchSummary(drives, len(todo), len(requests) - len(todo), pool.name)
+    text = json.dumps(versions, sort_keys=True)
+    return BatchSummary(drives, len(todo), len(requests) - len(todo), pool.name, text)
 
 
 def requests_for(logs: Sequence[Path], template: IncidentRequest) -> list[IncidentRequest]:

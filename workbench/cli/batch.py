@@ -76,6 +76,14 @@ def _summary(summary: BatchSummary, out: Path) -> None:
     for drive in summary.drives:
         if drive["status"] in {"failed", "partial"}:
             typer.echo(f"{drive['status']}: {drive['error'] or drive['path']}")
+    other = [d["path"] for d in summary.drives if d["engine_versions"] != summary.versions]
+    if other:
+        typer.secho(
+            f"warning: {len(other)} log(s) evaluated by workers running other code than this"
+            f" command (engine versions differ), e.g. {other[0]}",
+            err=True,
+            fg=typer.colors.YELLOW,
+        )
 
 
 @with_requests
