@@ -53,17 +53,16 @@ def _walk(folder: Path) -> list[Path]:
 def expand_logs(arguments: Sequence[str]) -> list[Path]:
     """The logs named by files, directories (searched for logs) and globs.
 
-    Absolute, sorted, unique.
-    A rosbag2 directory (it holds ``metadata.yaml``) is one log; ``.db3`` files inside it
-    are not listed again.
+    Absolute, sorted, unique. A rosbag2 directory (it holds ``metadata.yaml``) is one log;
+    ``.db3`` files inside it are not listed again.
 
     Raises:
         BatchError: An argument matches nothing.
     """
     out: dict[Path, None] = {}
     for argument in arguments:
-        matches = [Path(m) for m in sorted(glob.glob(argument))]  # noqa: PTH207 - a user's pattern or [Path(argument)]
-        matches = [m.resolve() for m in matches]
+        found = sorted(glob.glob(argument))  # noqa: PTH207 - a user's pattern, maybe absolute
+        matches = [Path(m).resolve() for m in found] or [Path(argument).resolve()]
         for path in matches:
             if path.is_dir() and not _is_rosbag2(path):
                 out.update(dict.fromkeys(_walk(path)))

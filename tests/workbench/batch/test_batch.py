@@ -11,7 +11,9 @@ import signal
 import subprocess
 import sys
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
+
+import pytest
 
 from tests.workbench.batch.conftest import ENGINES
 from tests.workbench.batch.drives import (
@@ -25,9 +27,6 @@ from tests.workbench.batch.drives import (
 from tests.workbench.cli_runs import run_workbench
 from workbench.batch import open_pool, requests_for, run_batch
 from workbench.incidents import IncidentRequest
-
-if TYPE_CHECKING:
-    import pytest
 
 
 def _good(rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
@@ -178,3 +177,20 @@ def test_a_log_without_frames_is_empty_and_one_losing_ego_messages_partial(
         assert drive["frames_lost"] > 0
         assert drive["error"] is None
         assert (drive["frames"] == 0) == (status == "empty")
+
+
+def test_log_arguments_expand_to_drives(tmp_path: Path) -> None:
+    from workbench.batch import BatchError, expand_logs  # noqa: PLC0415
+
+    samples = ROOT / "sample_logs"
+    found = expand_logs([str(samples)])
+    names = [p.name for p in found]
+    assert "highway_cut_in_rosbag2" in names  # a rosbag2 directory is one drive
+    assert not [n for n in names if n.endswith((".db3", ".osm", ".json"))]
+    assert found == sorted(found)
+    assert all(p.is_absolute() for p in found)
+    assert expand_logs([str(samples / "*.saa"), str(samples / "racing_overtake.saa")]) == [
+        samples / "racing_overtake.saa"
+    ]
+    with pytest.raises(BatchError, match="no such file"):
+        expand_logs([str(tmp_path / "none*.mcap")])
