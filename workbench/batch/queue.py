@@ -136,8 +136,11 @@ def write_queue(incidents: Iterable[FleetIncident], path: Path) -> None:
     import pyarrow.csv as pcsv  # noqa: PLC0415
     import pyarrow.parquet as pq  # noqa: PLC0415
 
-    if path.suffix == ".csv":
-        rows = [{**r, "objects": " ".join(r["objects"] or ())} for r in rows]
+    if path.suffix == ".csv":  # lists (objects, fact names, sort keys) as space-separated text
+        rows = [
+            {k: " ".join(map(str, v)) if isinstance(v, list) else v for k, v in r.items()}
+            for r in rows
+        ]
     table = pa.Table.from_pylist(rows)
     part = path.with_name(path.name + ".part")
     try:

@@ -61,5 +61,10 @@ def test_results_dir_filters_are_the_single_drive_ones(full: Path, tmp_path: Pat
     assert rows
     assert all(obj in r["objects"] for r in rows)
     assert any(r["drive_path"] == drive for r in rows)
+    csv = tmp_path / "some.csv"
+    assert run_workbench(["incidents", str(full), "--object", obj, "--out", str(csv)]) == 0
+    lines = csv.read_text().splitlines()
+    assert len(lines) == len(rows) + 1
+    assert obj in lines[1]
     assert run_workbench(["incidents", str(full), "--engine", "nope", "--out", str(out)]) == 0
     assert pq.read_table(out).num_rows == 0
