@@ -75,7 +75,8 @@ def _summary(summary: BatchSummary, out: Path) -> None:
     )
     for drive in summary.drives:
         if drive["status"] in {"failed", "partial"}:
-            typer.echo(f"{drive['status']}: {drive['error'] or drive['path']}")
+            lost = f"{drive['path']}: {drive['frames_lost']} ego message(s) not made frames"
+            typer.echo(f"{drive['status']}: {drive['error'] or lost}")
     other = [d["path"] for d in summary.drives if d["engine_versions"] != summary.versions]
     if other:
         typer.secho(
