@@ -9,6 +9,8 @@ sample's frames (from its ``nav_msgs/Odometry``) are written as:
 |---|---|
 | ``tf`` | ``/tf_static`` map→odom (fixed offset), ``/tf`` odom→base_link per frame and a |
 |        | base_link→lidar transform in messages of their own (must not make frames) |
+| ``tf_footprint`` | ``/tf`` odom→base_footprint per frame, ``/tf_static`` |
+|        | base_footprint→base_link (:data:`FOOTPRINT_TO_LINK`): the ego is base_link in odom |
 | ``pose_cov`` | ``/localization/pose_with_covariance`` (``PoseWithCovarianceStamped``) |
 | ``gnss`` | ``/gnss/fix`` (``NavSatFix``) + ``/imu/data`` (``Imu``, 1 ms before each fix) |
 | ``gnss_no_imu`` | ``/gnss/fix`` only |
@@ -54,7 +56,9 @@ ORIGIN_DEG = (49.0, 8.4)
 MAP_TO_ODOM = (12.0, -7.5, 0.4)
 #: Copied messages are written this much after their log time (no ties with the ego).
 TIE_SHIFT_NS = 1_000
-VARIANTS = ("tf", "pose_cov", "gnss", "gnss_no_imu")
+#: Static base_footprint -> base_link transform of the ``tf_footprint`` variant (x m, y m, yaw).
+FOOTPRINT_TO_LINK = (0.8, 0.0, 0.0)
+VARIANTS = ("tf", "tf_footprint", "pose_cov", "gnss", "gnss_no_imu")
 _COPIED = ("/carla/ego_vehicle/objects", "/planning/path")
 
 
@@ -103,9 +107,28 @@ def _odom_pose(frame: Frame) -> tuple[float, float, float]:
     return c * dx + s * dy, -s * dx + c * dy, frame.ego.yaw_rad - oyaw
 
 
+def _footprint_pose(frame: Frame) -> tuple[float, float, float]:
+    """base_footprint in odom (= map here) such that base_link lands on the frame's pose."""
+    dx = FOOTPRINT_TO_LINK[0]
+    yaw = frame.ego.yaw_rad
+    return frame.ego.x_m - dx * math.cos(yaw), frame.ego.y_m - dx * math.sin(yaw), yaw
+
+
+def _footprint_entries(ts: Any, frames: list[Frame]) -> list[Entry]:
+    tf_type = "tf2_msgs/msg/TFMessage"
+    static = _transform(ts, frames[0].t_ns, "base_footprint", "base_link", FOOTPRINT_TO_LINK)
+    out = [Entry("/tf_static", tf_type, frames[0].t_ns - 10**6, _tf(ts, [static]))]
+    for f in frames:
+        moving = _transform(ts, f.t_ns, "odom", "base_footprint", _footprint_pose(f))
+        out.append(Entry("/tf", tf_type, f.t_ns, _tf(ts, [moving])))
+    return out
+
+
 def _ego_entries(ts: Any, frames: list[Frame], variant: str) -> list[Entry]:
     tf_type, fix_type = "tf2_msgs/msg/TFMessage", "sensor_msgs/msg/NavSatFix"
     out: list[Entry] = []
+    if variant == "tf_footprint":
+        return _footprint_entries(ts, frames)
     if variant == "tf":
         static = _transform(ts, frames[0].t_ns, "map", "odom", MAP_TO_ODOM)
         out.append(Entry("/tf_static", tf_type, frames[0].t_ns - 10**6, _tf(ts, [static])))

@@ -46,7 +46,9 @@ def reference() -> np.ndarray:
     return _poses(reference_frames(ROOT))
 
 
-@pytest.mark.parametrize(("variant", "tol_m"), [("tf", 1e-6), ("pose_cov", 1e-9)])
+@pytest.mark.parametrize(
+    ("variant", "tol_m"), [("tf", 1e-6), ("tf_footprint", 1e-6), ("pose_cov", 1e-9)]
+)
 def test_pose_egos_match_reference(
     tmp_path: Path, reference: np.ndarray, variant: str, tol_m: float
 ) -> None:
@@ -59,6 +61,18 @@ def test_pose_egos_match_reference(
     np.testing.assert_allclose(got[:, 4], reference[:, 4], atol=0.05)
     assert all(len(f.actors.ids) > 0 for f in frames[1:])
     assert info.roles.ego in {"/tf", "/localization/pose_with_covariance"}
+
+
+@pytest.mark.parametrize("storage", ["bag", "sqlite3"])
+def test_tf_ego_composed_through_a_static_footprint_link(
+    tmp_path: Path, reference: np.ndarray, storage: str
+) -> None:
+    """odom -> base_footprint on /tf, base_footprint -> base_link on /tf_static: a frame each."""
+    frames, info = _read(write_variant(ROOT, tmp_path, "tf_footprint", storage=storage))
+    assert len(frames) == len(reference)
+    np.testing.assert_allclose(_poses(frames)[:, 1:4], reference[:, 1:4], atol=1e-6)
+    assert "ego_messages_without_pose" not in info.notes
+    assert info.source_format == ("ros1-bag" if storage == "bag" else "rosbag2-sqlite3")
 
 
 def test_tf_vehicle_frame_from_profile(tmp_path: Path, reference: np.ndarray) -> None:

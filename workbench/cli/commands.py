@@ -21,6 +21,7 @@ COMMAND_MODULES: tuple[str, ...] = (
     "workbench.cli.labels",
     "workbench.cli.review",
     "workbench.cli.export",
+    "workbench.cli.batch",
     "workbench.cli.engines",
     "workbench.cli.conformance",
     "workbench.cli.samples",

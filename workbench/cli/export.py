@@ -178,5 +178,7 @@ def export(
 
 
 def register(app: typer.Typer) -> None:
-    """Add ``export`` to the CLI."""
-    app.command("export")(export)
+    """Add ``export`` to the CLI (a batch's RESULTS_DIR: clips of every drive, DIR/<drive>/)."""
+    from workbench.cli.fleet import each_drive  # noqa: PLC0415
+
+    app.command("export")(each_drive(export, lambda out, stem: out / stem, incidents_only=True))

@@ -51,6 +51,7 @@ __all__ = [
     "incident_request",
     "with_checked_incidents",
     "with_incidents",
+    "with_requests",
 ]
 
 LogArgument = Annotated[
@@ -178,6 +179,26 @@ _SHARED = (
 )
 
 
+def _own(command: Callable[..., None], injected: str) -> list[inspect.Parameter]:
+    """The command's own CLI parameters (annotations resolved), without ``injected``."""
+    hints = typing.get_type_hints(
+        command, include_extras=True, localns={"IncidentReport": Any, "IncidentRequest": Any}
+    )
+    return [
+        p.replace(annotation=hints.get(p.name, p.annotation))
+        for p in inspect.signature(command).parameters.values()
+        if p.name not in {injected, "return"}
+    ]
+
+
+def _signed(run: Callable[..., None], own: list[inspect.Parameter]) -> Callable[..., None]:
+    """``run`` with the signature typer reads: the command's options, then the shared ones."""
+    params = [*own, *_SHARED]
+    run.__signature__ = inspect.Signature(params)  # type: ignore[attr-defined]
+    run.__annotations__ = {p.name: p.annotation for p in params}
+    return run
+
+
 def with_incidents(
     command: Callable[..., None], *, check: Callable[..., None] | None = None
 ) -> Callable[..., None]:
@@ -189,12 +210,7 @@ def with_incidents(
     ``check`` (see :func:`with_checked_incidents`) sees the command's own options first, so a
     bad choice fails before the drive is evaluated.
     """
-    hints = typing.get_type_hints(command, include_extras=True, localns={"IncidentReport": Any})
-    own = [
-        p.replace(annotation=hints.get(p.name, p.annotation))
-        for p in inspect.signature(command).parameters.values()
-        if p.name not in {"report", "return"}
-    ]
+    own = _own(command, "report")
 
     @functools.wraps(command)
     def run(**kwargs: Any) -> None:
@@ -203,10 +219,23 @@ def with_incidents(
             check(**kwargs)
         command(report=find_with_progress(incident_request(kwargs["log"], **shared)), **kwargs)
 
-    params = [*own, *_SHARED]
-    run.__signature__ = inspect.Signature(params)  # type: ignore[attr-defined]
-    run.__annotations__ = {p.name: p.annotation for p in params}
-    return run
+    return _signed(run, own)
+
+
+def with_requests(command: Callable[..., None]) -> Callable[..., None]:
+    """Give a command the incident options as ``request``: drive path -> ``IncidentRequest``.
+
+    Like :func:`with_incidents`, but nothing is evaluated: the command (``workbench batch``)
+    builds one request per drive, each with the same settings.
+    """
+    own = _own(command, "request")
+
+    @functools.wraps(command)
+    def run(**kwargs: Any) -> None:
+        shared = {p.name: kwargs.pop(p.name) for p in _SHARED}
+        command(request=functools.partial(incident_request, **shared), **kwargs)
+
+    return _signed(run, own)
 
 
 def with_checked_incidents(

@@ -92,5 +92,7 @@ def incidents(
 
 
 def register(app: typer.Typer) -> None:
-    """Add ``incidents`` to the CLI."""
-    app.command("incidents")(incidents)
+    """Add ``incidents`` to the CLI (a batch's RESULTS_DIR lists every drive's incidents)."""
+    from workbench.cli.fleet import fleet_incidents, on_results  # noqa: PLC0415
+
+    app.command("incidents")(on_results(fleet_incidents)(incidents))

@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 
+from workbench.cli.fleet import each_drive
 from workbench.cli.incident_options import LogArgument, StoreOption, with_incidents
 
 if TYPE_CHECKING:
@@ -20,7 +21,6 @@ labels_app = typer.Typer(
 )
 
 
-@labels_app.command("export")
 @with_incidents
 def export(
     log: LogArgument,
@@ -43,6 +43,11 @@ def export(
     write_openlabel(export_openlabel(report, found), out)
     known = sum(i.id in found for i in report.incidents)
     typer.echo(f"wrote {out}: {log.name}, {len(report.incidents)} incident(s), {known} labelled")
+
+
+labels_app.command("export")(
+    each_drive(export, lambda out, stem: out / f"{stem}.openlabel.json", incidents_only=False)
+)
 
 
 class PreferOption(enum.StrEnum):

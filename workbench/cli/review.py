@@ -99,5 +99,7 @@ def review(
 
 
 def register(app: typer.Typer) -> None:
-    """Add ``review`` to the CLI."""
-    app.command("review")(review)
+    """Add ``review`` to the CLI (a batch's RESULTS_DIR: drive after drive, worst first)."""
+    from workbench.cli.fleet import each_drive  # noqa: PLC0415
+
+    app.command("review")(each_drive(review, None, incidents_only=True, worst_first=True))

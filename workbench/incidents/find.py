@@ -15,7 +15,7 @@ if TYPE_CHECKING:
     from collections.abc import Callable, Mapping
     from pathlib import Path
 
-    from loaders.drive import Drive
+    from loaders.drive import Drive, DriveInfo
     from loaders.errors import LoaderError
     from workbench.driver.run import EgoSize
     from workbench.engines.base import EngineRunner
@@ -134,6 +134,7 @@ class IncidentReport:
             frame, by object id.
         request: What the incidents were found with.
         findings: The drive's data-quality findings (:mod:`workbench.quality`).
+        info: The drive's metadata after the pass (format, duration, loss notes).
     """
 
     log: Path
@@ -149,6 +150,7 @@ class IncidentReport:
     )
     request: IncidentRequest | None = None
     findings: tuple[Finding, ...] = ()
+    info: DriveInfo | None = None
 
     def find(self, incident_id: str) -> Incident | None:
         """The incident of that id, if the drive has one."""
@@ -181,7 +183,7 @@ def find_incidents(
             detector.add_chunk(chunk)
             if progress is not None:
                 progress(len(detector.frame_times))
-        start_ns = drive.info.start_ns
+        start_ns, info = drive.info.start_ns, drive.info
     finally:
         drive.close()
     findings = detector.findings()
@@ -197,4 +199,5 @@ def find_incidents(
         objects_at_start_m=dict(detector.objects_at_start_m),
         request=request,
         findings=findings,
+        info=info,
     )

@@ -8,9 +8,15 @@ frame when the chain does not reach the map frame::
 
     T_map_base = T_map_odom * T_odom_base     (p_map = R_mo (R_ob p + t_ob) + t_mo)
 
-A sample is produced only by a message that holds the transform whose child is the vehicle
-frame, so there is one frame per vehicle-frame update; messages moving other frames only
-update the buffer. Frame ids are compared without a leading ``/`` (ROS 1 style ids).
+A sample is produced only by a message that moves the vehicle frame: the transform whose
+child is the vehicle frame or, when that one is static, the first frame up the chain with a
+dynamic (``/tf``) transform. In the common tree::
+
+    odom --(/tf, odometry)--> base_footprint --(/tf_static)--> base_link
+
+every ``odom -> base_footprint`` update is a frame. So there is one frame per update of the
+vehicle's pose; messages moving other frames only update the buffer. Frame ids are compared
+without a leading ``/`` (ROS 1 style ids).
 """
 
 from __future__ import annotations
@@ -96,11 +102,24 @@ class TfChain:
 
     frames: TfFrames = field(default_factory=TfFrames)
     _edges: dict[str, tuple[str, Transform]] = field(default_factory=dict)
+    _static: set[str] = field(default_factory=set)
 
     def add_static(self, transforms: Iterable[Any]) -> None:
         """Add ``/tf_static`` transforms (``geometry_msgs/TransformStamped``)."""
         for tr in transforms:
-            self._add(tr)
+            self._static.add(self._add(tr))
+
+    def moving_frame(self) -> str:
+        """The frame whose ``/tf`` updates move the vehicle: up its static links, if any."""
+        node = self.frames.vehicle_frame
+        seen = {node}
+        while node in self._static:
+            parent = self._edges[node][0]
+            if parent in seen:  # a loop of static links: not a chain
+                break
+            seen.add(parent)
+            node = parent
+        return node
 
     def _add(self, tr: Any) -> str:
         t, q = tr.transform.translation, tr.transform.rotation
@@ -135,8 +154,11 @@ class TfChain:
     def decode(self, msg: Any) -> EgoSample | None:
         """Update the buffer from a ``TFMessage``; a sample if the vehicle frame moved."""
         stamp: int | None = None
+        moving = self.moving_frame()
         for tr in msg.transforms:
-            if self._add(tr) == self.frames.vehicle_frame:
+            child = self._add(tr)
+            self._static.discard(child)
+            if child == moving:
                 stamp = ros_stamp_ns(tr.header.stamp)
         if stamp is None:
             return None

@@ -1,0 +1,114 @@
+"""A batch's drives as the single-drive commands see them: one ``IncidentReport`` each.
+
+The incidents come from ``incidents.parquet`` (not evaluated again); the request from
+``batch.json``; the frame times (which OpenLABEL frames and clip windows need) from one pass
+of the loader over the drive, without the engines.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import dataclasses
+import json
+from contextlib import closing
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from workbench.batch.executors import BatchError
+from workbench.batch.queue import incident_of, load_queue, read_table
+from workbench.incidents import IncidentReport, IncidentRequest, IncidentSettings
+
+if TYPE_CHECKING:
+    from collections.abc import Iterator
+
+__all__ = ["batch_request", "drive_reports", "request_record"]
+
+#: ``IncidentRequest`` fields that are paths.
+_PATHS = ("log", "map_path", "profile", "rss_params")
+
+
+def request_record(request: IncidentRequest) -> dict[str, Any]:
+    """The request as JSON (paths as text, ``settings`` as its two numbers), for ``batch.json``."""
+    out: dict[str, Any] = {}
+    for f in dataclasses.fields(request):
+        value = getattr(request, f.name)
+        if f.name == "settings":
+            value = dataclasses.asdict(value)
+        elif f.name in _PATHS:
+            value = None if value is None else str(value)
+        elif isinstance(value, tuple):
+            value = list(value)
+        out[f.name] = value
+    return out
+
+
+def batch_request(results: Path) -> IncidentRequest:
+    """The request of the batch in ``results`` (its ``log`` is the results directory).
+
+    Raises:
+        BatchError: ``batch.json`` is missing, unreadable or has no request.
+    """
+    path = results / "batch.json"
+    try:
+        record = json.loads(path.read_text(encoding="utf-8"))["request"]
+        values = dict(record)
+        for name in _PATHS:
+            values[name] = None if values.get(name) is None else Path(values[name])
+        values["engines"] = tuple(values["engines"])
+        values["settings"] = IncidentSettings(**values["settings"])
+        values["log"] = results
+        return IncidentRequest(**values)
+    except (OSError, ValueError, KeyError, TypeError) as err:
+        raise BatchError(f"{path}: no readable request ({err})") from err
+
+
+def _frame_times(request: IncidentRequest) -> tuple[tuple[int, int], ...]:
+    from loaders.errors import LoaderError  # noqa: PLC0415
+
+    times: list[tuple[int, int]] = []
+    # a truncated log: the frames before the break, as the batch evaluated them
+    with closing(request.open_drive()) as drive, contextlib.suppress(LoaderError):
+        times.extend((f.index, f.t_ns) for f in drive.frames())
+    return tuple(times)
+
+
+def drive_reports(
+    results: Path, *, with_incidents_only: bool = False, worst_first: bool = False
+) -> Iterator[IncidentReport]:
+    """One report per drive the batch evaluated (not ``failed``), in ``drives.parquet`` order.
+
+    Args:
+        results: The results directory.
+        with_incidents_only: Skip drives without incidents (no loader pass for them).
+        worst_first: Drives in the order of their worst incident (the review queue's order).
+
+    Raises:
+        BatchError: The batch's files cannot be read.
+        LoaderError: A drive cannot be opened any more.
+    """
+    template = batch_request(results)
+    settings = json.loads((results / "batch.json").read_text(encoding="utf-8"))["settings"]
+    by_drive: dict[str, list[dict[str, Any]]] = {}
+    for row in read_table(results, "incidents.parquet"):
+        by_drive.setdefault(row["drive_path"], []).append(row)
+    drives = read_table(results, "drives.parquet")
+    if worst_first:
+        rank = {
+            path: k
+            for k, path in enumerate(dict.fromkeys(i.drive_path for i in load_queue(results)))
+        }
+        drives.sort(key=lambda d: rank.get(d["path"], len(rank)))
+    for drive in drives:
+        rows = by_drive.get(drive["path"], [])
+        if drive["status"] == "failed" or (with_incidents_only and not rows):
+            continue
+        request = dataclasses.replace(template, log=Path(drive["path"]))
+        yield IncidentReport(
+            log=request.log,
+            drive_hash=drive["content_hash"],
+            settings=settings,
+            incidents=tuple(incident_of(r) for r in rows),
+            frame_times=_frame_times(request),
+            start_ns=int(drive["start_ns"] or 0),
+            request=request,
+        )

@@ -1,0 +1,174 @@
+"""Run a batch: skip what is fresh, submit the rest one task per log, then assemble.
+
+Each record is kept as it arrives; a lost worker's log is submitted again.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import datetime as dt
+import glob
+import json
+from concurrent.futures import FIRST_COMPLETED, Future, wait
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from workbench.batch.executors import BatchError
+from workbench.batch.reports import request_record
+from workbench.batch.results import Results
+from workbench.batch.task import evaluate_log, failed_record
+from workbench.batch.versions import engine_versions, settings_hash
+
+if TYPE_CHECKING:
+    from collections.abc import Callable, Sequence
+
+    from workbench.batch.executors import Pool
+    from workbench.incidents import IncidentRequest
+
+__all__ = ["LOG_SUFFIXES", "MAX_ATTEMPTS", "BatchSummary", "expand_logs", "run_batch"]
+
+#: Files a directory argument contributes (rosbag2 directories are taken whole).
+LOG_SUFFIXES = (".mcap", ".bag", ".db3", ".xml", ".saa", ".scn")
+#: Times a log is submitted before a lost worker counts as its failure.
+MAX_ATTEMPTS = 3
+
+
+def _is_rosbag2(path: Path) -> bool:
+    return path.is_dir() and (path / "metadata.yaml").is_file()
+
+
+def _walk(folder: Path) -> list[Path]:
+    found: list[Path] = []
+    for entry in sorted(folder.iterdir()):
+        if _is_rosbag2(entry):
+            found.append(entry)
+        elif entry.is_dir():
+            found.extend(_walk(entry))
+        elif entry.suffix in LOG_SUFFIXES and not entry.name.startswith("."):
+            found.append(entry)
+    return found
+
+
+def expand_logs(arguments: Sequence[str]) -> list[Path]:
+    """The logs named by files, directories (searched for logs) and globs.
+
+    Absolute, sorted, unique. A rosbag2 directory (it holds ``metadata.yaml``) is one log;
+    ``.db3`` files inside it are not listed again.
+
+    Raises:
+        BatchError: An argument matches nothing.
+    """
+    out: dict[Path, None] = {}
+    for argument in arguments:
+        found = sorted(glob.glob(argument))  # noqa: PTH207 - a user's pattern, maybe absolute
+        matches = [Path(m).resolve() for m in found] or [Path(argument).resolve()]
+        for path in matches:
+            if path.is_dir() and not _is_rosbag2(path):
+                out.update(dict.fromkeys(_walk(path)))
+            elif path.exists():
+                out.update(dict.fromkeys([path]))
+            else:
+                raise BatchError(f"{argument}: no such file, directory or match")
+    inside_bags = {p for p in out if p.suffix == ".db3" and _is_rosbag2(p.parent)}
+    return sorted(p for p in out if p not in inside_bags)
+
+
+@dataclass(frozen=True, slots=True)
+class BatchSummary:
+    """What a batch did.
+
+    Attributes:
+        drives: Every log's record (no incidents), in table order (by path).
+        evaluated: Logs evaluated by this run (the rest were fresh).
+        skipped: Logs kept from an earlier run.
+        executor: The pool's name.
+        versions: This command's engine versions as JSON text (as in ``drives.parquet``).
+    """
+
+    drives: list[dict[str, Any]]
+    evaluated: int
+    skipped: int
+    executor: str
+    versions: str = ""
+
+    @property
+    def failed(self) -> list[dict[str, Any]]:
+        """The failed logs' records."""
+        return [d for d in self.drives if d["status"] == "failed"]
+
+
+def run_batch(
+    requests: Sequence[IncidentRequest],
+    out: Path,
+    pool: Pool,
+    *,
+    on_start: Callable[[int, int], None] | None = None,
+    on_done: Callable[[dict[str, Any]], None] | None = None,
+    window: int | None = None,
+    task: Callable[[IncidentRequest], dict[str, Any]] = evaluate_log,
+) -> BatchSummary:
+    """Evaluate every request's log on ``pool`` into the results directory ``out``.
+
+    Args:
+        requests: One per log, same settings.
+        out: The results directory.
+        pool: Where the tasks run.
+        on_start: Called with ``(logs to evaluate, logs kept)`` before the first submit.
+        on_done: Called with each finished log's record.
+        window: Tasks in flight at most (default: 4 per worker, at least 8).
+        task: The per-log task (tests wrap :func:`evaluate_log`; it must never raise).
+
+    Raises:
+        BatchError: The results cannot be written.
+    """
+    started = dt.datetime.now(dt.UTC)
+    results = Results(out)
+    versions = engine_versions()
+    s_hash = settings_hash(requests[0]) if requests else ""
+    todo = [r for r in requests if not results.is_fresh(r.log, versions, s_hash)]
+    if on_start is not None:
+        on_start(len(todo), len(requests) - len(todo))
+    attempts: dict[Path, int] = {}
+    queue = list(reversed(todo))
+    flying: dict[Future[Any], IncidentRequest] = {}
+    limit = window or max(8, 4 * pool.workers)
+    while queue or flying:
+        while queue and len(flying) < limit:
+            request = queue.pop()
+            attempts[request.log] = attempts.get(request.log, 0) + 1
+            flying[pool.submit(task, request)] = request
+        done, _ = wait(flying, return_when=FIRST_COMPLETED)
+        for future in done:
+            request = flying.pop(future)
+            try:
+                record = future.result()
+            except Exception as err:  # noqa: BLE001 - the task never raises: a lost worker
+                pool.recover()
+                if attempts[request.log] < MAX_ATTEMPTS:
+                    queue.append(request)
+                    continue
+                detail = f"worker lost {MAX_ATTEMPTS} times ({type(err).__name__}: {err})"
+                record = failed_record(request, "WorkerLost", detail, worker="")
+            results.put(record)
+            if on_done is not None:
+                on_done(record)
+    logs = sorted((r.log for r in requests), key=str)
+    batch = {
+        "settings": requests[0].record() if requests else {},
+        "request": request_record(requests[0]) if requests else None,
+        "settings_hash": s_hash,
+        "engine_versions": versions,
+        "executor": pool.name,
+        "started": started.isoformat(),
+        "ended": dt.datetime.now(dt.UTC).isoformat(),
+        "evaluated": len(todo),
+    }
+    drives = results.assemble(logs, batch)
+    text = json.dumps(versions, sort_keys=True)
+    return BatchSummary(drives, len(todo), len(requests) - len(todo), pool.name, text)
+
+
+def requests_for(logs: Sequence[Path], template: IncidentRequest) -> list[IncidentRequest]:
+    """One request per log with the template's settings."""
+    return [dataclasses.replace(template, log=log) for log in logs]
