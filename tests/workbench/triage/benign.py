@@ -83,9 +83,9 @@ class StepFacts:
         if self.both_stand:
             return "both stand"
         if self.far_opening:
-            return f"gap {self.gap_m:.1f} m opening"
+            return f"gap > {FAR_M:.0f} m opening"
         if self.laterally_clear:
-            return f"laterally clear {self.lateral_clear_m:.1f} m"
+            return f"laterally clear >= {CLEAR_M} m"
         return "not benign"
 
 

@@ -101,7 +101,12 @@ def _benign_reasons(xml: Path, entry: Entry) -> list[str] | None:
         facts = pair_facts(ego, tracks[obj], span)
         if not facts or not all(f.benign for f in facts):
             return None
-        reasons.append(f"{obj}: " + ", ".join(sorted({f.reason() for f in facts})))
+        closest = min(facts, key=lambda f: f.gap_m)
+        reasons.append(
+            f"{obj}: "
+            + ", ".join(sorted({f.reason() for f in facts}))
+            + f" (min gap {closest.gap_m:.1f} m, lateral {closest.lateral_clear_m:.1f} m there)"
+        )
     return reasons
 
 
