@@ -277,7 +277,11 @@ def drive_verdict(xml: Path, *, full: bool = False) -> dict[str, Any]:
         "ego": ego_id,
         "ego_first_step": first,
         "mode": "full" if full else "near-path",
-        "pair_steps": {"crime": len(run.pair_steps), "numpy": len(ours)},
+        "pair_steps": {
+            "asked": len(ours) if full else len(near),
+            "crime": len(run.pair_steps),
+            "numpy": len(ours),
+        },
         "crime_errors": dict(sorted(run.errors.items())),
         "seconds": {"crime": round(run.seconds, 2), "numpy": round(numpy_s, 2)},
         "agreement": flag_agreement(run.pair_steps, ours),

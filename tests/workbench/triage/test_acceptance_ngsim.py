@@ -135,5 +135,5 @@ def test_no_incident_where_both_stand_throughout(external_dir: Path, name: str) 
             for obj in incident.get("objects", ()):
                 facts = pair_facts(ego, tracks[str(obj)], (first, last, scenario.dt_ns / 1e9))
                 if facts and all(f.both_stand for f in facts):
-                    standing.append(f"{incident.get('id')} object {obj} frames {first}-{last}")
+                    standing.append(f"{incident.get('id')} object {obj} steps {first}-{last}")
     assert not standing, f"{name}: incidents in which both parties stand throughout: {standing}"

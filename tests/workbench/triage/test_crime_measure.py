@@ -119,7 +119,10 @@ def test_crime_agrees_with_recompute(external_dir: Path, name: str) -> None:
     verdict = crime_side.drive_verdict(xml)
     assert verdict["ego"] == commonroad_ego_candidates(xml)[0]
     agreement = verdict["agreement"]
-    assert agreement["compared"] > 0 or verdict["pair_steps"]["numpy"] > 0
+    counts = verdict["pair_steps"]
+    # Every pair-step asked for was computed by CriMe or its error counted.
+    assert counts["crime"] + sum(verdict["crime_errors"].values()) == counts["asked"]
+    assert agreement["compared"] == counts["crime"]
     assert agreement["agree"] >= MIN_AGREEMENT, (name, agreement, verdict["crime_only"])
     for conflict in verdict["conflicts"]:
         assert conflict["min_ttc_s"] <= 1.5 or conflict["max_required_decel_mps2"] >= 3.4
