@@ -121,8 +121,12 @@ def _judgement(xml: Path, entry: Entry, verdict: str, judgements: dict[str, str]
     if verdict.startswith("**real"):
         return "*auto*: real — a conflict the independent measure confirms"
     if "benign" in verdict:
-        return "*auto*: false positive — nothing could collide"
-    return "*auto*: doubtful — no conflict by the independent measure; look at it"
+        why = verdict.split("benign: ", 1)[1].split(";", maxsplit=1)[0].rstrip(")")
+        return f"*auto*: false positive — nothing could collide ({why} throughout)"
+    return (
+        "*auto*: doubtful — no TTC ≤ 1.5 s nor deceleration ≥ 3.4 m/s² in path, yet "
+        "not clear of danger at every step; look at it"
+    )
 
 
 def _screenshot(xml: Path, entry: Entry, shots: Path, page: Path) -> str | None:
