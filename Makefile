@@ -10,6 +10,11 @@ OUT    ?= out
 ORACLE_VENV ?= .venv-oracle-commonroad
 ORACLE_STAMP := $(ORACLE_VENV)/.installed
 
+# Side venv for the independent criticality cross-check (commonroad-crime, which brings
+# commonroad-io and so the same protobuf pin): built like the commonroad-io oracle's.
+CRIME_VENV ?= .venv-oracle-crime
+CRIME_STAMP := $(CRIME_VENV)/.installed
+
 # Side venv for the ad-rss-map-integration 5.0 cross-check (its wheel needs the §8.4 fix).
 MAP_ORACLE_VENV ?= .venv-oracle-adrss-map
 MAP_ORACLE_STAMP := $(MAP_ORACLE_VENV)/.installed
@@ -18,7 +23,7 @@ MAP_ORACLE_STAMP := $(MAP_ORACLE_VENV)/.installed
 # source changes; skipped with a message where no C compiler exists (pure Python then).
 COMPILED := build/compiled/manifest.json
 
-.PHONY: all setup compiled demo test lint typecheck layers pytest oracle-commonroad oracle-adrss-map bench samples screenshot clean
+.PHONY: all setup compiled demo test lint typecheck layers pytest oracle-commonroad oracle-crime acceptance oracle-adrss-map bench samples screenshot clean
 
 all: test
 
@@ -50,7 +55,7 @@ layers: $(STAMP)
 	$(BIN)/lint-imports
 
 pytest: $(STAMP) $(COMPILED)
-	$(BIN)/python -m pytest -n 2 --dist loadfile $(PYTEST_ARGS)
+	$(BIN)/python -m pytest -n 2 --dist loadfile -m "not acceptance" $(PYTEST_ARGS)
 
 $(ORACLE_STAMP): $(STAMP)
 	$(PYTHON) -m venv $(ORACLE_VENV)
@@ -64,6 +69,24 @@ oracle-commonroad: $(ORACLE_STAMP)
 	WORKBENCH_ORACLE_ENV=commonroad PROTOCOL_BUFFERS_PYTHON_IMPLEMENTATION=python \
 		$(ORACLE_VENV)/bin/python -m pytest -q -p no:cacheprovider tests/loaders/test_oracle_commonroad.py
 
+$(CRIME_STAMP): $(STAMP)
+	$(PYTHON) -m venv $(CRIME_VENV)
+	$(CRIME_VENV)/bin/python -m pip install --quiet --upgrade pip
+	$(CRIME_VENV)/bin/python -m pip install --quiet commonroad-crime==0.4.5
+	$(CRIME_VENV)/bin/python -m pip install --quiet --no-deps --upgrade protobuf==$$($(BIN)/python -c 'import google.protobuf as p; print(p.__version__)')
+	$(CRIME_VENV)/bin/python -c 'import pathlib, sys, sysconfig; pathlib.Path(sysconfig.get_paths()["purelib"], "zz_project_venv.pth").write_text(f"import site; site.addsitedir({sys.argv[1]!r})\n")' "$$($(BIN)/python -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')"
+	@touch $(CRIME_STAMP)
+
+oracle-crime: $(CRIME_STAMP) $(COMPILED)
+	WORKBENCH_ORACLE_ENV=crime PROTOCOL_BUFFERS_PYTHON_IMPLEMENTATION=python \
+		$(CRIME_VENV)/bin/python -m pytest -q -p no:cacheprovider tests/workbench/triage/test_crime_measure.py
+
+# Issue 27's acceptance on the 11 NGSIM scenarios (tests/workbench/triage), whole in the side
+# venv (the real-conflict clause needs commonroad-crime). Not part of `test` yet.
+acceptance: $(CRIME_STAMP) $(COMPILED)
+	WORKBENCH_ORACLE_ENV=crime PROTOCOL_BUFFERS_PYTHON_IMPLEMENTATION=python \
+		$(CRIME_VENV)/bin/python -m pytest -q -p no:cacheprovider -m acceptance tests/workbench/triage
+
 $(MAP_ORACLE_STAMP):
 	$(PYTHON) -m venv $(MAP_ORACLE_VENV)
 	$(MAP_ORACLE_VENV)/bin/python -m pip install --quiet --upgrade pip
@@ -76,7 +99,7 @@ oracle-adrss-map: $(STAMP) $(COMPILED) $(MAP_ORACLE_STAMP)
 		$(BIN)/python -m pytest -q -p no:cacheprovider tests/rss/scene/test_crosscheck_adrss_map.py \
 		tests/rss/scene/test_crosscheck_drives.py tests/rss/scene/test_scene_reference.py
 
-test: lint typecheck layers pytest oracle-commonroad oracle-adrss-map
+test: lint typecheck layers pytest oracle-commonroad oracle-crime oracle-adrss-map
 
 bench: $(STAMP) $(COMPILED) $(MAP_ORACLE_STAMP)
 	$(BIN)/python -m bench.run --out docs/benchmarks.md
@@ -89,4 +112,4 @@ screenshot: demo
 	bash tools/screenshot.sh $(OUT)/demo/highway_cut_in.rrd docs/replay_reach_highway_cut_in.png 120
 
 clean:
-	rm -rf $(VENV) $(ORACLE_VENV) $(MAP_ORACLE_VENV) $(OUT) .mypy_cache .ruff_cache .pytest_cache build
+	rm -rf $(VENV) $(ORACLE_VENV) $(CRIME_VENV) $(MAP_ORACLE_VENV) $(OUT) .mypy_cache .ruff_cache .pytest_cache build

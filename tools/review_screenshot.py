@@ -29,11 +29,14 @@ def main() -> None:
     parser.add_argument("out", type=Path)
     parser.add_argument("--engines", default="rss,reachsets")
     parser.add_argument("--rank", type=int, default=0, help="0 = the worst incident")
+    parser.add_argument("--incident", help="this incident id instead of --rank")
     parser.add_argument("--size", default="1600x900")
     args = parser.parse_args()
     request = IncidentRequest(args.log, engines=tuple(args.engines.split(",")))
     report = find_incidents(request)
-    incident = report.incidents[args.rank]
+    incident = report.find(args.incident) if args.incident else report.incidents[args.rank]
+    if incident is None:
+        parser.error(f"{args.log}: no incident {args.incident}")
     print(f"{incident.id}: {incident.engine} {incident.cause} object {incident.objects} "
           f"frames {incident.start_frame}-{incident.end_frame}")  # fmt: skip
     width, height = (int(v) for v in args.size.split("x"))
