@@ -19,7 +19,7 @@ import numpy as np
 from workbench.errors import WorkbenchError
 
 if TYPE_CHECKING:
-    from collections.abc import Iterator
+    from collections.abc import Callable, Iterator
     from pathlib import Path
 
 __all__ = [
@@ -53,7 +53,12 @@ def finite(value: Any) -> Any:
 
 
 def json_text(
-    value: Any, *, indent: int | None = None, sort_keys: bool = False, compact: bool = False
+    value: Any,
+    *,
+    indent: int | None = None,
+    sort_keys: bool = False,
+    compact: bool = False,
+    default: Callable[[Any], Any] | None = None,
 ) -> str:
     """``value`` as strict JSON text (non-finite numbers as ``null``; :func:`finite`).
 
@@ -62,6 +67,7 @@ def json_text(
         indent: Indentation of nested values (``None``: one line).
         sort_keys: Sort the keys of every object.
         compact: No blanks after ``,`` and ``:``.
+        default: Turns a value JSON cannot hold into one it can (e.g. ``str`` for paths).
     """
     separators = (",", ":") if compact else None
     return json.dumps(
@@ -70,6 +76,7 @@ def json_text(
         sort_keys=sort_keys,
         separators=separators,
         allow_nan=False,
+        default=default,
     )
 
 

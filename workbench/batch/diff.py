@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 from workbench.batch.queue import load_queue, read_table
+from workbench.outputs import json_text
 
 if TYPE_CHECKING:
     from collections.abc import Callable, Iterable
@@ -242,13 +243,11 @@ def diff_results(
 
 def rows(changes: Iterable[Change]) -> list[dict[str, Any]]:
     """Flat rows of the changes (``diff.parquet``): both sides' id, cause and interval."""
-    import json  # noqa: PLC0415
-
     out = []
     for change in changes:
         rec = change.record()
         a, b = rec.pop("a") or {}, rec.pop("b") or {}
-        rec["differences"] = json.dumps(rec["differences"], sort_keys=True, default=str)
+        rec["differences"] = json_text(rec["differences"], sort_keys=True, default=str)
         for side, row in (("a", a), ("b", b)):
             for name in ("id", "cause", "start_ns", "end_ns", "severity.worst_margin"):
                 rec[f"{side}.{name}"] = row.get(name)

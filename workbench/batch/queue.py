@@ -7,15 +7,15 @@ filters and the order are theirs.
 
 from __future__ import annotations
 
-import json
 import math
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from workbench.batch.executors import BatchError
-from workbench.batch.results import INCIDENTS_SCHEMA, finite, write_atomic
+from workbench.batch.results import INCIDENTS_SCHEMA
 from workbench.incidents.model import Incident, Severity
+from workbench.outputs import json_text, write_text
 
 if TYPE_CHECKING:
     from collections.abc import Iterable
@@ -127,8 +127,7 @@ def write_queue(incidents: Iterable[FleetIncident], path: Path) -> None:
     """
     rows = [f.row for f in incidents]
     if path.suffix == ".json":
-        text = json.dumps(finite(rows), allow_nan=False, indent=2) + "\n"
-        write_atomic(path, text.encode())
+        write_text(path, json_text(rows, indent=2) + "\n", "the incident list")
         return
     if path.suffix not in {".parquet", ".csv"}:
         raise BatchError(f"{path}: must end in .parquet, .json or .csv, not {path.suffix!r}")

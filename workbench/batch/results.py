@@ -21,10 +21,10 @@ from __future__ import annotations
 
 import hashlib
 import json
-import math
 from typing import TYPE_CHECKING, Any
 
 from workbench.batch.executors import BatchError
+from workbench.outputs import json_text, write_text
 
 if TYPE_CHECKING:
     from collections.abc import Iterable, Sequence
@@ -34,9 +34,7 @@ __all__ = [
     "DRIVES_SCHEMA",
     "INCIDENTS_SCHEMA",
     "Results",
-    "finite",
     "is_results_dir",
-    "write_atomic",
 ]
 
 #: Version of the ``incidents.parquet`` row schema (Parquet metadata ``rss_workbench.schema``).
@@ -85,32 +83,6 @@ def is_results_dir(path: Path) -> bool:
     return path.is_dir() and (path / "batch.json").is_file()
 
 
-def finite(value: Any) -> Any:
-    """``value`` with every non-finite float (at any depth) replaced by ``None``."""
-    if isinstance(value, float):
-        return value if math.isfinite(value) else None
-    if isinstance(value, dict):
-        return {k: finite(v) for k, v in value.items()}
-    if isinstance(value, list | tuple):
-        return [finite(v) for v in value]
-    return value
-
-
-def write_atomic(path: Path, data: bytes) -> None:
-    """Write ``data`` to ``path`` through ``<path>.part`` and a rename.
-
-    Raises:
-        BatchError: The file cannot be written.
-    """
-    part = path.with_name(path.name + ".part")
-    try:
-        part.write_bytes(data)
-        part.replace(path)
-    except OSError as err:
-        part.unlink(missing_ok=True)
-        raise BatchError(f"{path}: cannot write ({err.strerror})") from err
-
-
 def _key(log: str) -> str:
     return hashlib.sha256(log.encode()).hexdigest()[:24]
 
@@ -136,8 +108,9 @@ class Results:
 
     def put(self, record: dict[str, Any]) -> None:
         """Keep a finished log's record (atomically; NaN and infinities become null)."""
-        text = json.dumps(finite(record), allow_nan=False, sort_keys=True)
-        write_atomic(self.record_path(record["path"]), text.encode())
+        write_text(
+            self.record_path(record["path"]), json_text(record, sort_keys=True), "a batch record"
+        )
 
     def get(self, log: str) -> dict[str, Any] | None:
         """The kept record of ``log``, or ``None`` (none, or unreadable: evaluate again)."""
@@ -195,8 +168,8 @@ class Results:
                 {"path": d["path"], "error": d["error"]} for d in drives if d["status"] == "failed"
             ],
         }
-        text = json.dumps(finite(summary), allow_nan=False, indent=2, sort_keys=True) + "\n"
-        write_atomic(self.root / "batch.json", text.encode())
+        text = json_text(summary, indent=2, sort_keys=True) + "\n"
+        write_text(self.root / "batch.json", text, "the batch summary")
         return drives
 
     def _parquet(self, name: str, table: Any, schema: str) -> None:
@@ -215,7 +188,7 @@ class Results:
 
 def _drive_row(record: dict[str, Any]) -> dict[str, Any]:
     row = {name: record.get(name) for name in DRIVE_COLUMNS if name != "incidents"}
-    row["engine_versions"] = json.dumps(record.get("engine_versions"), sort_keys=True)
+    row["engine_versions"] = json_text(record.get("engine_versions"), sort_keys=True)
     row["incidents"] = len(record["incidents"])
     return row
 

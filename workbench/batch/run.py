@@ -8,7 +8,6 @@ from __future__ import annotations
 import dataclasses
 import datetime as dt
 import glob
-import json
 from concurrent.futures import FIRST_COMPLETED, Future, wait
 from dataclasses import dataclass
 from pathlib import Path
@@ -19,6 +18,7 @@ from workbench.batch.reports import request_record
 from workbench.batch.results import Results
 from workbench.batch.task import evaluate_log, failed_record
 from workbench.batch.versions import engine_versions, settings_hash
+from workbench.outputs import json_text
 
 if TYPE_CHECKING:
     from collections.abc import Callable, Sequence
@@ -165,7 +165,7 @@ def run_batch(
         "evaluated": len(todo),
     }
     drives = results.assemble(logs, batch)
-    text = json.dumps(versions, sort_keys=True)
+    text = json_text(versions, sort_keys=True)
     return BatchSummary(drives, len(todo), len(requests) - len(todo), pool.name, text)
 
 

@@ -9,9 +9,10 @@ from __future__ import annotations
 
 import functools
 import hashlib
-import json
 from pathlib import Path
 from typing import TYPE_CHECKING
+
+from workbench.outputs import json_text
 
 if TYPE_CHECKING:
     from workbench.incidents import IncidentRequest
@@ -46,5 +47,5 @@ def engine_versions() -> dict[str, str]:
 
 def settings_hash(request: IncidentRequest) -> str:
     """Hex SHA-256 (16 digits) of :meth:`IncidentRequest.record` (no drive) as canonical JSON."""
-    text = json.dumps(request.record(), sort_keys=True, default=str)
+    text = json_text(request.record(), sort_keys=True, default=str)
     return hashlib.sha256(text.encode()).hexdigest()[:16]

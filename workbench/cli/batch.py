@@ -161,14 +161,12 @@ def _fmt(value: object) -> str:
 
 
 def _write_diff(result: DiffResult, path: Path, header: dict[str, Any]) -> None:
-    import json  # noqa: PLC0415
-
     from workbench.batch.diff import rows  # noqa: PLC0415
-    from workbench.batch.results import finite, write_atomic  # noqa: PLC0415
+    from workbench.outputs import finite, json_text, write_text  # noqa: PLC0415
 
     if path.suffix == ".json":
         body = {**header, "changes": [c.record() for c in result.changes]}
-        write_atomic(path, (json.dumps(finite(body), allow_nan=False, indent=2) + "\n").encode())
+        write_text(path, json_text(body, indent=2) + "\n", "the diff")
     elif path.suffix == ".parquet":
         import pyarrow as pa  # noqa: PLC0415
         import pyarrow.parquet as pq  # noqa: PLC0415
