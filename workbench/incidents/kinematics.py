@@ -14,6 +14,11 @@ in the incident's unsafe frames, so incidents of different engines compare in on
   ``|v_rel|² / (2 d)`` with ``d = |v_rel| · ttc`` the distance travelled to contact
   (``None`` without a collision course).
 
+The incident's ``criticality`` (:func:`workbench.incidents.order.criticality` of a frame's
+TTC and deceleration) is the largest one held over ``SUSTAIN_FRAMES`` consecutive unsafe
+frames (the smallest of theirs), so a single frame's noise in a recorded heading or speed
+does not make a danger; an incident shorter than that has criticality 0.
+
 The boxes' time of first contact comes from the separating-axis theorem on moving convex
 polygons: along each of the four edge normals the projections overlap during one time
 interval; the boxes touch while every interval does.
@@ -25,15 +30,28 @@ import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from workbench.incidents.order import criticality
+
 if TYPE_CHECKING:
     from collections.abc import Callable
 
     from loaders.records import Frame
 
-__all__ = ["Box", "Motion", "MotionFacts", "box_gap_m", "motion", "motion_of", "time_to_contact_s"]
+__all__ = [
+    "SUSTAIN_FRAMES",
+    "Box",
+    "Motion",
+    "MotionFacts",
+    "box_gap_m",
+    "motion",
+    "motion_of",
+    "time_to_contact_s",
+]
 
 #: Finite-difference step of the closing speed [s].
 CLOSING_STEP_S = 0.05
+#: Consecutive unsafe frames a criticality must hold to count.
+SUSTAIN_FRAMES = 2
 
 Point = tuple[float, float]
 
@@ -178,18 +196,25 @@ class MotionFacts:
         self.closing_max_mps: float | None = None
         self.ttc_min_s: float | None = None
         self.decel_max_mps2: float | None = None
+        self.criticality = 0.0
+        self._recent: list[float] = []
 
     def add(self, found: Motion) -> None:
         """One unsafe frame's facts."""
+        self._recent = [*self._recent, criticality(found.ttc_s, found.decel_mps2)]
+        self._recent = self._recent[-SUSTAIN_FRAMES:]
+        if len(self._recent) == SUSTAIN_FRAMES:
+            self.criticality = max(self.criticality, min(self._recent))
         self.gap_min_m = _pick(min, self.gap_min_m, found.gap_m)
         self.closing_max_mps = _pick(max, self.closing_max_mps, found.closing_speed_mps)
         self.ttc_min_s = _pick(min, self.ttc_min_s, found.ttc_s)
         self.decel_max_mps2 = _pick(max, self.decel_max_mps2, found.decel_mps2)
 
     def facts(self) -> dict[str, float | None]:
-        """``gap_min_m``, ``closing_speed_max_mps``, ``path_ttc_min_s``, ``path_decel_max_mps2``.
+        """The facts by name (the module docstring's, ``path_`` ones and ``criticality``).
 
-        Values rounded to 1e-6; ``None`` where no frame had the fact (never on a collision
+        ``gap_min_m``, ``closing_speed_max_mps``, ``path_ttc_min_s``, ``path_decel_max_mps2``;
+        values rounded to 1e-6; ``None`` where no frame had the fact (never on a collision
         course); no facts at all when no frame had the object's state.
         """
         if self.gap_min_m is None:
@@ -199,6 +224,7 @@ class MotionFacts:
             "closing_speed_max_mps": self.closing_max_mps,
             "path_ttc_min_s": self.ttc_min_s,
             "path_decel_max_mps2": self.decel_max_mps2,
+            "criticality": self.criticality,
         }
         return {k: None if v is None else round(v, 6) for k, v in values.items()}
 

@@ -8,9 +8,11 @@ their incidents but never compared across engines. Most severe first:
 
 1. clean before suspect: incidents whose facts rest on implausible data (``data_suspect``)
    come after every clean one;
-2. higher criticality: ``max(TTC_REF_S / path_ttc, path_decel / DECEL_REF_MPS2)`` over the
-   incident, 0 when never on a collision course (>= 1: critical by the thresholds of the
-   criticality-metrics catalogue, TTC <= 1.5 s or required deceleration >= 3.4 m/s²);
+2. higher criticality: ``max(TTC_REF_S / ttc, decel / DECEL_REF_MPS2)`` of the frames'
+   time to collision along the path and required deceleration, the largest held over two
+   consecutive unsafe frames (:mod:`workbench.incidents.kinematics`), 0 when never on a
+   collision course (>= 1: critical by the thresholds of the criticality-metrics
+   catalogue, TTC <= 1.5 s or required deceleration >= 3.4 m/s²);
 3. smaller gap between the footprints;
 4. larger compliance shortfall (engines that judge compliance: RSS);
 5. faster closing;
@@ -62,11 +64,9 @@ def criticality(ttc_s: float | None, decel_mps2: float | None) -> float:
 def rank(incident: Incident) -> dict[str, float | None]:
     """The facts the order compares, by name (JSON-ready: finite or ``None``)."""
     facts = incident.severity.facts
-    ttc = _number(facts.get("path_ttc_min_s"))
-    decel = _number(facts.get("path_decel_max_mps2"))
     return {
         "suspect": float(bool(incident.data_suspect)),
-        "criticality": round(criticality(ttc, decel), 6),
+        "criticality": _number(facts.get("criticality")) or 0.0,
         "gap_min_m": _number(facts.get("gap_min_m")),
         "shortfall_max_mps2": _number(facts.get("shortfall_max_mps2")),
         "closing_speed_max_mps": _number(facts.get("closing_speed_max_mps")),
