@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
+from typing import Any
 
 from tests.workbench.cli_runs import run_workbench
 from workbench.incidents import Incident, Severity, event_id, group_events
@@ -53,7 +54,7 @@ def test_disjoint_windows_or_other_objects_are_other_events():
     assert [e.id for e in group_events([nameless, other, later, first])] == [e.id for e in events]
 
 
-def _incidents_json(tmp_path: Path, *extra: str) -> tuple[list[dict], str]:
+def _incidents_json(tmp_path: Path, *extra: str) -> tuple[list[dict[str, Any]], str]:
     out = tmp_path / f"i{len(extra)}.json"
     args = ["--engines", "rss,reachsets", "--reach-method", "simple", "--reach-rules", "reference"]
     assert run_workbench(["incidents", str(LOG), *args, *extra, "--out", str(out)]) == 0

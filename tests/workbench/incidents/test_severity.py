@@ -19,6 +19,8 @@ from workbench.incidents.order import TTC_REF_S, criticality
 if TYPE_CHECKING:
     from pathlib import Path
 
+    from workbench.incidents.model import Fact
+
 T0 = 1_000_000_000
 DT = 100_000_000
 
@@ -78,7 +80,10 @@ class _Frame:
 
 def _scene(ego_x: float, objects: dict[str, tuple[float, float, float]]) -> SimpleNamespace:
     ids = list(objects)
-    column = lambda k: np.array([objects[i][k] for i in ids], dtype=float)  # noqa: E731
+
+    def column(k: int) -> np.ndarray:
+        return np.array([objects[i][k] for i in ids], dtype=float)
+
     n = len(ids)
     actors = SimpleNamespace(
         ids=np.array(ids),
@@ -118,7 +123,9 @@ def test_each_incident_gets_its_own_objects_margin_and_facts():
     assert [i.objects[0] for i in detector.incidents()] == ["462", "476"]
 
 
-def _incident(name: str, facts: dict, *, suspect: tuple[str, ...] = (), margin: float = 0.0):
+def _incident(
+    name: str, facts: dict[str, Fact], *, suspect: tuple[str, ...] = (), margin: float = 0.0
+) -> Incident:
     return Incident(
         id=f"rss-000000-{name}",
         engine="rss",

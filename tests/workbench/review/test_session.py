@@ -1,5 +1,6 @@
 from tests.workbench.review.helpers import report
 from workbench.annotations import LabelStore
+from workbench.incidents import IncidentReport
 from workbench.review import ReviewSession
 
 
@@ -38,7 +39,7 @@ def test_verdicts_tags_notes_undo_and_resume(tmp_path):
         assert again.index == 0
 
 
-def _overlapping_report():
+def _overlapping_report() -> IncidentReport:
     import dataclasses  # noqa: PLC0415
 
     from tests.workbench.review.helpers import incident  # noqa: PLC0415
