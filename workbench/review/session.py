@@ -74,6 +74,21 @@ class ReviewSession:
         """The incidents a verdict on this row labels (its event's; itself by incident)."""
         return self._members.get(incident.id, (incident,))
 
+    def evidence(self, incident: Incident) -> list[str]:
+        """One line per other incident of the row's event (its engine's evidence)."""
+        event = self.event_ids.get(incident.id)
+        others = [m for m in self.members(incident) if m.id != incident.id]
+        if event is None:
+            return []
+        lines = [f"event {event}: {len(others) + 1} incident(s)"]
+        for other in others:
+            margin = other.severity.record()["worst_margin"]
+            lines.append(
+                f"  also {other.id}: {other.engine} {other.cause}, frames "
+                f"{other.start_frame}-{other.end_frame}, margin {margin}"
+            )
+        return lines
+
     def _done(self, incident: Incident) -> bool:
         return all(m.id in self.labels for m in self.members(incident))
 

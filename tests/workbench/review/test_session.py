@@ -56,6 +56,10 @@ def test_a_verdict_on_an_event_labels_each_of_its_incidents(tmp_path):
         assert len(session.incidents) == 3  # rss + reachsets on object 1 are one event
         event_incidents = {i.id for i in session.members(session.incidents[0])}
         assert event_incidents == {rep.incidents[0].id, rep.incidents[1].id}
+        shown = session.evidence(session.incidents[0])  # every engine's evidence is shown
+        assert shown[0].startswith("event event-000010-")
+        other = ({rep.incidents[0].id, rep.incidents[1].id} - {session.incidents[0].id}).pop()
+        assert other in shown[1]
         session.add_tag("cut-in")
         session.give("confirmed")
         labels = store.labels(rep.drive_hash)
