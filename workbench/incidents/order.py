@@ -23,10 +23,33 @@ their incidents but never compared across engines. Most severe first:
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Protocol
 
 if TYPE_CHECKING:
-    from workbench.incidents.model import Incident
+    from collections.abc import Mapping
+
+
+class _Severity(Protocol):
+    @property
+    def facts(self) -> Mapping[str, object]: ...
+    @property
+    def unsafe_frames(self) -> int: ...
+
+
+class Incident(Protocol):
+    """What the order reads of an incident (``workbench.incidents.model.Incident``)."""
+
+    @property
+    def id(self) -> str: ...
+    @property
+    def start_ns(self) -> int: ...
+    @property
+    def duration_s(self) -> float: ...
+    @property
+    def data_suspect(self) -> tuple[str, ...]: ...
+    @property
+    def severity(self) -> _Severity: ...
+
 
 __all__ = [
     "DECEL_REF_MPS2",
