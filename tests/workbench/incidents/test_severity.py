@@ -183,3 +183,16 @@ def test_on_us101_5_1_each_incident_has_its_own_margin(external_dir: Path, scena
     assert follower.severity.worst_margin > close.severity.worst_margin
     assert report.incidents.index(close) < report.incidents.index(follower)
     json.dumps([i.record() for i in report.incidents], allow_nan=False)
+
+
+def test_a_reach_set_incident_keeps_its_own_objects_collision_offset():
+    from reachsets.engine import Collision  # noqa: PLC0415
+    from workbench.engines.reachsets.verdict import ReachVerdict  # noqa: PLC0415
+
+    hits = (Collision("a", 0.8, 8), Collision("b", 1.6, 16), Collision("a", 1.2, 12))
+    result = SimpleNamespace(collisions=hits)
+    verdict = ReachVerdict(False, ("a", "b"), "reach-set collision", 0.8, result)  # type: ignore[arg-type]
+    detector = IncidentDetector("h")
+    detector.add(0, T0, {"reachsets": verdict})
+    margins = {i.objects[0]: i.severity.worst_margin for i in detector.incidents()}
+    assert margins == {"a": 0.8, "b": 1.6}
