@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING, Any
 from workbench.batch.executors import BatchError
 from workbench.batch.results import INCIDENTS_SCHEMA
 from workbench.incidents.model import Incident, Severity
+from workbench.incidents.order import severity_key
 from workbench.outputs import json_text, write_text
 
 if TYPE_CHECKING:
@@ -47,7 +48,7 @@ class FleetIncident:
     def rank_key(self) -> tuple[Any, ...]:
         """Worst first across drives: the incidents' own order, then drive and time."""
         i = self.incident
-        return (*i.severity.rank_key(), self.drive_path, i.start_ns, i.id)
+        return (*severity_key(i)[:-2], self.drive_path, i.start_ns, i.id)
 
 
 def read_table(results: Path, name: str) -> list[dict[str, Any]]:
@@ -78,7 +79,11 @@ def incident_of(row: dict[str, Any]) -> Incident:
         for k, v in row.items()
         if k.startswith("severity.") and v is not None
     ]
-    facts: dict[str, Any] = {name: row.get(f"severity.{name}") for name in names}
+    facts: dict[str, Any] = {
+        name: row.get(f"severity.{name}")
+        for name in names
+        if not name.startswith("severity_rank")  # derived from the facts (incidents.order)
+    }
     margin = facts.pop("worst_margin", None)
     severity = Severity(
         worst_margin=math.inf if margin is None else float(margin),
@@ -96,6 +101,7 @@ def incident_of(row: dict[str, Any]) -> Incident:
         start_ns=int(row["start_ns"]),
         end_ns=int(row["end_ns"]),
         severity=severity,
+        data_suspect=tuple(row.get("data_suspect") or ()),
     )
 
 

@@ -6,6 +6,7 @@ incidents (and with them the ids) are declared once here.
 
 from __future__ import annotations
 
+import enum
 import functools
 import inspect
 import typing
@@ -32,11 +33,13 @@ if TYPE_CHECKING:
     from workbench.incidents import IncidentReport, IncidentRequest
 
 __all__ = [
+    "ByOption",
     "CauseFilter",
     "EgoIdOption",
     "EgoTopicOption",
     "EngineFilter",
     "EnginesOption",
+    "Listing",
     "LogArgument",
     "MapOption",
     "MarginFilter",
@@ -95,6 +98,19 @@ CauseFilter = Annotated[
 ]
 MarginFilter = Annotated[
     float | None, typer.Option("--max-margin", help="Worst margin at most this.")
+]
+
+
+class Listing(enum.StrEnum):
+    """``--by``: events (one per danger, all engines on one object) or incidents."""
+
+    event = "event"
+    incident = "incident"
+
+
+ByOption = Annotated[
+    Listing,
+    typer.Option("--by", help="List events (one per danger, all engines) or incidents."),
 ]
 StoreOption = Annotated[
     Path | None,

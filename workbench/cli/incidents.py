@@ -1,4 +1,7 @@
-"""``workbench incidents``: a drive's incidents, worst first, as a table or a file."""
+"""``workbench incidents``: a drive's events or incidents, most severe first, as a table or a file.
+
+The order is :func:`workbench.incidents.order.severity_key` (docs/review.md, "Severity order").
+"""
 
 from __future__ import annotations
 
@@ -10,8 +13,10 @@ import typer
 from rich.table import Table
 
 from workbench.cli.incident_options import (
+    ByOption,
     CauseFilter,
     EngineFilter,
+    Listing,
     LogArgument,
     MarginFilter,
     ObjectFilter,
@@ -20,9 +25,9 @@ from workbench.cli.incident_options import (
 from workbench.cli.tables import print_table
 
 if TYPE_CHECKING:
-    from workbench.incidents import Incident, IncidentReport
+    from workbench.incidents import Event, Incident, IncidentReport
 
-__all__ = ["incident_table", "register"]
+__all__ = ["event_table", "incident_table", "register"]
 
 
 #: Object ids longer than this are shortened in the table.
@@ -34,12 +39,36 @@ def _short(object_id: str) -> str:
     return object_id if len(object_id) <= _SHORT_ID else f"{object_id[:4]}…{object_id[-6:]}"
 
 
+#: The physical columns of both tables: heading and fact name.
+_PHYSICAL = (
+    ("crit", "criticality"),
+    ("gap m", "gap_min_m"),
+    ("ttc s", "path_ttc_min_s"),
+    ("close m/s", "closing_speed_max_mps"),
+)
+
+
+def _physical(incident: Incident) -> list[str]:
+    from workbench.incidents.order import rank  # noqa: PLC0415 - light start-up
+
+    facts = {**incident.severity.facts, **rank(incident)}
+    cells = []
+    for _, name in _PHYSICAL:
+        value = facts.get(name)
+        cells.append(f"{value:.2f}" if isinstance(value, int | float) else "-")
+    if incident.data_suspect:
+        cells[0] += " suspect"
+    return cells
+
+
 def incident_table(incidents: list[Incident], t0_ns: int, title: str) -> Table:
     """Rich table of incidents in the given order."""
     table = Table(title=title)
     table.add_column("id", no_wrap=True)
     for column in ("engine", "object", "cause", "frames", "start s", "dur s", "unsafe", "margin"):
         table.add_column(column)
+    for heading, _ in _PHYSICAL:
+        table.add_column(heading)
     for i in incidents:
         margin = i.severity.worst_margin
         table.add_row(
@@ -52,6 +81,29 @@ def incident_table(incidents: list[Incident], t0_ns: int, title: str) -> Table:
             f"{i.duration_s:.2f}",
             str(i.severity.unsafe_frames),
             f"{margin:.2f}" if math.isfinite(margin) else "-",
+            *_physical(i),
+        )
+    return table
+
+
+def event_table(events: list[Event], t0_ns: int, title: str) -> Table:
+    """Rich table of events in the given order (facts: the most severe incident's)."""
+    table = Table(title=title)
+    table.add_column("event", no_wrap=True)
+    for column in ("engines", "object", "frames", "start s", "dur s", "incidents"):
+        table.add_column(column)
+    for heading, _ in _PHYSICAL:
+        table.add_column(heading)
+    for e in events:
+        table.add_row(
+            e.id,
+            "+".join(e.engines),
+            " ".join(_short(o) for o in e.objects) or "-",
+            f"{e.start_frame}-{e.end_frame}",
+            f"{(e.start_ns - t0_ns) / 1e9:.2f}",
+            f"{(e.end_ns - e.start_ns) / 1e9:.2f}",
+            str(len(e.incidents)),
+            *_physical(e.lead),
         )
     return table
 
@@ -65,12 +117,20 @@ def incidents(
     obj: ObjectFilter = None,
     cause: CauseFilter = None,
     max_margin: MarginFilter = None,
+    by: ByOption = Listing.event,
     out: Annotated[
         Path | None, typer.Option("--out", help="Write them (.json, .csv or .parquet).")
     ] = None,
 ) -> None:
-    """List a drive's incidents (unsafe runs per engine, object and cause), worst first."""
-    from workbench.incidents import filter_incidents, write_incidents  # noqa: PLC0415
+    """List a drive's events (one per danger) or incidents (--by incident), worst first.
+
+    ``--out`` writes the incidents (events: grouped by event, each with its ``event`` id).
+    """
+    from workbench.incidents import (  # noqa: PLC0415
+        filter_incidents,
+        group_events,
+        write_incidents,
+    )
     from workbench.quality.output import write_quality  # noqa: PLC0415
 
     found = filter_incidents(
@@ -80,10 +140,18 @@ def incidents(
         causes=cause or (),
         max_margin=max_margin,
     )
-    title = f"{log.name}: {len(found)} of {len(report.incidents)} incident(s), worst first"
-    print_table(incident_table(found, report.start_ns, title))
+    events = None
+    counts = f"{len(found)} of {len(report.incidents)} incident(s), worst first"
+    if by is Listing.incident:
+        print_table(incident_table(found, report.start_ns, f"{log.name}: {counts}"))
+    else:
+        grouped = group_events(found)
+        found = [i for e in grouped for i in e.incidents]
+        events = {i.id: e.id for e in grouped for i in e.incidents}
+        title = f"{log.name}: {len(grouped)} event(s) of {counts}"
+        print_table(event_table(grouped, report.start_ns, title))
     if out is not None:
-        write_incidents(found, out)
+        write_incidents(found, out, events)
         typer.echo(f"wrote {out}")
         typer.echo(f"wrote {write_quality(report.findings, found, out)} (data quality)")
     if report.stopped_by is not None:

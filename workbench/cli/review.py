@@ -8,8 +8,10 @@ from typing import TYPE_CHECKING, Annotated
 import typer
 
 from workbench.cli.incident_options import (
+    ByOption,
     CauseFilter,
     EngineFilter,
+    Listing,
     LogArgument,
     MarginFilter,
     ObjectFilter,
@@ -51,10 +53,14 @@ def review(
     obj: ObjectFilter = None,
     cause: CauseFilter = None,
     max_margin: MarginFilter = None,
+    by: ByOption = Listing.event,
     grpc_port: GrpcPortOption = 9876,
     web_port: WebPortOption = 9090,
 ) -> None:
-    """Review a drive's incidents in a terminal UI (keys: c f u t n z j k q)."""
+    """Review a drive's events (or incidents) in a terminal UI (keys: c f u t n z j k q).
+
+    A verdict on an event labels each of its incidents.
+    """
     from workbench.annotations import (  # noqa: PLC0415
         LabelStore,
         default_reviewer,
@@ -80,7 +86,8 @@ def review(
         if note:
             typer.echo(f"note: {note}", err=True)
         report = dataclasses.replace(report, incidents=tuple(chosen))
-        session = ReviewSession(report, labels, reviewer or default_reviewer())
+        by_event = by is Listing.event
+        session = ReviewSession(report, labels, reviewer or default_reviewer(), by_event=by_event)
         if not (spawn or serve or connect):
             run_review(session)
         else:
@@ -93,7 +100,7 @@ def review(
                 announce=lambda url: typer.echo(f"viewer: {url}"),
             )
         typer.echo(
-            f"{log.name}: {session.reviewed} of {len(session.incidents)} incident(s) reviewed"
+            f"{log.name}: {session.reviewed} of {len(session.incidents)} {session.unit}(s) reviewed"
             f" (store {path})"
         )
 

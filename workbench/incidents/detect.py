@@ -4,14 +4,22 @@ An engine whose spec joins causes (``EngineSpec.join_causes``: structured RSS) k
 incidents per object only: a change of cause inside a run does not split it, the incident's
 cause joins the causes of its frames, and its ``legacy_ids`` are the ids the pieces had when
 each cause made its own incident (labels written then still find the incident).
+
+Severity is the incident's own object's: its margin is the engine's margin for that object
+(a verdict's ``object_margin(object_id)`` where the engine has one, else the frame's
+margin), and its physical facts (:mod:`workbench.incidents.kinematics`) come from the
+ego's and that object's states in the incident's unsafe frames.
 """
 
 from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from workbench.engines.base import VerdictSummary
 from workbench.incidents.facts import collectors_for
+from workbench.incidents.kinematics import MotionFacts, motion_of
 from workbench.incidents.model import Incident, IncidentSettings, Severity, incident_id
+from workbench.incidents.order import severity_key
 from workbench.quality import TrackCollector, check_tracks
 from workbench.quality.suspect import flag_suspects
 from workbench.sinks.runs import Run, RunMerger
@@ -19,6 +27,7 @@ from workbench.sinks.runs import Run, RunMerger
 if TYPE_CHECKING:
     from collections.abc import Callable, Mapping, Sequence
 
+    from loaders.records import Frame
     from workbench.driver.run import Chunk
     from workbench.engines.base import Verdict
     from workbench.incidents.model import Fact
@@ -28,6 +37,14 @@ __all__ = ["IncidentDetector", "IncidentKey"]
 
 #: ``(engine, object id or "", cause)``.
 IncidentKey = tuple[str, str, str]
+
+
+def own_margin(verdict: Verdict, object_id: str) -> float:
+    """The verdict's margin for one of its culprits (the frame's when it has no per-object one)."""
+    of = getattr(verdict, "object_margin", None)
+    if of is None or not object_id:
+        return verdict.margin
+    return float(of(object_id))
 
 
 class IncidentDetector:
@@ -65,31 +82,56 @@ class IncidentDetector:
             self._joins[engine] = None if spec is None else spec.join_causes
         return self._joins[engine]
 
-    def add(self, frame: int, t_ns: int, verdicts: Mapping[str, Verdict]) -> bool:
-        """Add one frame's verdicts per engine (frames in time order).
-
-        Returns:
-            Whether the frame started an incident.
-        """
-        self.frame_times.append((frame, t_ns))
+    def _hits(
+        self, verdicts: Mapping[str, Verdict]
+    ) -> tuple[dict[IncidentKey, Verdict], dict[IncidentKey, VerdictSummary]]:
+        """The keys a frame hits, each with its verdict and with the own object's summary."""
         hits: dict[IncidentKey, Verdict] = {}
+        own: dict[IncidentKey, VerdictSummary] = {}
         for engine, verdict in verdicts.items():
             if verdict.is_safe:
                 continue
             cause = "" if self._join_of(engine) else verdict.cause
             for obj in verdict.culprits or ("",):
                 hits[engine, obj, cause] = verdict
+                own[engine, obj, cause] = VerdictSummary(
+                    is_safe=False,
+                    culprits=(obj,) if obj else (),
+                    cause=verdict.cause,
+                    margin=own_margin(verdict, obj),
+                )
+        return hits, own
+
+    def add(
+        self, frame: int, t_ns: int, verdicts: Mapping[str, Verdict], scene: Frame | None = None
+    ) -> bool:
+        """Add one frame's verdicts per engine (frames in time order).
+
+        ``scene``: the frame's states, for the physical facts (none without it).
+
+        Returns:
+            Whether the frame started an incident.
+        """
+        self.frame_times.append((frame, t_ns))
+        hits, own = self._hits(verdicts)
         started = False
-        for run in self._runs.add(frame, t_ns, hits):
+        index: dict[str, int] | None = None
+        for run in self._runs.add(frame, t_ns, own):
             if run.unsafe_frames == 1:
                 started = True
-                run.extra = list(collectors_for(run.key[0]))
+                run.extra = [MotionFacts(), *collectors_for(run.key[0])]
+            if scene is not None and run.key[1]:
+                if index is None:
+                    index = {oid: j for j, oid in enumerate(scene.actors.ids.tolist())}
+                found = motion_of(scene, run.key[1], index)
+                if found is not None:
+                    run.extra[0].add(found)
             verdict = hits[run.key]
             if self._join_of(run.key[0]):
                 trail = self._trails.setdefault((run.key, run.start_frame), [])
                 if not trail or trail[-1][1] != verdict.cause:
                     trail.append((frame, verdict.cause))
-            for collector in run.extra:
+            for collector in run.extra[1:]:
                 collector.add(frame, t_ns, verdict, run.key[1])
         return started
 
@@ -98,7 +140,7 @@ class IncidentDetector:
         self.tracks.add(chunk.frames)
         for k, frame in enumerate(chunk.frames):
             verdicts = {n: v[k] for n, v in chunk.verdicts.items()}
-            if self.add(frame.index, frame.t_ns, verdicts):
+            if self.add(frame.index, frame.t_ns, verdicts, frame):
                 self.ego_at_start_m[frame.index] = (frame.ego.x_m, frame.ego.y_m)
                 culprits = {c for v in verdicts.values() if not v.is_safe for c in v.culprits}
                 actors = frame.actors
@@ -147,12 +189,13 @@ class IncidentDetector:
         return check_tracks(self.tracks.tracks())
 
     def incidents(self, findings: Sequence[Finding] | None = None) -> list[Incident]:
-        """Incidents at least ``min_duration_s`` long, worst first (ties: start, id).
+        """Incidents at least ``min_duration_s`` long, most severe first (:mod:`.order`).
 
-        ``data_suspect`` is set from ``findings`` (default: :meth:`findings`).
+        ``data_suspect`` is set from ``findings`` (default: :meth:`findings`) before the sort,
+        so suspect incidents rank after clean ones.
         """
         min_ns = round(self.settings.min_duration_s * 1e9)
         found = [self._incident(r) for r in self._runs.runs() if r.end_ns - r.start_ns >= min_ns]
         found = flag_suspects(found, self.findings() if findings is None else findings)
-        found.sort(key=lambda i: (*i.severity.rank_key(), i.start_ns, i.id))
+        found.sort(key=severity_key)
         return found

@@ -7,10 +7,12 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
+from workbench.incidents.order import rank
+
 __all__ = ["Fact", "Incident", "IncidentSettings", "Severity", "incident_id"]
 
 #: A severity fact's value.
-Fact = float | int | str | bool
+Fact = float | int | str | bool | None
 
 
 @dataclass(frozen=True, slots=True)
@@ -40,12 +42,15 @@ class Severity:
     """What says how bad an incident is.
 
     Attributes:
-        worst_margin: The smallest margin of the engine's verdicts over the incident (the
-            engine's unit: RSS and unstructured 0.0 when unsafe, reach sets the earliest
-            collision offset [s]); smaller is worse.
+        worst_margin: The smallest margin of the engine's verdicts on the incident's own
+            object over the incident (the engine's unit: RSS the distance ratio,
+            unstructured 0.0 when unsafe, reach sets the earliest collision offset [s]);
+            smaller is worse, but never compared across engines (the order is
+            :func:`workbench.incidents.order.severity_key`).
         unsafe_frames: Frames rated unsafe within the incident.
         duration_s: Last minus first unsafe frame time [s].
-        facts: Further facts by name, from the collectors of
+        facts: Further facts by name: the physical facts of the own object
+            (:mod:`workbench.incidents.kinematics`) and those of the collectors of
             :mod:`workbench.incidents.facts` (e.g. responsibility, compliance).
     """
 
@@ -53,10 +58,6 @@ class Severity:
     unsafe_frames: int
     duration_s: float
     facts: dict[str, Fact] = field(default_factory=dict)
-
-    def rank_key(self) -> tuple[float, int, float]:
-        """Sort key, worst first: smaller margin, then more unsafe frames, then longer."""
-        return (self.worst_margin, -self.unsafe_frames, -self.duration_s)
 
     def record(self) -> dict[str, Any]:
         """JSON-ready: the facts by name (a non-finite margin becomes ``None``)."""
@@ -99,7 +100,8 @@ class Incident:
             Used to find labels written then; not in the pinned JSON.
         data_suspect: Reasons why the incident's facts rest on implausible data (a
             data-quality finding of its objects or the ego overlapping its frames,
-            :mod:`workbench.quality.suspect`); empty = clean.
+            :mod:`workbench.quality.suspect`); empty = clean. Suspect incidents rank after
+            clean ones.
     """
 
     id: str
@@ -131,5 +133,6 @@ class Incident:
             "start_ns": self.start_ns,
             "end_ns": self.end_ns,
             "duration_s": self.duration_s,
-            "severity": self.severity.record(),
+            "severity": {**self.severity.record(), "severity_rank": rank(self)},
+            "data_suspect": list(self.data_suspect),
         }

@@ -9,7 +9,7 @@ from workbench.errors import WorkbenchError
 from workbench.outputs import json_text
 
 if TYPE_CHECKING:
-    from collections.abc import Collection, Iterable
+    from collections.abc import Collection, Iterable, Mapping
     from pathlib import Path
 
     from workbench.incidents.model import Incident
@@ -48,14 +48,29 @@ def filter_incidents(
     ]
 
 
-def flat_rows(incidents: Iterable[Incident]) -> list[dict[str, Any]]:
-    """One flat row per incident: severity facts as ``severity.<name>`` columns."""
-    rows = []
-    for incident in incidents:
-        row = incident.record()
-        severity = row.pop("severity")
-        row.update({f"severity.{k}": v for k, v in severity.items()})
-        rows.append(row)
+def _flat(record: dict[str, Any], prefix: str = "") -> dict[str, Any]:
+    row: dict[str, Any] = {}
+    for key, value in record.items():
+        if isinstance(value, dict):
+            row.update(_flat(value, f"{prefix}{key}."))
+        else:
+            row[f"{prefix}{key}"] = value
+    return row
+
+
+def _records(
+    incidents: Iterable[Incident], events: Mapping[str, str] | None
+) -> list[dict[str, Any]]:
+    if events is None:
+        return [i.record() for i in incidents]
+    return [{**i.record(), "event": events.get(i.id)} for i in incidents]
+
+
+def flat_rows(
+    incidents: Iterable[Incident], events: Mapping[str, str] | None = None
+) -> list[dict[str, Any]]:
+    """One flat row per incident: nested facts as ``severity.<name>`` (``.<name>``) columns."""
+    rows = [_flat(record) for record in _records(incidents, events)]
     names: dict[str, None] = {}
     for row in rows:
         names.update(dict.fromkeys(row))
@@ -73,8 +88,12 @@ def _write_parquet(rows: list[dict[str, Any]], path: Path) -> None:
     pq.write_table(pa.Table.from_pylist(rows), path)
 
 
-def write_incidents(incidents: Iterable[Incident], path: Path) -> None:
+def write_incidents(
+    incidents: Iterable[Incident], path: Path, events: Mapping[str, str] | None = None
+) -> None:
     """Write incidents as JSON (a list of objects), CSV or Parquet by suffix, atomically.
+
+    ``events``: the event id of each incident id, written as each incident's ``event``.
 
     Raises:
         WorkbenchError: Unknown suffix, or the file cannot be written.
@@ -87,16 +106,17 @@ def write_incidents(incidents: Iterable[Incident], path: Path) -> None:
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         if path.suffix == ".json":
-            tmp.write_text(json_text([i.record() for i in found], indent=2) + "\n")
+            tmp.write_text(json_text(_records(found, events), indent=2) + "\n")
         elif path.suffix == ".parquet":
-            _write_parquet(flat_rows(found), tmp)
+            _write_parquet(flat_rows(found, events), tmp)
         else:
-            rows = flat_rows(found)
+            rows = flat_rows(found, events)
             with tmp.open("w", newline="") as fh:
                 writer = csv.DictWriter(fh, fieldnames=list(rows[0]) if rows else ["id"])
                 writer.writeheader()
                 for row in rows:
-                    writer.writerow({**row, "objects": " ".join(row["objects"])})
+                    lists = {k: " ".join(row[k]) for k in ("objects", "data_suspect")}
+                    writer.writerow({**row, **lists})
         tmp.replace(path)
     except OSError as err:
         tmp.unlink(missing_ok=True)

@@ -125,6 +125,7 @@ class ReviewApp(App[None]):
                     f" to {(incident.end_ns - t0) / 1e9:.2f} s"
                 ),
                 f"severity: {facts}",
+                *self.session.evidence(incident),
                 f"tags: {', '.join(tags) or '-'}   note: {note or '-'}",
             ]
         )

@@ -1,6 +1,10 @@
-"""A review session: walk a drive's incidents worst first and record verdicts (no UI).
+"""A review session: walk a drive's events (or incidents) worst first and record verdicts (no UI).
 
-The terminal UI (:mod:`workbench.review.app`) is a thin shell over this. Every verdict, tag
+By default the session walks *events* (:mod:`workbench.incidents.events`: the overlapping
+incidents of every engine on one object): each row is an event, shown by its most severe
+incident (``current``), and a verdict, tag or note on it is written to each of its incidents
+(the label store stays keyed by incident id). ``by_event=False`` walks the incidents one by
+one. The terminal UI (:mod:`workbench.review.app`) is a thin shell over this. Every verdict, tag
 and note is written to the label store at once (one transaction each), so a session killed
 at any moment loses nothing it showed as saved; undo takes back this session's writes, last
 first; a new session resumes at the worst incident nobody has labelled yet.
@@ -12,6 +16,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from workbench.annotations.attach import label_of, labels_for
+from workbench.incidents.events import group_events
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -31,23 +36,66 @@ class Pending:
 
 
 class ReviewSession:
-    """The incidents of one drive (worst first), their labels, a cursor and an undo stack."""
+    """The events (or incidents) of one drive, worst first, their labels, a cursor and an undo.
 
-    def __init__(self, report: IncidentReport, store: LabelStore, reviewer: str) -> None:
-        """Load the drive's labels and put the cursor on the first unlabelled incident."""
+    Attributes:
+        incidents: One row per event (its most severe incident), or per incident.
+        event_ids: The event id of each row's incident (``by_event``), else empty.
+    """
+
+    def __init__(
+        self, report: IncidentReport, store: LabelStore, reviewer: str, *, by_event: bool = True
+    ) -> None:
+        """Load the drive's labels and put the cursor on the first row not fully labelled."""
         self.report = report
         self.store = store
         self.reviewer = reviewer
-        self.incidents: Sequence[Incident] = report.incidents
+        self.by_event = by_event
+        self._members: dict[str, tuple[Incident, ...]] = {}
+        self.event_ids: dict[str, str] = {}
+        if by_event:
+            events = group_events(report.incidents)
+            self.incidents: Sequence[Incident] = [e.lead for e in events]
+            self._members = {e.lead.id: e.incidents for e in events}
+            self.event_ids = {e.lead.id: e.id for e in events}
+        else:
+            self.incidents = report.incidents
         self.labels: dict[str, Label] = labels_for(report, store.labels(report.drive_hash))
         self._pending: dict[str, Pending] = {}
-        self._undo: list[tuple[int, str]] = []
+        self._undo: list[list[tuple[int, str]]] = []
         self.index = self.resume_index()
 
+    @property
+    def unit(self) -> str:
+        """What a row is: ``event`` or ``incident``."""
+        return "event" if self.by_event else "incident"
+
+    def members(self, incident: Incident) -> tuple[Incident, ...]:
+        """The incidents a verdict on this row labels (its event's; itself by incident)."""
+        return self._members.get(incident.id, (incident,))
+
+    def evidence(self, incident: Incident) -> list[str]:
+        """One line per other incident of the row's event (its engine's evidence)."""
+        event = self.event_ids.get(incident.id)
+        others = [m for m in self.members(incident) if m.id != incident.id]
+        if event is None:
+            return []
+        lines = [f"event {event}: {len(others) + 1} incident(s)"]
+        for other in others:
+            margin = other.severity.record()["worst_margin"]
+            lines.append(
+                f"  also {other.id}: {other.engine} {other.cause}, frames "
+                f"{other.start_frame}-{other.end_frame}, margin {margin}"
+            )
+        return lines
+
+    def _done(self, incident: Incident) -> bool:
+        return all(m.id in self.labels for m in self.members(incident))
+
     def resume_index(self) -> int:
-        """The first incident (worst first) without a label; the last one if all have one."""
+        """The first row (worst first) not fully labelled; the last one if all are."""
         for k, incident in enumerate(self.incidents):
-            if incident.id not in self.labels:
+            if not self._done(incident):
                 return k
         return max(len(self.incidents) - 1, 0)
 
@@ -58,8 +106,8 @@ class ReviewSession:
 
     @property
     def reviewed(self) -> int:
-        """Incidents of this drive with a label."""
-        return sum(i.id in self.labels for i in self.incidents)
+        """Rows (events or incidents) of this drive whose incidents all have a label."""
+        return sum(self._done(i) for i in self.incidents)
 
     def move(self, step: int) -> Incident | None:
         """Move the cursor by ``step`` (clamped); returns the new current incident."""
@@ -80,22 +128,26 @@ class ReviewSession:
         return pending.tags, pending.note
 
     def _write(self, incident: Incident, verdict: str, tags: Sequence[str], note: str) -> Label:
-        event = self.store.put(
-            self.report.drive_hash,
-            incident.id,
-            verdict,
-            tags=tags,
-            note=note,
-            reviewer=self.reviewer,
-            settings=self.report.settings,
-            log_name=self.report.log.name,
-        )
-        self._undo.append((event, incident.id))
-        label = self.store.label(self.report.drive_hash, incident.id)
-        assert label is not None
-        self.labels[incident.id] = label
+        """Label the row's incident and every other incident of its event (one undo step)."""
+        step = []
+        for member in self.members(incident):
+            written = self.store.put(
+                self.report.drive_hash,
+                member.id,
+                verdict,
+                tags=tags,
+                note=note,
+                reviewer=self.reviewer,
+                settings=self.report.settings,
+                log_name=self.report.log.name,
+            )
+            step.append((written, member.id))
+            label = self.store.label(self.report.drive_hash, member.id)
+            assert label is not None
+            self.labels[member.id] = label
+        self._undo.append(step)
         self._pending.pop(incident.id, None)
-        return label
+        return self.labels[incident.id]
 
     def give(self, verdict: str) -> Label | None:
         """Record ``verdict`` on the current incident (keeping its tags and note)."""
@@ -130,18 +182,26 @@ class ReviewSession:
             self._write(incident, label.verdict, tags, note)
 
     def undo(self) -> Incident | None:
-        """Take back this session's last write; the cursor goes to its incident."""
+        """Take back this session's last write (all its incidents); the cursor goes to its row."""
         if not self._undo:
             return None
-        event, incident_id = self._undo.pop()
-        after = self.store.undo(event)
-        self.index = next(k for k, i in enumerate(self.incidents) if i.id == incident_id)
-        if after is None:  # its label from before, if any (also one of a legacy id)
-            before = label_of(self.incidents[self.index], self.store.labels(self.report.drive_hash))
-            if before is None:
-                self.labels.pop(incident_id, None)
-            else:
-                self.labels[incident_id] = before
-        else:
-            self.labels[incident_id] = after
+        step = self._undo.pop()
+        for written, incident_id in reversed(step):
+            self._take_back(written, incident_id)
+        first = step[0][1]
+        self.index = next(
+            k for k, i in enumerate(self.incidents) if any(m.id == first for m in self.members(i))
+        )
         return self.current
+
+    def _take_back(self, written: int, incident_id: str) -> None:
+        after = self.store.undo(written)
+        if after is not None:
+            self.labels[incident_id] = after
+            return
+        incident = next(m for i in self.incidents for m in self.members(i) if m.id == incident_id)
+        before = label_of(incident, self.store.labels(self.report.drive_hash))
+        if before is None:  # its label from before, if any (also one of a legacy id)
+            self.labels.pop(incident_id, None)
+        else:
+            self.labels[incident_id] = before

@@ -39,17 +39,22 @@ def test_json_csv_and_parquet_hold_the_same_rows(tmp_path):
         write_incidents(INCIDENTS, tmp_path / f"i.{suffix}")
     rows = json.loads((tmp_path / "i.json").read_text())
     assert [r["id"] for r in rows] == [i.id for i in INCIDENTS]
+    rank = rows[0]["severity"].pop("severity_rank")
     assert rows[0]["severity"] == {
         "worst_margin": 0.0,
         "unsafe_frames": 3,
         "duration_s": 2e-7,
         "extra": "fact",
     }
+    assert rank["criticality"] == 0.0  # no physical facts: never on a collision course
+    assert rank["gap_min_m"] is None
+    assert rows[0]["data_suspect"] == []
     with (tmp_path / "i.csv").open() as fh:
         csv_rows = list(csv.DictReader(fh))
     assert [r["id"] for r in csv_rows] == [r["id"] for r in rows]
     assert [r["objects"] for r in csv_rows] == ["a", "b", "c"]
     assert [r["severity.extra"] for r in csv_rows] == ["fact", "", ""]
+    assert [r["severity.severity_rank.criticality"] for r in csv_rows] == ["0.0"] * 3
     table = pq.read_table(tmp_path / "i.parquet").to_pylist()
     assert [r["id"] for r in table] == [r["id"] for r in rows]
     assert [r["objects"] for r in table] == [["a"], ["b"], ["c"]]

@@ -33,6 +33,13 @@ class ReachVerdict:
     result: ReachResult
     trajectory: str = "planned"
 
+    def object_margin(self, object_id: str) -> float:
+        """Earliest collision offset [s] of one object's set (``inf``: it hits nothing)."""
+        return min(
+            (c.t_offset_s for c in self.result.collisions if c.object_id == object_id),
+            default=float("inf"),
+        )
+
 
 def reach_verdict(result: ReachResult, trajectory: str = "planned") -> ReachVerdict:
     """The verdict of one frame's result (``trajectory``: the kind of ego trajectory rated)."""

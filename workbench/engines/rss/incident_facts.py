@@ -9,9 +9,10 @@ One collector per incident sees the incident's unsafe frames of its one object a
 - ``shortfall_max_mps2``, ``shortfall_party``, ``response_due_ns``: the largest amount by
   which a party that had to act accelerated above its restriction once its response was due,
   which party, and when its response was due (``None``: every due response was proper);
-- ``profile``: the RSS parameter profile the frames were checked with (``RssVerdict.profile``);
-- ``severity_rank``: :func:`~workbench.engines.rss.severity_order.severity_key` of the above
-  and the duration (docs/rss.md, "Severity"), smallest = most severe.
+- ``profile``: the RSS parameter profile the frames were checked with (``RssVerdict.profile``).
+
+The ratio and the along-road TTC and deceleration are RSS's own facts; incidents are ordered
+by the physical facts every engine's incidents have (:mod:`workbench.incidents.order`).
 """
 
 from __future__ import annotations
@@ -19,7 +20,6 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from workbench.engines.rss.severity_order import severity_key
 from workbench.engines.rss.verdict import RssVerdict
 
 __all__ = ["RssIncidentFacts"]
@@ -40,8 +40,6 @@ class RssIncidentFacts:
         self._shortfall: float | None = None
         self._party: str | None = None
         self._due: int | None = None
-        self._first: int | None = None
-        self._last: int | None = None
         self._seen = False
         self._profile = ""
 
@@ -50,13 +48,11 @@ class RssIncidentFacts:
 
         Verdicts that are not :class:`RssVerdict` (summaries) carry no facts and are skipped.
         """
-        del frame
+        del frame, t_ns
         if not isinstance(verdict, RssVerdict):
             return
         self._seen = True
         self._profile = self._profile or verdict.profile
-        self._first = t_ns if self._first is None else self._first
-        self._last = t_ns
         self._parties |= _PARTIES.get(verdict.responsibility().get(object_id, ""), 0)
         facts = verdict.severity().get(object_id)
         if facts is not None:
@@ -72,7 +68,6 @@ class RssIncidentFacts:
         """The facts by name (JSON-ready: no infinities); none without an RSS verdict."""
         if not self._seen:
             return {}
-        duration_s = 0.0 if self._first is None else ((self._last or 0) - self._first) / 1e9
         ratio = None if math.isinf(self._ratio) else round(self._ratio, 6)
         ttc = None if math.isinf(self._ttc) else round(self._ttc, 6)
         return {
@@ -84,13 +79,4 @@ class RssIncidentFacts:
             "shortfall_party": self._party,
             "response_due_ns": self._due,
             "profile": self._profile,
-            "severity_rank": list(
-                severity_key(
-                    shortfall_mps2=self._shortfall,
-                    distance_ratio=self._ratio,
-                    ttc_s=None if math.isinf(self._ttc) else self._ttc,
-                    required_decel_mps2=self._decel,
-                    duration_s=duration_s,
-                )
-            ),
         }

@@ -140,6 +140,14 @@ class RssVerdict:
         names = {1: "ego", 2: "object", 3: "both"}
         return {label: names[code] for label, code in sorted(codes.items())}
 
+    def object_margin(self, object_id: str) -> float:
+        """The margin of one object's constellations: its smallest distance ratio.
+
+        The frame's ``margin`` when the object has no severity facts (``inf`` when safe).
+        """
+        facts = self.severity().get(object_id)
+        return self.margin if facts is None else facts.distance_ratio
+
     @property
     def constellations(self) -> int:
         """Number of constellations checked."""
