@@ -6,7 +6,7 @@ import csv
 from typing import TYPE_CHECKING, Any
 
 from workbench.errors import WorkbenchError
-from workbench.outputs import json_text
+from workbench.outputs import atomic_output, json_text
 
 if TYPE_CHECKING:
     from collections.abc import Collection, Iterable, Mapping
@@ -102,9 +102,7 @@ def write_incidents(
     if path.suffix not in OUT_SUFFIXES:
         msg = f"{path}: incidents file must end in {', '.join(OUT_SUFFIXES)}, not {path.suffix!r}"
         raise WorkbenchError(msg)
-    tmp = path.with_name(f".{path.name}.tmp")
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True)
+    with atomic_output(path, "incidents") as tmp:
         if path.suffix == ".json":
             tmp.write_text(json_text(_records(found, events), indent=2) + "\n")
         elif path.suffix == ".parquet":
@@ -117,7 +115,3 @@ def write_incidents(
                 for row in rows:
                     lists = {k: " ".join(row[k]) for k in ("objects", "data_suspect")}
                     writer.writerow({**row, **lists})
-        tmp.replace(path)
-    except OSError as err:
-        tmp.unlink(missing_ok=True)
-        raise WorkbenchError(f"{path}: cannot write incidents ({err.strerror})") from err

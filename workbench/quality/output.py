@@ -12,10 +12,9 @@
 from __future__ import annotations
 
 import csv
-import json
 from typing import TYPE_CHECKING, Any
 
-from workbench.errors import WorkbenchError
+from workbench.outputs import atomic_output, json_text
 from workbench.quality.summary import quality_record
 from workbench.quality.suspect import suspect_reasons
 
@@ -68,14 +67,12 @@ def write_quality(findings: Sequence[Finding], incidents: Sequence[Incident], ou
         WorkbenchError: The file cannot be written.
     """
     path = quality_path(out)
-    tmp = path.with_name(f".{path.name}.tmp")
     rows = _rows(findings, incidents)
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True)
+    with atomic_output(path, "the data quality") as tmp:
         if path.suffix == ".json":
             record = quality_record(findings)
             record["suspect"] = {i.id: list(i.data_suspect) for i in incidents if i.data_suspect}
-            tmp.write_text(json.dumps(record, indent=2, allow_nan=False) + "\n")
+            tmp.write_text(json_text(record, indent=2) + "\n")
         elif path.suffix == ".parquet":
             import pyarrow as pa  # noqa: PLC0415 - only for Parquet output
             import pyarrow.parquet as pq  # noqa: PLC0415
@@ -93,8 +90,4 @@ def write_quality(findings: Sequence[Finding], incidents: Sequence[Incident], ou
                     writer.writerow(
                         {**row, "suspect_incidents": " ".join(row["suspect_incidents"])}
                     )
-        tmp.replace(path)
-    except OSError as err:
-        tmp.unlink(missing_ok=True)
-        raise WorkbenchError(f"{path}: cannot write the data quality ({err.strerror})") from err
     return path
