@@ -97,6 +97,9 @@ class Incident:
         legacy_ids: Ids the pieces of this incident had before its engine's incidents were
             one per object (``EngineSpec.join_causes``): a new piece per change of cause.
             Used to find labels written then; not in the pinned JSON.
+        worst_frame: The frame the review viewer shows: the engine's worst (e.g. RSS: the
+            smallest distance ratio; else the smallest margin); ``None``: ``start_frame``.
+            Not in the pinned JSON.
     """
 
     id: str
@@ -109,6 +112,7 @@ class Incident:
     end_ns: int
     severity: Severity
     legacy_ids: tuple[str, ...] = ()
+    worst_frame: int | None = None
 
     @property
     def duration_s(self) -> float:

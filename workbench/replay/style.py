@@ -18,6 +18,8 @@ __all__ = [
     "CLASS_COLORS",
     "EGO_COLOR",
     "EGO_TRAIL_RADIUS_M",
+    "INCIDENT_DIM_COLOR",
+    "INCIDENT_OBJECT_COLOR",
     "PLAN_COLOR",
     "PLAN_RADIUS_M",
 ]
@@ -35,6 +37,10 @@ CLASS_COLORS: dict[ObjectClass, int] = {
 
 #: The ego stands out from every class colour.
 EGO_COLOR = 0x00E676FF
+#: The objects of the incident under review stand out (red) ...
+INCIDENT_OBJECT_COLOR = 0xFF1744FF
+#: ... and the other actors are dimmed (translucent grey, no labels) in its view.
+INCIDENT_DIM_COLOR = 0x9E9E9E59
 #: The plan is drawn in magenta, the conventional "intent" colour.
 PLAN_COLOR = 0xFF40FFFF
 

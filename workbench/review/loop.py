@@ -94,6 +94,9 @@ def _replay_and_review(
         recording_id,
         replay_drive,
     )
+    from workbench.viewer.web_cursor import WebCursor  # noqa: PLC0415
+
+    web_cursor = WebCursor() if serve else None
 
     first = next(iter(drive.frames()), None)
     ego_start = (first.ego.x_m, first.ego.y_m) if first is not None else None
@@ -110,6 +113,7 @@ def _replay_and_review(
             engines=names,
             ego_at_m=session.report.ego_at_start_m,
             objects_at_m=session.report.objects_at_start_m,
+            cursor=web_cursor,
         )
         try:
             run_review(session, link)
@@ -132,6 +136,7 @@ def _replay_and_review(
         incident_settings=incident_settings,
         verdicts=verdicts,
         ego_size=ego,
+        web_cursor=web_cursor,
     )
     if not serve:
         loop(connect or SPAWN_URL)
