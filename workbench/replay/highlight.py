@@ -64,18 +64,19 @@ class CulpritBoxes:
         # (frame, t_ns, object id, cx, cy, cz, half l, half w, half h, yaw)
         self._rows: list[tuple[int, int, str, float, float, float, float, float, float, float]]
         self._rows = []
+        #: Ego position ``(x, y)`` [m] at every unsafe frame (any engine).
+        self.ego_m: dict[int, tuple[float, float]] = {}
+        self._by_frame: dict[int, dict[str, tuple[float, float]]] | None = None
 
     def add_chunk(self, chunk: Chunk) -> None:
         """Keep the boxes of the objects any engine named as culprit of an unsafe frame."""
+        self._by_frame = None
         for k, frame in enumerate(chunk.frames):
-            culprits = {
-                c
-                for verdicts in chunk.verdicts.values()
-                if not verdicts[k].is_safe
-                for c in verdicts[k].culprits
-            }
-            if not culprits:
+            unsafe = [v[k] for v in chunk.verdicts.values() if not v[k].is_safe]
+            if not unsafe:
                 continue
+            self.ego_m[frame.index] = (frame.ego.x_m, frame.ego.y_m)
+            culprits = {c for verdict in unsafe for c in verdict.culprits}
             actors = frame.actors
             for j, oid in enumerate(actors.ids.tolist()):
                 if oid in culprits and bool(actors.valid[j]):
@@ -93,6 +94,21 @@ class CulpritBoxes:
                             float(actors.yaw_rad[j]),
                         )
                     )
+
+    def at(
+        self, frame: int, objects: Sequence[str]
+    ) -> tuple[tuple[float, float] | None, list[tuple[float, float]]]:
+        """The ego's and ``objects``' positions ``(x, y)`` [m] at an unsafe ``frame``.
+
+        ``(None, [])`` for a frame no engine rated unsafe; an object that was no culprit
+        there is left out.
+        """
+        if self._by_frame is None:
+            self._by_frame = {}
+            for row in self._rows:
+                self._by_frame.setdefault(row[0], {})[row[2]] = (row[3], row[4])
+        there = self._by_frame.get(frame, {})
+        return self.ego_m.get(frame), [there[o] for o in objects if o in there]
 
     def layout(
         self,

@@ -89,6 +89,7 @@ def _replay_and_review(
     ego: EgoSize | None,
     announce: Callable[[str], None],
 ) -> None:
+    from workbench.replay.highlight import CulpritBoxes  # noqa: PLC0415
     from workbench.viewer.replay import (  # noqa: PLC0415 - Rerun only when a viewer is asked
         APPLICATION_ID,
         recording_id,
@@ -97,6 +98,7 @@ def _replay_and_review(
     from workbench.viewer.web_cursor import WebCursor  # noqa: PLC0415
 
     web_cursor = WebCursor() if serve else None
+    positions = CulpritBoxes()  # filled by the replay: where the camera looks
 
     first = next(iter(drive.frames()), None)
     ego_start = (first.ego.x_m, first.ego.y_m) if first is not None else None
@@ -114,6 +116,7 @@ def _replay_and_review(
             ego_at_m=session.report.ego_at_start_m,
             objects_at_m=session.report.objects_at_start_m,
             cursor=web_cursor,
+            positions=positions,
         )
         try:
             run_review(session, link)
@@ -137,6 +140,7 @@ def _replay_and_review(
         verdicts=verdicts,
         ego_size=ego,
         web_cursor=web_cursor,
+        culprits=positions,
     )
     if not serve:
         loop(connect or SPAWN_URL)

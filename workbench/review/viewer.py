@@ -26,6 +26,7 @@ if TYPE_CHECKING:
     from rerun.experimental import ViewerClient
 
     from workbench.incidents import Incident
+    from workbench.replay.highlight import CulpritBoxes
 
 __all__ = ["NoViewer", "RerunLink", "TimeCursor", "ViewerCursor", "ViewerLink", "worst_frame"]
 
@@ -105,6 +106,7 @@ class RerunLink:
         ego_at_m: Mapping[int, tuple[float, float]] | None = None,
         objects_at_m: Mapping[int, Mapping[str, tuple[float, float]]] | None = None,
         cursor: TimeCursor | None = None,
+        positions: CulpritBoxes | None = None,
     ) -> None:
         """Connect to the viewer's gRPC proxy ``url`` (``rerun+http://HOST:PORT/proxy``).
 
@@ -112,6 +114,8 @@ class RerunLink:
         it (else at ``ego_start_m``, the drive's first position). ``objects_at_m``: the
         culprits' positions per incident start frame; the camera frames the incident's objects
         with the ego. ``cursor``: moves the time cursor (default: the viewer at ``url``).
+        ``positions``: the ego's and culprits' positions at unsafe frames (filled by the
+        replay); when it has the incident's worst frame, the camera frames that moment.
         """
         self.recording = rr.RecordingStream(application_id, recording_id=recording_id)
         self.recording.connect_grpc(url)
@@ -120,6 +124,7 @@ class RerunLink:
         self._objects_at = dict(objects_at_m or {})
         self._engines = tuple(engines)
         self.cursor: TimeCursor = cursor or ViewerCursor(url)
+        self._positions = positions
 
     def show(self, incident: Incident) -> None:
         """Select the incident's frames and put the time cursor on its worst frame, paused."""
@@ -127,6 +132,10 @@ class RerunLink:
         ego = self._ego_at.get(incident.start_frame, self._ego_start)
         at_start = self._objects_at.get(incident.start_frame, {})
         focus = [at_start[o] for o in incident.objects if o in at_start]
+        if self._positions is not None:
+            ego_worst, focus_worst = self._positions.at(worst_frame(incident), incident.objects)
+            if ego_worst is not None:
+                ego, focus = ego_worst, focus_worst
         blueprint = replay_blueprint(
             ego, self._engines, selection=selection, focus_m=focus, incident=incident
         )

@@ -102,6 +102,7 @@ def replay_drive(
     connect: str | None = None,
     selection: tuple[int, int] | None = None,
     web_cursor: WebCursor | None = None,
+    culprits: CulpritBoxes | None = None,
 ) -> ReplaySummary:
     """Send a drive's map, frames and engine verdicts to exactly one destination.
 
@@ -129,6 +130,8 @@ def replay_drive(
             and loops over it (a clip's review blueprint).
         web_cursor: With ``serve``: serves the web page so the review loop can move the
             browser's time cursor (:mod:`workbench.viewer.web_cursor`).
+        culprits: Collects the culprits' boxes and the ego's positions at unsafe frames
+            (the caller keeps it: the review camera looks there); a fresh one by default.
 
     Returns:
         Counts and timings of the replay.
@@ -146,7 +149,7 @@ def replay_drive(
         drive_content_hash(path) if engines and path.exists() else "", incident_settings
     )
     sink = RerunDriveSink(rec, drive, run.engine_names, send_frames=send_frames)
-    culprits = CulpritBoxes()
+    culprits = culprits if culprits is not None else CulpritBoxes()
     try:
         with attached(
             rec,
