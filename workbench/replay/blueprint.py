@@ -159,7 +159,7 @@ def replay_blueprint(
             eye_up=(0.0, 0.0, 1.0),
             # A live viewer pulls a tracking eye in to the ego's box (about 4 m): for one
             # incident the camera stays where the incident starts instead.
-            tracking_entity="/world/ego" if selection is None else None,
+            tracking_entity="/world/ego/view" if selection is None else None,
         ),
         contents=_scene_contents(incident),
         overrides=_scene_overrides(incident),

@@ -22,6 +22,7 @@ __all__ = [
     "INCIDENT_OBJECT_COLOR",
     "PLAN_COLOR",
     "PLAN_RADIUS_M",
+    "VIEW_HALF_SIZE_M",
 ]
 
 #: Box colour per object class (the annotation context on ``world``).
@@ -62,3 +63,8 @@ BOUNDARY_RADIUS_M = 0.2
 PLAN_RADIUS_M = 0.25
 EGO_TRAIL_RADIUS_M = 0.3
 ACTOR_LINE_RADIUS_M = 0.06
+
+#: Half the side [m] of the square around the ego that the live viewer's camera frames: a
+#: tracking camera fits the tracked entity's bounds, and the ego's box alone (4 m) made the
+#: web viewer's camera sit a few metres from it.
+VIEW_HALF_SIZE_M = 30.0
