@@ -118,6 +118,8 @@ def _replay_and_review(
             cursor=web_cursor,
             positions=positions,
         )
+        if web_cursor is not None:
+            web_cursor.on_loaded = link.show_again
         try:
             run_review(session, link)
         finally:

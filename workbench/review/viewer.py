@@ -125,6 +125,7 @@ class RerunLink:
         self._engines = tuple(engines)
         self.cursor: TimeCursor = cursor or ViewerCursor(url)
         self._positions = positions
+        self._last: Incident | None = None
 
     def show(self, incident: Incident) -> None:
         """Select the incident's frames and put the time cursor on its worst frame, paused."""
@@ -139,9 +140,15 @@ class RerunLink:
         blueprint = replay_blueprint(
             ego, self._engines, selection=selection, focus_m=focus, incident=incident
         )
+        self._last = incident
         self.cursor.move(FRAME_TIMELINE, worst_frame(incident))
         self.recording.send_blueprint(blueprint, make_active=True)
         self.recording.flush()
+
+    def show_again(self) -> None:
+        """Re-send the blueprint of the incident shown last (a viewer that loaded late)."""
+        if self._last is not None:
+            self.show(self._last)
 
     def mark(self, incident: Incident, verdict: str | None) -> None:
         """Re-send the first state of the incident's lane."""

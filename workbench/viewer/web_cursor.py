@@ -26,8 +26,11 @@ import urllib.error
 import urllib.request
 from http import HTTPStatus
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
-from typing import ClassVar
-from urllib.parse import urlsplit
+from typing import TYPE_CHECKING, ClassVar
+from urllib.parse import parse_qs, urlsplit
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
 
 __all__ = ["CURSOR_PATH", "WebCursor"]
 
@@ -64,6 +67,7 @@ _SCRIPT = """// rss-workbench: follow the review loop's time cursor (workbench/v
       const viewer = window._handle;
       if (cursor.seq > seen && viewer && viewer.viewer_control) {
         await viewer.viewer_control(seek(cursor.timeline, cursor.time));
+        if (seen === 0) await fetch("%(path)s?applied=" + cursor.seq, { cache: "no-store" });
         seen = cursor.seq;
         const when = "#when=" + cursor.timeline + "@" + cursor.time;
         history.replaceState(history.state, "", location.pathname + location.search + when);
@@ -88,6 +92,18 @@ class WebCursor:
         self._lock = threading.Lock()
         self._cursor: dict[str, object] = {"seq": 0, "timeline": "frame", "time": 0}
         self._server: ThreadingHTTPServer | None = None
+        #: Called once, when a page first put the viewer's cursor (its recording has loaded):
+        #: the review re-sends the incident's blueprint, which a page that connected later
+        #: got before its data and showed without the incident's window.
+        self.on_loaded: Callable[[], None] | None = None
+        self._loaded = False
+
+    def loaded(self) -> None:
+        """A page reports its first cursor put: call :attr:`on_loaded` the first time."""
+        with self._lock:
+            first, self._loaded = not self._loaded, True
+        if first and self.on_loaded is not None:
+            self.on_loaded()
 
     @property
     def cursor(self) -> dict[str, object]:
@@ -145,6 +161,8 @@ class _Handler(BaseHTTPRequestHandler):
         """The cursor, the script, or a file of Rerun's web viewer (the page with the script)."""
         path = urlsplit(self.path).path
         if path == CURSOR_PATH:
+            if "applied" in parse_qs(urlsplit(self.path).query):
+                self.owner.loaded()
             body = json.dumps(self.owner.cursor).encode()
             self._reply(HTTPStatus.OK, body, "application/json")
             return
