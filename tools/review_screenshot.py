@@ -6,8 +6,9 @@ Does what ``workbench review LOG --connect URL`` does against a headless viewer 
 127.0.0.1 (``workbench.viewer.screenshot.headless_viewer``; Vulkan: Mesa lavapipe): streams
 the drive's review recording (scene, engine lanes, incident lanes and markers) to it and sends
 the incident's blueprint (time panel selecting its frames, incidents tab active, the camera
-framing the ego and the incident's objects); then puts the time cursor 10 frames into the
-incident and saves the screenshot. Prints the incident.
+framing the ego and the incident's objects, which are highlighted, the others dimmed) and
+moves the time cursor to the incident's worst frame, as review does; then saves the
+screenshot. Prints the incident.
 """
 
 from __future__ import annotations
@@ -17,7 +18,8 @@ import time
 from pathlib import Path
 
 from workbench.incidents import IncidentRequest, find_incidents
-from workbench.review.viewer import RerunLink
+from workbench.replay.highlight import CulpritBoxes
+from workbench.review.viewer import RerunLink, worst_frame
 from workbench.viewer.replay import APPLICATION_ID, recording_id, replay_drive
 from workbench.viewer.screenshot import headless_viewer
 
@@ -37,8 +39,11 @@ def main() -> None:
     incident = report.find(args.incident) if args.incident else report.incidents[args.rank]
     if incident is None:
         parser.error(f"{args.log}: no incident {args.incident}")
+    # fmt: off
     print(f"{incident.id}: {incident.engine} {incident.cause} object {incident.objects} "
-          f"frames {incident.start_frame}-{incident.end_frame}")  # fmt: skip
+          f"frames {incident.start_frame}-{incident.end_frame}, worst {worst_frame(incident)}",
+    )
+    # fmt: on
     width, height = (int(v) for v in args.size.split("x"))
     with headless_viewer((width, height)) as viewer:
         url = viewer.url
@@ -46,7 +51,8 @@ def main() -> None:
         try:
             first = next(iter(drive.frames()))
             runners, ego = request.engines_for(drive, full_geometry=True)
-            replay_drive(drive, connect=url, engines=runners, ego_size=ego)
+            positions = CulpritBoxes()
+            replay_drive(drive, connect=url, engines=runners, ego_size=ego, culprits=positions)
             rid = recording_id(drive, None, None)
         finally:
             drive.close()
@@ -58,13 +64,11 @@ def main() -> None:
             engines=request.engines,
             ego_at_m=report.ego_at_start_m,
             objects_at_m=report.objects_at_start_m,
+            positions=positions,
         )
         link.show(incident)
         link.close()
-        time.sleep(2.0)
-        frame = min(incident.start_frame + 10, incident.end_frame)
-        viewer.set_time("frame", sequence=frame, play_state="paused")
-        time.sleep(2.0)
+        time.sleep(3.0)
         args.out.parent.mkdir(parents=True, exist_ok=True)
         viewer.save_screenshot(str(args.out.resolve()))
     print(f"wrote {args.out}")

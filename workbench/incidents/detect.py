@@ -163,8 +163,12 @@ class IncidentDetector:
         join = self._join_of(engine)
         shown = join([piece for _, piece in trail]) if join and trail else cause
         facts: dict[str, Fact] = {}
+        worst = run.worst_frame
         for collector in run.extra:
             facts.update(collector.facts())
+            finer = getattr(collector, "worst_frame", None)  # optional: the engine's own worst
+            found = finer() if callable(finer) else None
+            worst = found if isinstance(found, int) else worst
         severity = Severity(
             worst_margin=run.worst_margin,
             unsafe_frames=run.unsafe_frames,
@@ -182,6 +186,7 @@ class IncidentDetector:
             end_ns=run.end_ns,
             severity=severity,
             legacy_ids=legacy,
+            worst_frame=worst,
         )
 
     def findings(self) -> tuple[Finding, ...]:

@@ -102,6 +102,9 @@ class Incident:
             data-quality finding of its objects or the ego overlapping its frames,
             :mod:`workbench.quality.suspect`); empty = clean. Suspect incidents rank after
             clean ones.
+        worst_frame: The frame the review viewer shows: the engine's worst (e.g. RSS: the
+            smallest distance ratio; else the smallest margin); ``None``: ``start_frame``.
+            Not in the pinned JSON.
     """
 
     id: str
@@ -115,6 +118,7 @@ class Incident:
     severity: Severity
     legacy_ids: tuple[str, ...] = ()
     data_suspect: tuple[str, ...] = ()
+    worst_frame: int | None = None
 
     @property
     def duration_s(self) -> float:

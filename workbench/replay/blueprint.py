@@ -21,14 +21,22 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
+import rerun as rr
 import rerun.blueprint as rrb
 
 from workbench.engines.registry import engine, names
+from workbench.replay import style
+from workbench.replay.highlight import HIGHLIGHT_ORIGIN, highlight_path
 from workbench.replay.incidents import INCIDENT_LOG, LANES_ORIGIN
 from workbench.replay.sink import FRAME_TIMELINE, TIME_TIMELINE
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
+
+    from rerun.blueprint.api import VisualizerLike
+    from rerun.datatypes import EntityPathLike
+
+    from workbench.incidents import Incident
 
 __all__ = ["TRAIL_FRAMES", "TRAIL_SECONDS", "incident_eye", "replay_blueprint"]
 
@@ -92,12 +100,32 @@ def incident_eye(
     return (cx + dx * scale, cy + dy * scale, dz * scale), (cx, cy, 0.0)
 
 
+def _scene_contents(incident: Incident | None) -> list[str]:
+    if incident is None:
+        return ["+ /world/**"]
+    own = highlight_path(incident, rr.escape_entity_path_part)
+    return ["+ /world/**", f"- /{HIGHLIGHT_ORIGIN}/**", f"+ /{own}/**"]
+
+
+def _scene_overrides(incident: Incident | None) -> dict[EntityPathLike, VisualizerLike]:
+    overrides: dict[EntityPathLike, VisualizerLike] = {"world/ego/trail": _trail_ranges()}
+    if incident is not None:
+        overrides["world/actors"] = rr.Boxes3D.from_fields(
+            colors=[style.INCIDENT_DIM_COLOR], show_labels=False
+        )
+        overrides["world/actors/velocity"] = rr.Arrows3D.from_fields(
+            colors=[style.INCIDENT_DIM_COLOR]
+        )
+    return overrides
+
+
 def replay_blueprint(
     ego_start_m: tuple[float, float] | None = None,
     engines: Sequence[str] = (),
     *,
     selection: tuple[int, int] | None = None,
     focus_m: Sequence[tuple[float, float]] = (),
+    incident: Incident | None = None,
 ) -> rrb.Blueprint:
     """The default blueprint: scene, plots, engine result views, time panel on ``frame``.
 
@@ -114,6 +142,9 @@ def replay_blueprint(
             at ``ego_start_m`` (pass the ego's position at the incident's start).
         focus_m: With ``selection``: the positions of the actors involved at the incident's
             start; the camera frames them with the ego (:func:`incident_eye`).
+        incident: The incident under review: the scene shows its objects highlighted and
+            labelled (:mod:`workbench.replay.highlight`), the other actors dimmed and
+            unlabelled, and no other incident's highlight.
     """
     x0, y0 = ego_start_m or (0.0, 0.0)
     position, target = incident_eye((x0, y0), focus_m if selection is not None else ())
@@ -128,9 +159,10 @@ def replay_blueprint(
             eye_up=(0.0, 0.0, 1.0),
             # A live viewer pulls a tracking eye in to the ego's box (about 4 m): for one
             # incident the camera stays where the incident starts instead.
-            tracking_entity="/world/ego" if selection is None else None,
+            tracking_entity="/world/ego/view" if selection is None else None,
         ),
-        overrides={"world/ego/trail": _trail_ranges()},
+        contents=_scene_contents(incident),
+        overrides=_scene_overrides(incident),
     )
     views: list[rrb.View | rrb.Container] = [
         rrb.TimeSeriesView(name="ego", origin="/plots/ego"),

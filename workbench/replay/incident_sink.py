@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import rerun as rr
 
+from workbench.replay import style
 from workbench.replay.incidents import INCIDENT_LOG, INCIDENT_STATES, layout_incidents
 from workbench.replay.sink import time_index
 
@@ -14,6 +15,7 @@ if TYPE_CHECKING:
     from collections.abc import Mapping, Sequence
 
     from workbench.incidents import Incident
+    from workbench.replay.highlight import Highlight
 
 __all__ = ["send_incidents"]
 
@@ -24,8 +26,10 @@ def send_incidents(
     verdicts: Mapping[str, str],
     frame_times: Sequence[tuple[int, int]],
     settings: Mapping[str, Any] | None = None,
+    *,
+    highlights: Sequence[Highlight] = (),
 ) -> None:
-    """Send the incident lanes, the markers and the incident settings as a property."""
+    """Send the incident lanes, the markers, the objects' highlights and the settings."""
     layout = layout_incidents(incidents, verdicts, frame_times, escape=rr.escape_entity_path_part)
     config = rr.StateConfiguration(
         values=list(INCIDENT_STATES),
@@ -47,6 +51,18 @@ def send_incidents(
                 text=np.array(layout.marker_texts, dtype=str),
                 level=np.array(layout.marker_levels, dtype=str),
             ),
+        )
+    for light in highlights:
+        recording.send_columns(
+            light.path,
+            indexes=time_index(light.frames, light.t_ns),
+            columns=rr.Boxes3D.columns(
+                centers=light.centre_m,
+                half_sizes=light.half_size_m,
+                quaternions=light.quaternion_xyzw,
+                labels=light.labels,
+                colors=np.full(len(light.labels), style.INCIDENT_OBJECT_COLOR, dtype=np.uint32),
+            ).partition(light.counts),
         )
     values: dict[str, Any] = {
         "count": len(incidents),

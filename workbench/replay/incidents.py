@@ -34,6 +34,7 @@ __all__ = [
     "IncidentLayout",
     "layout_incidents",
     "marker_text",
+    "short_labels",
 ]
 
 #: Origin of the incident state lanes (the viewer's "incidents" tab).
@@ -72,6 +73,20 @@ class IncidentLayout:
     marker_t_ns: NDArray[np.int64]
     marker_texts: tuple[str, ...]
     marker_levels: tuple[str, ...]
+
+
+def short_labels(incidents: Sequence[Incident]) -> dict[str, str]:
+    """A short label per object of a drive's incidents: ``#1``, ``#2``, ... by first incident.
+
+    Objects are numbered in the order their first incident starts (ties: by id), so the
+    review table, its facts and the viewer's labels name an object alike (ids of
+    ``derived_object_msgs`` fill 32 columns).
+    """
+    labels: dict[str, str] = {}
+    for incident in sorted(incidents, key=lambda i: (i.start_frame, i.id)):
+        for obj in incident.objects:
+            labels.setdefault(obj, f"#{len(labels) + 1}")
+    return labels
 
 
 def marker_text(incident: Incident, verdict: str | None) -> str:

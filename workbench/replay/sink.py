@@ -8,6 +8,8 @@ Entity paths (they mirror the scene; see ``docs/replay.md``)::
     world/map/boundaries       LineStrips3D road/track boundaries (static)
     world/ego                  Boxes3D, one box per frame
     world/ego/trail            Points3D, one point per frame (the blueprint shows the recent ones)
+    world/ego/view             Points3D, two invisible corners around the ego per frame: what
+                               the live viewer's tracking camera frames (see ``blueprint``)
     world/ego/plan             LineStrips3D, the plan valid at the frame
     world/actors               Boxes3D with class ids and id labels
     world/actors/velocity      Arrows3D, one second of travel, coloured by class
@@ -198,6 +200,18 @@ class RerunSink:
                 colors=_u32(style.EGO_COLOR, n),
                 labels=np.full(n, "ego"),
             ),
+        )
+        corners = np.repeat(ego.centre_m, 2, axis=0)
+        corners[0::2, :2] -= style.VIEW_HALF_SIZE_M
+        corners[1::2, :2] += style.VIEW_HALF_SIZE_M
+        rec.send_columns(
+            "world/ego/view",
+            indexes=index,
+            columns=rr.Points3D.columns(
+                positions=corners,
+                radii=np.full(2 * n, 0.01, dtype=np.float32),
+                colors=_u32(0x00000000, 2 * n),
+            ).partition(np.full(n, 2, dtype=np.int64)),
         )
         trail = ego.centre_m.copy()
         trail[:, 2] = style.EGO_TRAIL_RADIUS_M

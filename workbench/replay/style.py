@@ -18,8 +18,11 @@ __all__ = [
     "CLASS_COLORS",
     "EGO_COLOR",
     "EGO_TRAIL_RADIUS_M",
+    "INCIDENT_DIM_COLOR",
+    "INCIDENT_OBJECT_COLOR",
     "PLAN_COLOR",
     "PLAN_RADIUS_M",
+    "VIEW_HALF_SIZE_M",
 ]
 
 #: Box colour per object class (the annotation context on ``world``).
@@ -35,6 +38,10 @@ CLASS_COLORS: dict[ObjectClass, int] = {
 
 #: The ego stands out from every class colour.
 EGO_COLOR = 0x00E676FF
+#: The objects of the incident under review stand out (red) ...
+INCIDENT_OBJECT_COLOR = 0xFF1744FF
+#: ... and the other actors are dimmed (translucent grey, no labels) in its view.
+INCIDENT_DIM_COLOR = 0x9E9E9E59
 #: The plan is drawn in magenta, the conventional "intent" colour.
 PLAN_COLOR = 0xFF40FFFF
 
@@ -56,3 +63,8 @@ BOUNDARY_RADIUS_M = 0.2
 PLAN_RADIUS_M = 0.25
 EGO_TRAIL_RADIUS_M = 0.3
 ACTOR_LINE_RADIUS_M = 0.06
+
+#: Half the side [m] of the square around the ego that the live viewer's camera frames: a
+#: tracking camera fits the tracked entity's bounds, and the ego's box alone (4 m) made the
+#: web viewer's camera sit a few metres from it.
+VIEW_HALF_SIZE_M = 30.0

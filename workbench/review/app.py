@@ -24,7 +24,9 @@ from textual.app import App, ComposeResult
 from textual.binding import Binding, BindingType
 from textual.widgets import DataTable, Footer, Header, Input, Static
 
-from workbench.review.viewer import NoViewer
+from workbench.replay.incidents import short_labels
+from workbench.review.facts_text import NONE, facts_text, number_text
+from workbench.review.viewer import NoViewer, worst_frame
 
 if TYPE_CHECKING:
     from workbench.incidents import Incident
@@ -41,7 +43,7 @@ class ReviewApp(App[None]):
 
     CSS = """
     #incidents { height: 1fr; }
-    #facts { height: auto; max-height: 9; border-top: solid $accent; padding: 0 1; }
+    #facts { height: auto; max-height: 12; border-top: solid $accent; padding: 0 1; }
     #prompt { display: none; }
     #prompt.open { display: block; }
     """
@@ -53,6 +55,7 @@ class ReviewApp(App[None]):
         Binding("n", "ask('note')", "note"),
         Binding("z", "undo", "undo"),
         Binding("w", "what_if", "what-if profile"),
+        Binding("i", "full_ids", "full ids"),
         Binding("j", "step(1)", "next"),
         Binding("k", "step(-1)", "prev"),
         Binding("q", "quit", "quit"),
@@ -65,6 +68,9 @@ class ReviewApp(App[None]):
         self.viewer = viewer or NoViewer()
         self._asking: str | None = None
         self._what_if_index = -1
+        #: Short label per object id (``#1``...), as the viewer labels them.
+        self.short = short_labels(session.incidents)
+        self._full_ids = False
 
     def compose(self) -> ComposeResult:
         """Title, table, facts, prompt, key help."""
@@ -86,15 +92,24 @@ class ReviewApp(App[None]):
                 self._verdict_cell(incident),
                 incident.id,
                 incident.engine,
-                " ".join(incident.objects) or "-",
+                self._objects(incident, full=False),
                 incident.cause,
                 f"{(incident.start_ns - t0) / 1e9:.2f}",
                 f"{incident.duration_s:.2f}",
-                f"{margin:.2f}" if math.isfinite(margin) else "-",
+                number_text(margin) if math.isfinite(margin) else NONE,
                 key=incident.id,
             )
         table.focus()
         self._go(self.session.index)
+
+    def _objects(self, incident: Incident, *, full: bool) -> str:
+        """The incident's objects by short label (``#1``), with the full ids when ``full``."""
+        if not incident.objects:
+            return NONE
+        return " ".join(
+            f"{self.short.get(o, o)} = {o}" if full else self.short.get(o, o)
+            for o in incident.objects
+        )
 
     def _verdict_cell(self, incident: Incident) -> str:
         label = self.session.labels.get(incident.id)
@@ -113,20 +128,23 @@ class ReviewApp(App[None]):
         tags, note = self.session.tags_and_note(incident)
         label = self.session.labels.get(incident.id)
         t0 = self.session.report.start_ns
-        facts = ", ".join(f"{k} {v}" for k, v in incident.severity.record().items())
+        facts = facts_text(incident.severity.record(), t0_ns=t0)
+        objects = self._objects(incident, full=self._full_ids)
         return "\n".join(
             [
                 f"{incident.id}  [{label.verdict if label else 'unreviewed'}]"
                 + (f" by {label.reviewer}" if label else ""),
-                f"{incident.engine}: {incident.cause}; object {' '.join(incident.objects) or '-'}",
+                f"{incident.engine}: {incident.cause}; object {objects}"
+                + ("" if self._full_ids or not incident.objects else "  (i: full ids)"),
                 (
-                    f"frames {incident.start_frame}-{incident.end_frame}, "
+                    f"frames {incident.start_frame}-{incident.end_frame}"
+                    f" (worst {worst_frame(incident)}), "
                     f"{(incident.start_ns - t0) / 1e9:.2f} s"
                     f" to {(incident.end_ns - t0) / 1e9:.2f} s"
                 ),
                 f"severity: {facts}",
                 *self.session.evidence(incident),
-                f"tags: {', '.join(tags) or '-'}   note: {note or '-'}",
+                f"tags: {', '.join(tags) or NONE}   note: {note or NONE}",
             ]
         )
 
@@ -168,6 +186,11 @@ class ReviewApp(App[None]):
         self._redraw_row(incident)
         self._go(self.session.index + 1)
         self._show(self.session.current)
+
+    def action_full_ids(self) -> None:
+        """Show or hide the full object ids in the facts panel."""
+        self._full_ids = not self._full_ids
+        self.query_one("#facts", Static).update(self._facts(self.session.current))
 
     def action_undo(self) -> None:
         """Take back this session's last write."""

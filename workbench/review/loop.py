@@ -89,11 +89,16 @@ def _replay_and_review(
     ego: EgoSize | None,
     announce: Callable[[str], None],
 ) -> None:
+    from workbench.replay.highlight import CulpritBoxes  # noqa: PLC0415
     from workbench.viewer.replay import (  # noqa: PLC0415 - Rerun only when a viewer is asked
         APPLICATION_ID,
         recording_id,
         replay_drive,
     )
+    from workbench.viewer.web_cursor import WebCursor  # noqa: PLC0415
+
+    web_cursor = WebCursor() if serve else None
+    positions = CulpritBoxes()  # filled by the replay: where the camera looks
 
     first = next(iter(drive.frames()), None)
     ego_start = (first.ego.x_m, first.ego.y_m) if first is not None else None
@@ -110,7 +115,11 @@ def _replay_and_review(
             engines=names,
             ego_at_m=session.report.ego_at_start_m,
             objects_at_m=session.report.objects_at_start_m,
+            cursor=web_cursor,
+            positions=positions,
         )
+        if web_cursor is not None:
+            web_cursor.on_loaded = link.show_again
         try:
             run_review(session, link)
         finally:
@@ -132,6 +141,8 @@ def _replay_and_review(
         incident_settings=incident_settings,
         verdicts=verdicts,
         ego_size=ego,
+        web_cursor=web_cursor,
+        culprits=positions,
     )
     if not serve:
         loop(connect or SPAWN_URL)

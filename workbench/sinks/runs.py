@@ -38,6 +38,7 @@ class Run(Generic[K]):
         start_ns: Time of the first hit frame.
         end_ns: Time of the last hit frame.
         worst_margin: Smallest verdict margin over the hit frames.
+        worst_frame: First hit frame with that margin (``-1`` before the first hit).
         unsafe_frames: Hit frames (fewer than ``end_frame - start_frame + 1`` when gaps
             were bridged).
         objects: Culprits of every hit frame.
@@ -53,6 +54,7 @@ class Run(Generic[K]):
     end_ns: int
     worst_margin: float
     unsafe_frames: int = 1
+    worst_frame: int = -1
     objects: set[str] = field(default_factory=set)
     causes: list[str] = field(default_factory=list)
     extra: list[Any] = field(default_factory=list)
@@ -62,6 +64,8 @@ class Run(Generic[K]):
         """Add one hit frame's verdict."""
         self.end_frame = frame
         self.end_ns = t_ns
+        if self.worst_frame < 0 or verdict.margin < self.worst_margin:
+            self.worst_frame = frame
         self.worst_margin = min(self.worst_margin, verdict.margin)
         self.objects.update(verdict.culprits)
         if verdict.cause and verdict.cause not in self.causes:

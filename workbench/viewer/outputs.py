@@ -27,6 +27,8 @@ from workbench.errors import WorkbenchError
 if TYPE_CHECKING:
     from collections.abc import Iterator
 
+    from workbench.viewer.web_cursor import WebCursor
+
 __all__ = ["LOCALHOST", "ReplayError", "attached"]
 
 #: ``--serve`` binds the gRPC server here; Rerun's own default is every interface.
@@ -67,11 +69,13 @@ def attached(
     ports: tuple[int, int],
     bind: str,
     connect: str | None = None,
+    web_cursor: WebCursor | None = None,
 ) -> Iterator[str]:
     """Set the stream's sink and yield where the data goes (path or URL).
 
     A server started for ``serve`` is stopped when the block ends; ``connect`` streams to a
-    running viewer's gRPC proxy (``rerun+http://HOST:PORT/proxy``).
+    running viewer's gRPC proxy (``rerun+http://HOST:PORT/proxy``). With ``web_cursor``,
+    ``serve``'s web page is served by it (in front of Rerun's), so it can move the cursor.
     """
     if sum((out is not None, spawn, serve, connect is not None)) != 1:
         raise ReplayError("choose exactly one of an output file, spawn, serve or connect")
@@ -102,12 +106,20 @@ def attached(
             raise ReplayError(f"cannot start the Rerun viewer: {err}".splitlines()[0]) from err
         yield "viewer"
         return
-    url, server = _serve(rec, blueprint, ports=ports, bind=bind)
+    url, server = _serve(rec, blueprint, ports=ports, bind=bind, web_cursor=web_cursor)
     try:
         yield url
     finally:
         rec.disconnect()
+        if web_cursor is not None:
+            web_cursor.stop()
         _stop(server)
+
+
+def _free_port() -> int:
+    with socket.socket() as sock:
+        sock.bind((LOCALHOST, 0))
+        return int(sock.getsockname()[1])
 
 
 def _group_alive(pgid: int) -> bool:
@@ -174,16 +186,19 @@ def _serve(
     *,
     ports: tuple[int, int],
     bind: str,
+    web_cursor: WebCursor | None = None,
 ) -> tuple[str, subprocess.Popen[bytes]]:
     """Start ``rerun --serve-web --bind BIND`` and connect the stream to its gRPC proxy.
 
     The SDK's in-process web server has no bind option and listens on every interface; the
-    viewer's own server binds both the gRPC proxy and the web page to ``bind``.
+    viewer's own server binds both the gRPC proxy and the web page to ``bind``. With
+    ``web_cursor``, Rerun's page is on a free port and ``web_cursor`` serves it on the web port.
     """
     grpc_port, web_port = ports
+    rerun_web_port = web_port if web_cursor is None else _free_port()
     exe = _viewer_binary()
     cmd = [exe, "--serve-web", "--bind", bind, "--port", str(grpc_port)]
-    cmd += ["--web-viewer-port", str(web_port)]
+    cmd += ["--web-viewer-port", str(rerun_web_port)]
     with _viewer_analytics_off():
         try:
             # Own session, stopped as a group with the replay; on Linux also stopped by the
@@ -204,9 +219,16 @@ def _serve(
     host = "127.0.0.1" if bind in {"0.0.0.0", "::"} else bind  # noqa: S104 - compared, not bound
     try:
         _wait_for_port(host, grpc_port, proc, timeout_s=20.0)
+        if web_cursor is not None:
+            _wait_for_port(host, rerun_web_port, proc, timeout_s=20.0)
+            web_cursor.start(bind, web_port, rerun_web_port)
     except ReplayError:
         _stop(proc)
         raise
+    except OSError as err:
+        _stop(proc)
+        msg = f"cannot serve the web viewer on {bind}:{web_port}: {err.strerror}"
+        raise ReplayError(msg) from err
     uri = f"rerun+http://{host}:{grpc_port}/proxy"
     rec.connect_grpc(uri, default_blueprint=blueprint)
     return f"http://{host}:{web_port}/?url={uri}", proc

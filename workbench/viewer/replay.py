@@ -15,7 +15,9 @@ import rerun as rr
 from workbench.driver.run import DriveRun, EgoSize
 from workbench.incidents import IncidentDetector, drive_content_hash
 from workbench.replay.blueprint import replay_blueprint
+from workbench.replay.highlight import CulpritBoxes
 from workbench.replay.incident_sink import send_incidents
+from workbench.replay.incidents import short_labels
 from workbench.sinks.rerun_drive import SEND_FRAMES, RerunDriveSink
 from workbench.sinks.violations import ViolationDetector
 from workbench.viewer.outputs import LOCALHOST, attached
@@ -30,6 +32,7 @@ if TYPE_CHECKING:
     from workbench.engines.base import EngineRunner
     from workbench.incidents import Incident, IncidentSettings
     from workbench.sinks.violations import Violation
+    from workbench.viewer.web_cursor import WebCursor
 
 __all__ = ["APPLICATION_ID", "ReplaySummary", "recording_id", "replay_drive"]
 
@@ -100,6 +103,8 @@ def replay_drive(
     selection: tuple[int, int] | None = None,
     lead_in: tuple[int, int] | None = None,
     focus_m: tuple[tuple[float, float], Sequence[tuple[float, float]]] | None = None,
+    web_cursor: WebCursor | None = None,
+    culprits: CulpritBoxes | None = None,
 ) -> ReplaySummary:
     """Send a drive's map, frames and engine verdicts to exactly one destination.
 
@@ -130,6 +135,10 @@ def replay_drive(
             (a clip numbered as its drive; :class:`~workbench.driver.run.DriveRun`).
         focus_m: With ``selection``: ``(ego, objects)`` positions ``(x, y)`` [m] at the
             incident's first frame; the camera frames them (else the ego at the first frame).
+        web_cursor: With ``serve``: serves the web page so the review loop can move the
+            browser's time cursor (:mod:`workbench.viewer.web_cursor`).
+        culprits: Collects the culprits' boxes and the ego's positions at unsafe frames
+            (the caller keeps it: the review camera looks there); a fresh one by default.
 
     Returns:
         Counts and timings of the replay.
@@ -159,6 +168,7 @@ def replay_drive(
         drive_content_hash(path) if engines and path.exists() else "", incident_settings
     )
     sink = RerunDriveSink(rec, drive, run.engine_names, send_frames=send_frames)
+    culprits = culprits if culprits is not None else CulpritBoxes()
     try:
         with attached(
             rec,
@@ -169,17 +179,26 @@ def replay_drive(
             ports=ports,
             bind=bind,
             connect=connect,
+            web_cursor=web_cursor,
         ) as to:
             for chunk in _with_first(first, chunks):
                 sink.add_chunk(chunk)
                 detector.add_chunk(chunk)
                 incidents.add_chunk(chunk)
+                if engines:
+                    culprits.add_chunk(chunk)
                 if progress is not None:
                     progress(detector.frames)
             sink.close()
             found = tuple(incidents.incidents()) if engines else ()
             if engines:
-                send_incidents(rec, found, verdicts or {}, incidents.frame_times)
+                lights = culprits.layout(
+                    found,
+                    short_labels(found),
+                    incidents.frame_times,
+                    escape=rr.escape_entity_path_part,
+                )
+                send_incidents(rec, found, verdicts or {}, incidents.frame_times, highlights=lights)
             if on_served is not None and serve:
                 on_served(to)
             rec.disconnect()

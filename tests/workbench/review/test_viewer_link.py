@@ -17,7 +17,7 @@ from rerun.experimental import ViewerClient
 
 from tests.conftest import running_in_ci
 from workbench.incidents import IncidentRequest, find_incidents
-from workbench.review.viewer import RerunLink
+from workbench.review.viewer import RerunLink, ViewerCursor, worst_frame
 from workbench.viewer.replay import APPLICATION_ID, recording_id, replay_drive
 
 ROOT = Path(__file__).resolve().parents[3]
@@ -74,6 +74,20 @@ def _selection(client: ViewerClient, want: dict[str, int]) -> dict[str, int]:
     return seen
 
 
+def _cursor(client: ViewerClient, frame: int) -> tuple[str | None, int | None]:
+    """The recording's timeline and time, once at ``frame`` (or the last seen)."""
+    deadline = time.monotonic() + 30
+    seen: tuple[str | None, int | None] = (None, None)
+    while time.monotonic() < deadline:
+        recordings = client.get_state().recordings
+        if recordings:
+            seen = (recordings[0].current_timeline, recordings[0].current_time)
+            if seen == ("frame", frame):
+                break
+        time.sleep(0.3)
+    return seen
+
+
 def test_each_incident_shown_selects_its_frames_in_the_live_recording(viewer_url):
     log = ROOT / "sample_logs" / "hard_braking_lead.mcap"
     request = IncidentRequest(log, engines=ENGINES, reach_method="simple", reach_rules="reference")
@@ -95,11 +109,19 @@ def test_each_incident_shown_selects_its_frames_in_the_live_recording(viewer_url
         engines=ENGINES,
     )
     try:
-        for incident in (report.incidents[0], report.incidents[3]):
+        moves = [report.incidents[0], report.incidents[3], report.incidents[0]]
+        assert worst_frame(moves[0]) != worst_frame(moves[1])  # the cursor must really move
+        for incident in moves:
             link.show(incident)
             link.recording.flush()
             want = {"min": incident.start_frame, "max": incident.end_frame}
             assert _selection(client, want) == want
+            # the time cursor is on the incident's worst frame, inside its window
+            timeline, at = _cursor(client, worst_frame(incident))
+            assert (timeline, at) == ("frame", worst_frame(incident))
+            assert incident.start_frame <= worst_frame(incident) <= incident.end_frame
+            assert isinstance(link.cursor, ViewerCursor)
+            assert link.cursor.error is None
     finally:
         link.close()
     state = client.get_state()

@@ -42,13 +42,14 @@ class RssIncidentFacts:
         self._due: int | None = None
         self._seen = False
         self._profile = ""
+        self._worst_frame: int | None = None
 
     def add(self, frame: int, t_ns: int, verdict: object, object_id: str) -> None:
         """One unsafe frame of the incident (its object: ``object_id``).
 
         Verdicts that are not :class:`RssVerdict` (summaries) carry no facts and are skipped.
         """
-        del frame, t_ns
+        del t_ns
         if not isinstance(verdict, RssVerdict):
             return
         self._seen = True
@@ -56,6 +57,8 @@ class RssIncidentFacts:
         self._parties |= _PARTIES.get(verdict.responsibility().get(object_id, ""), 0)
         facts = verdict.severity().get(object_id)
         if facts is not None:
+            if self._worst_frame is None or facts.distance_ratio < self._ratio:
+                self._worst_frame = frame
             self._ratio = min(self._ratio, facts.distance_ratio)
             self._ttc = min(self._ttc, facts.ttc_s)
             self._decel = max(self._decel, facts.required_decel_mps2)
@@ -63,6 +66,10 @@ class RssIncidentFacts:
             short = duty.shortfall_mps2
             if label == object_id and short is not None and short > (self._shortfall or 0.0):
                 self._shortfall, self._party, self._due = short, duty.party, duty.due_ns
+
+    def worst_frame(self) -> int | None:
+        """The frame of the smallest current / safe distance ratio (``None``: no RSS facts)."""
+        return self._worst_frame
 
     def facts(self) -> dict[str, Any]:
         """The facts by name (JSON-ready: no infinities); none without an RSS verdict."""
