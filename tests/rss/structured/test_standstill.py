@@ -1,4 +1,5 @@
-"""The review profiles' standstill rule: two standing vehicles in a queue are not a danger."""
+"""Nothing can collide, nothing is dangerous: two standing vehicles (the review profiles'
+standstill rule) and a pair laterally clear and not converging (every profile)."""
 
 from __future__ import annotations
 
@@ -16,6 +17,7 @@ from rss.model import (
     SpeedInterval,
 )
 from rss.params import ObjectClass, rss_params_from_mapping
+from rss.profiles import PROFILES
 from rss.structured.engine import check_frame
 from rss.structured.stacking import stack_constellations
 from rss.structured.standstill import apply_standstill
@@ -98,3 +100,60 @@ def test_standing_follower_behind_a_moving_ego_is_safe_when_the_ego_pulls_away()
     pulling_away = _queue(1.0, 2.0, 0.0, other_ahead=False)
     assert _dangerous(pulling_away, 0.0)
     assert not _dangerous(pulling_away, 0.1)
+
+
+_LANE_W = 3.5
+
+
+def _side_by_side(gap_m: float, ego_lat_mps: float, other_lat_mps: float, profile: str) -> bool:
+    """Ego (left lane) beside another car (right lane), ``gap_m`` apart; whether dangerous."""
+    road = (
+        RoadSegment(
+            tuple(
+                LaneSegment(k, LaneDrivingDirection.Positive, 100.0, 100.0, _LANE_W, _LANE_W)
+                for k in (1, 2)
+            )
+        ),
+    )
+    width = 1.8
+    # ego flush with the left lane's right border minus half the gap, other mirrored
+    ego_right = 1.0 - gap_m / 2 / _LANE_W
+    other_left = gap_m / 2 / _LANE_W
+    params = rss_params_from_mapping({}, profile=profile)
+    constellation = Constellation(
+        ConstellationType.SameDirection,
+        LaneObject(
+            0,
+            ObjectType.EgoVehicle,
+            (OccupiedRegion(1, 0.4, 0.45, ego_right - width / _LANE_W, ego_right),),
+            SpeedInterval(10.0, 10.0, ego_lat_mps, ego_lat_mps),
+        ),
+        LaneObject(
+            7,
+            ObjectType.OtherVehicle,
+            (OccupiedRegion(2, 0.41, 0.46, other_left, other_left + width / _LANE_W),),
+            SpeedInterval(10.0, 10.0, other_lat_mps, other_lat_mps),
+        ),
+        params.for_class(ObjectClass.EGO),
+        params.for_class(ObjectClass.CAR),
+        road,
+    )
+    result, _ = check_frame(
+        stack_constellations([constellation]), params.for_class(ObjectClass.EGO)
+    )
+    return bool(result.dangerous[0])
+
+
+@pytest.mark.parametrize("profile", sorted(PROFILES))
+@pytest.mark.parametrize(("ego_lat", "other_lat"), [(0.0, 0.0), (-0.5, 0.0), (0.0, 0.8)])
+def test_clear_and_not_converging_is_not_dangerous(
+    profile: str, ego_lat: float, other_lat: float
+) -> None:
+    # lateral speed > 0 = to the right: the ego (left) keeps still or moves left, the other
+    # keeps still or moves right; longitudinally they overlap (lon unsafe)
+    assert not _side_by_side(1.5, ego_lat, other_lat, profile)
+
+
+@pytest.mark.parametrize("profile", ["adrss-5.0", "urban", "highway"])
+def test_converging_at_the_same_gap_is_dangerous(profile: str) -> None:
+    assert _side_by_side(1.5, 1.0, -1.0, profile)
