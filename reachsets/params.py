@@ -96,6 +96,9 @@ class RoadRuleParams:
             its lane into which no vehicle may change lanes.
         cut_in_gap_min_m: Smallest such gap.
         corridor_length_m: How far along successor lanes a lane corridor reaches.
+        standstill_speed_mps: With the lane rules: an object at or below this speed while
+            the ego stands does not start into the ego (``road.standstill``,
+            ``rules_standstill``); 0 = off.
     """
 
     enabled: bool = True
@@ -109,6 +112,7 @@ class RoadRuleParams:
     cut_in_gap_s: float = 0.9
     cut_in_gap_min_m: float = 2.0
     corridor_length_m: float = 300.0
+    standstill_speed_mps: float = 0.5
 
 
 @dataclass(frozen=True, slots=True)

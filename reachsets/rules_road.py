@@ -27,7 +27,8 @@ road.speed_limit    H below_limit                              step k: the half-
                                                                up to the capped speed
 ==================  =========================================  ==============================
 
-With ``RoadRuleParams.lane_rules`` the lane rules of ``rules_lane`` run as well.
+With ``RoadRuleParams.lane_rules`` the lane rules of ``rules_lane`` and the standstill rule of
+``rules_standstill`` run as well.
 """
 
 from __future__ import annotations
@@ -42,6 +43,7 @@ from reachsets.ltl import And, Atom, Historically, LtlMemory, Since, step
 from reachsets.patches import RuleContext, RulePatch
 from reachsets.road import RoadGeometry, prepare_road
 from reachsets.rules_lane import evaluate_lanes
+from reachsets.rules_standstill import evaluate_standstill
 
 if TYPE_CHECKING:
     from collections.abc import Mapping
@@ -170,7 +172,7 @@ def evaluate_road(
     patches.extend(_speed_patches(ctx, np.flatnonzero(results["road.speed_limit"]), limit))
     if p.lane_rules:
         lane_patches, lane_mem = evaluate_lanes(ctx, memory, geo, aligned)
-        patches += lane_patches
+        patches += lane_patches + evaluate_standstill(ctx)
         mem.update(lane_mem)
     return patches, mem
 

@@ -32,6 +32,7 @@ from rss.scene.chunked import match_frames
 from rss.scene.create import scene_boxes
 from rss.structured.engine import FrameResult, check_frames, select_frame
 from rss.structured.stacking import stack_constellations
+from rss.structured.standstill import apply_standstill
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -119,6 +120,8 @@ def evaluate_frames(
     ]
     batch, scenes, rejected = _stacked(scenes)
     counts = [len(s.constellations) for s in scenes]
+    if batch is not None:
+        batch = apply_standstill(batch, params.standstill_speed_mps)
     if batch is None:
         verdicts = [
             FrameVerdict(s, _NO_ROWS, _NO_ROWS, None, bad)

@@ -8,6 +8,8 @@ TOML layout (``--rss-params``, see ``conformance/rss_params_example.toml``)::
     [pedestrian]  RssDynamics keys of pedestrians
     [scene]       restrict_speed_limit_mode, constellation_creation_mode,
                   ego_length, ego_width, ego_height, reproduce_adrss_5_0_defects
+    [review]      standstill_speed (m/s, >= 0; 0 = off): the review profiles' standstill
+                  rule (:mod:`rss.structured.standstill`)
     profile = "NAME"   (top level, optional) a named profile of :mod:`rss.profiles`
 
 Keys not given keep the profile's values; without a profile the documented defaults
@@ -148,12 +150,16 @@ class RssParams:
         profile: Name of the :mod:`rss.profiles` profile the values start from.
         overridden: ``True`` when a ``--rss-params`` file changed any of the profile's
             values (outputs then name the profile with ``+file``).
+        standstill_speed_mps: The standstill rule's threshold [m/s]
+            (:mod:`rss.structured.standstill`, ``[review] standstill_speed``); 0 = off, as
+            in ad-rss (the ``adrss-5.0`` and ``carla`` profiles).
     """
 
     dynamics: Mapping[ObjectClass, RssDynamics] = field(default_factory=_default_classes)
     scene: SceneSettings = field(default_factory=SceneSettings)
     profile: str = LIBRARY_PROFILE
     overridden: bool = False
+    standstill_speed_mps: float = 0.0
 
     @property
     def profile_label(self) -> str:
@@ -206,7 +212,7 @@ def rss_params_from_mapping(data: Mapping[str, object], *, profile: str | None =
     own = {k: v for k, v in data.items() if k != "profile"}
     overridden = bool(own)
     data = merged_tables(name, own)
-    known = {c.value for c in ObjectClass} | {"vehicle", "scene"}
+    known = {c.value for c in ObjectClass} | {"vehicle", "scene", "review"}
     for table, content in data.items():
         if table not in known:
             raise RssParameterError(
@@ -222,7 +228,28 @@ def rss_params_from_mapping(data: Mapping[str, object], *, profile: str | None =
     for cls in (ObjectClass.EGO, ObjectClass.PEDESTRIAN):
         classes[cls] = classes[cls].with_overrides(_table(data, cls.value), prefix=f"{cls.value}.")
     scene = _scene(_table(data, "scene"))
-    return RssParams(dynamics=classes, scene=scene, profile=name, overridden=overridden)
+    standstill = _review(_table(data, "review"))
+    return RssParams(
+        dynamics=classes,
+        scene=scene,
+        profile=name,
+        overridden=overridden,
+        standstill_speed_mps=standstill,
+    )
+
+
+def _review(table: Mapping[str, object]) -> float:
+    """The ``[review]`` table's standstill threshold [m/s] (0 when not given)."""
+    speed = 0.0
+    for key, value in table.items():
+        name = f"review.{key}"
+        if key != "standstill_speed":
+            raise RssParameterError(name, value, "unknown [review] key")
+        ok = isinstance(value, int | float) and not isinstance(value, bool)
+        if not ok or not math.isfinite(float(value)) or not 0.0 <= float(value) <= 1.0:  # type: ignore[arg-type]
+            raise RssParameterError(name, value, "must be a number in [0, 1] m/s")
+        speed = float(value)  # type: ignore[arg-type]
+    return speed
 
 
 def _table(data: Mapping[str, object], name: str) -> dict[str, object]:

@@ -36,6 +36,8 @@ __all__ = [
     "LIBRARY_PROFILE",
     "PROFILES",
     "REVIEW_PROFILE",
+    "STANDSTILL_SPEED_MPS",
+    "URBAN_PROFILE",
     "Profile",
     "merged_tables",
     "profile",
@@ -45,6 +47,11 @@ __all__ = [
 LIBRARY_PROFILE = "adrss-5.0"
 #: Profile of the review commands' ``auto`` choice on fast roads (docs/rss.md).
 REVIEW_PROFILE = "highway"
+#: Profile of the review commands' ``auto`` choice in town (docs/rss.md).
+URBAN_PROFILE = "urban"
+#: Standstill threshold of the review profiles [m/s]: ad-rss 5.0's own standstill test
+#: (unstructured constellations: both ``speed_range.max <= 0.1`` -> DriveAway).
+STANDSTILL_SPEED_MPS = 0.1
 
 Tables = dict[str, dict[str, object]]
 
@@ -94,6 +101,15 @@ _HIGHWAY_VEHICLE: dict[str, object] = {
     "brake_min_correct": -5.0,
 }
 
+_URBAN_VEHICLE: dict[str, object] = {
+    "response_time": 1.0,
+    "accel_max": 2.0,
+    "brake_min": -3.4,
+    "brake_min_correct": -3.0,
+}
+
+_REVIEW: dict[str, object] = {"standstill_speed": STANDSTILL_SPEED_MPS}
+
 PROFILES: dict[str, Profile] = {
     p.name: p
     for p in (
@@ -123,6 +139,20 @@ PROFILES: dict[str, Profile] = {
             tables={
                 "ego": {**_HIGHWAY_VEHICLE, "response_time": 0.5},
                 "vehicle": _HIGHWAY_VEHICLE,
+                "review": _REVIEW,
+            },
+        ),
+        Profile(
+            name="urban",
+            summary="review of recorded drives in town (auto's choice there)",
+            source=(
+                "docs/rss.md, Parameter profiles (legal reaction time; AASHTO stopping "
+                "deceleration 3.4 m/s^2 checked on urban GPS data; NGSIM Lankershim/Peachtree)"
+            ),
+            tables={
+                "ego": {**_URBAN_VEHICLE, "response_time": 0.5},
+                "vehicle": _URBAN_VEHICLE,
+                "review": _REVIEW,
             },
         ),
     )

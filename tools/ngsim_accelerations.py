@@ -1,13 +1,15 @@
-"""Longitudinal accelerations of every vehicle of the NGSIM US-101 scenarios (naturalistic data).
+"""Longitudinal accelerations of every vehicle of NGSIM scenarios (naturalistic data).
 
-The check behind the ``highway`` RSS profile's acceleration values (docs/rss.md, "Parameter
+The check behind the ``highway`` (US-101) and ``urban`` (Lankershim, Peachtree: ``--glob
+'USA_[LP]*.xml'``) RSS profiles' acceleration values (docs/rss.md, "Parameter
 profiles"): each vehicle's speed series (the ego's and every object's, per CommonRoad
 scenario) is turned into accelerations the way proper-response compliance measured them —
 the least-squares slope of the speed over the last 0.5 s (it now fits positions)
 (:func:`workbench.engines.rss.compliance.slope`) — and the percentiles over all vehicles are
 printed::
 
-    .venv/bin/python tools/ngsim_accelerations.py [--dir ../shared/external/commonroad_ngsim]
+    .venv/bin/python tools/ngsim_accelerations.py [--dir ../shared/external/commonroad_ngsim] \
+        [--glob G]
 """
 
 from __future__ import annotations
@@ -57,10 +59,15 @@ def main() -> int:
     """Print the percentiles per scenario and over all of them."""
     ap = argparse.ArgumentParser()
     ap.add_argument("--dir", type=Path, default=ROOT.parent / "shared/external/commonroad_ngsim")
+    ap.add_argument(
+        "--glob",
+        default="USA_US101*.xml",
+        help="scenario files in --dir (urban: 'USA_Lanker*.xml', 'USA_Peach*.xml')",
+    )
     args = ap.parse_args()
-    paths = sorted(args.dir.glob("USA_US101*.xml"))
+    paths = sorted(args.dir.glob(args.glob))
     if not paths:
-        print(f"no USA_US101*.xml in {args.dir}", file=sys.stderr)
+        print(f"no {args.glob} in {args.dir}", file=sys.stderr)
         return 2
     head = " ".join(f"p{p:g}".rjust(7) for p in PERCENTILES)
     print(f"{'scenario':26} {'vehicles':>8} {'samples':>8} {head}")

@@ -111,9 +111,11 @@ def rss_profile_line(params: RssParams) -> str:
     from rss.profiles import profile  # noqa: PLC0415
 
     ego, car = params.for_class(ObjectClass.EGO), params.for_class(ObjectClass.CAR)
+    still = params.standstill_speed_mps
+    rule = f"; standstill rule {still:g} m/s" if still > 0.0 else ""
     return (
         f"{params.profile_label}: {profile(params.profile).summary} "
         f"(ego rho {ego.response_time_s:g} s, a_max {ego.accel_max_mps2:g}, "
         f"b_min {ego.brake_min_mps2:g}; car rho {car.response_time_s:g} s, "
-        f"b_max {car.brake_max_mps2:g} m/s^2)"
+        f"b_max {car.brake_max_mps2:g} m/s^2{rule})"
     )

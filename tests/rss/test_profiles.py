@@ -6,7 +6,13 @@ import pytest
 
 from rss.errors import RssParameterError
 from rss.params import ObjectClass, RssParams, parse_rss_params, rss_params_from_mapping
-from rss.profiles import LIBRARY_PROFILE, PROFILES, REVIEW_PROFILE
+from rss.profiles import (
+    LIBRARY_PROFILE,
+    PROFILES,
+    REVIEW_PROFILE,
+    STANDSTILL_SPEED_MPS,
+    URBAN_PROFILE,
+)
 
 
 def test_the_library_profile_is_the_conformance_reference() -> None:
@@ -85,3 +91,49 @@ def test_every_profile_builds_and_is_documented() -> None:
         assert rss_params_from_mapping({}, profile=name).profile == name
         assert prof.summary
         assert prof.source
+
+
+def test_urban_profile_values() -> None:
+    params = rss_params_from_mapping({}, profile="urban")
+    ego, car = params.for_class(ObjectClass.EGO), params.for_class(ObjectClass.CAR)
+    assert (ego.response_time_s, car.response_time_s) == (0.5, 1.0)
+    for dyn in (ego, car):
+        # AASHTO stopping deceleration 3.4 m/s^2 (docs/rss.md, "urban")
+        assert (dyn.accel_max_mps2, dyn.brake_min_mps2, dyn.brake_min_correct_mps2) == (
+            2.0,
+            -3.4,
+            -3.0,
+        )
+        assert dyn.brake_max_mps2 == -8.0  # kept from adrss-5.0
+        assert dyn.min_longitudinal_safety_distance_m == 0.0
+    assert params.for_class(ObjectClass.PEDESTRIAN) == RssParams().for_class(ObjectClass.PEDESTRIAN)
+    assert URBAN_PROFILE == "urban"
+
+
+def test_standstill_rule_only_in_the_review_profiles() -> None:
+    speeds = {
+        name: rss_params_from_mapping({}, profile=name).standstill_speed_mps for name in PROFILES
+    }
+    assert speeds == {
+        "adrss-5.0": 0.0,
+        "carla": 0.0,
+        "highway": STANDSTILL_SPEED_MPS,
+        "urban": STANDSTILL_SPEED_MPS,
+    }
+    assert RssParams().standstill_speed_mps == 0.0
+    assert parse_rss_params("[review]\nstandstill_speed = 0.3\n").standstill_speed_mps == 0.3
+    off = parse_rss_params('profile = "urban"\n[review]\nstandstill_speed = 0\n')
+    assert off.standstill_speed_mps == 0.0
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "[review]\nstandstill_speed = -1\n",
+        "[review]\nstandstill_speed = true\n",
+        "[review]\nx = 1\n",
+    ],
+)
+def test_bad_review_table_is_a_typed_error(text: str) -> None:
+    with pytest.raises(RssParameterError, match="review"):
+        parse_rss_params(text)

@@ -33,8 +33,8 @@ RssProfileOption = Annotated[
     typer.Option(
         "--rss-profile",
         help=(
-            "RSS parameter profile: adrss-5.0, carla, highway, or auto (default: highway on "
-            "roads with speed limits >= 70 km/h, else adrss-5.0; docs/rss.md)."
+            "RSS parameter profile: adrss-5.0, carla, highway, urban, or auto (default: "
+            "highway on roads with speed limits >= 70 km/h, urban on other maps; docs/rss.md)."
         ),
     ),
 ]

@@ -6,9 +6,9 @@ RSS parameters are meant to be set for a context (docs/rss.md, "Parameter profil
   :data:`FAST_ROAD_MPS` (70 km/h: roads outside built-up areas and motorways), or the map
   gives no speed limit and has neither junctions, sidewalks, crosswalks nor parking lanes
   (a bare multi-lane carriageway such as the NGSIM US-101 maps);
-* ``adrss-5.0`` otherwise (urban streets, junctions, parking; and drives without a map):
-  the conservative reference, where others' 2 s response time protects vulnerable road
-  users.
+* ``urban`` on every other map (urban streets, junctions, sidewalks, parking): the review
+  profile calibrated on town driving;
+* ``adrss-5.0`` for drives without a map (structured RSS then builds no constellation).
 """
 
 from __future__ import annotations
@@ -17,6 +17,7 @@ import math
 from typing import TYPE_CHECKING
 
 from loaders.maps.model import LaneKind
+from rss.profiles import LIBRARY_PROFILE, REVIEW_PROFILE, URBAN_PROFILE
 
 if TYPE_CHECKING:
     from loaders.maps.model import LaneMap
@@ -33,10 +34,12 @@ _URBAN_KINDS = frozenset({LaneKind.SIDEWALK, LaneKind.CROSSWALK, LaneKind.PARKIN
 def auto_profile(lane_map: LaneMap | None) -> str:
     """The profile ``auto`` picks for a drive's lane map (see the module docstring)."""
     if lane_map is None:
-        return "adrss-5.0"
+        return LIBRARY_PROFILE
     lanes = list(lane_map.lanes.values())
     limits = [lane.speed_limit_mps for lane in lanes if not math.isnan(lane.speed_limit_mps)]
     if limits:
-        return "highway" if max(limits) >= FAST_ROAD_MPS - 1e-9 else "adrss-5.0"
+        return REVIEW_PROFILE if max(limits) >= FAST_ROAD_MPS - 1e-9 else URBAN_PROFILE
     urban = bool(lane_map.intersections) or any(lane.kind in _URBAN_KINDS for lane in lanes)
-    return "adrss-5.0" if urban or not lanes else "highway"
+    if not lanes:
+        return LIBRARY_PROFILE
+    return URBAN_PROFILE if urban else REVIEW_PROFILE

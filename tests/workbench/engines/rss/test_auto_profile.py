@@ -1,4 +1,4 @@
-"""``--rss-profile auto``: highway on fast roads, the reference in town and without a map."""
+"""``--rss-profile auto``: highway on fast roads, urban in town, the reference without a map."""
 
 from __future__ import annotations
 
@@ -9,6 +9,7 @@ import pytest
 
 from loaders.maps.model import Lane, LaneKind, LaneMap
 from loaders.open import open_drive
+from workbench.drives import load_rss_params
 from workbench.engines.rss.auto_profile import auto_profile
 
 SAMPLES = Path(__file__).resolve().parents[4] / "sample_logs"
@@ -30,9 +31,9 @@ def _map(limits: list[float], kinds: list[LaneKind] | None = None) -> LaneMap:
         ("highway_cut_in", "highway"),  # 130 km/h (docs/samples.md)
         ("hard_braking_lead", "highway"),  # 80 km/h
         ("wrong_way_oncoming", "highway"),  # 100 km/h
-        ("urban_intersection", "adrss-5.0"),  # 50 / 30 km/h
-        ("pedestrian_crossing", "adrss-5.0"),
-        ("parking_lot", "adrss-5.0"),
+        ("urban_intersection", "urban"),  # 50 / 30 km/h
+        ("pedestrian_crossing", "urban"),
+        ("parking_lot", "urban"),
     ],
 )
 def test_samples(name: str, expected: str) -> None:
@@ -46,7 +47,27 @@ def test_samples(name: str, expected: str) -> None:
 def test_threshold_and_maps_without_limits() -> None:
     assert auto_profile(None) == "adrss-5.0"
     assert auto_profile(_map([70.0 / 3.6])) == "highway"
-    assert auto_profile(_map([69.0 / 3.6, 50.0 / 3.6])) == "adrss-5.0"
+    assert auto_profile(_map([69.0 / 3.6, 50.0 / 3.6])) == "urban"
     assert auto_profile(_map([float("nan")] * 3)) == "highway"  # a bare carriageway
     walk = [LaneKind.ROAD, LaneKind.SIDEWALK]
-    assert auto_profile(_map([float("nan")] * 2, walk)) == "adrss-5.0"
+    assert auto_profile(_map([float("nan")] * 2, walk)) == "urban"
+
+
+@pytest.mark.parametrize(
+    ("name", "expected"),
+    [
+        ("USA_Lanker-2_23_T-1", "urban"),  # Lankershim Blvd: signalised junctions
+        ("USA_Peach-4_8_T-1", "urban"),  # Peachtree St
+        ("USA_US101-23_1_T-1", "highway"),  # US-101: a bare carriageway
+    ],
+)
+def test_real_ngsim_maps(external_dir: Path, name: str, expected: str) -> None:
+    """The real lanelet maps: town streets get ``urban``, the freeway ``highway``."""
+    drive = open_drive(external_dir / "commonroad_ngsim" / f"{name}.xml")
+    try:
+        assert auto_profile(drive.lane_map) == expected
+        params = load_rss_params(None, None, drive.lane_map)
+    finally:
+        drive.close()
+    assert params.profile == expected
+    assert params.standstill_speed_mps > 0.0  # both review profiles: the standstill rule

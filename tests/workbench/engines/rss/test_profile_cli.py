@@ -21,6 +21,18 @@ def test_info_shows_the_active_profile(options, shown, capsys):
     assert shown in capsys.readouterr().out
 
 
+def test_info_shows_urban_and_the_standstill_rule_in_town(capsys):
+    assert _run(["info", str(SAMPLES / "urban_intersection.mcap")]) == 0
+    out = " ".join(capsys.readouterr().out.split())  # the table wraps long lines
+    assert "rss profile auto -> urban:" in out
+    assert "b_min -3.4" in out
+    assert "standstill rule 0.1 m/s" in out
+    assert (
+        _run(["info", str(SAMPLES / "urban_intersection.mcap"), "--rss-profile", "adrss-5.0"]) == 0
+    )
+    assert "standstill rule" not in capsys.readouterr().out
+
+
 def test_unknown_profile_is_one_line(capsys):
     assert _run(["info", str(SAMPLES / "highway_cut_in.mcap"), "--rss-profile", "x"]) != 0
     err = capsys.readouterr().err.strip().splitlines()

@@ -299,6 +299,9 @@ def evaluated(tmp_path_factory) -> dict[str, list[dict[str, Any]]]:
                 "unstructured",
                 "--per-frame",
                 str(per_frame),
+                # the reference dynamics the goldens were made with (auto: urban since issue 27)
+                "--rss-profile",
+                "adrss-5.0",
             ]
         )
         assert code == 0
