@@ -20,7 +20,6 @@ reads from Rerun's server on this machine.
 from __future__ import annotations
 
 import contextlib
-import json
 import threading
 import urllib.error
 import urllib.request
@@ -28,6 +27,8 @@ from http import HTTPStatus
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from typing import TYPE_CHECKING, ClassVar
 from urllib.parse import parse_qs, urlsplit
+
+from workbench.outputs import json_text
 
 if TYPE_CHECKING:
     from collections.abc import Callable
@@ -163,7 +164,7 @@ class _Handler(BaseHTTPRequestHandler):
         if path == CURSOR_PATH:
             if "applied" in parse_qs(urlsplit(self.path).query):
                 self.owner.loaded()
-            body = json.dumps(self.owner.cursor).encode()
+            body = json_text(self.owner.cursor).encode()
             self._reply(HTTPStatus.OK, body, "application/json")
             return
         if path == _SCRIPT_PATH:
