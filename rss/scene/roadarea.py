@@ -97,17 +97,19 @@ def build_road(  # noqa: PLR0917 - the plans, then where the results go
     id_offset: int = 0,
     cut_memo: dict[tuple[object, ...], BuiltSegment] | None = None,
     windows: list[tuple[int, float, float]] | None = None,
+    unknown_limit_mps: float = math.inf,
 ) -> tuple[tuple[RoadSegment, ...], dict[int, PlacedLane], float]:
     """Convert segment plans into ``rss.model`` road segments.
 
     Whole (uncut) plans are converted once per map (``memo``); cut ones once per
     ``cut_memo`` (e.g. one frame, where the ego's cut starts many road areas), if given.
     ``windows``, if given, receives each lane's kept window along its point order
-    ``(lane, start, end)``.
+    ``(lane, start, end)``. ``unknown_limit_mps`` stands for the speed limit of a lane
+    that has none (default: unbounded).
 
     Returns:
         ``(road, placed, max_speed_limit_mps)``: the road segments, where every map lane
-        sits, and the largest finite speed limit of its lanes (NaN if none).
+        sits, and the largest speed limit of its lanes (NaN without lanes).
     """
     road: list[RoadSegment] = []
     placed: dict[int, PlacedLane] = {}
@@ -120,7 +122,7 @@ def build_road(  # noqa: PLR0917 - the plans, then where the results go
             built = _built(prep, memo, plan, id_offset, cut_memo)
         road.append(built[0])
         placed.update(built[1])
-        limits.extend(built[2])
+        limits.extend(unknown_limit_mps if math.isnan(v) else v for v in built[2])
         if windows is not None:
             windows.extend(built[3])
     return tuple(road), placed, max(limits) if limits else float("nan")
@@ -162,7 +164,7 @@ def _built(
 def _segment(
     prep: PreparedGraph, memo: SceneMemo, plan: SegmentPlan, id_offset: int
 ) -> BuiltSegment:
-    """One plan as ``(road segment, placed lanes, finite speed limits of its lanes)``."""
+    """One plan as ``(road segment, placed lanes, speed limits of its lanes (NaN: none))``."""
     segments = prep.lane_segments
     whole = memo.whole_lanes
     speed_limits = prep.scalars.speed_limit_mps
@@ -181,8 +183,8 @@ def _segment(
         min_length_before_intersecting_area_m=plan.before_m,
         min_length_after_intersecting_area_m=plan.after_m,
     )
-    finite = tuple(v for lane, _ in plan.lanes if math.isfinite(v := speed_limits[lane]))
-    return segment, tuple(placed), finite, tuple(windows)
+    limits = tuple(speed_limits[lane] for lane, _ in plan.lanes)
+    return segment, tuple(placed), limits, tuple(windows)
 
 
 def _windows(prep: PreparedGraph, plan: SegmentPlan) -> list[tuple[float, float]]:

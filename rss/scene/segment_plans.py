@@ -250,7 +250,7 @@ def cut_window(
         last.p1 = min(1.0, max(hi, last.p0 + 0.001))
 
 
-#: A converted plan: road segment, placed lanes, finite speed limits of its lanes, and
+#: A converted plan: road segment, placed lanes, speed limits of its lanes (NaN: none), and
 #: each lane's window along its point order ``(lane, start, end)``.
 BuiltSegment = tuple[
     RoadSegment,
