@@ -63,7 +63,7 @@ def objects_first(src: Path, dst: Path) -> None:
             )
         for _, channel, message in messages:
             writer.add_message(channel.id, message.log_time, message.data, message.publish_time)
-        writer.finish()
+        writer.finish()  # type: ignore[no-untyped-call]
 
 
 def run_drive(regressions: Path, external_dir: Path, name: str, tmp_path: Path) -> list[Any]:
