@@ -16,7 +16,14 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from rss.model import LaneObject, ObjectType, OccupiedRegion, RoadSegment, SpeedInterval
+from rss.model import (
+    LaneObject,
+    LaneSegment,
+    ObjectType,
+    OccupiedRegion,
+    RoadSegment,
+    SpeedInterval,
+)
 from rss.scene.segment_plans import PlacedLane, lane_window
 
 if TYPE_CHECKING:
@@ -150,6 +157,7 @@ def _built(
         plan.before_m,
         plan.after_m,
         id_offset,
+        plan.pad_left,
     )
     if not uncut:
         key = (*key, plan.p0, plan.p1, plan.anchors)
@@ -177,6 +185,8 @@ def _segment(
         )
         placed.append((lane, PlacedLane(lane + id_offset, fwd, p0, p1)))
         windows.append((lane, *lane_window(p0, p1, forward=fwd)))
+    if plan.pad_left:
+        lanes = _padding(prep, memo, plan, id_offset, lanes) + lanes
     segment = RoadSegment(
         lanes=tuple(lanes),
         segment_type=plan.segment_type,
@@ -185,6 +195,42 @@ def _segment(
     )
     limits = tuple(speed_limits[lane] for lane, _ in plan.lanes)
     return segment, tuple(placed), limits, tuple(windows)
+
+
+#: Lane ids of padding lane segments start here (above every map lane id and offset).
+PAD_LANE_ID = 2**50
+
+
+def _padding(
+    prep: PreparedGraph,
+    memo: SceneMemo,
+    plan: SegmentPlan,
+    id_offset: int,
+    lanes: list[LaneSegment],
+) -> list[LaneSegment]:
+    """Lane segments for ``plan.pad_left``, no vehicle in them.
+
+    Each has its lane's width range over the whole lane and the segment's length range
+    (so the segment's lengths do not change); ids from :data:`PAD_LANE_ID`, unique by
+    the segment's first lane.
+    """
+    length_min = min(s.length_min_m for s in lanes)
+    length_max = max(s.length_max_m for s in lanes)
+    first = plan.lanes[0][0] + id_offset
+    out = []
+    for n, (lane, fwd) in enumerate(plan.pad_left):
+        width = prep.lane_segments.lane_segment(memo.whole_lanes, lane, forward=fwd)
+        out.append(
+            LaneSegment(
+                lane_id=PAD_LANE_ID + first * 16 + n,
+                driving_direction=width.driving_direction,
+                length_min_m=length_min,
+                length_max_m=length_max,
+                width_min_m=width.width_min_m,
+                width_max_m=width.width_max_m,
+            )
+        )
+    return out
 
 
 def _windows(prep: PreparedGraph, plan: SegmentPlan) -> list[tuple[float, float]]:
