@@ -26,7 +26,7 @@ if TYPE_CHECKING:
     from pathlib import Path
 
     from loaders.records import Frame
-    from workbench.engines.rss.runner import RssVerdict
+    from workbench.engines.rss.verdict import RssVerdict
 
 SCENARIO = "commonroad_ngsim/USA_Peach-4_8_T-1.xml"
 CARS = ("564", "569")
