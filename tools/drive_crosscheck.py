@@ -7,6 +7,11 @@ cached in ``out/`` per (seed, n), so iterating on our side takes seconds::
     .venv/bin/python tools/drive_crosscheck.py [--n 20] [--seed 1] [--show 20]
         [--oracle .venv-oracle-adrss-map/bin/python] [--mode default|compat|both]
         [--frames 3:0,3:1] [--min-gap 6] [--town ../shared/external/maps/Town01.xodr]
+        [--junction-routes]
+
+``--junction-routes``: the drives with random routes through junction lanes and vehicles
+on the ego's own lane route, checked with ad-rss' ``IncreasedSpeedLimit10``
+(``town01_drives``' module docstring; cached apart).
 
 Prints, per mode, the agreement line, then every disagreeing frame (``drive:frame``) with
 both sides' constellations of the objects involved: type, longitudinal / lateral distance,
@@ -64,10 +69,14 @@ def main() -> int:
     ap.add_argument("--min-gap", type=float, default=6.0, help="objects' start gap (m)")
     ap.add_argument("--town", type=Path, default=TOWN, help="the Town01 OpenDRIVE map")
     ap.add_argument("--frames", default="", help="drive:frame,... to show whatever they say")
+    ap.add_argument("--junction-routes", action="store_true", help="the junction-route drives")
     args = ap.parse_args()
     prep = prepare(lane_graph_from_map(read_opendrive(args.town)))
-    drives = make_drives(prep, args.seed, args.n, args.min_gap)
+    drives = make_drives(
+        prep, args.seed, args.n, args.min_gap, junction_routes=args.junction_routes
+    )
     gap = "" if args.min_gap == 6.0 else f"_g{args.min_gap:g}"  # noqa: PLR2004 - the default
+    gap += "_jr" if args.junction_routes else ""
     cache = ROOT / "out" / f"adrss_drive_oracle_s{args.seed}_n{args.n}{gap}.json"
     theirs = oracle_drives(drives, args.oracle, args.town, cache)
     for mode in MODES if args.mode == "both" else [args.mode]:

@@ -11,6 +11,15 @@ ad-rss' ``createNonIntersectionRoadArea`` keeps the lanes with a route lane offs
         j =  0   ──ego──▶ ── route ──┐
         j = +1   ───────── ──────── ─┴ object ─▶
                  k = 0      k = 1      k = 2
+
+ad-rss places lanes laterally by their column in the segment (``lanes[0]`` leftmost, a
+column as wide as its lanes over all segments). A segment without a lane at the left
+end of the range (the lane forks off, or its left lanes belong to another segment) has
+its first lane in column 0, beside the wrong lanes of the other segments (Peach-4_8: the
+ego on a right-turn lane taken for the lane of a car two lanes to its left, lateral
+distance 0). In the default mode (``align``) such a segment is padded on the left with
+lane segments of the missing columns' widths (``SegmentPlan.pad_left``), so every lane
+sits in the column of its lateral index; the compatibility mode keeps ad-rss' columns.
 """
 
 from __future__ import annotations
@@ -38,8 +47,13 @@ if TYPE_CHECKING:
 __all__ = ["admap_beside_ends", "corridor_plans"]
 
 
-def _cross_section(prep: PreparedGraph, base: Step, j: int, j_lo: int, j_hi: int) -> list[Step]:
-    """Lanes beside ``base`` (at lateral index ``j``) within ``[j_lo, j_hi]``, left to right."""
+def _cross_section(
+    prep: PreparedGraph, base: Step, j: int, j_lo: int, j_hi: int
+) -> list[tuple[int, Step]]:
+    """Lanes beside ``base`` (at lateral index ``j``) in ``[j_lo, j_hi]``, left to right.
+
+    Each with its lateral index.
+    """
     out: list[tuple[int, Step]] = [(j, base)]
     for right, dj in ((False, -1), (True, 1)):
         step: Step | None = base
@@ -49,7 +63,7 @@ def _cross_section(prep: PreparedGraph, base: Step, j: int, j_lo: int, j_hi: int
             jj += dj
             if step is not None:
                 out.append((jj, step))
-    return [s for jj, s in sorted(out, key=lambda item: item[0]) if j_lo <= jj <= j_hi]
+    return [(jj, s) for jj, s in sorted(out, key=lambda item: item[0]) if j_lo <= jj <= j_hi]
 
 
 def corridor_plans(  # noqa: PLR0917 - the tree, its target and the two boxes
@@ -59,8 +73,13 @@ def corridor_plans(  # noqa: PLR0917 - the tree, its target and the two boxes
     target: int,
     matches: Matches,
     boxes: tuple[int, int],
+    *,
+    align: bool = True,
 ) -> tuple[list[SegmentPlan], dict[int, tuple[int, float]] | None]:
     """Segment plans from the ego's lane to ``target`` for the two ``boxes`` (ego first).
+
+    ``align``: pad segments to align the lateral columns (module docstring; the default
+    mode).
 
     Also returns where the connecting route touches each box (:func:`cut_between`). The
     uncut layout is a function of the tree path, the occupied tree lanes (in set order) and
@@ -71,6 +90,7 @@ def corridor_plans(  # noqa: PLR0917 - the tree, its target and the two boxes
     occupied = tuple({r.lane for box in boxes for r in matches.regions(box) if r.lane in tree.k})
     k, j, fwd = tree.k, tree.j, tree.forward
     key = (
+        align,
         tuple(path),
         occupied,
         tuple((k[lane], j[lane], fwd[lane]) for lane in path),
@@ -81,8 +101,13 @@ def corridor_plans(  # noqa: PLR0917 - the tree, its target and the two boxes
     if known is None:
         if len(layouts) >= _MAX_LAYOUTS:
             layouts.clear()
-        layout = _layout(prep, tree, path, occupied)
-        uncut = tuple(SegmentPlan(lanes=list(lanes)) for lanes in layout)
+        layout, pads = _layout(prep, tree, path, occupied)
+        if not align:
+            pads = tuple(() for _ in layout)
+        uncut = tuple(
+            SegmentPlan(lanes=list(lanes), pad_left=pad)
+            for lanes, pad in zip(layout, pads, strict=True)
+        )
         layouts[key] = known = (uncut, plan_lanes(layout))
     uncut, where = known
     cut = between(where, matches, boxes)
@@ -101,8 +126,12 @@ _MAX_LAYOUTS = 20_000
 
 def _layout(
     prep: PreparedGraph, tree: RouteTree, path: list[int], occupied: tuple[int, ...]
-) -> tuple[tuple[Step, ...], ...]:
-    """Lanes of each uncut segment (left to right) along ``path`` (see module docstring)."""
+) -> tuple[tuple[tuple[Step, ...], ...], tuple[tuple[Step, ...], ...]]:
+    """Lanes of each uncut segment (left to right) along ``path`` (module docstring).
+
+    Also, per segment, the lanes of the nearest other segments for its missing left
+    columns (:func:`_pads`).
+    """
     ks = [tree.k[lane] for lane in path]
     k_lo, k_hi = min(ks) - 1, max(ks) + 1
     extra = [lane for lane in occupied if k_lo <= tree.k[lane] <= k_hi]
@@ -110,7 +139,7 @@ def _layout(
     k_lo = min(tree.k[lane] for lane in members)
     k_hi = max(tree.k[lane] for lane in members)
     j_lo, j_hi = sorted((tree.j[path[0]], tree.j[path[-1]]))
-    sections: list[list[Step]] = []
+    sections: list[list[tuple[int, Step]]] = []
     for k in range(k_lo, k_hi + 1):
         bases = [lane for lane in members if tree.k[lane] == k]
         if not bases:
@@ -118,16 +147,32 @@ def _layout(
         base = bases[0]
         lanes = _cross_section(prep, (base, tree.forward[base]), tree.j[base], j_lo, j_hi)
         seen: set[int] = set()
-        unique = [s for s in lanes if not (s[0] in seen or seen.add(s[0]))]  # type: ignore[func-returns-value]
-        sections.append(unique or [(base, tree.forward[base])])
+        unique = [s for s in lanes if not (s[1][0] in seen or seen.add(s[1][0]))]  # type: ignore[func-returns-value]
+        sections.append(unique or [(tree.j[base], (base, tree.forward[base]))])
     used: set[int] = set()
-    out: list[tuple[Step, ...]] = []
+    out: list[tuple[tuple[int, Step], ...]] = []
     for section in sections:
-        kept = tuple(s for s in section if s[0] not in used)
-        used.update(s[0] for s in kept)
+        kept = tuple(s for s in section if s[1][0] not in used)
+        used.update(s[1][0] for s in kept)
         if kept:
             out.append(kept)
-    return tuple(out)
+    lanes_of = tuple(tuple(s for _, s in kept) for kept in out)
+    return lanes_of, tuple(_pads(out, n, j_lo) for n in range(len(out)))
+
+
+def _pads(sections: list[tuple[tuple[int, Step], ...]], n: int, j_lo: int) -> tuple[Step, ...]:
+    """The lanes standing for the columns ``j_lo ..`` left of section ``n``'s first lane.
+
+    Each is the lane at that lateral index in the nearest section holding one.
+    """
+    order = sorted(range(len(sections)), key=lambda m: abs(m - n))
+    pads: list[Step] = []
+    for jj in range(j_lo, sections[n][0][0]):
+        lane = next((s for m in order for j, s in sections[m] if j == jj), None)
+        if lane is None:
+            return ()
+        pads.append(lane)
+    return tuple(pads)
 
 
 def admap_beside_ends(

@@ -39,6 +39,11 @@ __all__ = ["BuiltConstellation", "FrameContext", "FrameMemo", "ego_routes", "lan
 #: at right angles to the heading (cosine within this tolerance of 0) is none: its
 #: direction there would hinge on rounding.
 _ACROSS_COS = 1e-6
+#: The speed limit (m/s) ad-map 5.0's OpenDRIVE reader gives a lane whose road has no
+#: speed record (50 km/h; measured on Town01's junction lanes with the oracle): the
+#: compatibility mode's value for a lane without a limit. The default mode takes such a
+#: lane as unbounded (the dynamics then stay unchanged: never below ad-map's cap).
+ADMAP_UNKNOWN_SPEED_LIMIT_MPS = 50.0 / 3.6
 _SPEED_FACTOR = {
     RestrictSpeedLimitMode.NONE: None,
     RestrictSpeedLimitMode.EXACT_SPEED_LIMIT: 1.0,
@@ -225,13 +230,18 @@ class FrameContext:
                 route_heading[0], route_heading[i + 1] = route_heading[i + 1], route_heading[0]
         cut = self.once.cut_segments
         windows: list[tuple[int, float, float]] = []
-        ego_road, ego_placed, limit = build_road(self.prep, self.memo, ego_plans, 0, cut, windows)
+        unknown = (
+            ADMAP_UNKNOWN_SPEED_LIMIT_MPS if self.settings.reproduce_adrss_5_0_defects else math.inf
+        )
+        ego_road, ego_placed, limit = build_road(
+            self.prep, self.memo, ego_plans, 0, cut, windows, unknown
+        )
         obj_road: tuple[RoadSegment, ...] = ()
         obj_placed = ego_placed
         if obj_plans is not None:
             offset = len(self.prep.graph)
             obj_road, obj_placed, limit2 = build_road(
-                self.prep, self.memo, obj_plans, offset, cut, windows
+                self.prep, self.memo, obj_plans, offset, cut, windows, unknown
             )
             limit = limit2 if (math.isnan(limit) or limit2 > limit) else limit
         o = self.objects

@@ -131,8 +131,10 @@ def _corridor(
     (:func:`admap_beside_ends`).
     """
     tree = f.tree if cr.tree is None else cr.tree
-    plans, ends = corridor_plans(f.prep, f.memo, tree, cr.target, f.matches, (0, i + 1))
     compat = f.settings.reproduce_adrss_5_0_defects
+    plans, ends = corridor_plans(
+        f.prep, f.memo, tree, cr.target, f.matches, (0, i + 1), align=not compat
+    )
     if compat and ends is None and cr.kind == Kind.OPPOSING:
         routes = admap_beside_ends(f.prep, tree, cr.target, f.matches, i + 1)
         if routes:

@@ -16,7 +16,14 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from rss.model import LaneObject, ObjectType, OccupiedRegion, RoadSegment, SpeedInterval
+from rss.model import (
+    LaneObject,
+    LaneSegment,
+    ObjectType,
+    OccupiedRegion,
+    RoadSegment,
+    SpeedInterval,
+)
 from rss.scene.segment_plans import PlacedLane, lane_window
 
 if TYPE_CHECKING:
@@ -97,17 +104,19 @@ def build_road(  # noqa: PLR0917 - the plans, then where the results go
     id_offset: int = 0,
     cut_memo: dict[tuple[object, ...], BuiltSegment] | None = None,
     windows: list[tuple[int, float, float]] | None = None,
+    unknown_limit_mps: float = math.inf,
 ) -> tuple[tuple[RoadSegment, ...], dict[int, PlacedLane], float]:
     """Convert segment plans into ``rss.model`` road segments.
 
     Whole (uncut) plans are converted once per map (``memo``); cut ones once per
     ``cut_memo`` (e.g. one frame, where the ego's cut starts many road areas), if given.
     ``windows``, if given, receives each lane's kept window along its point order
-    ``(lane, start, end)``.
+    ``(lane, start, end)``. ``unknown_limit_mps`` stands for the speed limit of a lane
+    that has none (default: unbounded).
 
     Returns:
         ``(road, placed, max_speed_limit_mps)``: the road segments, where every map lane
-        sits, and the largest finite speed limit of its lanes (NaN if none).
+        sits, and the largest speed limit of its lanes (NaN without lanes).
     """
     road: list[RoadSegment] = []
     placed: dict[int, PlacedLane] = {}
@@ -120,7 +129,7 @@ def build_road(  # noqa: PLR0917 - the plans, then where the results go
             built = _built(prep, memo, plan, id_offset, cut_memo)
         road.append(built[0])
         placed.update(built[1])
-        limits.extend(built[2])
+        limits.extend(unknown_limit_mps if math.isnan(v) else v for v in built[2])
         if windows is not None:
             windows.extend(built[3])
     return tuple(road), placed, max(limits) if limits else float("nan")
@@ -148,6 +157,7 @@ def _built(
         plan.before_m,
         plan.after_m,
         id_offset,
+        plan.pad_left,
     )
     if not uncut:
         key = (*key, plan.p0, plan.p1, plan.anchors)
@@ -162,7 +172,7 @@ def _built(
 def _segment(
     prep: PreparedGraph, memo: SceneMemo, plan: SegmentPlan, id_offset: int
 ) -> BuiltSegment:
-    """One plan as ``(road segment, placed lanes, finite speed limits of its lanes)``."""
+    """One plan as ``(road segment, placed lanes, speed limits of its lanes (NaN: none))``."""
     segments = prep.lane_segments
     whole = memo.whole_lanes
     speed_limits = prep.scalars.speed_limit_mps
@@ -175,14 +185,52 @@ def _segment(
         )
         placed.append((lane, PlacedLane(lane + id_offset, fwd, p0, p1)))
         windows.append((lane, *lane_window(p0, p1, forward=fwd)))
+    if plan.pad_left:
+        lanes = _padding(prep, memo, plan, id_offset, lanes) + lanes
     segment = RoadSegment(
         lanes=tuple(lanes),
         segment_type=plan.segment_type,
         min_length_before_intersecting_area_m=plan.before_m,
         min_length_after_intersecting_area_m=plan.after_m,
     )
-    finite = tuple(v for lane, _ in plan.lanes if math.isfinite(v := speed_limits[lane]))
-    return segment, tuple(placed), finite, tuple(windows)
+    limits = tuple(speed_limits[lane] for lane, _ in plan.lanes)
+    return segment, tuple(placed), limits, tuple(windows)
+
+
+#: Lane ids of padding lane segments start here (above every map lane id and offset).
+PAD_LANE_ID = 2**50
+
+
+def _padding(
+    prep: PreparedGraph,
+    memo: SceneMemo,
+    plan: SegmentPlan,
+    id_offset: int,
+    lanes: list[LaneSegment],
+) -> list[LaneSegment]:
+    """Lane segments for ``plan.pad_left``, no vehicle in them.
+
+    Each has its lane's width range over the whole lane and the segment's length range
+    (so the segment's lengths do not change); ids from :data:`PAD_LANE_ID`, unique by
+    the segment's first lane.
+    """
+    length_min = min(s.length_min_m for s in lanes)
+    length_max = max(s.length_max_m for s in lanes)
+    first = plan.lanes[0][0] + id_offset
+    out = []
+    for n, (lane, fwd) in enumerate(plan.pad_left):
+        width = prep.lane_segments.lane_segment(memo.whole_lanes, lane, forward=fwd)
+        out.append(
+            LaneSegment(
+                lane_id=PAD_LANE_ID + first * 16 + n,
+                driving_direction=width.driving_direction,
+                length_min_m=length_min,
+                length_max_m=length_max,
+                width_min_m=width.width_min_m,
+                width_max_m=width.width_max_m,
+            )
+        )
+    return out
 
 
 def _windows(prep: PreparedGraph, plan: SegmentPlan) -> list[tuple[float, float]]:

@@ -61,6 +61,10 @@ class SegmentPlan:
         anchors: The lanes cut exactly at ``p0`` and at ``p1`` (-1: none, every lane is
             cut at the same fraction); the other lanes are cut where ad-map aligns them
             (``rss.scene.align``).
+        pad_left: Lanes of other segments standing, left to right, for the lateral
+            columns this segment has no lane in, left of its first lane (default mode:
+            the road area's lateral frame is aligned by columns, ``rss.scene.corridor``);
+            converted into lane segments of their widths that no vehicle occupies.
     """
 
     lanes: list[Step]
@@ -71,6 +75,7 @@ class SegmentPlan:
     p1: float = 1.0
     whole: tuple[int, BuiltSegment] | None = field(default=None, repr=False, compare=False)
     anchors: tuple[int, int] = (-1, -1)
+    pad_left: tuple[Step, ...] = ()
 
 
 def fresh_ends(plans: Sequence[SegmentPlan], *, last: bool = True) -> list[SegmentPlan]:
@@ -83,7 +88,15 @@ def fresh_ends(plans: Sequence[SegmentPlan], *, last: bool = True) -> list[Segme
     for k in {0, len(out) - 1 if last else 0} if out else ():
         p = out[k]
         out[k] = SegmentPlan(
-            p.lanes, p.segment_type, p.before_m, p.after_m, p.p0, p.p1, p.whole, p.anchors
+            p.lanes,
+            p.segment_type,
+            p.before_m,
+            p.after_m,
+            p.p0,
+            p.p1,
+            p.whole,
+            p.anchors,
+            p.pad_left,
         )
     return out
 
@@ -250,7 +263,7 @@ def cut_window(
         last.p1 = min(1.0, max(hi, last.p0 + 0.001))
 
 
-#: A converted plan: road segment, placed lanes, finite speed limits of its lanes, and
+#: A converted plan: road segment, placed lanes, speed limits of its lanes (NaN: none), and
 #: each lane's window along its point order ``(lane, start, end)``.
 BuiltSegment = tuple[
     RoadSegment,

@@ -3,9 +3,11 @@
 Runs under the oracle interpreter of ``adrss_map_oracle.py`` (same vehicles, dynamics and
 scene settings: unit-test dynamics, no speed-limit mode, no ego route, no green lights).
 Usage: ``python adrss_drive_oracle.py MAP.xodr < drives.json > answers.json``; a drive is
-``town01_drives``' JSON. Each drive gets one ``ad.rss.core.RssCheck`` that sees its frames
-in order with time indices 1, 2, ... (the memory of ad-rss across frames); each frame's
-world model is built with one ``appendConstellations`` per object. The answer per frame:
+``town01_drives``' JSON (its optional ``speed_limit_mode``, an ``RssRestrictSpeedLimitMode``
+name, is passed to ``appendConstellations``; default none). Each drive gets one
+``ad.rss.core.RssCheck`` that sees its frames in order with time indices 1, 2, ... (the
+memory of ad-rss across frames); each frame's world model is built with one
+``appendConstellations`` per object. The answer per frame:
 ``{"ok", "dangerous": [object ids], "situations": [{"id", "type", "lon_d", "lat_d",
 "dangerous"}]}``.
 """
@@ -26,7 +28,9 @@ from adrss_map_oracle import (  # type: ignore[import-not-found]
 )
 
 
-def _frame(check: Any, time_index: int, frame: dict[str, Any]) -> dict[str, Any]:
+def _frame(
+    check: Any, time_index: int, frame: dict[str, Any], speed_limit_mode: str
+) -> dict[str, Any]:
     creation = ad.rss.map.RssWorldModelCreation(time_index, _dynamics(1.0))
     e = frame["ego"]
     ego = _object_data(EGO_ID, ad.rss.world.ObjectType.EgoVehicle, e, e["length"], e["width"], 1.0)
@@ -35,7 +39,7 @@ def _frame(check: Any, time_index: int, frame: dict[str, Any]) -> dict[str, Any]
         other = _object_data(
             o["id"], ad.rss.world.ObjectType.OtherVehicle, o, o["length"], o["width"], 2.0
         )
-        ok &= append_structured(creation, ego, other)
+        ok &= append_structured(creation, ego, other, speed_limit_mode)
     answer: dict[str, Any] = {"ok": ok, "dangerous": [], "situations": []}
     snapshot = ad.rss.core.RssSituationSnapshot()
     states = ad.rss.state.RssStateSnapshot()
@@ -64,7 +68,8 @@ def _frame(check: Any, time_index: int, frame: dict[str, Any]) -> dict[str, Any]
 
 def _drive(drive: dict[str, Any]) -> list[dict[str, Any]]:
     check = ad.rss.core.RssCheck()
-    return [_frame(check, k + 1, frame) for k, frame in enumerate(drive["frames"])]
+    mode = drive.get("speed_limit_mode", "None")
+    return [_frame(check, k + 1, frame, mode) for k, frame in enumerate(drive["frames"])]
 
 
 def main() -> None:

@@ -83,14 +83,15 @@ def _object_data(  # noqa: PLR0917 - one object's fields
     return data
 
 
-def append_structured(creation: Any, ego: Any, other: Any) -> bool:
-    """Append one pair's structured constellations (routes predicted, no speed limit)."""
+def append_structured(creation: Any, ego: Any, other: Any, speed_limit_mode: str = "None") -> bool:
+    """Append one pair's structured constellations (routes predicted; ``speed_limit_mode``:
+    an ``RssRestrictSpeedLimitMode`` name, default none)."""
     return bool(
         creation.appendConstellations(
             ego,
             ad.map.route.FullRoute(),
             other,
-            getattr(ad.rss.map.RssRestrictSpeedLimitMode, "None"),
+            getattr(ad.rss.map.RssRestrictSpeedLimitMode, speed_limit_mode),
             ad.map.landmark.LandmarkIdSet(),
             ad.rss.map.RssConstellationCreationMode.Structured,
         )

@@ -9,6 +9,7 @@ the drives differ. Used by ``test_crosscheck_drives.py`` and ``tools/drive_cross
 
 from __future__ import annotations
 
+import dataclasses
 import json
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -20,6 +21,7 @@ from rss import evaluate_frames
 from rss.params import (
     DEFAULT_EGO_DYNAMICS,
     DEFAULT_VEHICLE_DYNAMICS,
+    RestrictSpeedLimitMode,
     RssParams,
     SceneSettings,
 )
@@ -78,9 +80,13 @@ def our_drive(
 ) -> list[dict[str, Any]]:
     """Our frames of one drive in the oracle's answer format (memory across the frames).
 
-    ``memo``: the map's scene memo, shared across drives (``None``: a fresh one).
+    ``memo``: the map's scene memo, shared across drives (``None``: a fresh one). A drive's
+    ``speed_limit_mode`` (as the oracle reads it) replaces the settings' one.
     """
     frames = [frame_inputs(f) for f in drive["frames"]]
+    if "speed_limit_mode" in drive:
+        mode = RestrictSpeedLimitMode(drive["speed_limit_mode"])
+        settings = dataclasses.replace(settings, restrict_speed_limit_mode=mode)
     params = RssParams(scene=settings)
     verdicts, _ = evaluate_frames(frames, params, None, graph=prep, memo=memo)
     out = []
