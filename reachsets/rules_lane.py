@@ -24,17 +24,19 @@ road.keep_lane        ``KEEP_s = (not leaving_s) S (settled and not     everythi
                       leaving it to that side                            ``KEEP_s`` is false open,
                                                                          minus the ego's lanes
                                                                          (all steps)
-road.no_cut_in        ``(not crossing_ego) S (in_lane and not            the ego's lanes within
-                      crossing_ego)``, for an object whose centre is     ``max(cut_in_gap_s v_ego,
-                      outside the ego's lane corridor and whose          cut_in_gap_min_m)``
-                      corridor does not cross or merge into it: since    before and behind its
-                      it was last in a lane without crossing towards     footprints along the
-                      the ego, it has not started to leave it towards    plan (all steps)
-                      the ego
+road.no_cut_in        ``(not crossing_ego) S (in_lane and not            the ego's lanes, grown by
+                      crossing_ego)``, for an object whose centre is     ``lane_margin_m``, within
+                      outside the ego's lane corridor and whose          ``max(cut_in_gap_s v_ego,
+                      corridor does not cross or merge into it: since    cut_in_gap_min_m)``
+                      it was last in a lane without crossing towards     before and behind its
+                      the ego, it has not started to leave it towards    footprints along the
+                      the ego                                            plan (all steps)
 ====================  ================================================  =========================
 
 The ego's lanes are those containing the centre of its occupancy at any grid stamp, heading
-agreeing; their corridor is built like an object's (both sides closed).
+agreeing; their corridor is built like an object's (both sides closed). The cut-in patch grows
+it by ``lane_margin_m``: an ego sticking out of its lanes by at most the margin is in them, as
+an object is ``settled`` (docs/reachsets.md, "The ego's lane margin").
 """
 
 from __future__ import annotations
@@ -147,11 +149,23 @@ def _ego_lanes(ctx: RuleContext, geo: RoadGeometry) -> frozenset[int]:
     return frozenset(found)
 
 
+def _grown(geo: RoadGeometry, ego_key: frozenset[int], ego_corr: Any, margin_m: float) -> Any:
+    """The ego's corridor grown by ``margin_m`` on every side (cached per lane set and margin)."""
+    cache = geo.cache.setdefault("grown_corridor", {})
+    key = (ego_key, margin_m)
+    if key not in cache:
+        grown = shapely.buffer(ego_corr, margin_m, quad_segs=2) if margin_m > 0 else ego_corr
+        shapely.prepare(grown)
+        cache[key] = grown
+    return cache[key]
+
+
 def _band(ctx: RuleContext, ego_corridor: Any) -> Any:
     """The ego's lanes around its path, within the cut-in gap of its footprints.
 
     From the gap behind its footprint at ``t = 0`` to the gap ahead of it at the horizon: the
-    convex hull of the per-step bands, within the ego's corridor.
+    convex hull of the per-step bands, within ``ego_corridor`` (the ego's corridor grown by
+    the lane margin).
     """
     occ, p = ctx.occupancy, ctx.params.road
     gap = max(p.cut_in_gap_s * ctx.ego_speed_mps, p.cut_in_gap_min_m)
@@ -235,6 +249,6 @@ def evaluate_lanes(
         if own[i] and not _crosses(geo, own[i], ego_key, ego_corr, length)
     ]
     if rows:
-        band = _band(ctx, ego_corr)
+        band = _band(ctx, _grown(geo, ego_key, ego_corr, p.lane_margin_m))
         patches += [RulePatch(int(i), "road.no_cut_in", band) for i in rows]
     return patches, mem
