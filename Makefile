@@ -99,7 +99,7 @@ oracle-adrss-map: $(STAMP) $(COMPILED) $(MAP_ORACLE_STAMP)
 		$(BIN)/python -m pytest -q -p no:cacheprovider tests/rss/scene/test_crosscheck_adrss_map.py \
 		tests/rss/scene/test_crosscheck_drives.py tests/rss/scene/test_scene_reference.py
 
-test: lint typecheck layers pytest oracle-commonroad oracle-crime oracle-adrss-map
+test: lint typecheck layers pytest oracle-commonroad oracle-crime acceptance oracle-adrss-map
 
 bench: $(STAMP) $(COMPILED) $(MAP_ORACLE_STAMP)
 	$(BIN)/python -m bench.run --out docs/benchmarks.md
