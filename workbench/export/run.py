@@ -191,7 +191,7 @@ def export_clips(
         for _ in plans:
             on_clip()
     rrds = write_recordings(report, readable, out_dir, request, on_clip) if recordings else {}
-    pngs, skipped = write_thumbnails(report, rrds, on_clip) if thumbnails else ({}, None)
+    pngs, skipped = write_thumbnails(rrds, on_clip) if thumbnails else ({}, None)
     clips = []
     for plan, outcome in zip(plans, raw, strict=True):
         openlabel = out_dir / f"{plan.stem}.openlabel.json"

@@ -6,8 +6,10 @@ a lead-in of up to :data:`LEAD_IN_NS` before the window (not shown), so that the
 (RSS responses) at the window's start is the drive's and the clip's incident is the drive's,
 with its id and its verdict. The blueprint's time panel selects the incident's frames.
 Thumbnails come from one headless viewer for the whole export
-(:mod:`workbench.viewer.screenshot`), at the incident's first frame; where no viewer can run
-they are skipped with the reason. Both are written as ``<name>.part`` and renamed.
+(:mod:`workbench.viewer.screenshot`): the scene view alone at the incident's worst frame, framed
+on the ego and the incident's objects, highlighted (:mod:`workbench.export.thumbnail`); where
+no viewer can run they are skipped with the reason. Both are written as ``<name>.part`` and
+renamed.
 """
 
 from __future__ import annotations
@@ -16,7 +18,10 @@ import functools
 from typing import TYPE_CHECKING
 
 from workbench.errors import WorkbenchError
+from workbench.export.thumbnail import ThumbnailView, thumbnail_view
 from workbench.outputs import part_path
+from workbench.replay.blueprint import thumbnail_blueprint
+from workbench.replay.highlight import CulpritBoxes
 from workbench.viewer.replay import replay_drive
 from workbench.viewer.screenshot import ScreenshotUnavailableError, headless_viewer, screenshot
 
@@ -27,9 +32,18 @@ if TYPE_CHECKING:
     from workbench.export.plan import ClipPlan
     from workbench.incidents import IncidentReport, IncidentRequest
 
-__all__ = ["LEAD_IN_NS", "incident_focus_m", "lead_in", "write_recordings", "write_thumbnails"]
+__all__ = [
+    "LEAD_IN_NS",
+    "THUMBNAIL_SIZE",
+    "incident_focus_m",
+    "lead_in",
+    "write_recordings",
+    "write_thumbnails",
+]
 
 
+#: Thumbnail size ``(width, height)`` [px]: the scene view fills it.
+THUMBNAIL_SIZE = (1280, 720)
 #: Longest lead-in evaluated before a clip's window to warm the engines up [ns].
 LEAD_IN_NS = 10_000_000_000
 
@@ -81,14 +95,14 @@ def write_recordings(
     out_dir: Path,
     request: IncidentRequest,
     on_clip: Callable[[], None] | None = None,
-) -> dict[str, tuple[Path, tuple[int, int]]]:
-    """Write ``<stem>.rrd`` per plan; return ``{stem: (path, incident frames)}``.
+) -> dict[str, tuple[Path, ThumbnailView]]:
+    """Write ``<stem>.rrd`` per plan; return ``{stem: (path, what its thumbnail shows)}``.
 
     Raises:
         LoaderError: The drive cannot be read.
         WorkbenchError: A recording cannot be written.
     """
-    written: dict[str, tuple[Path, tuple[int, int]]] = {}
+    written: dict[str, tuple[Path, ThumbnailView]] = {}
     drive = request.open_drive()  # once: the map is read once for every window
     try:
         for plan in plans:
@@ -101,6 +115,7 @@ def write_recordings(
             label = plan.label
             verdicts = {} if incident is None or label is None else {incident.id: label.verdict}
             path = out_dir / f"{plan.stem}.rrd"
+            culprits = CulpritBoxes()
             replay = functools.partial(
                 replay_drive,
                 drive,
@@ -113,9 +128,10 @@ def write_recordings(
                 selection=selection,
                 lead_in=(plan.start_ns, offset),
                 focus_m=incident_focus_m(report, plan),
+                culprits=culprits,
             )
             if _record(path, replay):
-                written[plan.stem] = (path, selection)
+                written[plan.stem] = (path, thumbnail_view(report, plan, culprits))
             if on_clip is not None:
                 on_clip()
     finally:
@@ -124,31 +140,31 @@ def write_recordings(
 
 
 def write_thumbnails(
-    report: IncidentReport,
-    recordings: dict[str, tuple[Path, tuple[int, int]]],
+    recordings: dict[str, tuple[Path, ThumbnailView]],
     on_clip: Callable[[], None] | None = None,
 ) -> tuple[dict[str, Path], str | None]:
-    """``<stem>.png`` beside each recording at the incident's first frame.
+    """``<stem>.png`` beside each recording: the scene at the incident's worst frame.
 
     Args:
-        report: The drive's incidents.
-        recordings: ``{stem: (rrd, incident frames)}`` (:func:`write_recordings`).
+        recordings: ``{stem: (rrd, thumbnail)}`` (:func:`write_recordings`).
         on_clip: Progress: called once per thumbnail.
 
     Returns:
         The thumbnails by stem, and why there are none (``None`` when rendered).
     """
-    del report  # the framing on the incident's objects is left to the viewer's blueprint
     thumbnails: dict[str, Path] = {}
     if not recordings:
         return thumbnails, None
     try:
-        with headless_viewer((1280, 720)) as viewer:
-            for stem, (rrd, (first, _)) in recordings.items():
+        with headless_viewer(THUMBNAIL_SIZE) as viewer:
+            for stem, (rrd, view) in recordings.items():
+                blueprint = None
+                if view.eye is not None:
+                    blueprint = thumbnail_blueprint(view.incident, view.eye)
                 png = rrd.with_suffix(".png")
                 part = png.with_name(f"{png.stem}.part.png")  # the viewer writes .png only
                 try:
-                    screenshot(viewer, rrd, part, first)
+                    screenshot(viewer, rrd, part, view.frame, blueprint=blueprint)
                     part.replace(png)
                 finally:
                     part.unlink(missing_ok=True)

@@ -38,7 +38,13 @@ if TYPE_CHECKING:
 
     from workbench.incidents import Incident
 
-__all__ = ["TRAIL_FRAMES", "TRAIL_SECONDS", "incident_eye", "replay_blueprint"]
+__all__ = [
+    "TRAIL_FRAMES",
+    "TRAIL_SECONDS",
+    "incident_eye",
+    "replay_blueprint",
+    "thumbnail_blueprint",
+]
 
 #: The ego trail shows this many past frames on the ``frame`` timeline ...
 TRAIL_FRAMES = 100
@@ -119,6 +125,52 @@ def _scene_overrides(incident: Incident | None) -> dict[EntityPathLike, Visualiz
     return overrides
 
 
+def _scene(
+    eye: tuple[tuple[float, float, float], tuple[float, float, float]],
+    incident: Incident | None,
+    *,
+    tracking: bool,
+) -> rrb.Spatial3DView:
+    """The 3-D scene of ``/world`` seen from ``eye`` (``(position, look_target)`` [m])."""
+    position, target = eye
+    return rrb.Spatial3DView(
+        name="scene",
+        origin="/world",
+        line_grid=rrb.LineGrid3D(visible=False),
+        eye_controls=rrb.EyeControls3D(
+            kind=rrb.Eye3DKind.Orbital,
+            position=position,
+            look_target=target,
+            eye_up=(0.0, 0.0, 1.0),
+            tracking_entity="/world/ego/view" if tracking else None,
+        ),
+        contents=_scene_contents(incident),
+        overrides=_scene_overrides(incident),
+    )
+
+
+def thumbnail_blueprint(
+    incident: Incident | None,
+    eye: tuple[tuple[float, float, float], tuple[float, float, float]],
+) -> rrb.Blueprint:
+    """A clip thumbnail's blueprint: the scene view alone, no plot and no panel.
+
+    Args:
+        incident: The clip's incident: its objects highlighted and labelled, the other
+            actors dimmed (as in the review); ``None`` for a window without incident.
+        eye: Camera ``(position, look_target)`` [m], e.g. :func:`incident_eye` of the ego
+            and the incident's objects at its worst frame.
+    """
+    return rrb.Blueprint(
+        _scene(eye, incident, tracking=False),
+        rrb.TimePanel(timeline=FRAME_TIMELINE, play_state="paused", state="hidden"),
+        rrb.SelectionPanel(state="hidden"),
+        rrb.BlueprintPanel(state="hidden"),
+        rrb.TopPanel(state="hidden"),
+        collapse_panels=True,
+    )
+
+
 def replay_blueprint(
     ego_start_m: tuple[float, float] | None = None,
     engines: Sequence[str] = (),
@@ -147,22 +199,12 @@ def replay_blueprint(
             unlabelled, and no other incident's highlight.
     """
     x0, y0 = ego_start_m or (0.0, 0.0)
-    position, target = incident_eye((x0, y0), focus_m if selection is not None else ())
-    scene = rrb.Spatial3DView(
-        name="scene",
-        origin="/world",
-        line_grid=rrb.LineGrid3D(visible=False),
-        eye_controls=rrb.EyeControls3D(
-            kind=rrb.Eye3DKind.Orbital,
-            position=position,
-            look_target=target,
-            eye_up=(0.0, 0.0, 1.0),
-            # A live viewer pulls a tracking eye in to the ego's box (about 4 m): for one
-            # incident the camera stays where the incident starts instead.
-            tracking_entity="/world/ego/view" if selection is None else None,
-        ),
-        contents=_scene_contents(incident),
-        overrides=_scene_overrides(incident),
+    # A live viewer pulls a tracking eye in to the ego's box (about 4 m): for one incident
+    # the camera stays where the incident is instead.
+    scene = _scene(
+        incident_eye((x0, y0), focus_m if selection is not None else ()),
+        incident,
+        tracking=selection is None,
     )
     views: list[rrb.View | rrb.Container] = [
         rrb.TimeSeriesView(name="ego", origin="/plots/ego"),

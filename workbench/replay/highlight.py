@@ -28,7 +28,7 @@ if TYPE_CHECKING:
     from workbench.driver.run import Chunk
     from workbench.incidents import Incident
 
-__all__ = ["HIGHLIGHT_ORIGIN", "CulpritBoxes", "Highlight", "highlight_path"]
+__all__ = ["HIGHLIGHT_ORIGIN", "CulpritBoxes", "Highlight", "highlight_path", "worst_frame"]
 
 #: Origin of the incidents' highlighted objects (under ``world``, so the scene shows them).
 HIGHLIGHT_ORIGIN = "world/incidents"
@@ -37,6 +37,13 @@ HIGHLIGHT_ORIGIN = "world/incidents"
 def highlight_path(incident: Incident, escape: Callable[[str], str] = str) -> str:
     """The entity of an incident's highlighted objects."""
     return f"{HIGHLIGHT_ORIGIN}/{incident.engine}/{escape(incident.id)}"
+
+
+def worst_frame(incident: Incident) -> int:
+    """The frame a viewer or a thumbnail shows for ``incident``: its worst, else its first."""
+    worst = incident.worst_frame
+    inside = worst is not None and incident.start_frame <= worst <= incident.end_frame
+    return worst if inside and worst is not None else incident.start_frame
 
 
 @dataclass(frozen=True, slots=True)
@@ -66,7 +73,7 @@ class CulpritBoxes:
         self._rows = []
         #: Ego position ``(x, y)`` [m] at every unsafe frame (any engine).
         self.ego_m: dict[int, tuple[float, float]] = {}
-        self._by_frame: dict[int, dict[str, tuple[float, float]]] | None = None
+        self._by_frame: dict[int, dict[str, tuple[float, ...]]] | None = None
 
     def add_chunk(self, chunk: Chunk) -> None:
         """Keep the boxes of the objects any engine named as culprit of an unsafe frame."""
@@ -103,12 +110,21 @@ class CulpritBoxes:
         ``(None, [])`` for a frame no engine rated unsafe; an object that was no culprit
         there is left out.
         """
+        boxes = self.boxes_at(frame, objects)
+        return self.ego_m.get(frame), [(float(b[0]), float(b[1])) for b in boxes]
+
+    def boxes_at(self, frame: int, objects: Sequence[str]) -> NDArray[np.float64]:
+        """``(N, 7)`` boxes of ``objects`` at an unsafe ``frame``, in the order given.
+
+        Columns: centre x, y, z [m], half length, half width, half height [m], yaw [rad].
+        An object that was no culprit there is left out.
+        """
         if self._by_frame is None:
             self._by_frame = {}
             for row in self._rows:
-                self._by_frame.setdefault(row[0], {})[row[2]] = (row[3], row[4])
+                self._by_frame.setdefault(row[0], {})[row[2]] = row[3:]
         there = self._by_frame.get(frame, {})
-        return self.ego_m.get(frame), [there[o] for o in objects if o in there]
+        return np.array([there[o] for o in objects if o in there], dtype=np.float64).reshape(-1, 7)
 
     def layout(
         self,

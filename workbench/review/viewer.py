@@ -17,6 +17,7 @@ import numpy as np
 import rerun as rr
 
 from workbench.replay.blueprint import replay_blueprint
+from workbench.replay.highlight import worst_frame
 from workbench.replay.incidents import LANES_ORIGIN, UNREVIEWED
 from workbench.replay.sink import FRAME_TIMELINE, time_index
 
@@ -29,13 +30,6 @@ if TYPE_CHECKING:
     from workbench.replay.highlight import CulpritBoxes
 
 __all__ = ["NoViewer", "RerunLink", "TimeCursor", "ViewerCursor", "ViewerLink", "worst_frame"]
-
-
-def worst_frame(incident: Incident) -> int:
-    """The frame the viewer shows for ``incident``: its worst, else its first."""
-    worst = incident.worst_frame
-    inside = worst is not None and incident.start_frame <= worst <= incident.end_frame
-    return worst if inside and worst is not None else incident.start_frame
 
 
 class TimeCursor(Protocol):

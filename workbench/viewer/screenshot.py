@@ -29,6 +29,7 @@ from workbench.errors import WorkbenchError
 if TYPE_CHECKING:
     from collections.abc import Iterator
 
+    import rerun.blueprint as rrb
     from rerun.experimental import ViewerClient
 
 __all__ = ["ScreenshotUnavailableError", "headless_viewer", "main", "screenshot"]
@@ -125,19 +126,55 @@ def _connect(
             return viewer
 
 
+def _wait_loaded(viewer: ViewerClient) -> None:
+    deadline = time.monotonic() + START_TIMEOUT_S
+    time.sleep(0.3)
+    while viewer.get_state().loading and time.monotonic() < deadline:
+        time.sleep(0.3)
+
+
+def _send_blueprint(viewer: ViewerClient, blueprint: rrb.Blueprint) -> None:
+    """Make ``blueprint`` the active recording's, and wait until the viewer shows it."""
+    import rerun as rr  # noqa: PLC0415 - heavy, on demand
+
+    active = viewer.get_state().active_recording  # "Recording:<application>:<recording>"
+    if active is None:
+        msg = "the headless viewer shows no recording to lay out"
+        raise WorkbenchError(msg)
+    _, application, recording = active.split(":", 2)
+    stream = rr.RecordingStream(application, recording_id=recording)
+    stream.connect_grpc(viewer.url)
+    try:
+        stream.send_blueprint(blueprint, make_active=True)
+        stream.flush()
+    finally:
+        stream.disconnect()
+    wanted = len(blueprint.root_container.contents) if blueprint.root_container else 1
+    deadline = time.monotonic() + START_TIMEOUT_S
+    while len(viewer.get_state().views) != wanted and time.monotonic() < deadline:
+        time.sleep(0.2)
+
+
 def screenshot(
-    viewer: ViewerClient, rrd: Path, png: Path, frame: int | None = None, timeline: str = "frame"
+    viewer: ViewerClient,
+    rrd: Path,
+    png: Path,
+    frame: int | None = None,
+    timeline: str = "frame",
+    *,
+    blueprint: rrb.Blueprint | None = None,
 ) -> None:
     """Open ``rrd`` in ``viewer``, move to ``frame`` on ``timeline``, save ``png``.
+
+    ``blueprint``: shown instead of the recording's own (sent into the opened recording).
 
     Raises:
         WorkbenchError: No PNG was written.
     """
     viewer.open(str(rrd.resolve()))
-    deadline = time.monotonic() + START_TIMEOUT_S
-    time.sleep(0.3)
-    while viewer.get_state().loading and time.monotonic() < deadline:
-        time.sleep(0.3)
+    _wait_loaded(viewer)
+    if blueprint is not None:
+        _send_blueprint(viewer, blueprint)
     if frame is not None:
         viewer.set_time(timeline, sequence=frame, play_state="paused")
     time.sleep(_REPAINT_S)
