@@ -134,7 +134,10 @@ def _wait_loaded(viewer: ViewerClient) -> None:
 
 
 def _send_blueprint(viewer: ViewerClient, blueprint: rrb.Blueprint) -> None:
-    """Make ``blueprint`` the active recording's, and wait until the viewer shows it."""
+    """Make ``blueprint`` the active recording's; wait until the viewer shows its views.
+
+    The views counted are the root container's (a blueprint of views side by side).
+    """
     import rerun as rr  # noqa: PLC0415 - heavy, on demand
 
     active = viewer.get_state().active_recording  # "Recording:<application>:<recording>"
@@ -149,7 +152,8 @@ def _send_blueprint(viewer: ViewerClient, blueprint: rrb.Blueprint) -> None:
         stream.flush()
     finally:
         stream.disconnect()
-    wanted = len(blueprint.root_container.contents) if blueprint.root_container else 1
+    root = blueprint.root_container
+    wanted = len(list(root.contents)) if root is not None else 1
     deadline = time.monotonic() + START_TIMEOUT_S
     while len(viewer.get_state().views) != wanted and time.monotonic() < deadline:
         time.sleep(0.2)
