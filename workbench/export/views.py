@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING
 
 from workbench.errors import WorkbenchError
 from workbench.outputs import part_path
+from workbench.replay.incidents import short_labels
 from workbench.viewer.replay import replay_drive
 from workbench.viewer.screenshot import ScreenshotUnavailableError, headless_viewer, screenshot
 
@@ -113,6 +114,7 @@ def write_recordings(
                 selection=selection,
                 lead_in=(plan.start_ns, offset),
                 focus_m=incident_focus_m(report, plan),
+                labels=short_labels(report.incidents),
             )
             if _record(path, replay):
                 written[plan.stem] = (path, selection)
