@@ -103,6 +103,14 @@ def test_engines_use_the_review_table_and_keep_the_full_ids(report, tmp_path):
     assert LEAD in _check_engines(out, table)
     # the scene's highlights use the same table: the lead car is #1 everywhere
     assert _highlight_labels(out) == {table[o] for i in report.incidents for o in i.objects}
+    # the plots keep the full id in the path and name the series by the short label
+    store = RrdReader(out).store().stream().collect()
+    static = store.reader(index=None, contents="/plots/rss/**").to_arrow_table().to_pydict()
+    names = {k: v for k, v in static.items() if k.endswith(":SeriesLines:names")}
+    assert names[f"/plots/rss/distances/{LEAD}/lon_m:SeriesLines:names"] == [["#1 lon_m"]]
+    for column, (value,) in names.items():
+        object_id = column.split("/")[-2]
+        assert value == [f"{table[object_id]} {column.split('/')[-1].split(':')[0]}"]
 
 
 def test_without_a_table_the_replay_numbers_culprits_first_and_scene_and_engines_agree(
