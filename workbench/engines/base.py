@@ -23,6 +23,7 @@ if TYPE_CHECKING:
     from loaders.records import Frame
     from rss.params import RssParams
     from workbench.replay.layout import ChunkLayout
+    from workbench.replay.short_labels import ShortLabels
 
 __all__ = [
     "EngineRunner",
@@ -128,7 +129,10 @@ class EngineSpec:
         causes: The violation causes its verdicts can name (documentation, incident filters).
         build: Runner factory from the drive's lane map and the user's settings.
         record: The engine's part of the pinned per-frame JSON line, from one verdict.
-        sink: Rerun sink factory (sends static configuration on creation).
+        sink: Rerun sink factory (sends static configuration on creation) from the
+            recording and the drive's short-label table: every object label the sink draws is
+            the object's short label (``#1``), the full id kept beside it
+            (:mod:`workbench.replay.short_labels`).
         views: Extra viewer panels (plots) shown while the engine runs.
         incident_facts: Factory of a collector of the engine's own severity facts per incident
             (``workbench.incidents.FactCollector``: ``add(frame, t_ns, verdict, object_id)``,
@@ -146,7 +150,7 @@ class EngineSpec:
     causes: tuple[str, ...]
     build: Callable[[LaneMap | None, EngineSettings], EngineRunner]
     record: Callable[[Any], dict[str, Any]]
-    sink: Callable[[rr.RecordingStream], EngineSink]
+    sink: Callable[[rr.RecordingStream, ShortLabels], EngineSink]
     views: Callable[[], list[rrb.View]]
     incident_facts: Callable[[], Any] | None = None
     join_causes: Callable[[Sequence[str]], str] | None = None

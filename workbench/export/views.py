@@ -22,6 +22,7 @@ from workbench.export.thumbnail import ThumbnailView, thumbnail_view
 from workbench.outputs import part_path
 from workbench.replay.blueprint import thumbnail_blueprint
 from workbench.replay.highlight import CulpritBoxes
+from workbench.replay.incidents import short_labels
 from workbench.viewer.replay import replay_drive
 from workbench.viewer.screenshot import ScreenshotUnavailableError, headless_viewer, screenshot
 
@@ -129,6 +130,7 @@ def write_recordings(
                 lead_in=(plan.start_ns, offset),
                 focus_m=incident_focus_m(report, plan),
                 culprits=culprits,
+                labels=short_labels(report.incidents),
             )
             if _record(path, replay):
                 written[plan.stem] = (path, thumbnail_view(report, plan, culprits))

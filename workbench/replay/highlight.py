@@ -21,7 +21,7 @@ import numpy as np
 from workbench.replay.layout import yaw_to_quaternion
 
 if TYPE_CHECKING:
-    from collections.abc import Callable, Sequence
+    from collections.abc import Callable, Mapping, Sequence
 
     from numpy.typing import NDArray
 
@@ -129,7 +129,7 @@ class CulpritBoxes:
     def layout(
         self,
         incidents: Sequence[Incident],
-        labels: dict[str, str],
+        labels: Mapping[str, str],
         frame_times: Sequence[tuple[int, int]],
         escape: Callable[[str], str] = str,
     ) -> list[Highlight]:
@@ -137,7 +137,8 @@ class CulpritBoxes:
 
         Args:
             incidents: The drive's incidents.
-            labels: Short label per object id (``#1``).
+            labels: Short label per object id (``#1``): the drive's table
+                (:mod:`workbench.replay.short_labels`).
             frame_times: ``(frame, t_ns)`` of every frame, in order.
             escape: Escapes an id as one entity path part.
         """

@@ -18,6 +18,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from workbench.replay.short_labels import ShortLabels
+
 if TYPE_CHECKING:
     from collections.abc import Callable, Mapping, Sequence
 
@@ -75,18 +77,16 @@ class IncidentLayout:
     marker_levels: tuple[str, ...]
 
 
-def short_labels(incidents: Sequence[Incident]) -> dict[str, str]:
+def short_labels(incidents: Sequence[Incident]) -> ShortLabels:
     """A short label per object of a drive's incidents: ``#1``, ``#2``, ... by first incident.
 
     Objects are numbered in the order their first incident starts (ties: by id), so the
     review table, its facts and the viewer's labels name an object alike (ids of
-    ``derived_object_msgs`` fill 32 columns).
+    ``derived_object_msgs`` fill 32 columns); :class:`ShortLabels` numbers further objects
+    (bystanders the engines label) after them.
     """
-    labels: dict[str, str] = {}
-    for incident in sorted(incidents, key=lambda i: (i.start_frame, i.id)):
-        for obj in incident.objects:
-            labels.setdefault(obj, f"#{len(labels) + 1}")
-    return labels
+    ordered = sorted(incidents, key=lambda i: (i.start_frame, i.id))
+    return ShortLabels(obj for incident in ordered for obj in incident.objects)
 
 
 def marker_text(incident: Incident, verdict: str | None) -> str:

@@ -11,7 +11,8 @@ Entity paths (they mirror the scene; see ``docs/replay.md``)::
     world/ego/view             Points3D, two invisible corners around the ego per frame: what
                                the live viewer's tracking camera frames (see ``blueprint``)
     world/ego/plan             LineStrips3D, the plan valid at the frame
-    world/actors               Boxes3D with class ids and id labels
+    world/actors               Boxes3D with class ids, labelled with the drive's short label
+                               (``#1``), the full id in the ``object_id`` component
     world/actors/velocity      Arrows3D, one second of travel, coloured by class
     plots/ego/speed_mps        Scalars
     plots/ego/accel_mps2       Scalars
@@ -32,9 +33,10 @@ import rerun as rr
 
 from loaders.records import ObjectClass
 from workbench.replay import style
+from workbench.replay.short_labels import ShortLabels
 
 if TYPE_CHECKING:
-    from collections.abc import Mapping
+    from collections.abc import Mapping, Sequence
 
     from numpy.typing import NDArray
 
@@ -43,13 +45,17 @@ if TYPE_CHECKING:
 
 __all__ = [
     "FRAME_TIMELINE",
+    "OBJECT_ID",
     "TIME_TIMELINE",
     "RerunSink",
+    "object_id_columns",
     "send_strips",
     "state_configuration",
     "time_index",
 ]
 
+#: Component beside an engine's short object labels (``#1``) holding each instance's full id.
+OBJECT_ID = "object_id"
 FRAME_TIMELINE = "frame"
 TIME_TIMELINE = "log_time"
 
@@ -74,6 +80,19 @@ def state_configuration(colors: Mapping[str, int]) -> rr.StateConfiguration:
     return rr.StateConfiguration(
         values=list(colors), colors=np.array(list(colors.values()), dtype=np.uint32)
     )
+
+
+def object_id_columns(
+    object_ids: Sequence[str], counts: NDArray[np.int64]
+) -> rr.ComponentColumnList:
+    """The full id of each labelled instance (:data:`OBJECT_ID`), partitioned like its batch.
+
+    Args:
+        object_ids: ``(I,)`` full object ids, one per instance of all frames.
+        counts: ``(N,)`` instances per frame.
+    """
+    ids = np.array(object_ids, dtype=str)
+    return rr.AnyValues.columns(object_id=ids).partition(counts)  # OBJECT_ID
 
 
 def send_strips(
@@ -106,14 +125,17 @@ def _u32(colors: list[int] | int, n: int = 1) -> NDArray[np.uint32]:
 class RerunSink:
     """Sends a drive to one explicit ``rr.RecordingStream`` (never the global one)."""
 
-    def __init__(self, recording: rr.RecordingStream) -> None:
+    def __init__(self, recording: rr.RecordingStream, labels: ShortLabels | None = None) -> None:
         """Wrap ``recording`` and switch off its wall-clock ``log_time`` timeline.
 
         Args:
             recording: The stream to log to; its sinks (file, viewer, server) are set by the
                 caller.
+            labels: The drive's short labels the actors are labelled with (new actors are
+                numbered as they first appear); a fresh table by default.
         """
         self.recording = recording
+        self.labels = labels if labels is not None else ShortLabels()
         recording.set_log_time_enabled(False)
         self._plan_seen = False
 
@@ -233,13 +255,16 @@ class RerunSink:
         self.recording.send_columns(
             "world/actors",
             indexes=index,
-            columns=rr.Boxes3D.columns(
-                centers=actors.centre_m,
-                half_sizes=actors.half_size_m,
-                quaternions=actors.quaternion_xyzw,
-                class_ids=actors.class_ids,
-                labels=actors.labels,
-            ).partition(actors.counts),
+            columns=[
+                *rr.Boxes3D.columns(
+                    centers=actors.centre_m,
+                    half_sizes=actors.half_size_m,
+                    quaternions=actors.quaternion_xyzw,
+                    class_ids=actors.class_ids,
+                    labels=[self.labels.label(i) for i in actors.labels.tolist()],
+                ).partition(actors.counts),
+                *object_id_columns(actors.labels.tolist(), actors.counts),
+            ],
         )
         self.recording.send_columns(
             "world/actors/velocity",

@@ -24,7 +24,6 @@ from textual.app import App, ComposeResult
 from textual.binding import Binding, BindingType
 from textual.widgets import DataTable, Footer, Header, Input, Static
 
-from workbench.replay.incidents import short_labels
 from workbench.review.facts_text import NONE, facts_text, number_text
 from workbench.review.viewer import NoViewer, worst_frame
 
@@ -69,7 +68,7 @@ class ReviewApp(App[None]):
         self._asking: str | None = None
         self._what_if_index = -1
         #: Short label per object id (``#1``...), as the viewer labels them.
-        self.short = short_labels(session.incidents)
+        self.short = session.short_labels
         self._full_ids = False
 
     def compose(self) -> ComposeResult:

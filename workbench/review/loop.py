@@ -143,6 +143,7 @@ def _replay_and_review(
         ego_size=ego,
         web_cursor=web_cursor,
         culprits=positions,
+        labels=session.short_labels,
     )
     if not serve:
         loop(connect or SPAWN_URL)

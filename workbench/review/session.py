@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING
 
 from workbench.annotations.attach import label_of, labels_for
 from workbench.incidents.events import group_events
+from workbench.replay.incidents import short_labels
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -60,6 +61,9 @@ class ReviewSession:
             self.event_ids = {e.lead.id: e.id for e in events}
         else:
             self.incidents = report.incidents
+        #: Short label per object (``#1``), the drive's one table: the TUI's object column
+        #: and every label the viewer draws (scene highlights and engines) use it.
+        self.short_labels = short_labels(report.incidents)
         self.labels: dict[str, Label] = labels_for(report, store.labels(report.drive_hash))
         self._pending: dict[str, Pending] = {}
         self._undo: list[list[tuple[int, str]]] = []

@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING
 from workbench.engines.registry import engine
 from workbench.replay.layout import layout_chunk, layout_map
 from workbench.replay.properties import drive_properties, recording_name, software_properties
+from workbench.replay.short_labels import ShortLabels
 from workbench.replay.sink import RerunSink
 
 if TYPE_CHECKING:
@@ -41,13 +42,26 @@ class RerunDriveSink:
         engine_names: Sequence[str],
         *,
         send_frames: int = SEND_FRAMES,
+        labels: ShortLabels | None = None,
     ) -> None:
-        """Set up; nothing is sent before the first batch (or :meth:`close`)."""
+        """Set up; nothing is sent before the first batch (or :meth:`close`).
+
+        Args:
+            recording: The stream everything goes to.
+            drive: The drive (its info and lane map are sent first).
+            engine_names: The engines whose verdicts come with each chunk.
+            send_frames: Frames per columnar batch.
+            labels: The drive's short-label table every engine's labels use (the review
+                numbers its incidents' objects first); a fresh one by default.
+        """
         self.recording = recording
         self._send_frames = send_frames
         self._drive = drive
         self._names = tuple(engine_names)
-        self._scene = RerunSink(recording)
+        #: The drive's short labels: culprits numbered as they first turn up, then the other
+        #: actors as they appear (scene, highlights and every engine use this one table).
+        self.labels = labels if labels is not None else ShortLabels()
+        self._scene = RerunSink(recording, self.labels)
         self._engines: dict[str, EngineSink] | None = None
         self._frames: list[Frame] = []
         self._verdicts: dict[str, list[Verdict]] = {n: [] for n in self._names}
@@ -87,7 +101,18 @@ class RerunDriveSink:
             properties={**drive_properties(info), **software_properties(self._names)},
             map_layout=layout_map(lane_map) if lane_map is not None else None,
         )
-        return {name: engine(name).sink(self.recording) for name in self._names}
+        return {name: engine(name).sink(self.recording, self.labels) for name in self._names}
+
+    def _number_culprits(self, n: int, verdicts: dict[str, list[Verdict]]) -> None:
+        """Number each unsafe frame's culprits (frame order, ties by id) before any bystander.
+
+        Without a review's table the objects are then numbered about as their incidents start.
+        """
+        for k in range(n):
+            unsafe = (verdicts[name][k] for name in self._names)
+            culprits = {c for verdict in unsafe if not verdict.is_safe for c in verdict.culprits}
+            for culprit in sorted(culprits):
+                self.labels.label(culprit)
 
     def _send(self, n: int) -> None:
         frames, self._frames = self._frames[:n], self._frames[n:]
@@ -104,6 +129,7 @@ class RerunDriveSink:
         if self._engines is None:
             self._engines = self._static(int(layout.t_ns[0]))
             self._t_first_ns = int(layout.t_ns[0])
+        self._number_culprits(len(frames), verdicts)
         self._scene.send_chunk(layout)
         for name, sink in self._engines.items():
             sink.send_chunk(frames, layout, verdicts[name])

@@ -17,7 +17,6 @@ from workbench.incidents import IncidentDetector, drive_content_hash
 from workbench.replay.blueprint import replay_blueprint
 from workbench.replay.highlight import CulpritBoxes
 from workbench.replay.incident_sink import send_incidents
-from workbench.replay.incidents import short_labels
 from workbench.sinks.rerun_drive import SEND_FRAMES, RerunDriveSink
 from workbench.sinks.violations import ViolationDetector
 from workbench.viewer.outputs import LOCALHOST, attached
@@ -31,6 +30,7 @@ if TYPE_CHECKING:
     from workbench.driver.run import Chunk
     from workbench.engines.base import EngineRunner
     from workbench.incidents import Incident, IncidentSettings
+    from workbench.replay.short_labels import ShortLabels
     from workbench.sinks.violations import Violation
     from workbench.viewer.web_cursor import WebCursor
 
@@ -105,6 +105,7 @@ def replay_drive(
     focus_m: tuple[tuple[float, float], Sequence[tuple[float, float]]] | None = None,
     web_cursor: WebCursor | None = None,
     culprits: CulpritBoxes | None = None,
+    labels: ShortLabels | None = None,
 ) -> ReplaySummary:
     """Send a drive's map, frames and engine verdicts to exactly one destination.
 
@@ -139,6 +140,10 @@ def replay_drive(
             browser's time cursor (:mod:`workbench.viewer.web_cursor`).
         culprits: Collects the culprits' boxes and the ego's positions at unsafe frames
             (the caller keeps it: the review camera looks there); a fresh one by default.
+        labels: The drive's short object labels (``#1``), one table for the scene's
+            highlights and every engine's labels: the review's (its incidents' objects
+            numbered first, as its table shows them); by default a fresh table numbering
+            each unsafe frame's culprits as they turn up, then the objects engines label.
 
     Returns:
         Counts and timings of the replay.
@@ -167,7 +172,7 @@ def replay_drive(
     incidents = IncidentDetector(
         drive_content_hash(path) if engines and path.exists() else "", incident_settings
     )
-    sink = RerunDriveSink(rec, drive, run.engine_names, send_frames=send_frames)
+    sink = RerunDriveSink(rec, drive, run.engine_names, send_frames=send_frames, labels=labels)
     culprits = culprits if culprits is not None else CulpritBoxes()
     try:
         with attached(
@@ -194,7 +199,7 @@ def replay_drive(
             if engines:
                 lights = culprits.layout(
                     found,
-                    short_labels(found),
+                    sink.labels,
                     incidents.frame_times,
                     escape=rr.escape_entity_path_part,
                 )

@@ -31,6 +31,7 @@ if TYPE_CHECKING:
     from loaders.records import Frame
     from workbench.engines.base import EngineSettings
     from workbench.replay.layout import ChunkLayout
+    from workbench.replay.short_labels import ShortLabels
 
 SAMPLE = Path(__file__).resolve().parents[3] / "sample_logs" / "highway_cut_in.mcap"
 #: Actors nearer than this to the ego make a toy frame unsafe [m].
@@ -60,8 +61,9 @@ class ToyRunner:
 
 
 class ToySink:
-    def __init__(self, recording: rr.RecordingStream) -> None:
+    def __init__(self, recording: rr.RecordingStream, labels: ShortLabels) -> None:
         self.recording = recording
+        self.labels = labels  # the drive's short labels, for any object label it would draw
 
     def send_chunk(
         self, frames: Sequence[Frame], layout: ChunkLayout, verdicts: Sequence[ToyVerdict]

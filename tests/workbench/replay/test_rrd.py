@@ -53,7 +53,9 @@ def test_replay_writes_entities_timelines_and_properties(tmp_path):
         assert sorted(table.column("frame").to_pylist()) == list(range(23))
 
     actors = _rows(store, "/world/actors").to_pydict()
-    assert actors["/world/actors:Boxes3D:labels"][0] == ["car0", "car1", "car2", "car3"]
+    # actors are labelled by the drive's short label (numbered as they appear), full id beside
+    assert actors["/world/actors:Boxes3D:labels"][0] == ["#1", "#2", "#3", "#4"]
+    assert actors["/world/actors:object_id"][0] == ["car0", "car1", "car2", "car3"]
     stamps = _rows(store, "/world/ego").column("log_time").cast("int64").to_numpy()
     np.testing.assert_array_equal(np.sort(stamps), T0_NS + np.arange(23) * 100_000_000)
 

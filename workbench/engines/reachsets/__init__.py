@@ -18,6 +18,7 @@ if TYPE_CHECKING:
 
     from loaders.maps.model import LaneMap
     from workbench.engines.base import EngineRunner, EngineSettings, EngineSink
+    from workbench.replay.short_labels import ShortLabels
 
 __all__ = ["SPEC"]
 
@@ -36,10 +37,10 @@ def _build(lane_map: LaneMap | None, settings: EngineSettings) -> EngineRunner:
     )
 
 
-def _sink(recording: rr.RecordingStream) -> EngineSink:
+def _sink(recording: rr.RecordingStream, labels: ShortLabels) -> EngineSink:
     from workbench.engines.reachsets.sink import ReachSink  # noqa: PLC0415
 
-    return ReachSink(recording)
+    return ReachSink(recording, labels)
 
 
 def _views() -> list[rrb.View]:

@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import shapely
 
+from workbench.replay.short_labels import ShortLabels
 from workbench.replay.strips import StripColumns, polygon_rings, stack_strips, time_colors
 
 if TYPE_CHECKING:
@@ -41,7 +42,9 @@ class ReachColumns:
         occupancy: Ego footprints along the plan, time-coloured.
         patches: Deleted regions of the rule patches.
         hit_points_m: Positions of objects whose set hits the ego, ``(H, 3)``.
-        hit_labels: ``"<id> @ <t> s"`` per hit, ``(H,)``.
+        hit_labels: ``"<short label> @ <t> s"`` per hit (``#1 @ 2.8 s``: the drive's short
+            label of the object), ``(H,)``.
+        hit_object_ids: The full object id of each hit, ``(H,)``.
         hit_counts: Hits per frame, ``(N,)``.
         first_collision_s: Earliest collision offset per frame, NaN when safe, ``(N,)``.
     """
@@ -52,6 +55,7 @@ class ReachColumns:
     patches: StripColumns
     hit_points_m: NDArray[np.float32]
     hit_labels: list[str]
+    hit_object_ids: list[str]
     hit_counts: NDArray[np.int64]
     first_collision_s: NDArray[np.float64]
 
@@ -96,11 +100,19 @@ def _frame_patches(result: ReachResult) -> tuple[list[Any], NDArray[np.uint32]]:
     return rings, np.full(len(rings), 0x26C6DAC0, dtype=np.uint32)
 
 
-def layout_reach(frames: Sequence[Frame], results: Sequence[ReachResult]) -> ReachColumns:
-    """Columnar reach-set display data for a chunk of frames and their results."""
+def layout_reach(
+    frames: Sequence[Frame], results: Sequence[ReachResult], labels: ShortLabels | None = None
+) -> ReachColumns:
+    """Columnar reach-set display data for a chunk of frames and their results.
+
+    ``labels``: the drive's short labels (objects not in it yet are numbered next); a fresh
+    table by default.
+    """
+    short = labels if labels is not None else ShortLabels()
     t_max = max((float(r.occupancy.t_s[-1]) for r in results if len(r.occupancy.t_s)), default=1)
     hits_xy: list[tuple[float, float]] = []
-    labels: list[str] = []
+    texts: list[str] = []
+    ids: list[str] = []
     hit_counts = np.zeros(len(frames), dtype=np.int64)
     first = np.full(len(frames), np.nan)
     for i, (frame, result) in enumerate(zip(frames, results, strict=True)):
@@ -110,7 +122,8 @@ def layout_reach(frames: Sequence[Frame], results: Sequence[ReachResult]) -> Rea
             if k is None:
                 continue
             hits_xy.append((float(frame.actors.x_m[k]), float(frame.actors.y_m[k])))
-            labels.append(f"{hit.object_id} @ {hit.t_offset_s:.1f} s")
+            texts.append(f"{short.label(hit.object_id)} @ {hit.t_offset_s:.1f} s")
+            ids.append(hit.object_id)
             hit_counts[i] += 1
         if result.collisions:
             first[i] = min(c.t_offset_s for c in result.collisions)
@@ -124,7 +137,8 @@ def layout_reach(frames: Sequence[Frame], results: Sequence[ReachResult]) -> Rea
         occupancy=stack_strips([_frame_occupancy(r, t_max) for r in results]),
         patches=stack_strips([_frame_patches(r) for r in results]),
         hit_points_m=points,
-        hit_labels=labels,
+        hit_labels=texts,
+        hit_object_ids=ids,
         hit_counts=hit_counts,
         first_collision_s=first,
     )

@@ -5,7 +5,9 @@ Entity paths::
     world/reach/sets          LineStrips3D, every object's set at every step, time-coloured
     world/reach/occupancy     LineStrips3D, ego footprints along the plan, time-coloured
     world/reach/patches       LineStrips3D, regions deleted by rule patches (cyan)
-    world/reach/collisions    Points3D on objects whose set hits the ego, labelled id @ t
+    world/reach/collisions    Points3D on objects whose set hits the ego, labelled with the
+                              object's short label @ t (``#1 @ 2.8 s``); the full id per
+                              point in its ``object_id`` component
     reach/state               StateChange safe / unsafe (state lane)
     plots/reach/first_collision_s   Scalars, earliest collision offset (unsafe frames)
 
@@ -22,7 +24,8 @@ import numpy as np
 import rerun as rr
 
 from workbench.engines.reachsets.layout import layout_reach
-from workbench.replay.sink import send_strips, state_configuration, time_index
+from workbench.replay.short_labels import ShortLabels
+from workbench.replay.sink import object_id_columns, send_strips, state_configuration, time_index
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -45,9 +48,13 @@ STATE_COLORS = {"safe": 0x4CAF50FF, "unsafe": 0xEF5350FF}
 class ReachSink:
     """Sends reach-set columns on the ``frame`` and ``log_time`` timelines."""
 
-    def __init__(self, recording: rr.RecordingStream) -> None:
-        """Remember the stream and send the static state configuration."""
+    def __init__(self, recording: rr.RecordingStream, labels: ShortLabels | None = None) -> None:
+        """Remember the stream and send the static state configuration.
+
+        ``labels``: the drive's short labels the hit labels use; a fresh table by default.
+        """
         self.recording = recording
+        self.labels = labels if labels is not None else ShortLabels()
         recording.log("reach/state", state_configuration(STATE_COLORS), static=True)
 
     def send_columns(
@@ -62,12 +69,15 @@ class ReachSink:
         rec.send_columns(
             "world/reach/collisions",
             indexes=index,
-            columns=rr.Points3D.columns(
-                positions=cols.hit_points_m,
-                labels=cols.hit_labels,
-                colors=np.full(len(cols.hit_labels), STATE_COLORS["unsafe"], dtype=np.uint32),
-                radii=np.full(len(cols.hit_labels), 0.8, dtype=np.float32),
-            ).partition(cols.hit_counts),
+            columns=[
+                *rr.Points3D.columns(
+                    positions=cols.hit_points_m,
+                    labels=cols.hit_labels,
+                    colors=np.full(len(cols.hit_labels), STATE_COLORS["unsafe"], dtype=np.uint32),
+                    radii=np.full(len(cols.hit_labels), 0.8, dtype=np.float32),
+                ).partition(cols.hit_counts),
+                *object_id_columns(cols.hit_object_ids, cols.hit_counts),
+            ],
         )
         states = np.where(cols.is_safe, "safe", "unsafe")
         rec.send_columns("reach/state", indexes=index, columns=rr.StateChange.columns(state=states))
@@ -84,4 +94,4 @@ class ReachSink:
     ) -> None:
         """Lay out and send the verdicts of a chunk of frames."""
         results = [v.result for v in verdicts]
-        self.send_columns(layout.frame, layout.t_ns, layout_reach(frames, results))
+        self.send_columns(layout.frame, layout.t_ns, layout_reach(frames, results, self.labels))

@@ -21,6 +21,7 @@ if TYPE_CHECKING:
 
     from loaders.maps.model import LaneMap
     from workbench.engines.base import EngineRunner, EngineSettings, EngineSink
+    from workbench.replay.short_labels import ShortLabels
 
 __all__ = ["SPEC"]
 
@@ -31,10 +32,10 @@ def _build(lane_map: LaneMap | None, settings: EngineSettings) -> EngineRunner:
     return RssRunner(lane_map, settings.rss_params, outlines=settings.full_geometry)
 
 
-def _sink(recording: rr.RecordingStream) -> EngineSink:
+def _sink(recording: rr.RecordingStream, labels: ShortLabels) -> EngineSink:
     from workbench.engines.rss.sink import RssSink  # noqa: PLC0415
 
-    return RssSink(recording)
+    return RssSink(recording, labels)
 
 
 def _views() -> list[rrb.View]:

@@ -26,8 +26,9 @@ import numpy as np
 
 from rss.model import ConstellationType
 from rss.physics import DISTANCE_MAX_M
-from rss.structured.states import LateralResponse, LongitudinalResponse
+from workbench.engines.rss.responses import accel_bound, response_name
 from workbench.replay.layout import pad_polylines, yaw_to_quaternion
+from workbench.replay.short_labels import ShortLabels
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -85,8 +86,6 @@ ACCEL_SERIES = {
     "lat_right_min_mps2": ("lateral_right", 0),
     "lat_right_max_mps2": ("lateral_right", 1),
 }
-#: Bounds at or beyond this magnitude mean "unbounded" and are not plotted.
-_UNBOUNDED_MPS2 = 999.0
 #: Constellation lines and danger boxes float above the road and the boxes' base.
 Z_LINK_M = 1.0
 Z_AREA_M = 0.08
@@ -119,7 +118,9 @@ class RssColumns:
         link_counts: ``(N,)`` lines per frame.
         link_colors: ``(L,)`` packed RGBA.
         link_radii_m: ``(L,)``.
-        link_labels: ``(L,)`` "<id>: <type> lon d/safe m, lat d/safe m".
+        link_labels: ``(L,)`` "<short label>: <type> lon d/safe m, lat d/safe m" (``#1``:
+            the drive's short label of the object).
+        link_object_ids: ``(L,)`` the full object id of each line.
         area_strips_m: ``(A, V, 3)`` road-area outlines; ``area_counts`` ``(N,)``;
             ``area_colors`` ``(A,)``.
         danger_centre_m: ``(D, 3)`` boxes around dangerous objects; ``danger_half_m``
@@ -139,6 +140,7 @@ class RssColumns:
     link_colors: NDArray[np.uint32]
     link_radii_m: NDArray[np.float32]
     link_labels: list[str]
+    link_object_ids: list[str]
     area_strips_m: NDArray[np.float32]
     area_counts: NDArray[np.int64]
     area_colors: NDArray[np.uint32]
@@ -193,15 +195,15 @@ class _Row:
             return -np.inf
         return self.lon_m - self.lon_safe_m if np.isfinite(self.lon_m) else np.inf
 
-    def text(self) -> str:
-        """The line label."""
+    def text(self, short: str) -> str:
+        """The line label, naming the object by its ``short`` label."""
         if self.is_intersection:
             return (
-                f"{self.label}: {_TYPE_SHORT[self.ctype]}  to enter: "
+                f"{short}: {_TYPE_SHORT[self.ctype]}  to enter: "
                 f"ego {_fmt(self.ego_to_enter_m)} m, object {_fmt(self.other_to_enter_m)} m"
             )
         return (
-            f"{self.label}: {_TYPE_SHORT[self.ctype]}  "
+            f"{short}: {_TYPE_SHORT[self.ctype]}  "
             f"lon {_fmt(self.lon_m)}/{_fmt(self.lon_safe_m)} m  "
             f"lat {_fmt(self.lat_m)}/{_fmt(self.lat_safe_m)} m"
         )
@@ -268,10 +270,12 @@ class _Builder:
     """Accumulates the columns frame by frame."""
 
     n: int
+    short: ShortLabels
     links: list[NDArray[np.float64]] = field(default_factory=list)
     link_colors: list[int] = field(default_factory=list)
     link_radii: list[float] = field(default_factory=list)
     link_labels: list[str] = field(default_factory=list)
+    link_ids: list[str] = field(default_factory=list)
     areas: list[NDArray[np.float64]] = field(default_factory=list)
     area_colors: list[int] = field(default_factory=list)
     danger: list[tuple[float, ...]] = field(default_factory=list)
@@ -304,7 +308,9 @@ class _Builder:
             self.link_colors.append(DANGEROUS_COLOR if danger else TYPE_COLORS[row.ctype])
             self.link_radii.append(0.12 if danger else 0.06)
             more = per_object[label] - 1
-            self.link_labels.append(row.text() + (f"  (+{more} more)" if more else ""))
+            text = row.text(self.short.label(label))
+            self.link_labels.append(text + (f"  (+{more} more)" if more else ""))
+            self.link_ids.append(label)
             n_links += 1
         for label, row in best.items():
             self.states.setdefault(label, ["not relevant"] * self.n)[i] = row.state
@@ -330,33 +336,19 @@ class _Builder:
         return n_links, n_areas, n_boxes
 
 
-def _response(verdict: RssVerdict, key: str) -> str:
-    """The frame's response name for a :data:`RESPONSE_LANES` key (``None`` without one)."""
-    if verdict.result is None:
-        return "None"
-    names = LongitudinalResponse if key == "longitudinal_response" else LateralResponse
-    return str(names(int(getattr(verdict.result.responses, key)[0])))
-
-
-def _accel(verdict: RssVerdict, name: str) -> float:
-    """One acceleration bound [m/s²]; NaN without constellations or when unbounded."""
-    if verdict.result is None:
-        return float("nan")
-    value = float(getattr(verdict.result.responses, name)[0])
-    if not np.isfinite(value) or abs(value) >= _UNBOUNDED_MPS2:
-        return float("nan")
-    return value
-
-
-def layout_rss(frames: Sequence[Frame], verdicts: Sequence[RssVerdict]) -> RssColumns:
+def layout_rss(
+    frames: Sequence[Frame], verdicts: Sequence[RssVerdict], labels: ShortLabels | None = None
+) -> RssColumns:
     """Columnar structured-RSS display data for a chunk of frames and their verdicts.
 
     Args:
         frames: ``N`` frames.
         verdicts: The ``rss`` verdict of each frame.
+        labels: The drive's short labels (objects not in it yet are numbered next); a fresh
+            table by default.
     """
     n = len(frames)
-    b = _Builder(n)
+    b = _Builder(n, labels if labels is not None else ShortLabels())
     counts = np.zeros((3, n), dtype=np.int64)
     frame_state = []
     for i, (frame, verdict) in enumerate(zip(frames, verdicts, strict=True)):
@@ -367,7 +359,7 @@ def layout_rss(frames: Sequence[Frame], verdicts: Sequence[RssVerdict]) -> RssCo
         counts[:, i] = b.add_frame(i, frame, verdict)
     box = np.array(b.danger, dtype=np.float64).reshape(-1, 7)
     responses = {
-        lane: [_response(v, key) for v in verdicts] for key, (lane, _) in RESPONSE_LANES.items()
+        lane: [response_name(v, key) for v in verdicts] for key, (lane, _) in RESPONSE_LANES.items()
     }
     return RssColumns(
         frame_state=frame_state,
@@ -376,6 +368,7 @@ def layout_rss(frames: Sequence[Frame], verdicts: Sequence[RssVerdict]) -> RssCo
         link_colors=np.array(b.link_colors, dtype=np.uint32),
         link_radii_m=np.array(b.link_radii, dtype=np.float32),
         link_labels=b.link_labels,
+        link_object_ids=b.link_ids,
         area_strips_m=pad_polylines(b.areas, z_m=Z_AREA_M),
         area_counts=counts[1],
         area_colors=np.array(b.area_colors, dtype=np.uint32),
@@ -390,7 +383,7 @@ def layout_rss(frames: Sequence[Frame], verdicts: Sequence[RssVerdict]) -> RssCo
         },
         responses=responses,
         accel={
-            name: np.array([_accel(v, name) for v in verdicts], dtype=np.float64)
+            name: np.array([accel_bound(v, name) for v in verdicts], dtype=np.float64)
             for name in ACCEL_SERIES
         },
     )

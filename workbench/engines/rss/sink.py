@@ -3,7 +3,9 @@
 Entity paths::
 
     world/rss/constellations          LineStrips3D ego -> object, coloured by type, red when
-                                      dangerous, labelled with distances vs safe distances
+                                      dangerous, labelled with the object's short label
+                                      (``#1``) and distances vs safe distances; the full
+                                      id per line in its ``object_id`` component
     world/rss/road_areas              LineStrips3D, road-area outline per constellation
     world/rss/dangerous               Boxes3D, red boxes around dangerous objects
     rss/structured/state              StateChange safe / dangerous / no constellation
@@ -18,7 +20,8 @@ Entity paths::
                                       allows vs the measured one [m/s²] (``duties``)
 
 Per-object lanes carry only changes; an object that leaves every constellation gets one
-"not relevant" entry ("no duty" on its duty lane), also across chunk boundaries.
+"not relevant" entry ("no duty" on its duty lane), also across chunk boundaries. Per-object
+entities keep the full id in their path; the plots' series are named by the short label.
 """
 
 from __future__ import annotations
@@ -30,7 +33,8 @@ import rerun as rr
 
 from workbench.engines.rss.duties import DUTY_STATES, NO_DUTY, layout_duties
 from workbench.engines.rss.layout import FRAME_STATES, OBJECT_STATES, RESPONSE_LANES, layout_rss
-from workbench.replay.sink import send_strips, state_configuration, time_index
+from workbench.replay.short_labels import ShortLabels
+from workbench.replay.sink import object_id_columns, send_strips, state_configuration, time_index
 from workbench.replay.strips import StripColumns
 
 if TYPE_CHECKING:
@@ -74,9 +78,17 @@ class _Lanes:
 class RssSink:
     """Sends structured RSS columns on the ``frame`` and ``log_time`` timelines."""
 
-    def __init__(self, recording: rr.RecordingStream) -> None:
-        """Remember the stream and send the static state configurations."""
+    def __init__(self, recording: rr.RecordingStream, labels: ShortLabels | None = None) -> None:
+        """Remember the stream and send the static state configurations.
+
+        Args:
+            recording: The stream.
+            labels: The drive's short labels (``#1``) every object label uses; a fresh
+                table by default.
+        """
         self.recording = recording
+        self.labels = labels if labels is not None else ShortLabels()
+        self._named: set[str] = set()
         recording.log(STATE_PATH, state_configuration(FRAME_STATES), static=True)
         for lane, values in RESPONSE_LANES.values():
             colors = {v: _RESPONSE_COLORS[v] for v in values}
@@ -128,6 +140,10 @@ class RssSink:
         for key, (rows, values) in series.items():
             object_id, kind = key.rsplit("/", 1)
             path = f"{prefix}/{rr.escape_entity_path_part(object_id)}/{kind}"
+            if path not in self._named:
+                name = f"{self.labels.label(object_id)} {kind}"
+                self.recording.log(path, rr.SeriesLines(names=[name]), static=True)
+                self._named.add(path)
             self.recording.send_columns(
                 path,
                 indexes=time_index(frame[rows], t_ns[rows]),
@@ -143,12 +159,15 @@ class RssSink:
         rec.send_columns(
             "world/rss/constellations",
             indexes=index,
-            columns=rr.LineStrips3D.columns(
-                strips=cols.link_strips_m,
-                colors=cols.link_colors,
-                radii=cols.link_radii_m,
-                labels=cols.link_labels,
-            ).partition(cols.link_counts),
+            columns=[
+                *rr.LineStrips3D.columns(
+                    strips=cols.link_strips_m,
+                    colors=cols.link_colors,
+                    radii=cols.link_radii_m,
+                    labels=cols.link_labels,
+                ).partition(cols.link_counts),
+                *object_id_columns(cols.link_object_ids, cols.link_counts),
+            ],
         )
         areas = StripColumns(cols.area_strips_m, cols.area_counts, cols.area_colors)
         send_strips(rec, "world/rss/road_areas", index, areas, _AREA_RADIUS_M)
@@ -197,5 +216,5 @@ class RssSink:
             values.with_component_from_data("profile", verdicts[0].profile)
             self.recording.send_property("rss", values)
             self._profile_sent = True
-        self.send_columns(layout.frame, layout.t_ns, layout_rss(frames, verdicts))
+        self.send_columns(layout.frame, layout.t_ns, layout_rss(frames, verdicts, self.labels))
         self.send_duties(layout.frame, layout.t_ns, layout_duties(verdicts))

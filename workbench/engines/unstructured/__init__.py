@@ -17,6 +17,7 @@ if TYPE_CHECKING:
 
     from loaders.maps.model import LaneMap
     from workbench.engines.base import EngineRunner, EngineSettings, EngineSink
+    from workbench.replay.short_labels import ShortLabels
 
 __all__ = ["SPEC"]
 
@@ -27,10 +28,10 @@ def _build(lane_map: LaneMap | None, settings: EngineSettings) -> EngineRunner:
     return UnstructuredRunner(lane_map, settings.rss_params)
 
 
-def _sink(recording: rr.RecordingStream) -> EngineSink:
+def _sink(recording: rr.RecordingStream, labels: ShortLabels) -> EngineSink:
     from workbench.engines.unstructured.sink import UnstructuredSink  # noqa: PLC0415
 
-    return UnstructuredSink(recording)
+    return UnstructuredSink(recording, labels)
 
 
 def _views() -> list[rrb.View]:

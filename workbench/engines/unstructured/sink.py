@@ -22,6 +22,7 @@ import numpy as np
 import rerun as rr
 
 from workbench.engines.unstructured.layout import COLORS, Category, layout_unstructured
+from workbench.replay.short_labels import ShortLabels
 from workbench.replay.sink import send_strips, state_configuration, time_index
 
 if TYPE_CHECKING:
@@ -48,9 +49,14 @@ _RADII_M = {"outline": 0.06, "heading_ranges": 0.05}
 class UnstructuredSink:
     """Sends unstructured columns on the ``frame`` and ``log_time`` timelines."""
 
-    def __init__(self, recording: rr.RecordingStream) -> None:
-        """Remember the stream and send the static state configuration."""
+    def __init__(self, recording: rr.RecordingStream, labels: ShortLabels | None = None) -> None:
+        """Remember the stream and send the static state configuration.
+
+        ``labels``: the drive's short labels, kept for the interface: this engine draws no
+        object label (every agent's sets are one mesh and outline batch per frame).
+        """
         self.recording = recording
+        self.labels = labels if labels is not None else ShortLabels()
         lane = {c.label: COLORS[c] for c in Category}
         recording.log(STATE_PATH, state_configuration(lane), static=True)
 

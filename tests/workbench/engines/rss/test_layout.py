@@ -22,6 +22,7 @@ from workbench.engines.rss.layout import layout_rss
 from workbench.engines.rss.runner import RssRunner
 from workbench.engines.rss.sink import object_path
 from workbench.engines.rss.verdict import RssVerdict
+from workbench.replay.short_labels import ShortLabels
 from workbench.viewer.replay import replay_drive
 
 SAMPLES = Path(__file__).resolve().parents[4] / "sample_logs"
@@ -37,7 +38,8 @@ def cut_in() -> tuple[list[Frame], list[RssVerdict]]:
 
 def test_layout_follows_the_engine_frame_by_frame(cut_in):
     frames, outputs = cut_in
-    cols = layout_rss(frames, outputs)
+    labels = ShortLabels()
+    cols = layout_rss(frames, outputs, labels)
     n = len(frames)
     assert cols.frame_state == [
         "no constellation" if o.result is None else ("safe" if o.is_safe else "dangerous")
@@ -60,14 +62,16 @@ def test_layout_follows_the_engine_frame_by_frame(cut_in):
     assert len(cols.link_labels) == cols.link_strips_m.shape[0] == int(cols.link_counts.sum())
     assert cols.danger_centre_m.shape == (int(cols.danger_counts.sum()), 3)
     assert all(len(states) == n for states in cols.object_states.values())
-    # every line starts at the ego and ends on the object its label names
+    # every line starts at the ego and ends on the object its full id names; its label
+    # names that object by its short label
     first = 0
     for i, frame in enumerate(frames):
         ids = [str(a) for a in frame.actors.ids]
         for k in range(first, first + int(cols.link_counts[i])):
             start, end = cols.link_strips_m[k]
             assert np.allclose(start[:2], [frame.ego.x_m, frame.ego.y_m], atol=1e-3)
-            row = ids.index(cols.link_labels[k].split(":", 1)[0])
+            row = ids.index(cols.link_object_ids[k])
+            assert cols.link_labels[k].split(":", 1)[0] == labels[cols.link_object_ids[k]]
             assert np.allclose(end[:2], [frame.actors.x_m[row], frame.actors.y_m[row]], atol=1e-3)
         first += int(cols.link_counts[i])
 
@@ -193,7 +197,7 @@ def test_road_area_outlines_reach_from_the_ego_to_the_object(cut_in):
         rings = cols.area_strips_m[first_area[i] : first_area[i + 1], :, :2]
         area = shapely.union_all([shapely.Polygon(r) for r in rings]) if len(rings) else None
         for k in range(first_link[i], first_link[i + 1]):
-            row = ids.index(cols.link_labels[k].split(":", 1)[0])
+            row = ids.index(cols.link_object_ids[k])
             obj = shapely.Point(frame.actors.x_m[row], frame.actors.y_m[row])
             ego = shapely.Point(frame.ego.x_m, frame.ego.y_m)
             assert area is not None
