@@ -154,3 +154,4 @@ class EngineSpec:
     views: Callable[[], list[rrb.View]]
     incident_facts: Callable[[], Any] | None = None
     join_causes: Callable[[Sequence[str]], str] | None = None
+    incident_overrides: Callable[[], dict[str, Any]] | None = None

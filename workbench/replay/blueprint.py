@@ -122,6 +122,10 @@ def _scene_overrides(incident: Incident | None) -> dict[EntityPathLike, Visualiz
         overrides["world/actors/velocity"] = rr.Arrows3D.from_fields(
             colors=[style.INCIDENT_DIM_COLOR]
         )
+        for name in names():  # an override of an entity a recording lacks is a no-op
+            spec = engine(name)
+            if spec.incident_overrides is not None:
+                overrides.update(spec.incident_overrides())
     return overrides
 
 

@@ -90,3 +90,21 @@ def test_replay_rrd_holds_one_lane_per_incident_and_the_markers(tmp_path):
         int(f) for f, t in zip(frames, table["/incidents/log:TextLog:text"], strict=True) if t
     }
     assert marker_frames == starts
+
+
+def test_an_incident_view_hides_the_engines_object_labels(tmp_path):
+    """Only the incident's objects are labelled: every engine's per-object labels are off."""
+    incident = _incident("rss-000002-x", 2, 3)
+    replay_blueprint((0.0, 0.0), ["rss", "reachsets"], incident=incident).save(
+        "t", tmp_path / "inc.rbl"
+    )
+    rows = _blueprint_rows(tmp_path / "inc.rbl")
+    hidden = {
+        column.split("/overrides/", 1)[1].split("/visualizers/", 1)[0]
+        for column, values in rows.items()
+        if "/overrides/" in column and column.endswith(":show_labels") and values[0] == [False]
+    }
+    assert {"world/rss/constellations", "world/reach/collisions", "world/actors"} <= hidden
+    replay_blueprint((0.0, 0.0), ["rss", "reachsets"]).save("t", tmp_path / "plain.rbl")
+    plain = _blueprint_rows(tmp_path / "plain.rbl")
+    assert not [c for c in plain if c.endswith(":show_labels")]

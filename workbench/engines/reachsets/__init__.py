@@ -6,16 +6,15 @@ Files: ``adapter`` (lane map and frames to reach-set inputs), ``runner``, ``verd
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
+import rerun as rr
 import rerun.blueprint as rrb
 
 from workbench.engines.base import EngineSpec
 from workbench.engines.reachsets.record import reach_record
 
 if TYPE_CHECKING:
-    import rerun as rr
-
     from loaders.maps.model import LaneMap
     from workbench.engines.base import EngineRunner, EngineSettings, EngineSink
     from workbench.replay.short_labels import ShortLabels
@@ -47,6 +46,11 @@ def _views() -> list[rrb.View]:
     return [rrb.TimeSeriesView(name="first collision [s into plan]", origin="/plots/reach")]
 
 
+def _incident_overrides() -> dict[str, Any]:
+    """In one incident's view: no per-object labels (the incident's objects are highlighted)."""
+    return {"world/reach/collisions": rr.Points3D.from_fields(show_labels=False)}
+
+
 SPEC = EngineSpec(
     name="reachsets",
     title="reach sets",
@@ -57,4 +61,5 @@ SPEC = EngineSpec(
     record=reach_record,
     sink=_sink,
     views=_views,
+    incident_overrides=_incident_overrides,
 )

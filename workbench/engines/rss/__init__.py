@@ -7,8 +7,9 @@ Files: ``adapter`` (lane map and frames to scene inputs), ``runner`` (state acro
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
+import rerun as rr
 import rerun.blueprint as rrb
 
 from workbench.engines.base import EngineSpec
@@ -17,8 +18,6 @@ from workbench.engines.rss.incident_facts import RssIncidentFacts
 from workbench.engines.rss.record import rss_record
 
 if TYPE_CHECKING:
-    import rerun as rr
-
     from loaders.maps.model import LaneMap
     from workbench.engines.base import EngineRunner, EngineSettings, EngineSink
     from workbench.replay.short_labels import ShortLabels
@@ -49,6 +48,11 @@ def _views() -> list[rrb.View]:
     ]
 
 
+def _incident_overrides() -> dict[str, Any]:
+    """In one incident's view: no per-object labels (the incident's objects are highlighted)."""
+    return {"world/rss/constellations": rr.LineStrips3D.from_fields(show_labels=False)}
+
+
 SPEC = EngineSpec(
     name="rss",
     title="rss",
@@ -60,6 +64,7 @@ SPEC = EngineSpec(
     record=rss_record,
     sink=_sink,
     views=_views,
+    incident_overrides=_incident_overrides,
     incident_facts=RssIncidentFacts,
     join_causes=join_causes,
 )
