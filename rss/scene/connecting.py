@@ -29,7 +29,10 @@ from typing import TYPE_CHECKING
 from rss.scene.junction_pairs import conflict
 from rss.scene.memo import memoised
 from rss.scene.roadarea import lane_heading
-from rss.scene.routes import RouteTree  # noqa: TC001 - a dataclass field type, read at run time when compiled (mypyc)
+from rss.scene.routes import (
+    RouteTree,
+    segment_lengths_m,
+)
 
 if TYPE_CHECKING:
     from rss.scene.frame import FrameContext
@@ -118,9 +121,12 @@ def feasibility(
 
 
 def _direct(
-    f: FrameContext, box: int, max_m: float, tree: RouteTree
+    f: FrameContext, box: int, max_m: float, tree: RouteTree, skip: RouteTree | None = None
 ) -> tuple[list[Connecting], bool]:
-    """Typed routes of ``tree`` to the object's lanes; also whether any route was found."""
+    """Typed routes of ``tree`` to the object's lanes; also whether any route was found.
+
+    ``skip``: lanes this tree reaches are left out (before longer routes are dropped).
+    """
     m, prep = f.matches, f.prep
     pos0 = tree.root_pos[1]
     own = tree is f.tree
@@ -129,11 +135,15 @@ def _direct(
     out: list[Connecting] = []
     moves: dict[int, tuple[int, int]] = {}
     found = False
-    lengths = prep.scalars.centre_length_m
+    lengths = (
+        memoised(prep, f.memo, segment_lengths_m)
+        if f.settings.reproduce_adrss_5_0_defects
+        else prep.scalars.centre_length_m
+    )
     inside = prep.scalars.is_intersection
     for region in m.regions(box):
         lane = region.lane
-        if lane not in tree.k:
+        if lane not in tree.k or (skip is not None and lane in skip.k):
             continue
         fwd = tree.forward[lane]
         mid = 0.5 * (region.lon_min + region.lon_max)
@@ -306,6 +316,10 @@ def connecting_routes(f: FrameContext, box: int, max_m: float) -> list[Connectin
     direct, found = _direct(f, box, max_m, f.tree)
     for tree in f.other_trees:
         direct += _direct(f, box, max_m, tree)[0]
+    if f.behind_tree is not None:
+        # ad-map's routes from the object to the ego: to the object's lanes that no
+        # route from the ego reaches (a lane reached ahead first is not reached behind)
+        direct += _direct(f, box, max_m, f.behind_tree, f.tree)[0]
     if direct or found:
         return direct
     merge = _merging(f, box, max_m)

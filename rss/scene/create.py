@@ -151,6 +151,17 @@ def create_scene(
         connect(prep, memo, lane, forward=fwd, horizon_m=horizon, start=start)
         for lane, fwd, start in more_roots(prep, matches, ego)
     ]
+    if settings.reproduce_adrss_5_0_defects:
+        frame.behind_tree = connect(
+            prep,
+            memo,
+            int(matches.anchor[0]),
+            forward=frame.forward(0),
+            horizon_m=horizon,
+            start=float(matches.anchor_s[0]),
+            admap_lengths=True,
+            behind_only=True,
+        )
     out: list[Constellation] = []
     areas: list[tuple[tuple[int, float, float], ...]] = []
     if road_boundaries:

@@ -113,6 +113,22 @@ def cross_section(prep: PreparedGraph, memo: SceneMemo, step: Step) -> tuple[Ste
     return result
 
 
+def segment_lengths_m(prep: PreparedGraph, memo: SceneMemo) -> list[float]:
+    """Per lane, the shortest centre length of its :func:`cross_section` [m].
+
+    ad-map 5.0 takes a route's road segment (all lanes side by side, the opposite ones
+    too) as long as its shortest lane, and cuts connecting routes by that length: in a
+    junction the inner turn of the opposite direction shortens the route (Town01 drive
+    cross-check, junction routes seed 4: drive 8 frames 33-37, a car 135 m behind the
+    ego by ad-map's measure, 148 m along its own lanes). Memoised per map.
+    """
+    lengths = prep.scalars.centre_length_m
+    return [
+        min(lengths[x] for x, _ in cross_section(prep, memo, (lane, True)))
+        for lane in range(len(lengths))
+    ]
+
+
 def longitudinal(prep: PreparedGraph, lane: int, *, forward: bool, ahead: bool) -> list[Step]:
     """Lanes before (``ahead=False``) or after ``lane`` along the road-area direction."""
     g = prep.graph
@@ -128,6 +144,8 @@ def connect(
     forward: bool,
     horizon_m: float,
     start: float = 0.5,
+    admap_lengths: bool = False,
+    behind_only: bool = False,
 ) -> RouteTree:
     """Dijkstra from ``root`` over all links, ignoring driving directions.
 
@@ -147,9 +165,18 @@ def connect(
         forward: The root's point order runs along the ego's driving direction.
         horizon_m: Largest route length searched.
         start: The ego's parametric position on ``root`` (its point order).
+        admap_lengths: Measure a lane as ad-map 5.0 measures a road segment of a route:
+            by the shortest lane side by side with it (:func:`segment_lengths_m`;
+            ``[scene] reproduce_adrss_5_0_defects``).
+        behind_only: Only routes behind the ego (lateral moves at the root, then moves
+            behind): ad-map searches the routes from the object to the ego apart from
+            those from the ego to the object, so a lane reached ahead first is still
+            reached behind (``FrameContext.behind_tree``).
     """
     tree = RouteTree()
-    lengths = prep.centre_length_m
+    lengths = (
+        memoised(prep, memo, segment_lengths_m) if admap_lengths else prep.scalars.centre_length_m
+    )
     pos0 = start if forward else 1.0 - start
     tree.root_pos = (root, pos0)
     # (cost, counter, lane, k, j, forward, parent, entry position, first move, last move)
@@ -172,7 +199,7 @@ def connect(
                 moves.append((step, k, j + dj, max(gap, _LATERAL_COST_M), pos, last))
         length = float(lengths[lane])
         for ahead, dk in ((True, 1), (False, -1)):
-            if last == -dk:
+            if last == -dk or (behind_only and ahead):
                 continue  # no turning back: a route keeps its longitudinal direction
             extra = length * ((1.0 - pos) if ahead else pos)
             moves.extend(
