@@ -139,13 +139,9 @@ def create_scene(
     frame = FrameContext(
         prep, memo, ego, objects, settings, matches, RouteTree(), headings, velocity
     )
+    anchor, anchor_forward, anchor_s = int(matches.anchor[0]), frame.forward(0), matches.anchor_s[0]
     frame.tree = connect(
-        prep,
-        memo,
-        int(matches.anchor[0]),
-        forward=frame.forward(0),
-        horizon_m=horizon,
-        start=float(matches.anchor_s[0]),
+        prep, memo, anchor, forward=anchor_forward, horizon_m=horizon, start=float(anchor_s)
     )
     frame.other_trees = [
         connect(prep, memo, lane, forward=fwd, horizon_m=horizon, start=start)
@@ -155,10 +151,10 @@ def create_scene(
         frame.behind_tree = connect(
             prep,
             memo,
-            int(matches.anchor[0]),
-            forward=frame.forward(0),
+            anchor,
+            forward=anchor_forward,
             horizon_m=horizon,
-            start=float(matches.anchor_s[0]),
+            start=float(anchor_s),
             admap_lengths=True,
             behind_only=True,
         )

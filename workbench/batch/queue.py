@@ -16,7 +16,7 @@ from workbench.batch.executors import BatchError
 from workbench.batch.results import INCIDENTS_SCHEMA
 from workbench.incidents.model import Incident, Severity
 from workbench.incidents.order import severity_key
-from workbench.outputs import json_text, write_text
+from workbench.outputs import atomic_output, json_text, write_text
 
 if TYPE_CHECKING:
     from collections.abc import Iterable
@@ -147,16 +147,14 @@ def write_queue(incidents: Iterable[FleetIncident], path: Path) -> None:
             for r in rows
         ]
     table = pa.Table.from_pylist(rows)
-    part = path.with_name(path.name + ".part")
-    try:
-        if path.suffix == ".csv":
-            pcsv.write_csv(table, part)
-        else:
-            pq.write_table(table, part)
-        part.replace(path)
-    except (OSError, pa.ArrowException) as err:
-        part.unlink(missing_ok=True)
-        raise BatchError(f"{path}: cannot write ({err})") from err
+    with atomic_output(path, "the incident list") as part:
+        try:
+            if path.suffix == ".csv":
+                pcsv.write_csv(table, part)
+            else:
+                pq.write_table(table, part)
+        except pa.ArrowException as err:
+            raise BatchError(f"{path}: cannot write ({err})") from err
 
 
 def drive_name(drive_path: str) -> str:

@@ -24,7 +24,7 @@ import json
 from typing import TYPE_CHECKING, Any
 
 from workbench.batch.executors import BatchError
-from workbench.outputs import json_text, write_text
+from workbench.outputs import atomic_output, json_text, write_text
 
 if TYPE_CHECKING:
     from collections.abc import Iterable, Sequence
@@ -176,14 +176,8 @@ class Results:
         import pyarrow.parquet as pq  # noqa: PLC0415 - only when assembling
 
         table = table.replace_schema_metadata({"rss_workbench.schema": schema})
-        path = self.root / name
-        part = path.with_name(name + ".part")
-        try:
+        with atomic_output(self.root / name, f"the batch's {name}") as part:
             pq.write_table(table, part)
-            part.replace(path)
-        except OSError as err:
-            part.unlink(missing_ok=True)
-            raise BatchError(f"{path}: cannot write ({err.strerror})") from err
 
 
 def _drive_row(record: dict[str, Any]) -> dict[str, Any]:
