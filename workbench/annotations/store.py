@@ -106,7 +106,7 @@ class LabelStore:
             path.parent.mkdir(parents=True, exist_ok=True)
             self._conn = sqlite3.connect(path, timeout=timeout_s, isolation_level=None)
         with self._errors("open"):
-            self._conn.execute("PRAGMA journal_mode = WAL")
+            self._wal()
             self._conn.execute("PRAGMA synchronous = FULL")
             found = schema_version(self._conn)
             if found > SCHEMA_VERSION:
@@ -114,6 +114,23 @@ class LabelStore:
                 raise StoreCorruptError(f"{path}: label store {msg}")
             if found < SCHEMA_VERSION:
                 migrate(self._conn)
+
+    def _wal(self) -> None:
+        """Switch to WAL, retrying within ``timeout_s``.
+
+        SQLite answers a journal-mode switch with "database is locked" at once, without its
+        busy handler, while another process is switching the same new file.
+        """
+        deadline = time.monotonic() + self.timeout_s
+        while True:
+            try:
+                self._conn.execute("PRAGMA journal_mode = WAL")
+            except sqlite3.OperationalError as err:
+                if "locked" not in str(err) or time.monotonic() >= deadline:
+                    raise
+                time.sleep(0.01)
+            else:
+                return
 
     @contextlib.contextmanager
     def _errors(self, action: str) -> Iterator[None]:
