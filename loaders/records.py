@@ -37,6 +37,7 @@ __all__ = [
     "Frame",
     "ObjectClass",
     "Plan",
+    "PlanKind",
     "freeze",
 ]
 
@@ -63,6 +64,21 @@ class ObjectClass(enum.IntEnum):
     def label(self) -> str:
         """Lower-case name used in CLI output, TOML tables and Rerun labels."""
         return self.name.lower()
+
+
+class PlanKind(enum.Enum):
+    """What the ego's plan of a frame is (``Frame.plan_kind``).
+
+    Attributes:
+        NOMINAL: The trajectory the planner means to drive (every ROS plan topic; the
+            ``performance`` trajectory of a ScenarioArchitect log).
+        EMERGENCY: A fail-safe trajectory the ego would switch to (the ``emergency``
+            trajectory of a ScenarioArchitect log): the reach-set engine's ``auto`` mode
+            rates it as it is instead of a stop from the ego's state.
+    """
+
+    NOMINAL = "nominal"
+    EMERGENCY = "emergency"
 
 
 def freeze(array: Any, dtype: Any = None) -> NDArray[Any]:
@@ -266,6 +282,8 @@ class Frame:
         ego: Ego state.
         actors: Other traffic participants.
         plan: Planned trajectory valid at this frame, if the drive has one.
+        extras: Format-specific side data of the loader (documented by each loader).
+        plan_kind: What ``plan`` is (meaningless without a plan).
     """
 
     index: int
@@ -274,3 +292,4 @@ class Frame:
     actors: ActorTable
     plan: Plan | None = None
     extras: dict[str, Any] = field(default_factory=dict)
+    plan_kind: PlanKind = PlanKind.NOMINAL

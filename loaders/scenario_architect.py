@@ -17,7 +17,9 @@ positive); this reader is the one boundary converting them to ENU yaw::
 The ego's size is only in the pickle, so the reference's simulation values (4.7 m x 2.8 m)
 are used. ``Frame.extras``: ``labels`` (``safety_dyn``/``safety_stat``: True, False or None),
 ``trajectories`` (``performance`` and ``emergency``, each a dict of ``(30,)`` arrays
-``x_m, y_m, yaw_rad, curvature_inv_m, speed_mps, accel_mps2``), ``plan_kind``.
+``x_m, y_m, yaw_rad, curvature_inv_m, speed_mps, accel_mps2``). ``Frame.plan`` is the
+trajectory chosen by ``plan`` and ``Frame.plan_kind`` says which (``emergency`` ->
+``PlanKind.EMERGENCY``, ``performance`` -> ``PlanKind.NOMINAL``).
 """
 
 from __future__ import annotations
@@ -35,7 +37,7 @@ import numpy as np
 from loaders.drive import DriveInfo, TopicInfo, TopicRoles
 from loaders.errors import CorruptLogError, EmptyLogError, InvalidValueError, UnsupportedFormatError
 from loaders.maps.model import LaneMap
-from loaders.records import ActorTable, EgoState, Frame, ObjectClass, Plan
+from loaders.records import ActorTable, EgoState, Frame, ObjectClass, Plan, PlanKind
 
 if TYPE_CHECKING:
     from collections.abc import Iterator
@@ -54,6 +56,7 @@ EGO_LENGTH_M = 4.7
 EGO_WIDTH_M = 2.8
 _COLUMNS = "time;x;y;heading;curv;vel;acc;ego_traj;ego_traj_em;object_array;safety_dyn;safety_stat"
 _PLANS = {"emergency": "ego_traj_em", "performance": "ego_traj"}
+_PLAN_KINDS = {"emergency": PlanKind.EMERGENCY, "performance": PlanKind.NOMINAL}
 _TRAJ_FIELDS = ("x_m", "y_m", "yaw_rad", "curvature_inv_m", "speed_mps", "accel_mps2")
 
 
@@ -238,8 +241,16 @@ class ScenarioArchitectDrive:
             speed_mps=chosen["speed_mps"],
         )
         labels = {"safety_dyn": _label(cols[10]), "safety_stat": _label(cols[11])}
-        extras = {"labels": labels, "trajectories": trajs, "plan_kind": self._plan}
-        return Frame(index=index, t_ns=t_ns, ego=ego, actors=actors, plan=plan, extras=extras)
+        extras = {"labels": labels, "trajectories": trajs}
+        return Frame(
+            index=index,
+            t_ns=t_ns,
+            ego=ego,
+            actors=actors,
+            plan=plan,
+            extras=extras,
+            plan_kind=_PLAN_KINDS[self._plan],
+        )
 
     def frames(self, start_ns: int | None = None, end_ns: int | None = None) -> Iterator[Frame]:
         """Yield frames in time order within ``[start_ns, end_ns)``.

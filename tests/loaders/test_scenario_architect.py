@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from loaders.errors import CorruptLogError, LoaderError, UnsupportedFormatError
+from loaders.records import PlanKind
 from loaders.scenario_architect import north0_to_enu, open_scenario_architect
 from workbench.samples.racing import racing_centre, write_racing_sample
 
@@ -48,7 +49,8 @@ def test_sample_round_trips(sample):
     assert np.all(np.isnan(f0.plan.t_offset_s))
     assert f0.extras["labels"] == {"safety_dyn": True, "safety_stat": None}
     assert set(f0.extras["trajectories"]) == {"performance", "emergency"}
-    assert f0.extras["plan_kind"] == "emergency"
+    assert f0.plan_kind is PlanKind.EMERGENCY
+    assert "plan_kind" not in f0.extras
 
 
 def test_performance_plan_and_window(sample):
@@ -57,6 +59,7 @@ def test_performance_plan_and_window(sample):
     assert [f.index for f in frames] == list(range(20, 30))
     plan = frames[0].plan
     assert plan is not None
+    assert frames[0].plan_kind is PlanKind.NOMINAL
     assert plan.speed_mps[-1] == pytest.approx(38.0)
     x, _, _, _ = racing_centre(np.array([38.0 * 2.0]))
     assert frames[0].ego.x_m == pytest.approx(float(x[0]), abs=0.1)

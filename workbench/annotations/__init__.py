@@ -2,7 +2,7 @@
 
 from workbench.annotations.errors import StoreCorruptError, StoreError, StoreLockedError
 from workbench.annotations.paths import default_reviewer, default_store_path
-from workbench.annotations.schema import SCHEMA_VERSION, VERDICTS
+from workbench.annotations.schema import SCHEMA_VERSION, VERDICTS, ReviewVerdict
 from workbench.annotations.store import Label, LabelStore
 
 __all__ = [
@@ -10,6 +10,7 @@ __all__ = [
     "VERDICTS",
     "Label",
     "LabelStore",
+    "ReviewVerdict",
     "StoreCorruptError",
     "StoreError",
     "StoreLockedError",

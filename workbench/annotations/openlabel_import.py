@@ -26,6 +26,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from workbench.annotations.errors import OpenLabelError
+from workbench.annotations.schema import ReviewVerdict
 from workbench.annotations.store import Label
 
 if TYPE_CHECKING:
@@ -161,6 +162,10 @@ def _labels(path: Path, root: dict[str, Any], drive_hash: str) -> list[Label]:
             at_ns = int(text["labelled_ns"])
         except ValueError as err:
             raise OpenLabelError(f"{where}: labelled_ns {text['labelled_ns']!r}") from err
+        try:
+            verdict = ReviewVerdict(text["verdict"])
+        except ValueError as err:
+            raise OpenLabelError(f"{where}: verdict {text['verdict']!r}") from err
         tags = _field(data.get("vec", []), "tags", where)
         if not isinstance(tags, list):
             raise OpenLabelError(f"{where}: tags {tags!r} is not a list")
@@ -168,7 +173,7 @@ def _labels(path: Path, root: dict[str, Any], drive_hash: str) -> list[Label]:
             Label(
                 drive_hash,
                 str(action.get("name", "")),
-                text["verdict"],
+                verdict,
                 tuple(sorted({str(t) for t in tags})),
                 text["note"],
                 text["reviewer"],

@@ -7,6 +7,7 @@ log file. A store written by a newer version is refused.
 
 from __future__ import annotations
 
+import enum
 from typing import TYPE_CHECKING
 
 from workbench.annotations.errors import TagError
@@ -20,13 +21,23 @@ __all__ = [
     "MIGRATIONS",
     "SCHEMA_VERSION",
     "VERDICTS",
+    "ReviewVerdict",
     "check_tags",
     "migrate",
     "schema_version",
 ]
 
-#: The review verdicts the store accepts.
-VERDICTS = ("confirmed", "false_positive", "follow_up")
+
+class ReviewVerdict(enum.StrEnum):
+    """A reviewer's verdict on an incident: the one spelling of the store, CLI and viewer."""
+
+    CONFIRMED = "confirmed"
+    FALSE_POSITIVE = "false_positive"
+    FOLLOW_UP = "follow_up"
+
+
+#: The review verdicts the store accepts, as text (its schema's CHECK constraint).
+VERDICTS = tuple(v.value for v in ReviewVerdict)
 
 #: Longest review tag (characters).
 MAX_TAG_CHARS = 64

@@ -18,6 +18,7 @@ from workbench.annotations.errors import StoreCorruptError, StoreError, StoreLoc
 from workbench.annotations.schema import (
     SCHEMA_VERSION,
     VERDICTS,
+    ReviewVerdict,
     check_tags,
     migrate,
     schema_version,
@@ -42,7 +43,7 @@ class Label:
     Attributes:
         drive_hash: Content hash of the drive.
         incident_id: The incident's stable id.
-        verdict: ``confirmed``, ``false_positive`` or ``follow_up``.
+        verdict: The review verdict.
         tags: Free tags, sorted, unique.
         note: Free text.
         reviewer: Who gave the verdict.
@@ -54,7 +55,7 @@ class Label:
 
     drive_hash: str
     incident_id: str
-    verdict: str
+    verdict: ReviewVerdict
     tags: tuple[str, ...] = ()
     note: str = ""
     reviewer: str = ""
@@ -79,7 +80,7 @@ def _label(row: Sequence[Any]) -> Label:
     return Label(
         drive_hash=row[0],
         incident_id=row[1],
-        verdict=row[2],
+        verdict=ReviewVerdict(row[2]),
         tags=tuple(json.loads(row[3])),
         note=row[4],
         reviewer=row[5],
@@ -165,7 +166,7 @@ class LabelStore:
         self,
         drive_hash: str,
         incident_id: str,
-        verdict: str,
+        verdict: ReviewVerdict | str,
         *,
         tags: Sequence[str] = (),
         note: str = "",
@@ -179,7 +180,7 @@ class LabelStore:
         Args:
             drive_hash: Content hash of the drive.
             incident_id: The incident's id.
-            verdict: One of :data:`~workbench.annotations.schema.VERDICTS`.
+            verdict: A :class:`~workbench.annotations.schema.ReviewVerdict` (or its text).
             tags: Free tags (stored sorted and unique).
             note: Free text.
             reviewer: Who gives the verdict.
@@ -193,6 +194,7 @@ class LabelStore:
         """
         if verdict not in VERDICTS:
             raise StoreError(f"verdict must be one of {', '.join(VERDICTS)}, not {verdict!r}")
+        verdict = ReviewVerdict(verdict).value
         tags = check_tags(tags)
         when = time.time_ns() if at_ns is None else at_ns
         row = (

@@ -2,26 +2,18 @@
 
 from __future__ import annotations
 
-import enum
 from typing import TYPE_CHECKING, Annotated
 
 import typer
 
+from workbench.annotations.schema import ReviewVerdict  # noqa: TC001 - typer reads it
 from workbench.cli.incident_options import LogArgument, StoreOption, with_incidents
 from workbench.errors import WorkbenchError
 
 if TYPE_CHECKING:
     from workbench.incidents import IncidentReport
 
-__all__ = ["ReviewVerdictOption", "register"]
-
-
-class ReviewVerdictOption(enum.StrEnum):
-    """``--verdict`` values (the store's verdicts)."""
-
-    confirmed = "confirmed"
-    false_positive = "false_positive"
-    follow_up = "follow_up"
+__all__ = ["register"]
 
 
 @with_incidents
@@ -30,7 +22,7 @@ def label(
     report: IncidentReport,
     incident_id: Annotated[str, typer.Argument(help="Incident id (`workbench incidents LOG`).")],
     *,
-    verdict: Annotated[ReviewVerdictOption, typer.Option("--verdict", help="Review verdict.")],
+    verdict: Annotated[ReviewVerdict, typer.Option("--verdict", help="Review verdict.")],
     tag: Annotated[
         list[str] | None, typer.Option("--tag", help="Tag (repeatable; replaces the tags).")
     ] = None,
@@ -59,7 +51,7 @@ def label(
         labels.put(
             report.drive_hash,
             incident_id,
-            verdict.value,
+            verdict,
             tags=tag if tag is not None else (before.tags if before else ()),
             note=note if note is not None else (before.note if before else ""),
             reviewer=reviewer or default_reviewer(),

@@ -22,6 +22,7 @@ if TYPE_CHECKING:
     from loaders.maps.model import LaneMap
     from loaders.records import Frame
     from rss.params import RssParams
+    from workbench.engines.ids import ActorIds
     from workbench.replay.layout import ChunkLayout
     from workbench.replay.short_labels import ShortLabels
 
@@ -43,6 +44,8 @@ class Verdict(Protocol):
         is_safe: The frame verdict of this engine.
         culprits: Ids of the objects that make the frame unsafe, sorted.
         cause: Short reason (rule or response) for violation intervals; ``""`` when safe.
+            Typed as the engine likes (an enum, a frozen record: hashable, equal when the
+            reason is) until a sink writes it: its ``str()`` is the text.
         margin: Engine-specific severity, smaller is worse (``inf`` when safe).
     """
 
@@ -51,14 +54,17 @@ class Verdict(Protocol):
     @property
     def culprits(self) -> tuple[str, ...]: ...  # noqa: D102
     @property
-    def cause(self) -> str: ...  # noqa: D102
+    def cause(self) -> object: ...  # noqa: D102
     @property
     def margin(self) -> float: ...  # noqa: D102
 
 
 @dataclass(frozen=True, slots=True)
 class VerdictSummary:
-    """The light part of a verdict (no geometry): what violation detection keeps per frame."""
+    """The light part of a verdict (no geometry): what violation detection keeps per frame.
+
+    ``cause`` is the verdict's cause as text.
+    """
 
     is_safe: bool
     culprits: tuple[str, ...] = ()
@@ -68,7 +74,7 @@ class VerdictSummary:
 
 def summarise(verdict: Verdict) -> VerdictSummary:
     """The summary of any engine's verdict."""
-    return VerdictSummary(verdict.is_safe, verdict.culprits, verdict.cause, verdict.margin)
+    return VerdictSummary(verdict.is_safe, verdict.culprits, str(verdict.cause), verdict.margin)
 
 
 class EngineRunner(Protocol):
@@ -108,6 +114,9 @@ class EngineSettings:
         reach_trajectory: ``--reach-trajectory``: ``auto`` (the log's emergency trajectory
             when it has one, else braking from the ego's state; the default), ``planned`` or
             ``braking``.
+        actor_ids: The drive's actor label table, one for all its engines (set per drive by
+            :func:`~workbench.engines.registry.build_runners`; ``None``: a runner keeps its
+            own).
     """
 
     rss_params: RssParams | None = None
@@ -115,6 +124,7 @@ class EngineSettings:
     full_geometry: bool = False
     reach_rules: str = "public_road"
     reach_trajectory: str = "auto"
+    actor_ids: ActorIds | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -138,9 +148,9 @@ class EngineSpec:
             (``workbench.incidents.FactCollector``: ``add(frame, t_ns, verdict, object_id)``,
             ``facts()``), or ``None``.
         join_causes: When set, the engine's incidents are one per object and unsafe run,
-            whatever causes its frames name, and this joins the causes of a run (in order of
-            appearance) into the incident's cause; ``None``: a change of cause starts a new
-            incident.
+            whatever causes its frames name, and this joins the causes of a run (the
+            verdicts' typed causes, in order of appearance) into the incident's cause text;
+            ``None``: a change of cause starts a new incident.
     """
 
     name: str
@@ -153,5 +163,5 @@ class EngineSpec:
     sink: Callable[[rr.RecordingStream, ShortLabels], EngineSink]
     views: Callable[[], list[rrb.View]]
     incident_facts: Callable[[], Any] | None = None
-    join_causes: Callable[[Sequence[str]], str] | None = None
+    join_causes: Callable[[Sequence[object]], str] | None = None
     incident_overrides: Callable[[], dict[str, Any]] | None = None

@@ -14,6 +14,7 @@ Built-ins and entry points load on first use, which keeps CLI start-up light.
 
 from __future__ import annotations
 
+import dataclasses
 import importlib
 from importlib.metadata import entry_points
 from typing import TYPE_CHECKING
@@ -120,5 +121,8 @@ def parse_engines(text: str) -> list[str]:
 def build_runners(
     names_: list[str], lane_map: LaneMap | None, settings: EngineSettings
 ) -> list[EngineRunner]:
-    """One runner per engine name, bound to the drive's lane map."""
-    return [engine(name).build(lane_map, settings) for name in names_]
+    """One runner per engine name, bound to the drive's lane map and one actor label table."""
+    from workbench.engines.ids import ActorIds  # noqa: PLC0415 - light start-up
+
+    drive_settings = dataclasses.replace(settings, actor_ids=ActorIds())
+    return [engine(name).build(lane_map, drive_settings) for name in names_]

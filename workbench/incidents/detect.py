@@ -67,14 +67,14 @@ class IncidentDetector:
         #: Positions ``(x, y)`` [m] of the frame's culprits at the first frame of each
         #: incident, by object id (chunks only): where the review camera looks.
         self.objects_at_start_m: dict[int, dict[str, tuple[float, float]]] = {}
-        self._joins: dict[str, Callable[[Sequence[str]], str] | None] = {}
+        self._joins: dict[str, Callable[[Sequence[object]], str] | None] = {}
         #: Per run of an engine that joins causes (by key and start frame): ``(frame,
-        #: cause)`` where the cause changed, in order.
-        self._trails: dict[tuple[IncidentKey, int], list[tuple[int, str]]] = {}
+        #: cause)`` where the (typed) cause changed, in order.
+        self._trails: dict[tuple[IncidentKey, int], list[tuple[int, object]]] = {}
         #: Every object's states (chunks only), for the data-quality checks.
         self.tracks = TrackCollector()
 
-    def _join_of(self, engine: str) -> Callable[[Sequence[str]], str] | None:
+    def _join_of(self, engine: str) -> Callable[[Sequence[object]], str] | None:
         if engine not in self._joins:
             from workbench.engines.registry import find  # noqa: PLC0415 - light start-up
 
@@ -91,13 +91,13 @@ class IncidentDetector:
         for engine, verdict in verdicts.items():
             if verdict.is_safe:
                 continue
-            cause = "" if self._join_of(engine) else verdict.cause
+            cause = "" if self._join_of(engine) else str(verdict.cause)
             for obj in verdict.culprits or ("",):
                 hits[engine, obj, cause] = verdict
                 own[engine, obj, cause] = VerdictSummary(
                     is_safe=False,
                     culprits=(obj,) if obj else (),
-                    cause=verdict.cause,
+                    cause=str(verdict.cause),
                     margin=own_margin(verdict, obj),
                 )
         return hits, own
@@ -156,7 +156,7 @@ class IncidentDetector:
         trail = self._trails.get((run.key, run.start_frame), [])
         legacy = tuple(
             dict.fromkeys(
-                incident_id(self.drive_hash, engine, objects, piece, frame)
+                incident_id(self.drive_hash, engine, objects, str(piece), frame)
                 for frame, piece in trail
             )
         )

@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from workbench.annotations.schema import ReviewVerdict
 from workbench.replay.short_labels import ShortLabels
 
 if TYPE_CHECKING:
@@ -49,9 +50,9 @@ _CLEAR = "clear"
 #: Lane states and their packed RGBA colours (``clear`` is hidden).
 INCIDENT_STATES: dict[str, int] = {
     UNREVIEWED: 0xFFA726FF,
-    "confirmed": 0xE53935FF,
-    "false_positive": 0x9E9E9EFF,
-    "follow_up": 0x42A5F5FF,
+    ReviewVerdict.CONFIRMED.value: 0xE53935FF,
+    ReviewVerdict.FALSE_POSITIVE.value: 0x9E9E9EFF,
+    ReviewVerdict.FOLLOW_UP.value: 0x42A5F5FF,
     _CLEAR: 0x00000000,
 }
 

@@ -42,7 +42,7 @@ class Run(Generic[K]):
         unsafe_frames: Hit frames (fewer than ``end_frame - start_frame + 1`` when gaps
             were bridged).
         objects: Culprits of every hit frame.
-        causes: Causes of the hit frames, in the order first seen (``""`` left out).
+        causes: Causes of the hit frames as text, in the order first seen (``""`` left out).
         extra: Whatever the owner attaches (e.g. incident fact collectors).
         paused_at_ns: Time of the first frame since the last hit that missed the key.
     """
@@ -68,8 +68,9 @@ class Run(Generic[K]):
             self.worst_frame = frame
         self.worst_margin = min(self.worst_margin, verdict.margin)
         self.objects.update(verdict.culprits)
-        if verdict.cause and verdict.cause not in self.causes:
-            self.causes.append(verdict.cause)
+        cause = str(verdict.cause)
+        if cause and cause not in self.causes:
+            self.causes.append(cause)
         self.paused_at_ns = None
 
 

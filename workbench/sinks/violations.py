@@ -1,4 +1,18 @@
-"""Merge unsafe frames into violation intervals, one row per interval with a stable id."""
+"""Merge unsafe frames into violation intervals, one row per interval with a stable id.
+
+A violation is a run of one engine's unsafe frames, whatever objects and causes
+(``evaluate --violations``); an incident (:mod:`workbench.incidents`) is a run of one engine,
+object and cause. Their ids cannot be taken for each other::
+
+    violation  viol-rss-000123-1a2b3c4d     viol- + engine + start frame + 8 hex digits of
+                                            sha256(log file name, engine, start frame)
+    incident   rss-000123-1a2b3c4d5e        engine + start frame + 10 hex digits of
+                                            sha256(drive content hash, engine, objects,
+                                            cause, start frame)
+
+A violation id names the interval of one run of ``evaluate`` on one log file; an incident
+id is the key review labels are stored under (docs/review.md, "Ids").
+"""
 
 from __future__ import annotations
 
@@ -18,7 +32,14 @@ if TYPE_CHECKING:
     from workbench.driver.run import Chunk
     from workbench.engines.base import Verdict
 
-__all__ = ["Violation", "ViolationDetector", "detect_violations", "write_violations"]
+__all__ = [
+    "VIOLATION_ID_PREFIX",
+    "Violation",
+    "ViolationDetector",
+    "detect_violations",
+    "violation_id",
+    "write_violations",
+]
 
 
 @dataclass(slots=True)
@@ -26,7 +47,8 @@ class Violation:
     """A run of consecutive unsafe frames of one engine.
 
     Attributes:
-        id: Stable id: hash of the log name, engine and first frame.
+        id: Stable id ``viol-<engine>-<first frame>-<hash>`` (hash of the log name, engine
+            and first frame; module docstring).
         log: Log file name.
         engine: Engine name.
         label: Rule or response that fired (first frame's label; others are in ``labels``).
@@ -60,9 +82,14 @@ class Violation:
         return self.end_frame - self.start_frame + 1
 
 
-def _stable_id(log: str, engine: str, start_frame: int) -> str:
+#: First characters of every violation id (no incident id starts so).
+VIOLATION_ID_PREFIX = "viol-"
+
+
+def violation_id(log: str, engine: str, start_frame: int) -> str:
+    """Stable id ``viol-<engine>-<start frame>-<hash>`` of a violation interval."""
     digest = hashlib.sha256(f"{log}\0{engine}\0{start_frame}".encode()).hexdigest()
-    return f"{engine}-{start_frame:06d}-{digest[:8]}"
+    return f"{VIOLATION_ID_PREFIX}{engine}-{start_frame:06d}-{digest[:8]}"
 
 
 class ViolationDetector:
@@ -106,7 +133,7 @@ class ViolationDetector:
         """Every interval so far (open ones included), by start frame, then engine."""
         found = [
             Violation(
-                id=_stable_id(self.log, run.key, run.start_frame),
+                id=violation_id(self.log, run.key, run.start_frame),
                 log=self.log,
                 engine=run.key,
                 label=run.causes[0] if run.causes else "",

@@ -20,7 +20,7 @@ from rss.scene import create_scene, prepare
 from rss.scene.matching import match_route
 from rss.structured.stacking import stack_constellations
 from tests.rss.scene.synthetic import straight_road
-from workbench.engines.ids import IdMap
+from workbench.engines.ids import ActorIds
 from workbench.engines.rss.adapter import frame_to_scene, lane_graph_from_map
 
 if TYPE_CHECKING:
@@ -43,7 +43,7 @@ def test_peach_4_8_routes_and_constellations(external_dir):
     try:
         assert drive.lane_map is not None
         graph = lane_graph_from_map(drive.lane_map)
-        prep, params, ids = prepare(graph), RssParams(), IdMap()
+        prep, params, ids = prepare(graph), RssParams(), ActorIds()
         frames = list(itertools.islice(drive.frames(), 4))
     finally:
         drive.close()

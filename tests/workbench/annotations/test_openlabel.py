@@ -5,7 +5,7 @@ import jsonschema
 import pytest
 
 from tests.workbench.cli_runs import run_workbench as _run
-from workbench.annotations import Label, LabelStore
+from workbench.annotations import Label, LabelStore, ReviewVerdict
 from workbench.annotations.errors import OpenLabelError, TagError
 from workbench.annotations.openlabel import export_openlabel, write_openlabel
 from workbench.annotations.openlabel_import import Prefer, import_openlabel
@@ -173,7 +173,9 @@ def test_bad_files_are_one_line_errors(tmp_path, text, message, capsys):
 
 def _file_with(tmp_path: Path, report: IncidentReport, verdict: str, at_ns: int) -> Path:
     incident = report.incidents[0]
-    label = Label(report.drive_hash, incident.id, verdict, ("late",), "n", "ann", at_ns)
+    label = Label(
+        report.drive_hash, incident.id, ReviewVerdict(verdict), ("late",), "n", "ann", at_ns
+    )
     path = tmp_path / f"{verdict}-{at_ns}.json"
     write_openlabel(export_openlabel(report, {incident.id: label}), path)
     return path

@@ -16,7 +16,7 @@ from rss.scene import prepare
 from workbench.cli.main import app
 from workbench.driver import DriveRun, EgoSize
 from workbench.engines.base import VerdictSummary
-from workbench.engines.ids import IdMap
+from workbench.engines.ids import ActorIds
 from workbench.engines.rss.adapter import frame_to_scene, lane_graph_from_map
 from workbench.engines.unstructured.adapter import UnstructuredScope, frame_to_agents
 
@@ -45,10 +45,10 @@ def test_ros_logs_carry_the_one_default_size_and_the_rss_engines_read_it():
     assert (frame.ego.length_m, frame.ego.width_m) == (DEFAULT_EGO_LENGTH_M, DEFAULT_EGO_WIDTH_M)
     assert drive.lane_map is not None
     prep = prepare(lane_graph_from_map(drive.lane_map))
-    ego, _, _ = frame_to_scene(frame, prep, RssParams(), IdMap())
+    ego, _, _ = frame_to_scene(frame, prep, RssParams(), ActorIds())
     assert (ego.length_m, ego.width_m) == (frame.ego.length_m, frame.ego.width_m)
     scope = UnstructuredScope(drive.lane_map, RssParams().scene.constellation_creation_mode)
-    agents = frame_to_agents(frame, scope.select(frame), RssParams(), IdMap())
+    agents = frame_to_agents(frame, scope.select(frame), RssParams(), ActorIds())
     assert float(agents.ego.length_m[0]) == frame.ego.length_m
     assert float(agents.ego.width_m[0]) == frame.ego.width_m
     drive.close()

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from workbench.annotations import Label
+from workbench.annotations import Label, ReviewVerdict
 from workbench.errors import WorkbenchError
 from workbench.export import Selection, plan_clips, safe_stem
 from workbench.incidents import Incident, IncidentReport, Severity
@@ -60,7 +60,7 @@ def test_windows_clamped_to_the_drive_and_names_unique() -> None:
 
 def test_selection_by_id_and_by_verdict() -> None:
     report = _report()
-    label = Label("h", "c", "confirmed", ("late",), "note", "ann")
+    label = Label("h", "c", ReviewVerdict.CONFIRMED, ("late",), "note", "ann")
     assert [p.event()["incident_id"] for p in plan_clips(report, {}, Selection(ids=("c",)), 0)] == [
         "c"
     ]

@@ -3,7 +3,9 @@ import math
 
 import pytest
 
+from rss.structured.states import LateralResponse, LongitudinalResponse
 from workbench.engines.base import VerdictSummary
+from workbench.engines.rss.causes import RssCause
 from workbench.incidents import (
     Incident,
     IncidentDetector,
@@ -17,8 +19,21 @@ T0 = 1_000_000_000
 DT = 100_000_000  # 10 Hz
 
 
-def _verdict(culprits: tuple[str, ...], cause: str = "RSS BrakeMin", margin: float = 0.0):
-    return VerdictSummary(is_safe=False, culprits=culprits, cause=cause, margin=margin)
+BRAKE = RssCause(lon=LongitudinalResponse.BrakeMin)
+
+
+@dataclasses.dataclass(frozen=True)
+class _Verdict:
+    """An unsafe verdict with a typed cause (RSS') or a text one (the other engines')."""
+
+    is_safe: bool
+    culprits: tuple[str, ...]
+    cause: object
+    margin: float
+
+
+def _verdict(culprits: tuple[str, ...], cause: object = BRAKE, margin: float = 0.0):
+    return _Verdict(is_safe=False, culprits=culprits, cause=cause, margin=margin)
 
 
 SAFE = VerdictSummary(is_safe=True)
@@ -53,7 +68,8 @@ def test_unsafe_frames_split_per_engine_object_and_cause():
 def test_rss_incidents_are_one_per_object_with_the_union_of_the_responses():
     # the frame's responses change with other objects (b) and over the approach: one
     # incident per object and run; its cause joins the frames' (BrakeMin over BrakeMinCorrect)
-    lon, both = "RSS lon BrakeMinCorrect", "RSS lon BrakeMin, lat-left BrakeMin"
+    lon = RssCause(lon=LongitudinalResponse.BrakeMinCorrect)
+    both = RssCause(LongitudinalResponse.BrakeMin, LateralResponse.BrakeMin)
     frames = [
         {"rss": _verdict(("a",), cause=lon)},
         {"rss": _verdict(("a", "b"), cause=both)},
@@ -65,15 +81,15 @@ def test_rss_incidents_are_one_per_object_with_the_union_of_the_responses():
     runs = {(i.objects, i.cause): (i.start_frame, i.end_frame) for i in found}
     assert runs == {
         (("a",), "RSS lon BrakeMin, lat-left BrakeMin"): (0, 2),
-        (("b",), both): (1, 1),
-        (("a",), lon): (4, 4),
+        (("b",), str(both)): (1, 1),
+        (("a",), str(lon)): (4, 4),
     }
     # the ids each piece had when every cause made its own incident (labels written then)
     first = next(i for i in found if i.objects == ("a",) and i.start_frame == 0)
     assert first.legacy_ids == (
-        incident_id("h1", "rss", ("a",), lon, 0),
-        incident_id("h1", "rss", ("a",), both, 1),
-        incident_id("h1", "rss", ("a",), lon, 2),
+        incident_id("h1", "rss", ("a",), "RSS lon BrakeMinCorrect", 0),
+        incident_id("h1", "rss", ("a",), "RSS lon BrakeMin, lat-left BrakeMin", 1),
+        incident_id("h1", "rss", ("a",), "RSS lon BrakeMinCorrect", 2),
     )
     assert first.id not in first.legacy_ids
 

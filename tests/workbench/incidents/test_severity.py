@@ -11,7 +11,9 @@ from typing import TYPE_CHECKING
 import numpy as np
 import pytest
 
+from rss.structured.states import LongitudinalResponse
 from workbench.engines.base import VerdictSummary
+from workbench.engines.rss.causes import RssCause
 from workbench.incidents import Incident, IncidentDetector, Severity, severity_key
 from workbench.incidents.kinematics import Box, box_gap_m, motion, time_to_contact_s
 from workbench.incidents.order import TTC_REF_S, criticality
@@ -64,13 +66,16 @@ def test_a_converging_car_beside_has_a_lateral_time_to_collision():
     assert 0.5 < ttc < 1.6
 
 
+BRAKE = RssCause(lon=LongitudinalResponse.BrakeMin)
+
+
 @dataclass(frozen=True)
 class _Frame:
     """What the detector reads of a frame: one verdict per object and the states."""
 
     is_safe: bool
     culprits: tuple[str, ...]
-    cause: str
+    cause: object
     margin: float
     margins: dict[str, float]
 
@@ -107,9 +112,7 @@ def test_each_incident_gets_its_own_objects_margin_and_facts():
     # ahead with the frame's smallest one; 476 used to carry 462's ratio and rank first
     detector = IncidentDetector("h")
     for k in range(5):
-        verdict = _Frame(
-            False, ("462", "476"), "RSS lon BrakeMin", 0.37, {"462": 0.37, "476": 0.41}
-        )
+        verdict = _Frame(False, ("462", "476"), BRAKE, 0.37, {"462": 0.37, "476": 0.41})
         x = 10.0 * k * 0.1
         scene = _scene(x, {"462": (x + 8.0, 0.0, 8.0), "476": (x - 14.0, 0.0, 10.0)})
         detector.add(k, T0 + k * DT, {"rss": verdict}, scene)  # type: ignore[arg-type]
@@ -161,7 +164,8 @@ def test_records_hold_no_non_finite_number():
 
 def test_summaries_without_states_have_no_physical_facts():
     detector = IncidentDetector("h")
-    detector.add(0, T0, {"rss": VerdictSummary(False, ("a",), "RSS BrakeMin", 0.2)})
+    summary = VerdictSummary(False, ("a",), "unstructured: brake", 0.2)
+    detector.add(0, T0, {"unstructured": summary})
     (only,) = detector.incidents()
     assert "gap_min_m" not in only.severity.facts
     assert only.severity.worst_margin == 0.2

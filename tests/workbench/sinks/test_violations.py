@@ -5,7 +5,8 @@ import pytest
 
 from workbench.engines.base import VerdictSummary
 from workbench.errors import WorkbenchError
-from workbench.sinks.violations import detect_violations, write_violations
+from workbench.incidents import IncidentDetector
+from workbench.sinks.violations import VIOLATION_ID_PREFIX, detect_violations, write_violations
 
 
 def _results(
@@ -46,7 +47,19 @@ def test_interval_open_at_the_end_is_kept_and_ids_are_stable():
     assert [(v.start_frame, v.end_frame) for v in a] == [(2, 3)]
     assert a[0].id == b[0].id
     assert a[0].id != other_log[0].id
-    assert a[0].id.startswith("reachsets-000002-")
+    assert a[0].id.startswith("viol-reachsets-000002-")
+
+
+def test_violation_and_incident_ids_are_told_apart():
+    (violation,) = detect_violations(_results("..xx"), "drive.mcap")
+    detector = IncidentDetector("drive-hash")
+    for frame, t_ns, verdicts in _results("..xx"):
+        detector.add(frame, t_ns, verdicts)
+    incidents = detector.incidents()
+    assert incidents
+    assert all(not i.id.startswith(VIOLATION_ID_PREFIX) for i in incidents)
+    assert violation.id.startswith(VIOLATION_ID_PREFIX)
+    assert violation.id.removeprefix(VIOLATION_ID_PREFIX) not in {i.id for i in incidents}
 
 
 def test_all_safe_gives_no_violation():

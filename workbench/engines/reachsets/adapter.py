@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from loaders.maps.model import DRIVABLE_LANE_KINDS, LaneDirection, LaneKind, LineType
+from loaders.records import PlanKind
 from reachsets.adapter import reach_inputs_from_arrays
 from reachsets.braking import braking_trajectory
 from reachsets.inputs import RightOfWayRule, RoadLane, RoadLayout, TrackBounds
@@ -101,7 +102,7 @@ def ego_trajectory(frame: Frame, mode: str = "planned") -> tuple[_Trajectory, st
     Modes: ``planned`` rates the log's plan as it is (without a plan the ego keeps its speed
     and heading for ``PLAN_FALLBACK_HORIZON_S``); ``braking`` rates the stop from the ego's
     state along its path (``reachsets.braking``); ``auto`` rates the plan when the log says
-    it is an emergency trajectory (``extras["plan_kind"] == "emergency"``, the
+    it is an emergency trajectory (``Frame.plan_kind`` is ``PlanKind.EMERGENCY``: the
     ScenarioArchitect logs), else the stop.
 
     Returns:
@@ -115,7 +116,7 @@ def ego_trajectory(frame: Frame, mode: str = "planned") -> tuple[_Trajectory, st
     ego = frame.ego
     plan = frame.plan
     has_plan = plan is not None and len(plan) > 0
-    emergency = has_plan and frame.extras.get("plan_kind") == "emergency"
+    emergency = has_plan and frame.plan_kind is PlanKind.EMERGENCY
     if mode == "braking" or (mode == "auto" and not emergency):
         path = (plan.x_m, plan.y_m, plan.yaw_rad) if plan is not None and has_plan else _NO_PATH
         (x, y, yaw, speed), t = braking_trajectory(

@@ -28,7 +28,9 @@ __all__ = ["SPEC"]
 def _build(lane_map: LaneMap | None, settings: EngineSettings) -> EngineRunner:
     from workbench.engines.rss.runner import RssRunner  # noqa: PLC0415 - heavy, on demand
 
-    return RssRunner(lane_map, settings.rss_params, outlines=settings.full_geometry)
+    return RssRunner(
+        lane_map, settings.rss_params, outlines=settings.full_geometry, ids=settings.actor_ids
+    )
 
 
 def _sink(recording: rr.RecordingStream, labels: ShortLabels) -> EngineSink:

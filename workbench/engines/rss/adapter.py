@@ -28,7 +28,7 @@ if TYPE_CHECKING:
     from loaders.records import Frame
     from rss.params import RssParams
     from rss.scene import PreparedGraph
-    from workbench.engines.ids import IdMap
+    from workbench.engines.ids import ActorIds
 
 __all__ = ["frame_to_scene", "lane_graph_from_map"]
 
@@ -107,7 +107,7 @@ def lane_graph_from_map(lane_map: LaneMap) -> LaneGraph:
 
 
 def frame_to_scene(
-    frame: Frame, prep: PreparedGraph, params: RssParams, ids: IdMap
+    frame: Frame, prep: PreparedGraph, params: RssParams, ids: ActorIds
 ) -> tuple[SceneEgo, SceneObjects, tuple[str, ...]]:
     """Ego and valid objects of one frame; also the ids of invalid actor rows.
 
@@ -134,7 +134,7 @@ def frame_to_scene(
     valid = np.asarray(actors.valid, dtype=np.bool_)
     classes = [FrameClass(int(c)) for c in actors.object_class[valid]]
     objects = SceneObjects(
-        ids=np.array([ids.to_int(str(a)) for a in actors.ids[valid]], dtype=np.int64),
+        ids=ids.to_ints(actors.ids[valid]),
         object_type=np.array([adrss_type(c) for c in classes], dtype=np.int64),
         x_m=np.asarray(actors.x_m[valid]),
         y_m=np.asarray(actors.y_m[valid]),

@@ -34,6 +34,7 @@ import numpy as np
 
 from loaders.records import ObjectClass as FrameClass
 from rss.params import ObjectClass
+from rss.structured.responsibility import Responsible
 from rss.structured.states import LongitudinalResponse
 from workbench.engines.classes import dynamics_class
 from workbench.engines.rss.verdict import Obligation
@@ -153,7 +154,7 @@ class ComplianceTracker:
             tuple[int, float, float, NDArray[np.str_], NDArray[np.float64], NDArray[np.float64]]
         ]
         self._frames = collections.deque()
-        self._since: dict[tuple[str, str], int] = {}
+        self._since: dict[tuple[str, Responsible], int] = {}
 
     def _push(self, frame: Frame) -> None:
         actors = frame.actors
@@ -206,7 +207,7 @@ class ComplianceTracker:
         )
         out = []
         for (label, party), response in sorted(duties.items()):
-            if party == "ego":
+            if party is Responsible.EGO:
                 dyn = self._params.for_class(ObjectClass.EGO)
             else:
                 code = classes.get(label)
@@ -221,7 +222,7 @@ class ComplianceTracker:
                 if response == _BRAKE_MIN_CORRECT
                 else None
             )
-            motion = fit_motion(*self._positions(None if party == "ego" else label, due))
+            motion = fit_motion(*self._positions(None if party is Responsible.EGO else label, due))
             measured = None if motion is None else motion.accel_mps2
             shortfall = None
             if required is not None and motion is not None and frame.t_ns >= due:
@@ -238,7 +239,7 @@ def shortfall_of(motion: FittedMotion, required_mps2: float) -> float:
     return max(0.0, motion.accel_mps2 - reachable)
 
 
-def _duties(verdict: RssVerdict) -> dict[tuple[str, str], int]:
+def _duties(verdict: RssVerdict) -> dict[tuple[str, Responsible], int]:
     """The duties of a frame: ``(label, party)`` to the most severe longitudinal response.
 
     Every party that must act in some constellation of the frame is listed.
@@ -249,12 +250,14 @@ def _duties(verdict: RssVerdict) -> dict[tuple[str, str], int]:
     side = result.responsibility
     ego_lon = result.states.lon_response.tolist()
     obj_lon = side.object_states.lon_response.tolist()
-    out: dict[tuple[str, str], int] = {}
+    out: dict[tuple[str, Responsible], int] = {}
     for k, label in enumerate(verdict.labels):
         if label.startswith("road_boundary"):
             continue
         if side.ego_must_act[k]:
-            out[(label, "ego")] = max(out.get((label, "ego"), 0), ego_lon[k])
+            ego = (label, Responsible.EGO)
+            out[ego] = max(out.get(ego, 0), ego_lon[k])
         if side.object_must_act[k]:
-            out[(label, "object")] = max(out.get((label, "object"), 0), obj_lon[k])
+            obj = (label, Responsible.OBJECT)
+            out[obj] = max(out.get(obj, 0), obj_lon[k])
     return out

@@ -32,7 +32,6 @@ DUTY_STATES = {
     "no duty": 0x616161FF,
 }
 NO_DUTY = "no duty"
-_NAMES = {"ego": "ego must act", "object": "object must act", "both": "both must act"}
 
 
 @dataclass(frozen=True, slots=True)
@@ -57,14 +56,15 @@ def layout_duties(verdicts: Sequence[RssVerdict]) -> DutyColumns:
     series: dict[str, tuple[list[int], list[float]]] = {}
     for row, verdict in enumerate(verdicts):
         for label, who in verdict.responsibility().items():
-            duties.setdefault(label, [NO_DUTY] * n)[row] = _NAMES[who]
+            duties.setdefault(label, [NO_DUTY] * n)[row] = f"{who} must act"
         for label, duty in verdict.obligations:
             for kind, value in (
                 ("allowed", duty.required_max_mps2),
                 ("measured", duty.measured_mps2),
             ):
                 if value is not None and np.isfinite(value):
-                    rows, values = series.setdefault(f"{label}/{duty.party}_{kind}", ([], []))
+                    key = f"{label}/{duty.party!s}_{kind}"
+                    rows, values = series.setdefault(key, ([], []))
                     rows.append(row)
                     values.append(value)
     compliance = {

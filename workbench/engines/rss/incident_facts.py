@@ -20,12 +20,10 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from rss.structured.responsibility import Responsible
 from workbench.engines.rss.verdict import RssVerdict
 
 __all__ = ["RssIncidentFacts"]
-
-_PARTIES = {"ego": 1, "object": 2, "both": 3}
-_NAMES = {1: "ego", 2: "object", 3: "both"}
 
 
 class RssIncidentFacts:
@@ -33,12 +31,12 @@ class RssIncidentFacts:
 
     def __init__(self) -> None:
         """Start empty."""
-        self._parties = 0
+        self._parties = Responsible.NONE
         self._ratio = math.inf
         self._ttc = math.inf
         self._decel = 0.0
         self._shortfall: float | None = None
-        self._party: str | None = None
+        self._party: Responsible | None = None
         self._due: int | None = None
         self._seen = False
         self._profile = ""
@@ -54,7 +52,8 @@ class RssIncidentFacts:
             return
         self._seen = True
         self._profile = self._profile or verdict.profile
-        self._parties |= _PARTIES.get(verdict.responsibility().get(object_id, ""), 0)
+        who = verdict.responsibility().get(object_id, Responsible.NONE)
+        self._parties = Responsible(self._parties | who)
         facts = verdict.severity().get(object_id)
         if facts is not None:
             if self._worst_frame is None or facts.distance_ratio < self._ratio:
@@ -78,12 +77,12 @@ class RssIncidentFacts:
         ratio = None if math.isinf(self._ratio) else round(self._ratio, 6)
         ttc = None if math.isinf(self._ttc) else round(self._ttc, 6)
         return {
-            "responsible": _NAMES.get(self._parties),
+            "responsible": str(self._parties) if self._parties else None,
             "distance_ratio_min": ratio,
             "ttc_min_s": ttc,
             "required_decel_max_mps2": round(self._decel, 6),
             "shortfall_max_mps2": None if self._shortfall is None else round(self._shortfall, 6),
-            "shortfall_party": self._party,
+            "shortfall_party": None if self._party is None else str(self._party),
             "response_due_ns": self._due,
             "profile": self._profile,
         }

@@ -33,7 +33,7 @@ __all__ = ["rss_record"]
 def rss_record(verdict: RssVerdict) -> dict[str, Any]:
     """The JSON-ready record of one frame."""
     record = _record(verdict)
-    record["responsibility"] = verdict.responsibility()
+    record["responsibility"] = {k: str(who) for k, who in verdict.responsibility().items()}
     record["severity"] = {
         label: {
             "distance_ratio": json_number(f.distance_ratio),
@@ -46,7 +46,7 @@ def rss_record(verdict: RssVerdict) -> dict[str, Any]:
     for label, duty in verdict.obligations:
         compliance.setdefault(label, []).append(
             {
-                "party": duty.party,
+                "party": str(duty.party),
                 "since_t_ns": duty.since_ns,
                 "due_t_ns": duty.due_ns,
                 "required_max_mps2": _number(duty.required_max_mps2),

@@ -12,8 +12,9 @@ from rss.params import RssParams
 from rss.scene import SceneMemo, prepare
 from rss.scene.boundaries import LEFT_BOUNDARY_ID, RIGHT_BOUNDARY_ID
 from rss.structured.states import LateralResponse, LongitudinalResponse
-from workbench.engines.ids import IdMap
+from workbench.engines.ids import ActorIds
 from workbench.engines.rss.adapter import frame_to_scene, lane_graph_from_map
+from workbench.engines.rss.causes import RssCause
 from workbench.engines.rss.compliance import ComplianceTracker
 from workbench.engines.rss.outlines import road_area_outlines
 from workbench.engines.rss.verdict import RssVerdict
@@ -48,6 +49,7 @@ class RssRunner:
         road_boundaries: bool = False,
         outlines: bool = False,
         responsibility: bool = True,
+        ids: ActorIds | None = None,
     ) -> None:
         """Prepare the lane graph once.
 
@@ -60,6 +62,8 @@ class RssRunner:
                 viewer; ``detail.road_areas``).
             responsibility: Also check every constellation from the other object's side
                 (who must act; ``RssVerdict.responsible``). On by default.
+            ids: The drive's actor label table, shared with its other engines (a table
+                of its own when ``None``).
         """
         self._road_boundaries = road_boundaries
         self._outlines = outlines
@@ -70,7 +74,7 @@ class RssRunner:
             graph = lane_graph_from_map(lane_map)
             self._prep = prepare(graph) if len(graph) else None
         self._scene_memo = SceneMemo()  # per map, kept across frames (rss.scene.memo)
-        self._ids = IdMap()
+        self._ids = ids if ids is not None else ActorIds()
         self._memory: RssMemory | None = None
         self._compliance = ComplianceTracker(self._params)
 
@@ -133,7 +137,7 @@ class RssRunner:
         culprits = tuple(sorted({_label(self._ids, int(x)) for x in dangerous}))
         bad = object_id[np.asarray(result.invalid) != 0]
         is_safe = bool(result.responses.is_safe[0])
-        cause = "" if is_safe else _cause(result)
+        cause: RssCause | str = "" if is_safe else _cause(result)
         margin = float("inf") if is_safe else 0.0
         if not is_safe and result.severity is not None:
             margin = float(np.min(result.severity.distance_ratio[result.dangerous]))
@@ -143,7 +147,7 @@ class RssRunner:
             culprits=culprits,
             cause=cause,
             margin=margin,
-            invalid_objects=tuple(sorted({*invalid, *(self._ids.to_str(int(x)) for x in bad)})),
+            invalid_objects=tuple(sorted({*invalid, *(self._ids.label(int(x)) for x in bad)})),
             labels=tuple(_label(self._ids, int(x)) for x in object_id),
             constellation_type=constellation_type,
             object_id=object_id,
@@ -158,24 +162,22 @@ class RssRunner:
         )
 
 
-def _cause(result: FrameResult) -> str:
-    """``"RSS lon BrakeMin, lat-left BrakeMin"``: the proper responses the frame demands."""
+def _cause(result: FrameResult) -> RssCause:
+    """The proper responses the frame demands."""
     r = result.responses
-    parts = [
-        f"{name} {response}"
-        for name, response in (
-            ("lon", LongitudinalResponse(int(r.longitudinal_response[0]))),
-            ("lat-left", LateralResponse(int(r.lateral_response_left[0]))),
-            ("lat-right", LateralResponse(int(r.lateral_response_right[0]))),
-        )
-        if response != 0
-    ]
-    return "RSS " + (", ".join(parts) if parts else "dangerous")
+    return RssCause(
+        LongitudinalResponse(int(r.longitudinal_response[0])),
+        LateralResponse(int(r.lateral_response_left[0])),
+        LateralResponse(int(r.lateral_response_right[0])),
+    )
 
 
-def _label(ids: IdMap, object_id: int) -> str:
-    names = {LEFT_BOUNDARY_ID: "road_boundary_left", RIGHT_BOUNDARY_ID: "road_boundary_right"}
-    return names.get(object_id) or ids.to_str(object_id)
+_BOUNDARIES = {LEFT_BOUNDARY_ID: "road_boundary_left", RIGHT_BOUNDARY_ID: "road_boundary_right"}
+
+
+def _label(ids: ActorIds, object_id: int) -> str:
+    """The label of a constellation's other object: an actor's or a road boundary's."""
+    return _BOUNDARIES.get(object_id) or ids.label(object_id)
 
 
 def _safe(invalid: tuple[str, ...] | list[str], profile: str) -> RssVerdict:

@@ -7,10 +7,13 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from rss.structured.responsibility import Responsible
+
 if TYPE_CHECKING:
     from numpy.typing import NDArray
 
     from rss import FrameResult
+    from workbench.engines.rss.causes import RssCause
 
 __all__ = ["ObjectSeverity", "Obligation", "RssVerdict"]
 
@@ -20,7 +23,7 @@ class Obligation:
     """One party's proper response towards one object at one frame.
 
     Attributes:
-        party: ``"ego"`` or ``"object"``.
+        party: ``Responsible.EGO`` or ``Responsible.OBJECT``.
         since_ns: First frame of the current run in which the party had to act.
         due_ns: ``since_ns`` + the party's response time.
         required_max_mps2: Its longitudinal acceleration must stay at or below this
@@ -30,7 +33,7 @@ class Obligation:
             a longitudinal requirement or without a measurement.
     """
 
-    party: str
+    party: Responsible
     since_ns: int
     due_ns: int
     required_max_mps2: float | None
@@ -60,9 +63,9 @@ class RssVerdict:
     Attributes:
         is_safe: No dangerous constellation.
         culprits: Labels of the dangerous objects, sorted.
-        cause: The proper responses demanded when unsafe (``"RSS lon BrakeMin, lat-left
-            BrakeMin"``: the non-``None`` ones of longitudinal, lateral left, lateral right),
-            else ``""``.
+        cause: The proper responses demanded when unsafe (typed; its text ``"RSS lon
+            BrakeMin, lat-left BrakeMin"`` names the non-``None`` ones of longitudinal,
+            lateral left, lateral right), else ``""``.
         margin: When unsafe the smallest distance ratio of the dangerous constellations
             (current / safe distance of the dimension closer to safe, in ``[0, 1)``;
             docs/rss.md, "Severity"), else ``inf``.
@@ -88,7 +91,7 @@ class RssVerdict:
 
     is_safe: bool
     culprits: tuple[str, ...] = ()
-    cause: str = ""
+    cause: RssCause | str = ""
     margin: float = float("inf")
     invalid_objects: tuple[str, ...] = ()
     labels: tuple[str, ...] = ()
@@ -126,8 +129,8 @@ class RssVerdict:
             out[label] = new
         return dict(sorted(out.items()))
 
-    def responsibility(self) -> dict[str, str]:
-        """Who must act per object: ``ego``, ``object`` or ``both``, sorted by label.
+    def responsibility(self) -> dict[str, Responsible]:
+        """Who must act per object (``EGO``, ``OBJECT`` or ``BOTH``), sorted by label.
 
         Every object one of whose constellations is dangerous from either side is listed.
         """
@@ -137,8 +140,7 @@ class RssVerdict:
         for label, code in zip(self.labels, self.responsible.tolist(), strict=True):
             if code:
                 codes[label] = codes.get(label, 0) | int(code)
-        names = {1: "ego", 2: "object", 3: "both"}
-        return {label: names[code] for label, code in sorted(codes.items())}
+        return {label: Responsible(code) for label, code in sorted(codes.items())}
 
     def object_margin(self, object_id: str) -> float:
         """The margin of one object's constellations: its smallest distance ratio.

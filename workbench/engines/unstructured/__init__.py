@@ -25,7 +25,7 @@ __all__ = ["SPEC"]
 def _build(lane_map: LaneMap | None, settings: EngineSettings) -> EngineRunner:
     from workbench.engines.unstructured.runner import UnstructuredRunner  # noqa: PLC0415
 
-    return UnstructuredRunner(lane_map, settings.rss_params)
+    return UnstructuredRunner(lane_map, settings.rss_params, ids=settings.actor_ids)
 
 
 def _sink(recording: rr.RecordingStream, labels: ShortLabels) -> EngineSink:

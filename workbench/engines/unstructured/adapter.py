@@ -48,7 +48,7 @@ if TYPE_CHECKING:
     from loaders.records import Frame
     from rss.dynamics import RssDynamics
     from rss.params import RssParams
-    from workbench.engines.ids import IdMap
+    from workbench.engines.ids import ActorIds
 
 __all__ = [
     "MOVING_MIN_MPS",
@@ -162,7 +162,7 @@ def _travel_heading(
 
 
 def frame_to_agents(
-    frame: Frame, selected: np.ndarray, params: RssParams, ids: IdMap
+    frame: Frame, selected: np.ndarray, params: RssParams, ids: ActorIds
 ) -> FrameAgents:
     """The ego and the ``selected`` actors of ``frame`` as :class:`UnstructuredAgents`.
 
@@ -170,7 +170,7 @@ def frame_to_agents(
         frame: One loader frame.
         selected: ``(N,)`` actor rows to convert (from :meth:`UnstructuredScope.select`).
         params: Dynamics per class and the ego size.
-        ids: Actor id -> integer id map, kept across frames.
+        ids: The drive's actor label table (:mod:`workbench.engines.ids`).
     """
     e = frame.ego
     e_heading, e_speed = _travel_heading(
@@ -204,7 +204,7 @@ def frame_to_agents(
         np.array([c == FrameClass.PEDESTRIAN for c in classes], dtype=bool),
     )
     agents = UnstructuredAgents(
-        object_id=np.array([ids.to_int(str(i)) for i in a.ids[rows]], dtype=np.int64),
+        object_id=ids.to_ints(a.ids[rows]),
         object_type=np.array([adrss_type(c) for c in classes], dtype=np.int64),
         x_m=a.x_m[rows],
         y_m=a.y_m[rows],

@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING
 from rss.params import ObjectClass, RssParams
 from rss.physics import ACCELERATION_LOWEST_MPS2
 from rss.unstructured import FrameInputs, UnstructuredResponse, evaluate_frames
-from workbench.engines.ids import IdMap
+from workbench.engines.ids import ActorIds
 from workbench.engines.unstructured.adapter import UnstructuredScope, frame_to_agents
 from workbench.engines.unstructured.verdict import UnstructuredDetail, UnstructuredVerdict
 
@@ -45,16 +45,24 @@ class UnstructuredRunner:
 
     name = "unstructured"
 
-    def __init__(self, lane_map: LaneMap | None, params: RssParams | None = None) -> None:
+    def __init__(
+        self,
+        lane_map: LaneMap | None,
+        params: RssParams | None = None,
+        *,
+        ids: ActorIds | None = None,
+    ) -> None:
         """Index the lane map for the pair selection.
 
         Args:
             lane_map: The drive's lane map, if any.
             params: RSS dynamics and scene settings (defaults of ``rss.params``).
+            ids: The drive's actor label table, shared with its other engines (a table
+                of its own when ``None``).
         """
         self._params = params or RssParams()
         self._scope = UnstructuredScope(lane_map, self._params.scene.constellation_creation_mode)
-        self._ids = IdMap()
+        self._ids = ids if ids is not None else ActorIds()
         self._memory: UnstructuredMemory | None = None
 
     def step_many(self, frames: Sequence[Frame]) -> list[UnstructuredVerdict]:
@@ -96,7 +104,7 @@ class UnstructuredRunner:
             actor: UnstructuredResponse(int(code))
             for actor, code in zip(inputs.actor_ids, result.decisions.response, strict=True)
         }
-        dangerous = tuple(sorted({self._ids.to_str(int(x)) for x in pr.dangerous_objects}))
+        dangerous = tuple(sorted({self._ids.label(int(x)) for x in pr.dangerous_objects}))
         response = UnstructuredResponse(pr.response)
         return UnstructuredVerdict(
             is_safe=bool(pr.is_safe),

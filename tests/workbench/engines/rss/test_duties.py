@@ -7,6 +7,7 @@ import pytest
 from rerun.chunk import RrdReader
 
 from loaders.records import Frame
+from rss.structured.responsibility import Responsible
 from tests.workbench.engines.helpers import forward_fill, open_window, rrd_states, rss_window
 from workbench.engines.rss.duties import NO_DUTY, layout_duties
 from workbench.engines.rss.runner import RssRunner
@@ -34,8 +35,12 @@ def test_duty_lanes_name_who_must_act_in_every_frame(braking):
     for row, verdict in enumerate(verdicts):
         who = verdict.responsibility()
         for label, states in cols.duty_states.items():
-            want = {"ego": "ego must act", "object": "object must act", "both": "both must act"}
-            assert states[row] == want.get(who.get(label, ""), NO_DUTY)
+            want = {
+                Responsible.EGO: "ego must act",
+                Responsible.OBJECT: "object must act",
+                Responsible.BOTH: "both must act",
+            }
+            assert states[row] == want.get(who.get(label, Responsible.NONE), NO_DUTY)
 
 
 def test_compliance_series_hold_each_obligation(braking):
@@ -47,7 +52,7 @@ def test_compliance_series_hold_each_obligation(braking):
         (row, duty)
         for row, verdict in enumerate(verdicts)
         for label, duty in verdict.obligations
-        if label == LEAD and duty.party == "ego"
+        if label == LEAD and duty.party is Responsible.EGO
     ]
     assert expected
     want_allowed = [

@@ -138,7 +138,7 @@ def test_adapter_traffic_light_and_drivable_lanes_only():
 
 
 def test_runner_without_map_is_safe_and_ids_are_strings():
-    from workbench.engines.ids import IdMap  # noqa: PLC0415
+    from workbench.engines.ids import ActorIds  # noqa: PLC0415
 
     drive = open_drive(SAMPLES / "hard_braking_lead.mcap")
     try:
@@ -149,10 +149,10 @@ def test_runner_without_map_is_safe_and_ids_are_strings():
         drive.close()
     assert out.is_safe
     assert set(record(out)) == PINNED
-    ids = IdMap()
+    ids = ActorIds()
     assert ids.to_int("17") == 17
     hexed = "000102030405060708090a0b0c0d0e0f"
-    assert ids.to_str(ids.to_int(hexed)) == hexed
+    assert ids.label(ids.to_int(hexed)) == hexed
 
 
 def test_runner_with_road_boundaries_names_them():

@@ -17,7 +17,7 @@ from rss.scene import SceneMemo, create_scene, prepare
 from tests.equality import assert_same
 from tests.workbench.engines.helpers import record, step
 from tests.workbench.engines.rss.test_runner import SCENARIOS
-from workbench.engines.ids import IdMap
+from workbench.engines.ids import ActorIds
 from workbench.engines.rss.adapter import frame_to_scene, lane_graph_from_map
 from workbench.engines.rss.runner import RssRunner
 
@@ -152,7 +152,7 @@ def test_scene_memos_kept_across_frames_change_nothing(town01):
         fresh = prepare(graph)
         scenes = []
         for prep, memo in ((warm, warm_memo), (fresh, SceneMemo())):
-            ego, objects, _ = frame_to_scene(frame, prep, params, IdMap())
+            ego, objects, _ = frame_to_scene(frame, prep, params, ActorIds())
             scenes.append(create_scene(prep, ego, objects, params.scene, memo=memo))
         assert repr(scenes[0]) == repr(scenes[1])
         built += len(scenes[0].constellations)

@@ -25,7 +25,7 @@ from tests.rss.unstructured.frames_check import assert_same_memory, assert_same_
 from tests.workbench.cli_runs import run_workbench as _run
 from tests.workbench.engines.helpers import record, step
 from tests.workbench.fakes import straight_road
-from workbench.engines.ids import EGO_OBJECT_ID, IdMap
+from workbench.engines.ids import EGO_OBJECT_ID, ActorIds
 from workbench.engines.unstructured.adapter import UnstructuredScope, frame_to_agents
 from workbench.engines.unstructured.runner import UnstructuredRunner
 
@@ -103,7 +103,7 @@ def test_agents_units_classes_and_headings():
         ]
     )
     params = RssParams()
-    out = frame_to_agents(frame, np.ones(5, dtype=bool), params, IdMap())
+    out = frame_to_agents(frame, np.ones(5, dtype=bool), params, ActorIds())
     assert out.actor_ids == ("1", "2", "7", "4")
     assert out.invalid == ("5",)
     a = out.agents
@@ -130,7 +130,7 @@ def test_agents_units_classes_and_headings():
 
 def test_reversing_ego_gets_heading_of_travel():
     frame = _frame([], ego_speed=-2.0)
-    out = frame_to_agents(frame, np.zeros(0, dtype=bool), RssParams(), IdMap())
+    out = frame_to_agents(frame, np.zeros(0, dtype=bool), RssParams(), ActorIds())
     assert float(out.ego.speed_max_mps[0]) == 2.0
     assert float(out.ego.yaw_rad[0]) == pytest.approx(-math.pi)
 
