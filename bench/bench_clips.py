@@ -21,6 +21,7 @@ from pathlib import Path
 from typing import Any
 
 from bench.child import run_json
+from loaders.timebase import ns_to_s
 
 _MIB = 2**20
 _CLIPS = 20
@@ -117,7 +118,7 @@ def cut(log: str, out: str, start: str, end: str) -> dict[str, float]:
         "s": elapsed,
         "written": sum(o.written for o in outcomes),
         "messages": sum(o.messages for o in outcomes),
-        "window_s": window / 1e9,
+        "window_s": ns_to_s(window),
         "out_mib": sum(p.stat().st_size for p in Path(out).iterdir()) / _MIB,
         "rss_mib": _peak_mib(),
     }

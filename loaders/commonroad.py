@@ -35,6 +35,7 @@ from loaders.drive import DriveInfo, TopicInfo, TopicRoles
 from loaders.errors import EmptyLogError, InvalidValueError, MissingEgoTopicError
 from loaders.maps.commonroad import lane_map_from_elements
 from loaders.records import ActorTable, EgoState, Frame, ObjectClass, Plan
+from loaders.timebase import ns_to_s
 
 if TYPE_CHECKING:
     from collections.abc import Iterator, Sequence
@@ -190,7 +191,7 @@ class CommonRoadDrive:
                 x_m=ego.x_m[window],
                 y_m=ego.y_m[window],
                 yaw_rad=ego.yaw_rad[window],
-                t_offset_s=(ego.steps[window] - step) * (dt / 1e9),
+                t_offset_s=(ego.steps[window] - step) * ns_to_s(dt),
                 speed_mps=ego.speed_mps[window],
             )
             state = EgoState(
@@ -274,7 +275,7 @@ def _ego_rates(ego: Track, dt_ns: int) -> tuple[int, NDArray[np.float64], NDArra
     """Valid prefix length, yaw rate and acceleration of the ego over that prefix."""
     finite = np.all(np.isfinite(np.vstack((ego.x_m, ego.y_m, ego.yaw_rad, ego.speed_mps))), axis=0)
     k = int(np.argmin(finite)) if not np.all(finite) else len(ego.steps)
-    steps, dt_s = ego.steps[:k].astype(np.float64), dt_ns / 1e9
+    steps, dt_s = ego.steps[:k].astype(np.float64), ns_to_s(dt_ns)
     if k < 2:  # noqa: PLR2004 - a finite difference needs two states
         zeros = np.zeros(k)
         return k, zeros, np.where(np.isfinite(ego.accel_mps2[:k]), ego.accel_mps2[:k], 0.0)

@@ -5,6 +5,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Protocol
 
+from loaders.timebase import ns_to_s
+
 if TYPE_CHECKING:
     from collections.abc import Iterator
     from pathlib import Path
@@ -80,7 +82,7 @@ class DriveInfo:
     @property
     def duration_s(self) -> float:
         """Duration between first and last message."""
-        return (self.end_ns - self.start_ns) / 1e9
+        return ns_to_s(self.end_ns - self.start_ns)
 
 
 class Drive(Protocol):

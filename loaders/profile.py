@@ -31,6 +31,7 @@ from typing import Any
 
 from loaders.errors import ProfileError
 from loaders.message_logs.decoders.ros_tf import TfFrames
+from loaders.timebase import s_to_ns
 
 __all__ = ["CLOCKS", "DEFAULT_TOLERANCE_NS", "INVALID_EGO_POLICIES", "Profile", "load_profile"]
 
@@ -102,7 +103,7 @@ def _tolerance_ns(path: Path, data: dict[str, Any], frames: dict[str, Any]) -> i
         raise ProfileError(path, "match_tolerance_s must be a number", value=value)
     if not math.isfinite(value) or value < 0:
         raise ProfileError(path, "match_tolerance_s must be finite and >= 0", value=value)
-    return round(value * 1e9)
+    return s_to_ns(value)
 
 
 def _tf(path: Path, table: dict[str, Any]) -> TfFrames:

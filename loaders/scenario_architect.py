@@ -38,6 +38,7 @@ from loaders.drive import DriveInfo, TopicInfo, TopicRoles
 from loaders.errors import CorruptLogError, EmptyLogError, InvalidValueError, UnsupportedFormatError
 from loaders.maps.model import LaneMap
 from loaders.records import ActorTable, EgoState, Frame, ObjectClass, Plan, PlanKind
+from loaders.timebase import s_to_ns
 
 if TYPE_CHECKING:
     from collections.abc import Iterator
@@ -119,8 +120,8 @@ class ScenarioArchitectDrive:
         self._info = DriveInfo(
             path=path,
             source_format="scenario-architect",
-            start_ns=round(times[0] * 1e9),
-            end_ns=round(times[-1] * 1e9),
+            start_ns=s_to_ns(times[0]),
+            end_ns=s_to_ns(times[-1]),
             topics=topics,
             roles=TopicRoles(ego="/ego", objects=("/objects",), plan=f"/{_PLANS[plan]}"),
             frame_count=n,
@@ -203,7 +204,7 @@ class ScenarioArchitectDrive:
     def _frame(self, index: int, line: str) -> Frame:
         cols = line.rstrip("\n").split(";")
         t_s, x, y, heading, curv, vel, acc = (float(c) for c in cols[:7])
-        t_ns = round(t_s * 1e9)
+        t_ns = s_to_ns(t_s)
         if not all(math.isfinite(v) for v in (x, y, heading)):
             raise InvalidValueError(self._path, "non-finite ego pose", t_ns=t_ns, value=cols[:4])
         trajs = {"performance": _traj(json.loads(cols[7])), "emergency": _traj(json.loads(cols[8]))}
@@ -265,7 +266,7 @@ class ScenarioArchitectDrive:
                 for lineno, line in enumerate(fh):
                     if lineno < self._header.first_row_line or not line.strip():
                         continue
-                    t_ns = round(float(line.split(";", 1)[0]) * 1e9)
+                    t_ns = s_to_ns(float(line.split(";", 1)[0]))
                     if (start_ns is None or t_ns >= start_ns) and (end_ns is None or t_ns < end_ns):
                         yield self._frame(index, line)
                     index += 1

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from loaders.timebase import s_to_ns
 from workbench.errors import WorkbenchError
 
 if TYPE_CHECKING:
@@ -35,8 +36,8 @@ def window_ns(
 ) -> tuple[int | None, int | None]:
     """Turn ``--start``/``--end`` seconds from the drive start into absolute nanoseconds."""
     t0 = drive.info.start_ns
-    start = None if start_s is None else t0 + round(start_s * 1e9)
-    end = None if end_s is None else t0 + round(end_s * 1e9)
+    start = None if start_s is None else t0 + s_to_ns(start_s)
+    end = None if end_s is None else t0 + s_to_ns(end_s)
     return start, end
 
 

@@ -17,6 +17,8 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
+from loaders.timebase import ns_to_s
+
 if TYPE_CHECKING:
     from loaders.message_logs.samples import EgoSample
 
@@ -31,7 +33,7 @@ def wrap_angle(angle_rad: float) -> float:
 
 
 def _along(a: TimedEgo, b: TimedEgo, yaw: float) -> float:
-    dt = (b[0] - a[0]) / 1e9
+    dt = ns_to_s(b[0] - a[0])
     dx, dy = b[1].x_m - a[1].x_m, b[1].y_m - a[1].y_m
     return (dx * math.cos(yaw) + dy * math.sin(yaw)) / dt
 
@@ -49,7 +51,7 @@ def ego_kinematics(
     sample = cur[1]
     a = prev or cur
     b = nxt or cur
-    span = (b[0] - a[0]) / 1e9
+    span = ns_to_s(b[0] - a[0])
     if span <= 0:
         speed = 0.0 if math.isnan(sample.speed_mps) else sample.speed_mps
         yaw_rate = 0.0 if math.isnan(sample.yaw_rate_radps) else sample.yaw_rate_radps

@@ -24,6 +24,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from loaders.records import ActorTable
+from loaders.timebase import ns_to_s
 
 if TYPE_CHECKING:
     from numpy.typing import NDArray
@@ -60,7 +61,7 @@ class ObjectBuffer:
             old = self.columns
             first = set(cols.ids)
             if old is not None and self.t_ns is not None and t_ns > self.t_ns:
-                dt = (t_ns - self.t_ns) / 1e9
+                dt = ns_to_s(t_ns - self.t_ns)
                 where = {oid: k for k, oid in enumerate(old.ids)}
                 ahead: dict[str, tuple[float, float]] = {}
                 for k, oid in enumerate(cols.ids):
@@ -121,7 +122,7 @@ class FirstDetections:
             if v is None:
                 left += 1
                 continue
-            dt = actors.match_dt_ns[row] / 1e9
+            dt = ns_to_s(actors.match_dt_ns[row])
             vx[row], vy[row] = v
             x[row] += v[0] * dt
             y[row] += v[1] * dt
@@ -167,7 +168,7 @@ def match_objects(
             if oid in buf.first_seen
         )
         ids.extend(f"{topic}:{i}" for i in cols.ids) if prefix else ids.extend(cols.ids)
-        dt = dt_ns / 1e9
+        dt = ns_to_s(dt_ns)
         values: dict[str, NDArray[Any]] = {
             "object_class": cols.object_class,
             "x_m": cols.x_m + cols.vx_mps * dt,

@@ -20,6 +20,7 @@ from rich.progress import (
 from rich.table import Table
 from rich.text import Text
 
+from loaders.timebase import ns_to_s
 from workbench.batch.executors import BatchError
 from workbench.batch.results import is_results_dir
 from workbench.cli.incident_options import StoreOption, with_requests
@@ -140,7 +141,7 @@ def _diff_table(result: DiffResult, title: str) -> Table:
         what = "; ".join(f"{k}: {_fmt(a)} -> {_fmt(b)}" for k, (a, b) in change.differences.items())
         if not what:
             i = item.incident
-            start_s = (i.start_ns - item.drive_start_ns) / 1e9
+            start_s = ns_to_s(i.start_ns - item.drive_start_ns)
             what = f"{i.cause}, {start_s:.2f} s + {i.duration_s:.2f} s"
         table.add_row(
             Text(change.kind, style=_KIND_STYLE[change.kind]),

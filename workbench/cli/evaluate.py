@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING, Annotated
 import typer
 from rich.table import Table
 
+from loaders.timebase import ns_to_s
 from workbench.cli.losses import VerboseOption, echo_losses
 from workbench.cli.options import (
     EGO_TOPIC_HELP,
@@ -39,7 +40,7 @@ def _summary_table(violations: list[Violation], t0_ns: int) -> Table:
             v.id,
             v.engine,
             f"{v.start_frame}-{v.end_frame}",
-            f"{(v.start_ns - t0_ns) / 1e9:.2f}",
+            f"{ns_to_s(v.start_ns - t0_ns):.2f}",
             " ".join(v.objects[:5]),
             f"{v.worst_margin:.2f}",
         )

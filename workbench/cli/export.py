@@ -15,6 +15,7 @@ from rich.progress import (
     TimeElapsedColumn,
 )
 
+from loaders.timebase import s_to_ns
 from workbench.cli.incident_options import LogArgument, StoreOption, with_checked_incidents
 from workbench.cli.progress import STDERR
 from workbench.errors import WorkbenchError
@@ -128,7 +129,7 @@ def export(
         plans = [plan_window(report, parse_window(window))]
     else:
         selection = Selection(tuple(incident or ()), verdict, all_)
-        plans = plan_clips(report, found, selection, round(margin * 1e9))
+        plans = plan_clips(report, found, selection, s_to_ns(margin))
     chosen = [t.strip() for t in topics.split(",") if t.strip()] if topics else None
     if not plans:
         check_inputs(report, request, chosen, without_map=without_map)  # export_clips does too

@@ -15,6 +15,7 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
+from loaders.timebase import ns_to_s
 from workbench.batch.results import is_results_dir
 
 if TYPE_CHECKING:
@@ -65,7 +66,7 @@ def fleet_table(queue: list[FleetIncident], title: str) -> Table:
             i.engine,
             " ".join(i.objects) or "-",
             i.cause,
-            f"{(i.start_ns - item.drive_start_ns) / 1e9:.2f}",
+            f"{ns_to_s(i.start_ns - item.drive_start_ns):.2f}",
             f"{i.duration_s:.2f}",
             f"{margin:.2f}" if math.isfinite(margin) else "-",
         )

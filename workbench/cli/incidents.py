@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING, Annotated
 import typer
 from rich.table import Table
 
+from loaders.timebase import ns_to_s
 from workbench.cli.incident_options import (
     ByOption,
     CauseFilter,
@@ -77,7 +78,7 @@ def incident_table(incidents: list[Incident], t0_ns: int, title: str) -> Table:
             " ".join(_short(o) for o in i.objects) or "-",
             i.cause,
             f"{i.start_frame}-{i.end_frame}",
-            f"{(i.start_ns - t0_ns) / 1e9:.2f}",
+            f"{ns_to_s(i.start_ns - t0_ns):.2f}",
             f"{i.duration_s:.2f}",
             str(i.severity.unsafe_frames),
             f"{margin:.2f}" if math.isfinite(margin) else "-",
@@ -100,8 +101,8 @@ def event_table(events: list[Event], t0_ns: int, title: str) -> Table:
             "+".join(e.engines),
             " ".join(_short(o) for o in e.objects) or "-",
             f"{e.start_frame}-{e.end_frame}",
-            f"{(e.start_ns - t0_ns) / 1e9:.2f}",
-            f"{(e.end_ns - e.start_ns) / 1e9:.2f}",
+            f"{ns_to_s(e.start_ns - t0_ns):.2f}",
+            f"{ns_to_s(e.end_ns - e.start_ns):.2f}",
             str(len(e.incidents)),
             *_physical(e.lead),
         )

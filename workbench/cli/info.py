@@ -9,6 +9,7 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
+from loaders.timebase import ns_to_s
 from workbench.cli.losses import VerboseOption, echo_losses
 from workbench.cli.options import EGO_TOPIC_HELP, RssProfileOption
 from workbench.cli.tables import print_table
@@ -40,7 +41,7 @@ def render_info(drive: Drive, console: Console, frames: int | None = None) -> No
     else:
         console.print(f"frames      {frames} (of {info.frame_count} ego messages)")
     console.print(
-        f"clock       {info.clock}, match tolerance {info.match_tolerance_ns / 1e9:.3f} s"
+        f"clock       {info.clock}, match tolerance {ns_to_s(info.match_tolerance_ns):.3f} s"
     )
     lane_map = drive.lane_map
     if lane_map is None:

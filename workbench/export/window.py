@@ -11,6 +11,7 @@ import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from loaders.timebase import ns_to_s, s_to_ns
 from workbench.errors import WorkbenchError
 from workbench.export.plan import ClipPlan, safe_stem
 
@@ -78,10 +79,10 @@ def plan_window(report: IncidentReport, window: Window) -> ClipPlan:
     if window.frames:
         inside = [(i, t) for i, t in times if window.start <= i <= window.end]
     else:
-        a, b = t0 + round(window.start * 1e9), t0 + round(window.end * 1e9)
+        a, b = t0 + s_to_ns(window.start), t0 + s_to_ns(window.end)
         inside = [(i, t) for i, t in times if a <= t <= b]
     if not inside:
-        last = f"#{times[-1][0]}, {(times[-1][1] - t0) / 1e9:.2f} s" if times else "no frame"
+        last = f"#{times[-1][0]}, {ns_to_s(times[-1][1] - t0):.2f} s" if times else "no frame"
         msg = f"{report.log}: no frame within --window (the drive ends at {last})"
         raise WorkbenchError(msg)
     (first, start_ns), (last_frame, end_ns) = inside[0], inside[-1]

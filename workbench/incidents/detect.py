@@ -15,6 +15,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from loaders.timebase import ns_to_s, s_to_ns
 from workbench.engines.base import VerdictSummary
 from workbench.incidents.facts import collectors_for
 from workbench.incidents.kinematics import MotionFacts, motion_of
@@ -59,7 +60,7 @@ class IncidentDetector:
         """Start empty for the drive of content hash ``drive_hash``."""
         self.drive_hash = drive_hash
         self.settings = settings or IncidentSettings()
-        self._runs: RunMerger[IncidentKey] = RunMerger(round(self.settings.merge_gap_s * 1e9))
+        self._runs: RunMerger[IncidentKey] = RunMerger(s_to_ns(self.settings.merge_gap_s))
         #: ``(frame index, t_ns)`` of every frame added, in order.
         self.frame_times: list[tuple[int, int]] = []
         #: Ego position ``(x, y)`` [m] at the first frame of each incident (chunks only).
@@ -172,7 +173,7 @@ class IncidentDetector:
         severity = Severity(
             worst_margin=run.worst_margin,
             unsafe_frames=run.unsafe_frames,
-            duration_s=(run.end_ns - run.start_ns) / 1e9,
+            duration_s=ns_to_s(run.end_ns - run.start_ns),
             facts=facts,
         )
         return Incident(
@@ -199,7 +200,7 @@ class IncidentDetector:
         ``data_suspect`` is set from ``findings`` (default: :meth:`findings`) before the sort,
         so suspect incidents rank after clean ones.
         """
-        min_ns = round(self.settings.min_duration_s * 1e9)
+        min_ns = s_to_ns(self.settings.min_duration_s)
         found = [self._incident(r) for r in self._runs.runs() if r.end_ns - r.start_ns >= min_ns]
         found = flag_suspects(found, self.findings() if findings is None else findings)
         found.sort(key=severity_key)

@@ -7,6 +7,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
+from loaders.timebase import ns_to_s
 from workbench.incidents.order import rank
 
 __all__ = ["Fact", "Incident", "IncidentSettings", "Severity", "incident_id"]
@@ -123,7 +124,7 @@ class Incident:
     @property
     def duration_s(self) -> float:
         """Last minus first unsafe frame time [s]."""
-        return (self.end_ns - self.start_ns) / 1e9
+        return ns_to_s(self.end_ns - self.start_ns)
 
     def record(self) -> dict[str, Any]:
         """The pinned JSON object of ``workbench incidents --out FILE.json``."""

@@ -11,6 +11,7 @@ import dataclasses
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from loaders.timebase import s_to_ns
 from workbench.incidents.find import find_incidents
 
 if TYPE_CHECKING:
@@ -53,7 +54,7 @@ def what_if(request: IncidentRequest, incident: Incident, profile: str) -> WhatI
         LoaderError: The drive cannot be read.
     """
     other = dataclasses.replace(request, engines=(incident.engine,), rss_profile=profile)
-    margin_ns = round(MARGIN_S * 1e9)
+    margin_ns = s_to_ns(MARGIN_S)
     window = (incident.start_ns - margin_ns, incident.end_ns + margin_ns + 1)
     matches = tuple(
         i

@@ -24,6 +24,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from loaders.timebase import ns_to_s
 from workbench.quality.bounds import QualityBounds
 from workbench.quality.kinematics import chord_heading, chord_speed, neighbours, window_slope
 
@@ -223,7 +224,7 @@ def _steps(
     m = len(tracks)
     prev = tracks.same_object(-1)
     j = np.clip(np.arange(m) - 1, 0, None)
-    dt_s = np.where(prev, (tracks.t_ns - tracks.t_ns[j]) / 1e9, 0.0)
+    dt_s = np.where(prev, ns_to_s(tracks.t_ns - tracks.t_ns[j]), 0.0)
     step = np.where(prev, np.hypot(tracks.x_m - tracks.x_m[j], tracks.y_m - tracks.y_m[j]), 0.0)
     v = np.maximum(tracks.speed_mps, tracks.speed_mps[j])
     top = v * dt_s + 0.5 * accel_mps2 * dt_s * dt_s + b.position_tol_m

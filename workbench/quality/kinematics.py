@@ -21,6 +21,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from loaders.timebase import ns_to_s
+
 if TYPE_CHECKING:
     from numpy.typing import NDArray
 
@@ -72,7 +74,7 @@ def chord_speed(
     An end that is missing falls back to the observation itself (a one-sided chord).
     """
     lo, hi = _ends(back, ahead)
-    dt_s = (tracks.t_ns[hi] - tracks.t_ns[lo]) / 1e9
+    dt_s = ns_to_s(tracks.t_ns[hi] - tracks.t_ns[lo])
     dist = np.hypot(tracks.x_m[hi] - tracks.x_m[lo], tracks.y_m[hi] - tracks.y_m[lo])
     with np.errstate(divide="ignore", invalid="ignore"):
         return np.where(dt_s > 0, dist / np.where(dt_s > 0, dt_s, 1.0), np.nan)
@@ -124,7 +126,7 @@ def window_slope(tracks: Tracks, values: NDArray[np.float64], half_ns: int) -> N
             use = same & (np.abs(tracks.t_ns[j] - tracks.t_ns) <= half_ns)
             reached = reached or bool(use.any())
             use &= finite[j]
-            dt_s = np.where(use, (tracks.t_ns[j] - tracks.t_ns) / 1e9, 0.0)
+            dt_s = np.where(use, ns_to_s(tracks.t_ns[j] - tracks.t_ns), 0.0)
             v = np.where(use, values[j], 0.0)
             n += use
             st += dt_s

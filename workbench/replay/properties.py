@@ -10,6 +10,8 @@ import platform
 from importlib import metadata
 from typing import TYPE_CHECKING
 
+from loaders.timebase import ns_to_s
+
 if TYPE_CHECKING:
     from collections.abc import Sequence
 
@@ -45,7 +47,7 @@ def drive_properties(info: DriveInfo) -> dict[str, dict[str, PropertyValue]]:
         "object_topics": ", ".join(roles.objects),
         "plan_topic": roles.plan or "",
         "clock": info.clock,
-        "match_tolerance_s": info.match_tolerance_ns / 1e9,
+        "match_tolerance_s": ns_to_s(info.match_tolerance_ns),
         "frame_count": int(info.frame_count),
         "map_source": info.map_source or "",
         "start_ns": int(info.start_ns),

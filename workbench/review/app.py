@@ -24,6 +24,7 @@ from textual.app import App, ComposeResult
 from textual.binding import Binding, BindingType
 from textual.widgets import DataTable, Footer, Header, Input, Static
 
+from loaders.timebase import ns_to_s
 from workbench.review.facts_text import NONE, facts_text, number_text
 from workbench.review.viewer import NoViewer, worst_frame
 
@@ -93,7 +94,7 @@ class ReviewApp(App[None]):
                 incident.engine,
                 self._objects(incident, full=False),
                 incident.cause,
-                f"{(incident.start_ns - t0) / 1e9:.2f}",
+                f"{ns_to_s(incident.start_ns - t0):.2f}",
                 f"{incident.duration_s:.2f}",
                 number_text(margin) if math.isfinite(margin) else NONE,
                 key=incident.id,
@@ -138,8 +139,8 @@ class ReviewApp(App[None]):
                 (
                     f"frames {incident.start_frame}-{incident.end_frame}"
                     f" (worst {worst_frame(incident)}), "
-                    f"{(incident.start_ns - t0) / 1e9:.2f} s"
-                    f" to {(incident.end_ns - t0) / 1e9:.2f} s"
+                    f"{ns_to_s(incident.start_ns - t0):.2f} s"
+                    f" to {ns_to_s(incident.end_ns - t0):.2f} s"
                 ),
                 f"severity: {facts}",
                 *self.session.evidence(incident),

@@ -15,6 +15,8 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
+from loaders.timebase import ns_to_s
+
 if TYPE_CHECKING:
     from collections.abc import Mapping
 
@@ -78,7 +80,7 @@ def _value_text(value: object, unit: str, *, is_time: bool, t0_ns: int | None) -
     if isinstance(value, (int, float)):
         number = float(value)
         if is_time:
-            number = (number - (t0_ns or 0)) / 1e9
+            number = ns_to_s(number - (t0_ns or 0))
         elif isinstance(value, int):
             return f"{value} {unit}".rstrip()
         return (

@@ -30,6 +30,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from loaders.timebase import s_to_ns
 from loaders.typestore import typestore
 from workbench.errors import WorkbenchError
 from workbench.samples.ros_messages import DERIVED_CLASS, MessageFactory
@@ -101,7 +102,7 @@ def _objects(f: MessageFactory, frame: Frame) -> Any:
 
 
 def _duration_ns(t_s: float) -> int:
-    return round(t_s * 1e9) if math.isfinite(t_s) else 0
+    return s_to_ns(t_s) if math.isfinite(t_s) else 0
 
 
 def _plan_point(f: MessageFactory, plan: Plan, k: int) -> Any:

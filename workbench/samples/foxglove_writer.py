@@ -28,6 +28,7 @@ from mcap.writer import CompressionType
 from mcap.writer import Writer as McapWriter
 from mcap_protobuf.schema import register_schema
 
+from loaders.timebase import s_to_ns
 from workbench.outputs import json_text
 from workbench.samples.motion import DT_S
 from workbench.samples.quantise import ANGLE_STEPS, quantise
@@ -123,7 +124,7 @@ def _plan(sc: Scenario, k: int, t_ns: int) -> bytes:
 
 def write_foxglove_mcap(sc: Scenario, path: Path, osm: bytes) -> None:
     """Write the Foxglove/JSON variant of ``sc`` with the map attachment and metadata."""
-    step_ns = round(DT_S * 1e9)
+    step_ns = s_to_ns(DT_S)
     with path.open("wb") as stream:
         writer = McapWriter(stream, chunk_size=256 * 1024, compression=CompressionType.ZSTD)
         writer.start(profile="", library=f"rss-workbench samples {GENERATOR_VERSION}")

@@ -6,6 +6,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from loaders.timebase import s_to_ns
 from workbench.samples.motion import DT_S
 from workbench.samples.ros_messages import (
     AUTOWARE_CLASS,
@@ -23,7 +24,7 @@ if TYPE_CHECKING:
 
 __all__ = ["objects_message", "plan_indices", "plan_message"]
 
-_NS_PER_SAMPLE = round(DT_S * 1e9)
+_NS_PER_SAMPLE = s_to_ns(DT_S)
 
 
 def _uuid(track_id: int) -> Any:

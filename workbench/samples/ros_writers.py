@@ -16,6 +16,7 @@ from rosbags.rosbag1 import Writer as Bag1Writer
 from rosbags.rosbag2 import CompressionFormat, CompressionMode, StoragePlugin
 from rosbags.rosbag2 import Writer as Bag2Writer
 
+from loaders.timebase import s_to_ns
 from loaders.typestore import typestore
 from workbench.samples.lanelet2_writer import ORIGIN_LATLON
 from workbench.samples.motion import DT_S
@@ -81,7 +82,7 @@ def _messages(sc: Scenario, ros_version: int) -> Iterator[tuple[str, int, Any]]:
     topics = list(topic_types(sc, ros_version))
     objects_kind = sc.layout.objects if ros_version == 2 else "object_array"  # noqa: PLR2004
     plan_kind = sc.layout.plan if ros_version == 2 else "path"  # noqa: PLR2004
-    step_ns = round(DT_S * 1e9)
+    step_ns = s_to_ns(DT_S)
     for k in range(len(sc.t_s)):
         t_ns = T0_NS + k * step_ns
         yield topics[0], t_ns, f.ego(sc, k, t_ns)

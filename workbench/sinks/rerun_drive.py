@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from loaders.timebase import ns_to_s
 from workbench.engines.registry import engine
 from workbench.replay.layout import layout_chunk, layout_map
 from workbench.replay.properties import drive_properties, recording_name, software_properties
@@ -76,7 +77,7 @@ class RerunDriveSink:
     def duration_s(self) -> float:
         """Drive time covered by the frames sent."""
         first = self._t_first_ns if self._t_first_ns is not None else self._t_last_ns
-        return (self._t_last_ns - first) / 1e9
+        return ns_to_s(self._t_last_ns - first)
 
     def add_chunk(self, chunk: Chunk) -> None:
         """Buffer a driver chunk; send every full batch."""

@@ -9,6 +9,7 @@ import numpy as np
 from loaders.message_logs.poses import ros_stamp_ns, yaws_from_quaternions
 from loaders.message_logs.samples import PlanSample
 from loaders.records import Plan
+from loaders.timebase import ns_to_s
 
 __all__ = ["decode_path", "decode_trajectory"]
 
@@ -44,6 +45,6 @@ def decode_trajectory(msg: Any) -> PlanSample:
     The Autoware.Auto package has the same layout under its older name.
     """
     pts = msg.points
-    t = [ros_stamp_ns(p.time_from_start) / 1e9 for p in pts]
+    t = [ns_to_s(ros_stamp_ns(p.time_from_start)) for p in pts]
     v = [float(p.longitudinal_velocity_mps) for p in pts]
     return PlanSample(ros_stamp_ns(msg.header.stamp), _plan_from_poses([p.pose for p in pts], t, v))

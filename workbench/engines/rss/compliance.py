@@ -33,6 +33,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from loaders.records import ObjectClass as FrameClass
+from loaders.timebase import ns_to_s, s_to_ns
 from rss.params import ObjectClass
 from rss.structured.responsibility import Responsible
 from rss.structured.states import LongitudinalResponse
@@ -85,7 +86,7 @@ def slope(t_ns: NDArray[np.int64], speed_mps: NDArray[np.float64]) -> float | No
     """
     if t_ns.size < 2:  # noqa: PLR2004 - a slope needs two samples
         return None
-    t = (t_ns - t_ns[-1]) / 1e9
+    t = ns_to_s(t_ns - t_ns[-1])
     dt = t - t.mean()
     denominator = float(np.dot(dt, dt))
     if denominator <= 0.0:
@@ -128,7 +129,7 @@ def fit_motion(
     """
     if t_ns.size < MIN_SAMPLES or int(t_ns[-1] - t_ns[0]) < MIN_SPAN_NS:
         return None
-    tau = (t_ns - t_ns[0]) / 1e9
+    tau = ns_to_s(t_ns - t_ns[0])
     mid = 0.5 * float(tau[-1])
     tau = tau - mid
     design = np.column_stack((np.ones_like(tau), tau, 0.5 * tau * tau))
@@ -214,7 +215,7 @@ class ComplianceTracker:
                 cls = ObjectClass.UNKNOWN if code is None else dynamics_class(FrameClass(code))
                 dyn = self._params.for_class(cls)
             since = self._since[(label, party)]
-            due = since + round(dyn.response_time_s * 1e9)
+            due = since + s_to_ns(dyn.response_time_s)
             required = (
                 dyn.brake_min_mps2
                 if response == _BRAKE_MIN
