@@ -16,7 +16,13 @@ from typing import TYPE_CHECKING, Any
 
 from loaders.errors import CorruptLogError, InvalidValueError
 from loaders.message_logs.kinematics import ego_kinematics
-from loaders.message_logs.matching import FirstDetections, ObjectBuffer, match_objects
+from loaders.message_logs.matching import (
+    FirstDetections,
+    ObjectBuffer,
+    Pick,
+    match_objects,
+    pick_messages,
+)
 from loaders.message_logs.samples import EgoSample, EgoWithObjects, ObjectColumns, PlanSample
 from loaders.records import EgoState, Frame
 
@@ -25,7 +31,7 @@ if TYPE_CHECKING:
     from pathlib import Path
 
     from loaders.drive import TopicRoles
-    from loaders.records import ActorTable, Plan
+    from loaders.records import Plan
 
 __all__ = ["MAX_HELD", "AssemblyOptions", "FrameAssembler"]
 
@@ -58,9 +64,8 @@ class AssemblyOptions:
 class _Pending:
     t_ns: int
     sample: EgoSample
-    actors: ActorTable
+    picks: list[Pick]
     plan: Plan | None
-    first: FirstDetections
 
 
 class FrameAssembler:
@@ -149,7 +154,8 @@ class FrameAssembler:
         self._prev, self._cur = cur, nxt
         if not self._in_window(cur.t_ns):
             return
-        self._held.append((Frame(self._index, cur.t_ns, ego, cur.actors, cur.plan), cur.first))
+        actors, first = match_objects(cur.picks, cur.t_ns, self._opt.exclude_id)
+        self._held.append((Frame(self._index, cur.t_ns, ego, actors, cur.plan), first))
         self._index += 1
 
     def _release(self, *, final: bool) -> Iterator[Frame]:
@@ -181,12 +187,10 @@ class FrameAssembler:
             raise InvalidValueError(
                 self._path, "non-finite ego pose (x, y, yaw)", topic=topic, t_ns=t_ns, value=pose
             )
-        actors, first = match_objects(
-            self._buffers, t_ns, self._opt.tolerance_ns, self._opt.exclude_id
-        )
+        picks = pick_messages(self._buffers, t_ns, self._opt.tolerance_ns)
         plan = self._plan[1] if self._plan is not None and self._plan[0] <= t_ns else None
         self._plan_used = self._plan_used or plan is not None
-        self._emit(_Pending(t_ns, sample, actors, plan, first))
+        self._emit(_Pending(t_ns, sample, picks, plan))
 
     def _decode(self, topic: str, log_ns: int, msg: Any) -> Any:
         try:
@@ -207,7 +211,11 @@ class FrameAssembler:
             self._on_ego(topic, log_ns, decoded)
         elif isinstance(decoded, ObjectColumns):
             self.ignored_markers += decoded.ignored
-            self._by_topic[topic].update(self._time(log_ns, decoded.stamp_ns), decoded)
+            buffer = self._by_topic[topic]
+            buffer.update(self._time(log_ns, decoded.stamp_ns), decoded)
+            cur = self._cur  # the frame still open: its stamp's objects may come after it
+            if cur is not None:
+                cur.picks[self._buffers.index(buffer)].take_late(cur.t_ns, self._opt.tolerance_ns)
         elif isinstance(decoded, PlanSample):
             self._plans_unused += int(self._plan is not None and not self._plan_used)
             self._plan = (self._time(log_ns, decoded.stamp_ns), decoded.plan)

@@ -2,8 +2,10 @@
 
 Matching rule (``docs/loaders.md``): a frame at time ``t`` takes, per object topic, the
 latest message with stamp ``t_m <= t`` if ``t - t_m <= tolerance``; newer messages are
-never used. Rows are extrapolated at constant velocity to ``t`` and ``match_dt_ns = t -
-t_m`` is recorded per row::
+never used. The pick is made when the ego message arrives (:func:`pick_messages`) and may
+be replaced by a message logged after it but stamped ``<= t`` (:meth:`Pick.take_late`)
+until the next ego message completes the frame. Rows are extrapolated at constant
+velocity to ``t`` and ``match_dt_ns = t - t_m`` is recorded per row::
 
     object msgs   o---------o---------o
     ego frames        |         |         |
@@ -30,7 +32,7 @@ if TYPE_CHECKING:
 
     from loaders.message_logs.samples import ObjectColumns
 
-__all__ = ["FirstDetections", "ObjectBuffer", "match_objects"]
+__all__ = ["FirstDetections", "ObjectBuffer", "Pick", "match_objects", "pick_messages"]
 
 
 class ObjectBuffer:
@@ -130,41 +132,81 @@ class FirstDetections:
         return ActorTable.from_columns(**columns), left
 
 
+@dataclass(slots=True)
+class Pick:
+    """The object message one frame takes from one topic's buffer (a snapshot of it).
+
+    Attributes:
+        buffer: The topic's buffer (its forward velocities fill first detections).
+        t_ns: Stamp of the taken message [ns], None while the topic has none in tolerance.
+        columns: The taken message's objects.
+        first_seen: Its ids without a velocity yet.
+    """
+
+    buffer: ObjectBuffer
+    t_ns: int | None = None
+    columns: ObjectColumns | None = None
+    first_seen: frozenset[str] = frozenset()
+
+    def take(self) -> None:
+        """Take the buffer's current message (and mark it used)."""
+        buf = self.buffer
+        self.t_ns, self.columns, self.first_seen = buf.t_ns, buf.columns, buf.first_seen
+        buf.used = True  # an empty list is used too: the frame has no objects of the topic
+
+    def take_late(self, frame_ns: int, tolerance_ns: int) -> None:
+        """Take the buffer's message just logged if it is stamped within the frame's window.
+
+        A message logged after the frame's ego message but stamped ``frame_ns - tolerance
+        <= t_m <= frame_ns`` and newer than the pick belongs to the frame (logs that write
+        a stamp's objects after its ego message).
+        """
+        t_m = self.buffer.t_ns
+        if t_m is None or not 0 <= frame_ns - t_m <= tolerance_ns:
+            return
+        if self.t_ns is None or t_m > self.t_ns:
+            self.take()
+
+
+def pick_messages(buffers: list[ObjectBuffer], t_ns: int, tolerance_ns: int) -> list[Pick]:
+    """Per buffer, the message a frame at ``t_ns`` takes now (see module docstring)."""
+    picks = []
+    for buf in buffers:
+        pick = Pick(buf)
+        if buf.t_ns is not None and 0 <= t_ns - buf.t_ns <= tolerance_ns:
+            pick.take()
+        picks.append(pick)
+    return picks
+
+
 def match_objects(
-    buffers: list[ObjectBuffer],
+    picks: list[Pick],
     t_ns: int,
-    tolerance_ns: int,
     exclude_id: str | None = None,
 ) -> tuple[ActorTable, FirstDetections]:
-    """Build the actor table of a frame at ``t_ns`` from the buffers (see module docstring).
+    """Build the actor table of a frame at ``t_ns`` from its picks (see module docstring).
 
     Ids are prefixed with ``<topic>:`` when more than one object topic is in use. Also
     returns the rows that are first detections without a velocity yet.
     """
-    parts = []
-    for buf in buffers:
-        cols = buf.columns
-        if cols is None or buf.t_ns is None:
-            continue
-        dt_ns = t_ns - buf.t_ns
-        if dt_ns < 0 or dt_ns > tolerance_ns:
-            continue
-        buf.used = True  # an empty list is used too: the frame has no objects of the topic
-        if not cols.ids:
-            continue
-        parts.append((buf, dt_ns, cols))
+    parts = [
+        (p, t_ns - p.t_ns, p.columns)
+        for p in picks
+        if p.columns is not None and p.t_ns is not None and p.columns.ids
+    ]
     first = FirstDetections()
     if not parts:
         return ActorTable.empty(), first
-    prefix = len(buffers) > 1
+    prefix = len(picks) > 1
     ids: list[str] = []
     columns: dict[str, list[NDArray[Any]]] = {}
-    for buf, dt_ns, cols in parts:
+    for pick, dt_ns, cols in parts:
+        buf = pick.buffer
         topic = buf.topic
         first.rows.extend(
             (len(ids) + k, buf, t_ns - dt_ns, oid)
             for k, oid in enumerate(cols.ids)
-            if oid in buf.first_seen
+            if oid in pick.first_seen
         )
         ids.extend(f"{topic}:{i}" for i in cols.ids) if prefix else ids.extend(cols.ids)
         dt = dt_ns / 1e9
