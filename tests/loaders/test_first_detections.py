@@ -138,7 +138,7 @@ def _frames_of(stream: list[tuple[str, int, object]]) -> list[Frame]:
     return list(FrameAssembler(Path("synthetic.mcap"), roles, decoders, options).run(stream))
 
 
-def test_late_messages_belong_to_their_stamp_within_one_ego_period():
+def test_a_frame_takes_the_closest_message_stamped_at_or_before_it_wherever_it_is_logged():
     t1, t2, t3 = T0 + EGO_DT, T0 + 2 * EGO_DT, T0 + 3 * EGO_DT
     stream = [
         _box(T0, 1.0),
@@ -148,16 +148,30 @@ def test_late_messages_belong_to_their_stamp_within_one_ego_period():
         _box(t1, 3.0),  # the stamp of the frame just before: taken by it
         _ego(t2),
         _ego(t3),
-        _box(t2, 4.0, log_ns=t3 + 1),  # stamped t2 but after the t3 ego message: too late
+        # stamped t2 but logged after the t3 ego message (perception latency on the header
+        # clock): frame 2 is still held, its topic has nothing stamped after t2 yet
+        _box(t2, 4.0, log_ns=t3 + 1),
+        _box(t3 + EGO_DT // 2, 5.0),  # after frame 3: settles it, taken by none
     ]
     frames = _frames_of(stream)
     xs = [float(f.actors.x_m[0]) for f in frames]
+    dts = [int(f.actors.match_dt_ns[0]) for f in frames]
     # frame 0 keeps its own stamp's message (a newer stamp is never used)
-    assert xs[0] == pytest.approx(1.0)
-    assert xs[1] == pytest.approx(3.0)
-    assert frames[1].actors.match_dt_ns[0] == 0
-    # frame 2 had only the t1 message when frame 3 began; frame 3 takes the late t2 one
-    assert xs[2] == pytest.approx(3.0)
-    assert frames[2].actors.match_dt_ns[0] == EGO_DT
-    assert xs[3] == pytest.approx(4.0)
-    assert frames[3].actors.match_dt_ns[0] == EGO_DT
+    assert (xs[0], dts[0]) == (pytest.approx(1.0), 0)
+    assert (xs[1], dts[1]) == (pytest.approx(3.0), 0)
+    assert (xs[2], dts[2]) == (pytest.approx(4.0), 0)
+    assert (xs[3], dts[3]) == (pytest.approx(4.0), EGO_DT)
+
+
+def test_messages_are_counted_unused_only_when_no_final_frame_took_them():
+    t1 = T0 + EGO_DT
+    stream = [_ego(T0), _box(T0 - EGO_DT // 2, 1.0), _box(T0, 2.0), _ego(t1), _box(t1, 3.0)]
+    roles = TopicRoles(ego="/ego", objects=("/boxes",))
+    decoders = {"/ego": lambda m: m, "/boxes": lambda m: m}
+    assembler = FrameAssembler(
+        Path("synthetic.mcap"), roles, decoders, AssemblyOptions(clock="header")
+    )
+    frames = list(assembler.run(stream))
+    assert [float(f.actors.x_m[0]) for f in frames] == [pytest.approx(2.0), pytest.approx(3.0)]
+    # the -25 ms message was frame 0's pick until its own stamp's message replaced it
+    assert assembler.unused_objects == 1
