@@ -157,10 +157,8 @@ def test_a_frame_takes_the_closest_message_stamped_at_or_before_it_wherever_it_i
     xs = [float(f.actors.x_m[0]) for f in frames]
     dts = [int(f.actors.match_dt_ns[0]) for f in frames]
     # frame 0 keeps its own stamp's message (a newer stamp is never used)
-    assert (xs[0], dts[0]) == (pytest.approx(1.0), 0)
-    assert (xs[1], dts[1]) == (pytest.approx(3.0), 0)
-    assert (xs[2], dts[2]) == (pytest.approx(4.0), 0)
-    assert (xs[3], dts[3]) == (pytest.approx(4.0), EGO_DT)
+    assert xs == pytest.approx([1.0, 3.0, 4.0, 4.0])
+    assert dts == [0, 0, 0, EGO_DT]
 
 
 def test_messages_are_counted_unused_only_when_no_final_frame_took_them():

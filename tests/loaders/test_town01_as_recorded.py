@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import json
 from contextlib import closing
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import pytest
 from mcap.reader import make_reader
@@ -45,7 +45,7 @@ def _recorded(path: Path) -> tuple[list[str], dict[int, set[str]]]:
             order.append(channel.topic)
             if channel.topic == "/carla/objects":
                 assert schema is not None
-                msg = store.deserialize_cdr(message.data, schema.name)
+                msg: Any = store.deserialize_cdr(message.data, schema.name)
                 stamp_ns = msg.header.stamp.sec * 1_000_000_000 + msg.header.stamp.nanosec
                 assert stamp_ns == message.log_time
                 objects[stamp_ns] = {str(o.id) for o in msg.objects}
