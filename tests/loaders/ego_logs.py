@@ -67,13 +67,13 @@ def reference_frames(root: Path) -> list[Frame]:
         return list(drive.frames())
 
 
-def _copied(root: Path, source: str = SAMPLE) -> list[Entry]:
+def _copied(root: Path, source: str = SAMPLE, delay_ns: int = 0) -> list[Entry]:
     out = []
     with AnyReader([root / source]) as reader:
         conns = [c for c in reader.connections if c.topic in _COPIED]
         for conn, t_ns, raw in reader.messages(connections=conns):
             msg = reader.deserialize(raw, conn.msgtype)
-            out.append(Entry(conn.topic, conn.msgtype, t_ns, msg))
+            out.append(Entry(conn.topic, conn.msgtype, t_ns + delay_ns, msg))
     return out
 
 
@@ -170,20 +170,24 @@ def _ego_entries(ts: Any, frames: list[Frame], variant: str) -> list[Entry]:
     return out
 
 
-def write_variant(root: Path, out_dir: Path, variant: str, storage: str = "mcap") -> Path:
+def write_variant(
+    root: Path, out_dir: Path, variant: str, storage: str = "mcap", *, latency_ns: int = 0
+) -> Path:
     """Write the sample with its ego as ``variant``; return its path.
 
     ``storage`` ``mcap`` or ``sqlite3`` gives a rosbag2 directory, ``bag`` a ROS 1 bag (the
     objects and path copied from the sample's ROS 1 twin ``highway_cut_in.bag``).
+    ``latency_ns`` logs the copied messages that much after their header stamp (a
+    perception pipeline's latency).
     """
     if storage == "bag":
         ts = typestore(1)
-        entries = _copied(root, SAMPLE.replace(".mcap", ".bag"))
+        entries = _copied(root, SAMPLE.replace(".mcap", ".bag"), latency_ns)
         entries += _ego_entries(ts, reference_frames(root), variant)
         entries.sort(key=lambda e: e.t_ns)
         return write_ros1_bag(out_dir / f"highway_{variant}.bag", entries)
     ts = typestore(2)
-    entries = _copied(root) + _ego_entries(ts, reference_frames(root), variant)
+    entries = _copied(root, delay_ns=latency_ns) + _ego_entries(ts, reference_frames(root), variant)
     entries.sort(key=lambda e: e.t_ns)
     return write_rosbag2(out_dir / f"highway_{variant}", entries, storage)
 
