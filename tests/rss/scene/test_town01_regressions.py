@@ -10,9 +10,10 @@ through the workbench's loader and RSS engine, every frame against the reference
 verdict and the same dangerous objects.
 
 The drives write each stamp's ``/carla/objects`` message *after* the ``/ego/odom``
-message of the same stamp; the loader gives such a message to the frame of its stamp
-(docs/loaders.md, "Objects logged after their ego message"), so the drives are read as
-recorded.
+message of the same stamp; the loader builds a frame from the object messages logged
+before its ego message (docs/loaders.md), so the drive is first rewritten with each
+stamp's object message first — the frames the reference saw (otherwise frame 0 has no
+objects and later frames take the previous stamp's, extrapolated).
 """
 
 from __future__ import annotations
@@ -21,6 +22,8 @@ import json
 from typing import TYPE_CHECKING, Any
 
 import pytest
+from mcap.reader import make_reader
+from mcap.writer import Writer
 
 from tests.conftest import require_external_dir, running_in_ci
 from workbench.drives import load_rss_params, open_log
@@ -40,13 +43,35 @@ def regressions(external_dir: Path) -> Path:
     )
 
 
-def run_drive(regressions: Path, external_dir: Path, name: str) -> list[Any]:
-    """Our RSS verdicts per frame of one drive (compatibility mode, the MCAP as recorded)."""
+def objects_first(src: Path, dst: Path) -> None:
+    """Copy the MCAP ``src`` to ``dst``, each stamp's non-ego messages before its ego one."""
+    with src.open("rb") as f:
+        reader = make_reader(f)
+        header, summary = reader.get_header(), reader.get_summary()
+        assert summary is not None
+        messages = list(reader.iter_messages())
+    ego_topics = {c.id for c in summary.channels.values() if c.topic == "/ego/odom"}
+    messages.sort(key=lambda m: (m[2].log_time, m[1].id in ego_topics))
+    with dst.open("wb") as out:
+        writer = Writer(out)
+        writer.start(profile=header.profile, library=header.library)
+        for schema in summary.schemas.values():
+            writer.register_schema(schema.name, schema.encoding, schema.data)
+        for channel in summary.channels.values():
+            writer.register_channel(
+                channel.topic, channel.message_encoding, channel.schema_id, channel.metadata
+            )
+        for _, channel, message in messages:
+            writer.add_message(channel.id, message.log_time, message.data, message.publish_time)
+        writer.finish()  # type: ignore[no-untyped-call]
+
+
+def run_drive(regressions: Path, external_dir: Path, name: str, tmp_path: Path) -> list[Any]:
+    """Our RSS verdicts per frame of one drive (compatibility mode, objects first)."""
+    mcap = tmp_path / f"{name}.mcap"
+    objects_first(regressions / f"{name}.mcap", mcap)
     drive = open_log(
-        regressions / f"{name}.mcap",
-        map_path=external_dir / "maps" / "Town01.xodr",
-        profile=None,
-        ego_id=None,
+        mcap, map_path=external_dir / "maps" / "Town01.xodr", profile=None, ego_id=None
     )
     try:
         params = load_rss_params(regressions / "rss_params_compat.toml", None, drive.lane_map)
@@ -59,11 +84,11 @@ def run_drive(regressions: Path, external_dir: Path, name: str) -> list[Any]:
 
 @pytest.mark.parametrize("name", DRIVES)
 def test_regression_drive_agrees_on_every_frame(
-    regressions: Path, external_dir: Path, name: str
+    regressions: Path, external_dir: Path, name: str, tmp_path: Path
 ) -> None:
     """Every frame: the reference's verdict and dangerous objects (50 / 50 frames)."""
     reference = json.loads((regressions / f"{name}.json").read_text())
-    verdicts = run_drive(regressions, external_dir, name)
+    verdicts = run_drive(regressions, external_dir, name, tmp_path)
     assert len(verdicts) == reference["n_frames"] == len(reference["frames"])
     differ = []
     for k, (ours, theirs) in enumerate(zip(verdicts, reference["frames"], strict=True)):
