@@ -5,9 +5,9 @@ and at most ``MAX_HELD`` frames, whatever the log size. A frame is completed whe
 ego message arrives (or at the end), so finite differences can be central (see
 ``kinematics``), and held until its object picks are settled (``matching``: a message
 stamped at or before the frame may come later in the file) and its first detections have
-their forward velocity. Samples without
-orientation (``heading_from_track``, GNSS without IMU) take the direction of travel through
-their neighbours (``prev -> nxt``); below 1 cm of travel the previous heading is kept.
+their forward velocity. Samples without orientation (``heading_from_track``, GNSS without
+IMU) take the direction of travel through their neighbours (``prev -> nxt``); below 1 cm
+of travel the previous heading is kept.
 """
 
 from __future__ import annotations
