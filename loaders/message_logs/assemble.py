@@ -1,10 +1,13 @@
 """Frames on the ego clock from one time-ordered pass over the role topics.
 
-Memory holds the last message per object topic, the last plan and a three-sample ego
-window, whatever the log size. A frame is emitted when the next ego message arrives (or
-at the end), so finite differences can be central (see ``kinematics``). Samples without
-orientation (``heading_from_track``, GNSS without IMU) take the direction of travel through
-their neighbours (``prev -> nxt``); below 1 cm of travel the previous heading is kept.
+Memory holds the last message per object topic, the last plan, a three-sample ego window
+and at most ``MAX_HELD`` frames, whatever the log size. A frame is completed when the next
+ego message arrives (or at the end), so finite differences can be central (see
+``kinematics``), and held until its object picks are settled (``matching``: a message
+stamped at or before the frame may come later in the file) and its first detections have
+their forward velocity. Samples without orientation (``heading_from_track``, GNSS without
+IMU) take the direction of travel through their neighbours (``prev -> nxt``); below 1 cm
+of travel the previous heading is kept.
 """
 
 from __future__ import annotations
@@ -16,16 +19,22 @@ from typing import TYPE_CHECKING, Any
 
 from loaders.errors import CorruptLogError, InvalidValueError
 from loaders.message_logs.kinematics import ego_kinematics
-from loaders.message_logs.matching import FirstDetections, ObjectBuffer, match_objects
+from loaders.message_logs.matching import (
+    FirstDetections,
+    ObjectBuffer,
+    Pick,
+    match_objects,
+    pick_messages,
+)
 from loaders.message_logs.samples import EgoSample, EgoWithObjects, ObjectColumns, PlanSample
-from loaders.records import EgoState, Frame
+from loaders.records import ActorTable, EgoState, Frame
 
 if TYPE_CHECKING:
     from collections.abc import Callable, Iterable, Iterator
     from pathlib import Path
 
     from loaders.drive import TopicRoles
-    from loaders.records import ActorTable, Plan
+    from loaders.records import Plan
 
 __all__ = ["MAX_HELD", "AssemblyOptions", "FrameAssembler"]
 
@@ -58,9 +67,17 @@ class AssemblyOptions:
 class _Pending:
     t_ns: int
     sample: EgoSample
-    actors: ActorTable
+    picks: list[Pick]
     plan: Plan | None
-    first: FirstDetections
+
+
+@dataclass(slots=True)
+class _Held:
+    """A completed frame waiting for its object picks and first detections to settle."""
+
+    frame: Frame  # its actors are set once the picks are settled
+    picks: list[Pick]
+    first: FirstDetections | None = None
 
 
 class FrameAssembler:
@@ -83,14 +100,14 @@ class FrameAssembler:
         self._decoders = decoders
         self._opt = options
         self._buffers = [ObjectBuffer(t) for t in roles.objects]
-        self._by_topic = {b.topic: b for b in self._buffers}
+        self._by_topic = {b.topic: k for k, b in enumerate(self._buffers)}
         self._plan: tuple[int, Plan] | None = None
         self._plan_used = False
         self._plans_unused = 0
         self._prev: _Pending | None = None
         self._cur: _Pending | None = None
         self._index = 0
-        self._held: deque[tuple[Frame, FirstDetections]] = deque()
+        self._held: deque[_Held] = deque()
         self._last_yaw = 0.0
         self.skipped_invalid = 0
         self.skipped_out_of_order = 0
@@ -148,25 +165,43 @@ class FrameAssembler:
         ego = EgoState(s.x_m, s.y_m, s.z_m, s.yaw_rad, speed, accel, yaw_rate, *(s.size_m or ()))
         self._prev, self._cur = cur, nxt
         if not self._in_window(cur.t_ns):
+            for pick in cur.picks:
+                pick.keep()
             return
-        self._held.append((Frame(self._index, cur.t_ns, ego, cur.actors, cur.plan), cur.first))
+        frame = Frame(self._index, cur.t_ns, ego, ActorTable.empty(), cur.plan)
+        self._held.append(_Held(frame, cur.picks))
         self._index += 1
 
     def _release(self, *, final: bool) -> Iterator[Frame]:
-        """Yield the held frames whose first detections are settled, in order.
+        """Yield the held frames whose objects are settled, in order.
 
-        A frame waits until every object topic with a first detection in it has a newer
-        message (the forward difference is then known, or the object is gone), at most
-        ``MAX_HELD`` frames; ``final`` releases all.
+        A frame waits until each object topic has given it its closest message (see
+        ``matching``), then until every object topic with a first detection in it has a
+        newer message (the forward difference is then known, or the object is gone); at
+        most ``MAX_HELD`` frames wait, ``final`` releases all.
         """
         held = self._held
-        while held and (final or len(held) > MAX_HELD or held[0][1].settled()):
-            frame, first = held.popleft()
-            actors, left = first.fill(frame.actors)
+        while held:
+            entry = held[0]
+            force = final or len(held) > MAX_HELD
+            t_ns = entry.frame.t_ns
+            if entry.first is None:
+                if not force and not all(p.settled(t_ns) for p in entry.picks):
+                    return
+                actors, entry.first = match_objects(entry.picks, t_ns, self._opt.exclude_id)
+                entry.frame = replace(entry.frame, actors=actors)
+            if not force and not entry.first.settled():
+                return
+            held.popleft()
+            actors, left = entry.first.fill(entry.frame.actors)
             self.first_detections_at_rest += left
             for buf in self._buffers:
-                buf.prune(frame.t_ns - self._opt.tolerance_ns)
-            yield replace(frame, actors=actors) if actors is not frame.actors else frame
+                buf.prune(t_ns - self._opt.tolerance_ns)
+            yield (
+                replace(entry.frame, actors=actors)
+                if actors is not entry.frame.actors
+                else entry.frame
+            )
 
     def _on_ego(self, topic: str, log_ns: int, sample: EgoSample) -> None:
         t_ns = self._time(log_ns, sample.stamp_ns)
@@ -181,12 +216,10 @@ class FrameAssembler:
             raise InvalidValueError(
                 self._path, "non-finite ego pose (x, y, yaw)", topic=topic, t_ns=t_ns, value=pose
             )
-        actors, first = match_objects(
-            self._buffers, t_ns, self._opt.tolerance_ns, self._opt.exclude_id
-        )
+        picks = pick_messages(self._buffers, t_ns, self._opt.tolerance_ns)
         plan = self._plan[1] if self._plan is not None and self._plan[0] <= t_ns else None
         self._plan_used = self._plan_used or plan is not None
-        self._emit(_Pending(t_ns, sample, actors, plan, first))
+        self._emit(_Pending(t_ns, sample, picks, plan))
 
     def _decode(self, topic: str, log_ns: int, msg: Any) -> Any:
         try:
@@ -196,18 +229,28 @@ class FrameAssembler:
                 self._path, f"cannot decode message: {err!r}", topic=topic, t_ns=log_ns
             ) from err
 
+    def _on_objects(self, topic: str, t_ns: int, objects: ObjectColumns) -> None:
+        """Buffer an object message and offer it to the frames still open for it."""
+        k = self._by_topic[topic]
+        tolerance_ns = self._opt.tolerance_ns
+        self._buffers[k].update(t_ns, objects)
+        if self._cur is not None:  # the frame whose next ego message has not come yet
+            self._cur.picks[k].offer(self._cur.t_ns, tolerance_ns)
+        for entry in self._held:
+            if entry.first is None:
+                entry.picks[k].offer(entry.frame.t_ns, tolerance_ns)
+
     def _on_message(self, topic: str, log_ns: int, decoded: Any) -> None:
         """File one decoded message (completing the frame before it, for an ego message)."""
         if isinstance(decoded, EgoWithObjects):  # OSI: the objects first, then the ego
-            buffer = self._by_topic.get(topic)
-            if buffer is not None:
-                buffer.update(self._time(log_ns, decoded.ego.stamp_ns), decoded.objects)
+            if topic in self._by_topic:
+                self._on_objects(topic, self._time(log_ns, decoded.ego.stamp_ns), decoded.objects)
             decoded = decoded.ego
         if isinstance(decoded, EgoSample):
             self._on_ego(topic, log_ns, decoded)
         elif isinstance(decoded, ObjectColumns):
             self.ignored_markers += decoded.ignored
-            self._by_topic[topic].update(self._time(log_ns, decoded.stamp_ns), decoded)
+            self._on_objects(topic, self._time(log_ns, decoded.stamp_ns), decoded)
         elif isinstance(decoded, PlanSample):
             self._plans_unused += int(self._plan is not None and not self._plan_used)
             self._plan = (self._time(log_ns, decoded.stamp_ns), decoded.plan)

@@ -1,9 +1,12 @@
 """Object buffers: last message per topic, velocity estimation, matching and extrapolation.
 
 Matching rule (``docs/loaders.md``): a frame at time ``t`` takes, per object topic, the
-latest message with stamp ``t_m <= t`` if ``t - t_m <= tolerance``; newer messages are
-never used. Rows are extrapolated at constant velocity to ``t`` and ``match_dt_ns = t -
-t_m`` is recorded per row::
+latest message with stamp ``t_m <= t`` if ``t - t_m <= tolerance``, whatever its place in
+the file; newer messages are never used. The pick is made when the ego message arrives
+(:func:`pick_messages`) and replaced by any message arriving later that is stamped closer
+to ``t`` (:meth:`Pick.offer`) until it is settled (:meth:`Pick.settled`): stamped ``t``
+itself, or the topic has a message stamped after ``t``. Rows are extrapolated at constant
+velocity to ``t`` and ``match_dt_ns = t - t_m`` is recorded per row::
 
     object msgs   o---------o---------o
     ego frames        |         |         |
@@ -31,60 +34,91 @@ if TYPE_CHECKING:
 
     from loaders.message_logs.samples import ObjectColumns
 
-__all__ = ["FirstDetections", "ObjectBuffer", "match_objects"]
+__all__ = [
+    "FirstDetections",
+    "ObjectBuffer",
+    "ObjectMessage",
+    "Pick",
+    "match_objects",
+    "pick_messages",
+]
+
+
+@dataclass(slots=True, eq=False)
+class ObjectMessage:
+    """One object message of a topic, velocities filled in.
+
+    Attributes:
+        t_ns: Its time on the frame clock (log time or header stamp) [ns].
+        columns: Its objects.
+        first_seen: Its ids without a velocity yet (first detections of a type without
+            velocity).
+        taken: Whether a frame took it.
+    """
+
+    t_ns: int
+    columns: ObjectColumns
+    first_seen: frozenset[str] = frozenset()
+    taken: bool = False
 
 
 class ObjectBuffer:
-    """The last object message of one topic, velocities filled in."""
+    """The last object message of one topic, and what became of the topic's messages."""
 
     def __init__(self, topic: str) -> None:
         """Start empty for ``topic``."""
         self.topic = topic
-        self.t_ns: int | None = None
-        self.columns: ObjectColumns | None = None
-        #: Whether a frame took the buffered message.
-        self.used = False
-        #: Messages replaced before any frame took them.
-        self.unused = 0
-        #: Ids of the buffered message without a velocity yet (first detections of a
-        #: type without velocity).
-        self.first_seen: frozenset[str] = frozenset()
+        self.message: ObjectMessage | None = None
+        #: Messages received and messages a frame took.
+        self.received = 0
+        self.taken = 0
         #: Forward-difference velocities of first detections, by the stamp of the message
         #: they were first seen in, then id (pruned by :meth:`prune`).
         self.forward: dict[int, dict[str, tuple[float, float]]] = {}
 
+    @property
+    def t_ns(self) -> int | None:
+        """Time of the last message [ns], None before the first."""
+        return None if self.message is None else self.message.t_ns
+
     def update(self, t_ns: int, cols: ObjectColumns) -> None:
         """Replace the buffer with a newer message (estimating velocities if needed)."""
+        first_seen: frozenset[str] = frozenset()
         if not cols.has_velocity:
             vx = np.zeros(len(cols.ids))
             vy = np.zeros(len(cols.ids))
-            old = self.columns
+            old = self.message
             first = set(cols.ids)
-            if old is not None and self.t_ns is not None and t_ns > self.t_ns:
-                dt = ns_to_s(t_ns - self.t_ns)
-                where = {oid: k for k, oid in enumerate(old.ids)}
+            if old is not None and t_ns > old.t_ns:
+                dt = ns_to_s(t_ns - old.t_ns)
+                where = {oid: k for k, oid in enumerate(old.columns.ids)}
                 ahead: dict[str, tuple[float, float]] = {}
                 for k, oid in enumerate(cols.ids):
                     j = where.get(oid)
                     if j is not None:
-                        vx[k] = (cols.x_m[k] - old.x_m[j]) / dt
-                        vy[k] = (cols.y_m[k] - old.y_m[j]) / dt
+                        vx[k] = (cols.x_m[k] - old.columns.x_m[j]) / dt
+                        vy[k] = (cols.y_m[k] - old.columns.y_m[j]) / dt
                         first.discard(oid)
-                        if oid in self.first_seen:
+                        if oid in old.first_seen:
                             ahead[oid] = (float(vx[k]), float(vy[k]))
                 if ahead:
-                    self.forward[self.t_ns] = ahead
-            self.first_seen = frozenset(first)
+                    self.forward[old.t_ns] = ahead
+            first_seen = frozenset(first)
             object.__setattr__(cols, "vx_mps", vx)
             object.__setattr__(cols, "vy_mps", vy)
-        if self.columns is not None and not self.used:
-            self.unused += 1
-        self.t_ns, self.columns, self.used = t_ns, cols, False
+        self.message = ObjectMessage(t_ns, cols, first_seen)
+        self.received += 1
+
+    def take(self, message: ObjectMessage) -> None:
+        """Count ``message`` as taken by a frame (once, however many frames take it)."""
+        if not message.taken:
+            message.taken = True
+            self.taken += 1
 
     @property
     def unused_total(self) -> int:
         """Messages no frame took so far, counting the one buffered now."""
-        return self.unused + int(self.columns is not None and not self.used)
+        return self.received - self.taken
 
     def prune(self, before_ns: int) -> None:
         """Forget forward velocities of messages stamped before ``before_ns``."""
@@ -131,41 +165,86 @@ class FirstDetections:
         return ActorTable.from_columns(**columns), left
 
 
+@dataclass(slots=True)
+class Pick:
+    """The object message one frame takes from one topic, while later ones may replace it.
+
+    Attributes:
+        buffer: The topic's buffer (its forward velocities fill first detections).
+        message: The message taken, None while the topic has none in tolerance.
+    """
+
+    buffer: ObjectBuffer
+    message: ObjectMessage | None = None
+
+    def offer(self, frame_ns: int, tolerance_ns: int) -> None:
+        """Take the topic's last message if it is a closer match for the frame at ``frame_ns``.
+
+        Closer: stamped ``frame_ns - tolerance <= t_m <= frame_ns`` and after the message
+        taken so far (logs that write a stamp's objects after its ego message, or, on the
+        header clock, perception stamped at the sensor time and logged after later egos).
+        """
+        m = self.buffer.message
+        if m is None or not 0 <= frame_ns - m.t_ns <= tolerance_ns:
+            return
+        if self.message is None or m.t_ns > self.message.t_ns:
+            self.message = m
+
+    def settled(self, frame_ns: int) -> bool:
+        """Whether no later message can be closer: stamped ``frame_ns``, or the topic is past it.
+
+        A topic's stamps increase: once it has a message stamped after the frame, no message
+        stamped at or before it follows.
+        """
+        last = self.buffer.t_ns
+        taken = self.message
+        return (taken is not None and taken.t_ns == frame_ns) or (
+            last is not None and last > frame_ns
+        )
+
+    def keep(self) -> None:
+        """Count the message taken as used (the frame is final)."""
+        if self.message is not None:  # an empty list is used too: no objects of the topic
+            self.buffer.take(self.message)
+
+
+def pick_messages(buffers: list[ObjectBuffer], t_ns: int, tolerance_ns: int) -> list[Pick]:
+    """Per buffer, the message a frame at ``t_ns`` takes when its ego message arrives."""
+    picks = []
+    for buf in buffers:
+        pick = Pick(buf)
+        pick.offer(t_ns, tolerance_ns)
+        picks.append(pick)
+    return picks
+
+
 def match_objects(
-    buffers: list[ObjectBuffer],
+    picks: list[Pick],
     t_ns: int,
-    tolerance_ns: int,
     exclude_id: str | None = None,
 ) -> tuple[ActorTable, FirstDetections]:
-    """Build the actor table of a frame at ``t_ns`` from the buffers (see module docstring).
+    """Build the actor table of a frame at ``t_ns`` from its picks (see module docstring).
 
     Ids are prefixed with ``<topic>:`` when more than one object topic is in use. Also
     returns the rows that are first detections without a velocity yet.
     """
-    parts = []
-    for buf in buffers:
-        cols = buf.columns
-        if cols is None or buf.t_ns is None:
-            continue
-        dt_ns = t_ns - buf.t_ns
-        if dt_ns < 0 or dt_ns > tolerance_ns:
-            continue
-        buf.used = True  # an empty list is used too: the frame has no objects of the topic
-        if not cols.ids:
-            continue
-        parts.append((buf, dt_ns, cols))
+    for pick in picks:
+        pick.keep()
+    parts = [
+        (p.buffer, p.message) for p in picks if p.message is not None and p.message.columns.ids
+    ]
     first = FirstDetections()
     if not parts:
         return ActorTable.empty(), first
-    prefix = len(buffers) > 1
+    prefix = len(picks) > 1
     ids: list[str] = []
     columns: dict[str, list[NDArray[Any]]] = {}
-    for buf, dt_ns, cols in parts:
-        topic = buf.topic
+    for buf, message in parts:
+        topic, cols, dt_ns = buf.topic, message.columns, t_ns - message.t_ns
         first.rows.extend(
-            (len(ids) + k, buf, t_ns - dt_ns, oid)
+            (len(ids) + k, buf, message.t_ns, oid)
             for k, oid in enumerate(cols.ids)
-            if oid in buf.first_seen
+            if oid in message.first_seen
         )
         ids.extend(f"{topic}:{i}" for i in cols.ids) if prefix else ids.extend(cols.ids)
         dt = ns_to_s(dt_ns)

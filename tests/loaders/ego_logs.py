@@ -1,9 +1,10 @@
 """The ``highway_cut_in`` sample's ego rewritten as other ego message types (rosbag2, MCAP).
 
-Objects and plan are copied message by message from the sample, 1 us later than their log
-time so that no object message shares its time with an ego message (the sample stores those
-ties ego first; readers need not keep the order of equal times); the ego poses of the
-sample's frames (from its ``nav_msgs/Odometry``) are written as:
+Objects and plan are copied message by message from the sample at their own log time. Each
+object message shares its time with an ego message: the sample stores such ties ego first,
+the written logs objects first (entries are sorted stably, copies before egos), and a frame
+takes its stamp's objects whatever their order (docs/loaders.md), so both give the same
+frames. The ego poses of the sample's frames (from its ``nav_msgs/Odometry``) are written as:
 
 | variant | topics |
 |---|---|
@@ -54,8 +55,6 @@ SAMPLE = "sample_logs/highway_cut_in.mcap"
 ORIGIN_DEG = (49.0, 8.4)
 #: Fixed map -> odom transform of the TF variant: translation (m) and yaw (rad).
 MAP_TO_ODOM = (12.0, -7.5, 0.4)
-#: Copied messages are written this much after their log time (no ties with the ego).
-TIE_SHIFT_NS = 1_000
 #: Static base_footprint -> base_link transform of the ``tf_footprint`` variant (x m, y m, yaw).
 FOOTPRINT_TO_LINK = (0.8, 0.0, 0.0)
 VARIANTS = ("tf", "tf_footprint", "pose_cov", "gnss", "gnss_no_imu")
@@ -68,13 +67,13 @@ def reference_frames(root: Path) -> list[Frame]:
         return list(drive.frames())
 
 
-def _copied(root: Path, source: str = SAMPLE) -> list[Entry]:
+def _copied(root: Path, source: str = SAMPLE, delay_ns: int = 0) -> list[Entry]:
     out = []
     with AnyReader([root / source]) as reader:
         conns = [c for c in reader.connections if c.topic in _COPIED]
         for conn, t_ns, raw in reader.messages(connections=conns):
             msg = reader.deserialize(raw, conn.msgtype)
-            out.append(Entry(conn.topic, conn.msgtype, t_ns + TIE_SHIFT_NS, msg))
+            out.append(Entry(conn.topic, conn.msgtype, t_ns + delay_ns, msg))
     return out
 
 
@@ -171,20 +170,24 @@ def _ego_entries(ts: Any, frames: list[Frame], variant: str) -> list[Entry]:
     return out
 
 
-def write_variant(root: Path, out_dir: Path, variant: str, storage: str = "mcap") -> Path:
+def write_variant(
+    root: Path, out_dir: Path, variant: str, storage: str = "mcap", *, latency_ns: int = 0
+) -> Path:
     """Write the sample with its ego as ``variant``; return its path.
 
     ``storage`` ``mcap`` or ``sqlite3`` gives a rosbag2 directory, ``bag`` a ROS 1 bag (the
     objects and path copied from the sample's ROS 1 twin ``highway_cut_in.bag``).
+    ``latency_ns`` logs the copied messages that much after their header stamp (a
+    perception pipeline's latency).
     """
     if storage == "bag":
         ts = typestore(1)
-        entries = _copied(root, SAMPLE.replace(".mcap", ".bag"))
+        entries = _copied(root, SAMPLE.replace(".mcap", ".bag"), latency_ns)
         entries += _ego_entries(ts, reference_frames(root), variant)
         entries.sort(key=lambda e: e.t_ns)
         return write_ros1_bag(out_dir / f"highway_{variant}.bag", entries)
     ts = typestore(2)
-    entries = _copied(root) + _ego_entries(ts, reference_frames(root), variant)
+    entries = _copied(root, delay_ns=latency_ns) + _ego_entries(ts, reference_frames(root), variant)
     entries.sort(key=lambda e: e.t_ns)
     return write_rosbag2(out_dir / f"highway_{variant}", entries, storage)
 

@@ -131,3 +131,25 @@ def test_gnss_heading_from_track_without_imu(tmp_path: Path, reference: np.ndarr
     yaw_err = np.abs((got[:, 3] - reference[:, 3] + math.pi) % (2 * math.pi) - math.pi)
     assert float(yaw_err.max()) < 0.02
     np.testing.assert_allclose(got[:, 4], reference[:, 4], atol=0.05)
+
+
+def test_objects_logged_after_later_egos_take_their_stamps_frames_on_the_header_clock(
+    tmp_path: Path,
+) -> None:
+    # the boxes logged 120 ms (2.4 ego periods) after their header stamp: on the header
+    # clock every frame still takes the box of its stamp, or the one before, extrapolated
+    path = write_variant(ROOT, tmp_path, "pose_cov", latency_ns=120_000_000)
+    profile = tmp_path / "header.toml"
+    profile.write_text('[frames]\nclock = "header"\n')
+    frames, info = _read(path, profile=profile)
+    reference = reference_frames(ROOT)
+    assert [f.t_ns for f in frames] == [f.t_ns for f in reference]
+    for got, want in zip(frames, reference, strict=True):
+        assert list(got.actors.ids) == list(want.actors.ids)
+        assert list(got.actors.match_dt_ns) == list(want.actors.match_dt_ns)
+        np.testing.assert_allclose(got.actors.x_m, want.actors.x_m, atol=1e-9)
+        np.testing.assert_allclose(got.actors.y_m, want.actors.y_m, atol=1e-9)
+    assert "unused_object_messages" not in info.notes
+    # on the log clock the boxes fall between ego messages: no frame has a box of its time
+    late, _ = _read(path)
+    assert min(int(f.actors.match_dt_ns.min()) for f in late[3:] if len(f.actors)) > 0

@@ -11,6 +11,7 @@ compliance numbers).
 
 from __future__ import annotations
 
+import json
 from contextlib import closing
 from typing import TYPE_CHECKING, Any
 
@@ -112,6 +113,17 @@ def original_verdicts(tmp_path_factory: pytest.TempPathFactory) -> list[dict[str
     return _verdicts(SOURCE, tmp_path_factory.mktemp("verdicts") / "original.jsonl")
 
 
+def _close(a: object, b: object) -> bool:
+    """Whether two parsed JSON values agree, numbers to 1e-5 (relative or absolute)."""
+    if isinstance(a, dict) and isinstance(b, dict):
+        return a.keys() == b.keys() and all(_close(a[k], b[k]) for k in a)
+    if isinstance(a, list) and isinstance(b, list):
+        return len(a) == len(b) and all(_close(x, y) for x, y in zip(a, b, strict=True))
+    if isinstance(a, float | int) and isinstance(b, float | int) and not isinstance(a, bool):
+        return a == pytest.approx(b, rel=1e-5, abs=1e-5)
+    return a == b
+
+
 @pytest.mark.skipif(not SOURCE.is_file(), reason="sample log not generated")
 @pytest.mark.parametrize("msgtype", sorted(TARGETS))
 def test_rewritten_objects_give_the_same_rss_verdicts(
@@ -124,5 +136,16 @@ def test_rewritten_objects_give_the_same_rss_verdicts(
     got = _verdicts(path, tmp_path / "rewritten.jsonl", estimated)
     want = [{k: v for k, v in r.items() if k not in estimated} for r in original_verdicts]
     assert len(got) == len(want) == VERDICT_FRAMES
-    assert got == want
+    # radar tracks have no orientation: their yaw is the velocity direction, 1e-8 rad off the
+    # sample's quantised heading, which moves a severity number by one unit of its sixth
+    # decimal (highway_cut_in frame 122: distance ratio 0.751589 vs 0.75159)
+    facts = [k for k in VELOCITY_FACTS if k not in estimated]
+    for g, w in zip(got, want, strict=True):
+        assert {k: v for k, v in g.items() if k not in facts} == {
+            k: v for k, v in w.items() if k not in facts
+        }
+        for key in facts:
+            assert _close(
+                [json.loads(v) for v in g.get(key, [])], [json.loads(v) for v in w.get(key, [])]
+            ), key
     assert any(not r["is_safe"] for r in want)  # the comparison covers unsafe frames

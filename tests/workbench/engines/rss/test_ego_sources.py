@@ -1,7 +1,8 @@
 """RSS verdicts of the ``highway_cut_in`` drive with its ego written as a /tf chain, a pose
 with covariance and GNSS (+ IMU, about the map origin) equal those of its Odometry ego.
 
-The written logs carry the sample's own object and plan messages (1 us late, see
+The written logs carry the sample's own object and plan messages at their own times, each
+stamp's objects before its ego message where the sample has them after (see
 ``tests.loaders.ego_logs``). The new egos have no twist: speed and acceleration come from
 pose differences (within 0.05 m/s of the Odometry speed), which changes no verdict here; the
 sample's own pose-only ``/tf`` (``--ego-topic /tf``) gives the same verdicts too.
