@@ -11,6 +11,8 @@ from tests.goldens import update
 from tests.goldens.compare import ABS_TOL, compare, first_difference, spans
 from tests.goldens.golden_file import FrameRecord, GoldenFileError, golden_text, read_golden
 from tests.goldens.samples import SAMPLE_DIR, evaluate_log
+from tests.workbench.engines.test_plugin import TOY
+from workbench.engines.registry import names, register, unregister
 
 # --- tolerance ----------------------------------------------------------------------------
 
@@ -184,3 +186,21 @@ def test_update_writes_reports_and_restores_a_changed_frame(tmp_path):
     assert update.update(engines, [log], root=tmp_path, out=report) == {"updated": 1}
     assert "rewritten, the file was unreadable" in report.getvalue()
     assert path.read_text() == clean
+
+
+def test_a_registered_engine_gets_goldens_without_new_test_code(tmp_path):
+    log = SAMPLE_DIR / "racing_overtake.saa"
+    register(TOY)
+    try:
+        assert "toy" in names()
+        records = evaluate_log(log)  # every registered engine, as the golden tests run
+        report = io.StringIO()
+        counts = update.update(names(), [log], root=tmp_path, out=report)
+    finally:
+        unregister("toy")
+    assert counts == {"new": len(names()) + 1}
+    assert "toy/racing_overtake.saa.jsonl: new (81 frames)" in report.getvalue()
+    golden = read_golden(tmp_path / "toy" / "racing_overtake.saa.jsonl")
+    assert golden.engine == "toy"
+    assert list(golden.frames) == records["toy"]
+    assert {tuple(f.record) for f in golden.frames} == {("is_safe", "near")}
