@@ -4,7 +4,8 @@ Equality (:func:`first_difference`):
 
 * ``bool``, ``int``, ``str`` and ``None`` exactly, and of the same type (``True`` is not
   ``1``, ``2`` is not ``2.0``: either would change the ``--per-frame`` text);
-* lists element by element (same length), objects key by key (same keys);
+* lists element by element (same length), objects key by key (same keys, same order: the
+  records pin their key order);
 * floats within ``|a - b| <= ABS_TOL + REL_TOL * max(|a|, |b|)``. The records round their
   floats to :data:`RECORD_QUANTUM` (``json_number``, ``round(x, 6)``), so a last-bit
   difference of an upstream value (another CPU, another SIMD path) vanishes there, except
@@ -62,6 +63,8 @@ def _dict_difference(expected: dict[str, Any], got: dict[str, Any], where: str) 
         found = first_difference(expected[key], got[key], f"{where}.{key}")
         if found:
             return found
+    if list(expected) != list(got):
+        return _show(f"{where} key order", list(expected), list(got))
     return None
 
 

@@ -41,6 +41,7 @@ def test_floats_equal_within_the_tolerance(expected, got):
         ("Brake", "DriveAway", "."),
         ({"a": 1}, {"a": 1, "b": 2}, ".b"),
         ({"a": [1, 2]}, {"a": [1]}, ".a"),
+        ({"a": 1, "b": 2}, {"b": 2, "a": 1}, " key order"),
         ({"s": {"1": {"ttc_s": 1.0}}}, {"s": {"1": {"ttc_s": 1.1}}}, ".s.1.ttc_s"),
     ],
 )
