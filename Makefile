@@ -109,7 +109,8 @@ samples: $(STAMP) $(COMPILED)
 
 # The one update switch of the golden per-frame records (tests/goldens, docs/testing.md):
 # rewrites the files that changed and reports per file which frames and keys moved.
-# Refused under CI=true. GOLDEN_ARGS="--engine rss --log parking_lot.mcap" narrows it.
+# Refused under CI=true. GOLDEN_ARGS="--variant adrss-5.0 --engine rss --log parking_lot.mcap"
+# narrows it.
 goldens: $(STAMP) $(COMPILED)
 	$(BIN)/python -m tests.goldens.update $(GOLDEN_ARGS)
 

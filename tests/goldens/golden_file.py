@@ -1,13 +1,13 @@
 """The golden file format: one engine's per-frame records of one log, run-length encoded.
 
-``expected/<engine>/<log>.jsonl``, one JSON object per line (compact separators)::
+``expected/<variant>/<engine>/<log>.jsonl``, one JSON object per line (compact separators)::
 
-    {"engine": "rss", "log": "highway_cut_in.mcap", "frames": 401,
+    {"variant": "default", "engine": "rss", "log": "highway_cut_in.mcap", "frames": 401,
      "time": [[first_frame, first_t_ns, count, step_ns], ...]}
     {"frames": [first, last], "rss": {<the record of frames first..last>}}
     ...
 
-The first line names the engine and the log and holds the frame index and time of every
+The first line names the variant, the engine and the log and holds the frame index and time of every
 frame as arithmetic runs (frame ``+1``, time ``+step_ns``; a sample log is one run). Each
 further line is one run of consecutive frames whose records are identical, keyed by the
 engine's name as in ``workbench evaluate --per-frame``. A changed frame therefore changes
@@ -44,6 +44,7 @@ class FrameRecord:
 class Golden:
     """The content of one golden file."""
 
+    variant: str
     engine: str
     log: str
     frames: tuple[FrameRecord, ...]
@@ -65,9 +66,15 @@ def _time_runs(frames: Sequence[FrameRecord]) -> list[list[int]]:
     return runs
 
 
-def golden_text(engine: str, log: str, frames: Sequence[FrameRecord]) -> str:
+def golden_text(variant: str, engine: str, log: str, frames: Sequence[FrameRecord]) -> str:
     """The file text of ``frames`` (deterministic: equal records give equal text)."""
-    head = {"engine": engine, "log": log, "frames": len(frames), "time": _time_runs(frames)}
+    head = {
+        "variant": variant,
+        "engine": engine,
+        "log": log,
+        "frames": len(frames),
+        "time": _time_runs(frames),
+    }
     lines = [_dumps(head)]
     start = 0
     for k in range(1, len(frames) + 1):
@@ -90,7 +97,7 @@ def read_golden(path: Path) -> Golden:
     """
     try:
         head, *runs = (json.loads(line) for line in path.read_text().splitlines())
-        engine, log = str(head["engine"]), str(head["log"])
+        variant, engine, log = str(head["variant"]), str(head["engine"]), str(head["log"])
         times = _expand(head["time"])
         out: list[FrameRecord] = []
         for run in runs:
@@ -107,4 +114,4 @@ def read_golden(path: Path) -> Golden:
         raise GoldenFileError(f"{path}: not a golden file ({err})") from err
     if len(out) != head["frames"] or len(out) != len(times):
         raise GoldenFileError(f"{path}: {len(out)} frames in the runs, {len(times)} in the header")
-    return Golden(engine, log, tuple(out))
+    return Golden(variant, engine, log, tuple(out))

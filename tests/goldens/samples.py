@@ -1,9 +1,10 @@
-"""What the goldens cover: every registered engine on every sample log, as ``evaluate`` runs it.
+"""What the goldens cover: every variant x registered engine x sample log, as ``evaluate`` runs it.
 
-The records are those of ``workbench evaluate LOG --engines <every engine> --per-frame FILE``
-with the command's defaults (run in this process), split by engine: the goldens pin exactly
-what a user gets. Engines are independent of each other within a run, so one run per log
-serves all of them.
+The records are those of ``workbench evaluate LOG --engines <every engine> --per-frame FILE
+<the variant's arguments>`` (run in this process), split by engine: the goldens pin exactly
+what a user gets. A variant is one entry of :data:`VARIANTS`: ``default`` (the command's
+defaults) and ``adrss-5.0`` (the exact reference mode). Engines are independent of each
+other within a run, so one run per variant and log serves all of them.
 """
 
 from __future__ import annotations
@@ -21,6 +22,7 @@ from workbench.engines.registry import names
 __all__ = [
     "GOLDEN_DIR",
     "SAMPLE_DIR",
+    "VARIANTS",
     "EvaluateError",
     "evaluate_log",
     "golden_path",
@@ -28,8 +30,18 @@ __all__ = [
 ]
 
 SAMPLE_DIR = Path(__file__).resolve().parents[2] / "sample_logs"
-#: Where the golden files live: ``<engine>/<log>.jsonl``.
+#: Where the golden files live: ``<variant>/<engine>/<log>.jsonl``.
 GOLDEN_DIR = Path(__file__).resolve().parent / "expected"
+#: The pinned variants: name -> the ``evaluate`` arguments added to the common ones. One
+#: entry adds a variant (its directory, its tests, its part of ``make goldens``). Every
+#: engine is pinned in every variant: which settings an engine reads is its own business, so
+#: the harness cannot tell which arguments leave its records alone.
+VARIANTS: dict[str, tuple[str, ...]] = {
+    # the command's defaults: the RSS profile chosen per drive (docs/rss.md)
+    "default": (),
+    # the exact reference mode: structured RSS identical to ad-rss 5.0
+    "adrss-5.0": ("--rss-profile", "adrss-5.0"),
+}
 #: Container suffixes of the drive logs in ``sample_logs/``.
 _LOG_SUFFIXES = (".mcap", ".bag", ".saa", ".xml", ".osi")
 #: A rosbag2 directory of a sample holds its ``.mcap``'s messages in another container
@@ -50,9 +62,9 @@ def sample_logs(root: Path = SAMPLE_DIR) -> tuple[Path, ...]:
     )
 
 
-def golden_path(engine: str, log: str, root: Path = GOLDEN_DIR) -> Path:
-    """The golden file of ``engine`` on the log named ``log``."""
-    return root / engine / f"{log}.jsonl"
+def golden_path(variant: str, engine: str, log: str, root: Path = GOLDEN_DIR) -> Path:
+    """The golden file of ``engine`` on the log named ``log`` in ``variant``."""
+    return root / variant / engine / f"{log}.jsonl"
 
 
 def _run(args: list[str]) -> tuple[int, str]:
@@ -67,8 +79,15 @@ def _run(args: list[str]) -> tuple[int, str]:
     return (0 if code is None else int(code)), err.getvalue()
 
 
-def evaluate_log(log: Path, engines: tuple[str, ...] | None = None) -> dict[str, list[FrameRecord]]:
+def evaluate_log(
+    log: Path, engines: tuple[str, ...] | None = None, variant: str = "default"
+) -> dict[str, list[FrameRecord]]:
     """Each engine's per-frame records of ``log`` (default: every registered engine).
+
+    Args:
+        log: The sample log.
+        engines: Engine names (default: every registered engine).
+        variant: A key of :data:`VARIANTS`: the ``evaluate`` arguments added.
 
     Raises:
         EvaluateError: The command failed (its message in the error).
@@ -77,10 +96,11 @@ def evaluate_log(log: Path, engines: tuple[str, ...] | None = None) -> dict[str,
     with tempfile.TemporaryDirectory(prefix="goldens-") as tmp:
         out = Path(tmp) / "frames.jsonl"
         args = ["evaluate", str(log), "--engines", ",".join(engines), "--per-frame", str(out)]
-        code, err = _run(args)
+        code, err = _run([*args, *VARIANTS[variant]])
         if code != 0 or not out.is_file():
             last = err.strip().splitlines()[-1:] or ["no message"]
-            raise EvaluateError(f"{log.name}: workbench evaluate exited {code}: {last[0]}")
+            where = f"{log.name} ({variant})"
+            raise EvaluateError(f"{where}: workbench evaluate exited {code}: {last[0]}")
         lines = [json.loads(line) for line in out.read_text().splitlines()]
     return {
         name: [FrameRecord(line["frame"], line["t_ns"], line[name]) for line in lines]

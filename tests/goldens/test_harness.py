@@ -10,7 +10,7 @@ import pytest
 from tests.goldens import update
 from tests.goldens.compare import ABS_TOL, compare, first_difference, spans
 from tests.goldens.golden_file import FrameRecord, GoldenFileError, golden_text, read_golden
-from tests.goldens.samples import SAMPLE_DIR, evaluate_log
+from tests.goldens.samples import SAMPLE_DIR, VARIANTS, evaluate_log
 from tests.workbench.engines.test_plugin import TOY
 from workbench.engines.registry import names, register, unregister
 
@@ -71,9 +71,10 @@ UNSAFE = {"is_safe": False, "dangerous_objects": ["7"], "x": 0.25}
 def test_file_round_trips_and_runs_share_a_line(tmp_path):
     times = [0, 50, 100, 175, 250, 400]  # two time runs
     frames = _frames([SAFE, SAFE, UNSAFE, UNSAFE, SAFE, SAFE], times)
-    text = golden_text("toy", "a.mcap", frames)
+    text = golden_text("default", "toy", "a.mcap", frames)
     lines = text.splitlines()
     assert json.loads(lines[0]) == {
+        "variant": "default",
         "engine": "toy",
         "log": "a.mcap",
         "frames": 6,
@@ -83,13 +84,14 @@ def test_file_round_trips_and_runs_share_a_line(tmp_path):
     path = tmp_path / "g.jsonl"
     path.write_text(text)
     golden = read_golden(path)
-    assert (golden.engine, golden.log) == ("toy", "a.mcap")
+    assert (golden.variant, golden.engine, golden.log) == ("default", "toy", "a.mcap")
     assert list(golden.frames) == frames
 
 
 def test_one_changed_frame_changes_only_the_lines_of_its_run():
-    before = golden_text("toy", "a.mcap", _frames([SAFE] * 10)).splitlines()
-    after = golden_text("toy", "a.mcap", _frames([SAFE] * 4 + [UNSAFE] + [SAFE] * 5)).splitlines()
+    before = golden_text("v", "toy", "a.mcap", _frames([SAFE] * 10)).splitlines()
+    changed = _frames([SAFE] * 4 + [UNSAFE] + [SAFE] * 5)
+    after = golden_text("v", "toy", "a.mcap", changed).splitlines()
     assert before[0] == after[0]
     assert len(before) == 2
     assert [json.loads(line)["frames"] for line in after[1:]] == [[0, 3], [4, 4], [5, 9]]
@@ -107,7 +109,8 @@ def test_one_changed_frame_changes_only_the_lines_of_its_run():
 )
 def test_malformed_files_are_named(tmp_path, body):
     path = tmp_path / "g.jsonl"
-    path.write_text('{"engine":"toy","log":"a.mcap","frames":3,"time":[[0,0,3,50]]}\n' + body)
+    head = '{"variant":"v","engine":"toy","log":"a.mcap","frames":3,"time":[[0,0,3,50]]}\n'
+    path.write_text(head + body)
     with pytest.raises(GoldenFileError, match=r"g\.jsonl"):
         read_golden(path)
 
@@ -145,10 +148,11 @@ def test_update_refuses_under_ci(monkeypatch, capsys):
     assert "never updated under CI=true" in capsys.readouterr().err
 
 
-def test_update_rejects_an_unknown_log(monkeypatch, capsys):
+@pytest.mark.parametrize("option", ["--log", "--engine", "--variant"])
+def test_update_rejects_an_unknown_name(monkeypatch, capsys, option):
     monkeypatch.delenv("CI", raising=False)
-    assert update.main(["--log", "nope.mcap"]) == 2
-    assert "nope.mcap" in capsys.readouterr().err
+    assert update.main([option, "nope"]) == 2
+    assert "nope" in capsys.readouterr().err
 
 
 def test_update_writes_reports_and_restores_a_changed_frame(tmp_path):
@@ -157,34 +161,42 @@ def test_update_writes_reports_and_restores_a_changed_frame(tmp_path):
     (tmp_path / "gone").mkdir()
     (tmp_path / "gone" / "old.mcap.jsonl").write_text("{}\n")
     report = io.StringIO()
-    counts = update.update(engines, [log], root=tmp_path, prune=True, out=report)
-    assert counts == {"new": 1, "removed": 1}
-    assert "reachsets/racing_overtake.saa.jsonl: new (81 frames)" in report.getvalue()
+    counts = update.update(("default",), engines, [log], root=tmp_path, prune=True, out=report)
+    assert counts == {"default": {"new": 1}, "gone": {"removed": 1}}
+    assert "default/reachsets/racing_overtake.saa.jsonl: new (81 frames)" in report.getvalue()
     assert "gone/old.mcap.jsonl: removed" in report.getvalue()
-    path = tmp_path / "reachsets" / "racing_overtake.saa.jsonl"
+    path = tmp_path / "default" / "reachsets" / "racing_overtake.saa.jsonl"
     clean = path.read_text()
     assert list(read_golden(path).frames) == evaluate_log(log, engines)["reachsets"]
+    assert update.summary(counts, tmp_path) == (
+        "default: 0 updated, 1 new, 0 removed, 0 unchanged\n"
+        "gone: 0 updated, 0 new, 1 removed, 0 unchanged\n"
+        f"1 golden files, {len(clean.encode()) / 1000:.0f} kB in all\n"
+    )
 
     # tamper with frame 10 as a wrong golden would: the update names it, flips it back
     frames = list(read_golden(path).frames)
     record = frames[10].record
     frames[10] = FrameRecord(10, frames[10].t_ns, {**record, "is_safe": not record["is_safe"]})
-    path.write_text(golden_text("reachsets", log.name, frames))
+    path.write_text(golden_text("default", "reachsets", log.name, frames))
     report = io.StringIO()
-    assert update.update(engines, [log], root=tmp_path, out=report) == {"updated": 1}
+    counts = update.update(("default",), engines, [log], root=tmp_path, out=report)
+    assert counts == {"default": {"updated": 1}}
     text = report.getvalue()
-    assert "reachsets/racing_overtake.saa.jsonl: updated" in text
+    assert "default/reachsets/racing_overtake.saa.jsonl: updated" in text
     assert "1 of 81 frames changed: 10" in text
     assert "keys: is_safe (1)" in text
     assert path.read_text() == clean
 
     report = io.StringIO()
-    assert update.update(engines, [log], root=tmp_path, out=report) == {"unchanged": 1}
+    counts = update.update(("default",), engines, [log], root=tmp_path, out=report)
+    assert counts == {"default": {"unchanged": 1}}
     assert path.read_text() == clean
 
     path.write_text("not a golden file\n")
     report = io.StringIO()
-    assert update.update(engines, [log], root=tmp_path, out=report) == {"updated": 1}
+    counts = update.update(("default",), engines, [log], root=tmp_path, out=report)
+    assert counts == {"default": {"updated": 1}}
     assert "rewritten, the file was unreadable" in report.getvalue()
     assert path.read_text() == clean
 
@@ -196,12 +208,35 @@ def test_a_registered_engine_gets_goldens_without_new_test_code(tmp_path):
         assert "toy" in names()
         records = evaluate_log(log)  # every registered engine, as the golden tests run
         report = io.StringIO()
-        counts = update.update(names(), [log], root=tmp_path, out=report)
+        counts = update.update(("default",), names(), [log], root=tmp_path, out=report)
     finally:
         unregister("toy")
-    assert counts == {"new": len(names()) + 1}
-    assert "toy/racing_overtake.saa.jsonl: new (81 frames)" in report.getvalue()
-    golden = read_golden(tmp_path / "toy" / "racing_overtake.saa.jsonl")
+    assert counts == {"default": {"new": len(names()) + 1}}
+    assert "default/toy/racing_overtake.saa.jsonl: new (81 frames)" in report.getvalue()
+    golden = read_golden(tmp_path / "default" / "toy" / "racing_overtake.saa.jsonl")
     assert golden.engine == "toy"
     assert list(golden.frames) == records["toy"]
     assert {tuple(f.record) for f in golden.frames} == {("is_safe", "near")}
+
+
+def test_a_variant_is_one_table_entry_whose_arguments_reach_evaluate(tmp_path, monkeypatch):
+    log = SAMPLE_DIR / "racing_overtake.saa"
+    # any evaluate option works; --start makes the arguments' effect visible in the frames
+    monkeypatch.setitem(VARIANTS, "from-2s", ("--start", "2"))
+    report = io.StringIO()
+    counts = update.update(tuple(VARIANTS), ("reachsets",), [log], root=tmp_path, out=report)
+    assert counts == {variant: {"new": 1} for variant in VARIANTS}
+    full = read_golden(tmp_path / "default" / "reachsets" / "racing_overtake.saa.jsonl")
+    late = read_golden(tmp_path / "from-2s" / "reachsets" / "racing_overtake.saa.jsonl")
+    assert (late.variant, late.engine, late.log) == ("from-2s", "reachsets", log.name)
+    assert list(late.frames) == evaluate_log(log, ("reachsets",), "from-2s")["reachsets"]
+    assert 0 < len(late.frames) < len(full.frames) == 81
+    assert late.frames[0].t_ns - full.frames[0].t_ns >= 2_000_000_000
+
+
+def test_a_file_without_its_variant_is_not_a_golden_file(tmp_path):
+    path = tmp_path / "g.jsonl"
+    path.write_text('{"engine":"toy","log":"a.mcap","frames":1,"time":[[0,0,1,0]]}\n')
+    path.write_text(path.read_text() + '{"frames":[0,0],"toy":{}}\n')
+    with pytest.raises(GoldenFileError, match="variant"):
+        read_golden(path)
