@@ -23,7 +23,7 @@ MAP_ORACLE_STAMP := $(MAP_ORACLE_VENV)/.installed
 # source changes; skipped with a message where no C compiler exists (pure Python then).
 COMPILED := build/compiled/manifest.json
 
-.PHONY: all setup compiled demo test lint typecheck layers pytest oracle-commonroad oracle-crime acceptance oracle-adrss-map bench samples screenshot clean
+.PHONY: all setup compiled demo test lint typecheck layers pytest oracle-commonroad oracle-crime acceptance oracle-adrss-map bench samples goldens screenshot clean
 
 all: test
 
@@ -106,6 +106,13 @@ bench: $(STAMP) $(COMPILED) $(MAP_ORACLE_STAMP)
 
 samples: $(STAMP) $(COMPILED)
 	$(BIN)/workbench samples sample_logs
+
+# The one update switch of the golden per-frame records (tests/goldens, docs/testing.md):
+# rewrites the files that changed and reports per file which frames and keys moved.
+# Refused under CI=true. GOLDEN_ARGS="--variant adrss-5.0 --engine rss --log parking_lot.mcap"
+# narrows it.
+goldens: $(STAMP) $(COMPILED)
+	$(BIN)/python -m tests.goldens.update $(GOLDEN_ARGS)
 
 # Re-render the README screenshot from the demo recording (needs mesa-vulkan-drivers).
 screenshot: demo

@@ -1,13 +1,10 @@
-"""The ``unstructured`` engine: adapter, pair selection, runner, CLI, golden files.
+"""The ``unstructured`` engine: adapter, pair selection, runner, CLI, scenario events.
 
-Regenerate the golden files with
-``UNSTRUCTURED_GOLDEN_UPDATE=1 pytest tests/workbench/engines/unstructured/test_runner.py``
-and review the diff against the scenario descriptions in docs/samples.md.
+The golden per-frame records of every engine are tests/goldens (docs/testing.md).
 """
 
 import json
 import math
-import os
 from pathlib import Path
 from typing import Any
 
@@ -263,10 +260,10 @@ def test_step_many_equals_step_by_step_on_the_sample_drives(name):
     assert any(not e.is_safe for e in expected)
 
 
-# --- CLI and golden files --------------------------------------------------------------------
+# --- CLI and scenario events -----------------------------------------------------------------
 
 
-def _golden_frames(lines: list[dict[str, Any]]) -> list[dict[str, Any]]:
+def _event_frames(lines: list[dict[str, Any]]) -> list[dict[str, Any]]:
     return [
         {
             "frame": line["frame"],
@@ -277,13 +274,6 @@ def _golden_frames(lines: list[dict[str, Any]]) -> list[dict[str, Any]]:
         }
         for line in lines
     ]
-
-
-def _write_golden(path: Path, name: str, frames: list[dict[str, Any]]) -> None:
-    """One frame per line, so a regenerated file reviews as a readable diff."""
-    rows = ",\n".join(json.dumps(f, separators=(",", ":")) for f in frames)
-    head = json.dumps({"engine": "unstructured", "log": f"{name}.mcap"})[:-1]
-    path.write_text(f'{head}, "frames": [\n{rows}\n]}}\n')
 
 
 @pytest.fixture(scope="module")
@@ -299,7 +289,7 @@ def evaluated(tmp_path_factory) -> dict[str, list[dict[str, Any]]]:
                 "unstructured",
                 "--per-frame",
                 str(per_frame),
-                # the reference dynamics the goldens were made with (auto: urban since issue 27)
+                # the reference dynamics the event times below were read with (auto: urban)
                 "--rss-profile",
                 "adrss-5.0",
             ]
@@ -316,28 +306,19 @@ def test_cli_evaluate_end_to_end(evaluated):
     assert all(set(line["unstructured"]) == PINNED for line in lines)
 
 
-@pytest.mark.parametrize("name", ["pedestrian_crossing", "parking_lot"])
-def test_golden(name, evaluated):
-    path = SAMPLES / f"{name}.unstructured.expected.json"
-    frames = _golden_frames(evaluated[name])
-    if os.environ.get("UNSTRUCTURED_GOLDEN_UPDATE"):
-        _write_golden(path, name, frames)
-    assert frames == json.loads(path.read_text())["frames"]
-
-
 def _dangerous_times(frames: list[dict[str, Any]], actor: str) -> list[float]:
     return [(f["t_ns"] - T0_NS) / 1e9 for f in frames if actor in f["dangerous_objects"]]
 
 
 def test_scenarios_brake_when_expected(evaluated):
-    crossing = _golden_frames(evaluated["pedestrian_crossing"])
+    crossing = _event_frames(evaluated["pedestrian_crossing"])
     walker = _dangerous_times(crossing, "1")
     # the pedestrian steps off at t = 3 s and leaves the ego lane at t = 7.9 s
     assert 3.0 <= min(walker) <= 5.2
     assert max(walker) <= 7.9
     braking = [f["decisions"]["1"] for f in crossing if "1" in f["dangerous_objects"]]
     assert set(braking) == {"Brake"}
-    lot = _golden_frames(evaluated["parking_lot"])
+    lot = _event_frames(evaluated["parking_lot"])
     car = "00000000000000000000000000000001"
     reversing = _dangerous_times(lot, car)
     assert 3.0 <= min(reversing) <= 9.5
