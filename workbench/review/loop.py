@@ -114,7 +114,7 @@ def replayed(
     """
     from workbench.replay.blueprint import replay_blueprint  # noqa: PLC0415 - Rerun only here
     from workbench.replay.incidents import short_labels  # noqa: PLC0415
-    from workbench.viewer.drive_pass import DrivePass  # noqa: PLC0415
+    from workbench.viewer.drive_pass import DrivePass, FeedSettings  # noqa: PLC0415
 
     found = source if isinstance(source, IncidentReport) else None
     request = source.request if isinstance(source, IncidentReport) else source
@@ -127,8 +127,9 @@ def replayed(
             drive,
             runners,
             ego_size=ego,
-            incident_settings=request.settings,
-            labels=None if found is None else short_labels(found.incidents),
+            settings=FeedSettings(
+                request.settings, labels=None if found is None else short_labels(found.incidents)
+            ),
         )
         blueprint = replay_blueprint(one.ego_start_m, engines=one.engine_names)
         with destination.attach(one.recording, blueprint) as to:

@@ -34,7 +34,15 @@ if TYPE_CHECKING:
     from workbench.replay.short_labels import ShortLabels
     from workbench.sinks.violations import Violation
 
-__all__ = ["APPLICATION_ID", "DrivePass", "PassWindow", "ReplaySummary", "recording_id"]
+__all__ = [
+    "APPLICATION_ID",
+    "DrivePass",
+    "FeedSettings",
+    "PassWindow",
+    "RecordingFeed",
+    "ReplaySummary",
+    "recording_id",
+]
 
 APPLICATION_ID = "rss-workbench"
 
@@ -99,17 +107,105 @@ class PassWindow:
     lead_in: tuple[int, int] | None = None
 
 
-class DrivePass:
-    """The driver's chunks, evaluated once, into the Rerun sink, violations and incidents.
+@dataclass(frozen=True, slots=True)
+class FeedSettings:
+    """How a :class:`RecordingFeed` turns chunks into a recording and incidents.
 
     Attributes:
-        run: The driver (its :attr:`~DriveRun.stopped_by` after the pass).
-        recording: The stream the scene and verdicts go to (attach it before :meth:`stream`).
+        incident_settings: How unsafe frames become incidents.
+        send_frames: Frames per columnar batch sent to Rerun.
+        labels: The drive's short-label table (a fresh one numbering culprits as they turn up
+            by default; :class:`~workbench.sinks.rerun_drive.RerunDriveSink`).
+        culprits: Collects the culprits' boxes (the caller may keep it); fresh by default.
+    """
+
+    incident_settings: IncidentSettings | None = None
+    send_frames: int = SEND_FRAMES
+    labels: ShortLabels | None = None
+    culprits: CulpritBoxes | None = None
+
+
+class RecordingFeed:
+    """Consumers of one recording: each chunk to the Rerun sink, violations and incidents.
+
+    Attributes:
+        recording: The stream the scene and verdicts go to (attach it before the first chunk).
+        recording_id: Its id (:func:`recording_id`).
         sink: The Rerun sink; its :attr:`~RerunDriveSink.labels` is the drive's short-label
-            table after the pass.
+            table after the chunks.
         violations: Violation intervals per engine.
         incidents: The incident detector (incidents, frame times, positions at their start).
         culprits: The culprits' boxes and the ego's positions at unsafe frames.
+    """
+
+    def __init__(
+        self,
+        drive: Drive,
+        engine_names: Sequence[str],
+        rid: str,
+        *,
+        drive_hash: str,
+        settings: FeedSettings | None = None,
+    ) -> None:
+        """Set up the consumers; nothing is sent before the first chunk.
+
+        Args:
+            drive: The drive the chunks come from (its info and map are sent first).
+            engine_names: The engines whose verdicts come with each chunk.
+            rid: The recording's id.
+            drive_hash: The drive's content hash (the incidents' ids).
+            settings: Incident settings, batch size, short labels, culprits' boxes.
+        """
+        settings = settings or FeedSettings()
+        self._drive = drive
+        self._names = tuple(engine_names)
+        self.recording_id = rid
+        self.recording = rr.RecordingStream(APPLICATION_ID, recording_id=rid)
+        self.violations = ViolationDetector(drive.info.path.name)
+        self.incidents = IncidentDetector(drive_hash, settings.incident_settings)
+        self.sink = RerunDriveSink(
+            self.recording,
+            drive,
+            self._names,
+            send_frames=settings.send_frames,
+            labels=settings.labels,
+        )
+        culprits = settings.culprits
+        self.culprits = culprits if culprits is not None else CulpritBoxes()
+
+    @property
+    def engine_names(self) -> tuple[str, ...]:
+        """The engines evaluated, in order."""
+        return self._names
+
+    def add_chunk(self, chunk: Chunk) -> None:
+        """Hand one evaluated chunk to every consumer."""
+        self.sink.add_chunk(chunk)
+        self.violations.add_chunk(chunk)
+        self.incidents.add_chunk(chunk)
+        if self._names:
+            self.culprits.add_chunk(chunk)
+
+    def found(self) -> tuple[Incident, ...]:
+        """The incidents of the chunks added, worst first (none without engines)."""
+        return tuple(self.incidents.incidents()) if self._names else ()
+
+    def send_incidents(self, found: Sequence[Incident], verdicts: Mapping[str, str]) -> None:
+        """Send the incidents' lanes, markers and highlights (``verdicts`` by incident id)."""
+        if not self._names:
+            return
+        times = self.incidents.frame_times
+        lights = self.culprits.layout(
+            found, self.sink.labels, times, escape=rr.escape_entity_path_part
+        )
+        send_incidents(self.recording, found, verdicts, times, highlights=lights)
+
+
+class DrivePass(RecordingFeed):
+    """The driver's chunks over a drive, evaluated once, into one :class:`RecordingFeed`.
+
+    Attributes:
+        run: The driver (its :attr:`~DriveRun.stopped_by` after the pass).
         ego_start_m: The ego's ``(x, y)`` [m] at the first frame evaluated, if any.
     """
 
@@ -120,10 +216,7 @@ class DrivePass:
         *,
         window: PassWindow | None = None,
         ego_size: EgoSize | None = None,
-        incident_settings: IncidentSettings | None = None,
-        send_frames: int = SEND_FRAMES,
-        labels: ShortLabels | None = None,
-        culprits: CulpritBoxes | None = None,
+        settings: FeedSettings | None = None,
     ) -> None:
         """Build the run and its consumers; the first chunk is evaluated (the camera's start).
 
@@ -132,16 +225,10 @@ class DrivePass:
             engines: Runners evaluated on every frame (fresh: they carry the engines' state).
             window: Frames evaluated and sent (the whole drive by default).
             ego_size: The user's ego size for every engine and the viewer.
-            incident_settings: How unsafe frames become incidents.
-            send_frames: Frames per columnar batch sent to Rerun.
-            labels: The drive's short-label table (a fresh one numbering culprits as they
-                turn up by default; :class:`~workbench.sinks.rerun_drive.RerunDriveSink`).
-            culprits: Collects the culprits' boxes (the caller may keep it); fresh by default.
+            settings: The feed's settings (:class:`FeedSettings`).
         """
         window = window or PassWindow()
         shown_from_ns, frame_offset = window.lead_in or (None, 0)
-        self._drive = drive
-        self._has_engines = bool(engines)
         self.run = DriveRun(
             drive,
             engines,
@@ -155,22 +242,14 @@ class DrivePass:
         self._first = next(self._chunks, None)
         first = self._first.frames[0].ego if self._first is not None else None
         self.ego_start_m = (first.x_m, first.y_m) if first is not None else None
-        #: The recording's id (:func:`recording_id` of the drive and window).
-        self.recording_id = recording_id(drive, window.start_ns, window.end_ns)
-        self.recording = rr.RecordingStream(APPLICATION_ID, recording_id=self.recording_id)
         path = drive.info.path
-        content = drive_content_hash(path) if engines and path.exists() else ""
-        self.violations = ViolationDetector(path.name)
-        self.incidents = IncidentDetector(content, incident_settings)
-        self.sink = RerunDriveSink(
-            self.recording, drive, self.run.engine_names, send_frames=send_frames, labels=labels
+        super().__init__(
+            drive,
+            self.run.engine_names,
+            recording_id(drive, window.start_ns, window.end_ns),
+            drive_hash=drive_content_hash(path) if engines and path.exists() else "",
+            settings=settings,
         )
-        self.culprits = culprits if culprits is not None else CulpritBoxes()
-
-    @property
-    def engine_names(self) -> tuple[str, ...]:
-        """The engines evaluated, in order."""
-        return tuple(self.run.engine_names)
 
     def stream(self, progress: Callable[[int], None] | None = None) -> None:
         """Evaluate every chunk once and hand it to each consumer; flush the Rerun sink.
@@ -179,35 +258,16 @@ class DrivePass:
             progress: Called with the number of frames evaluated after each chunk.
         """
         for chunk in _with_first(self._first, self._chunks):
-            self.sink.add_chunk(chunk)
-            self.violations.add_chunk(chunk)
-            self.incidents.add_chunk(chunk)
-            if self._has_engines:
-                self.culprits.add_chunk(chunk)
+            self.add_chunk(chunk)
             if progress is not None:
                 progress(self.violations.frames)
         self._first = None
         self.sink.close()
 
-    def found(self) -> tuple[Incident, ...]:
-        """The incidents of the frames streamed, worst first (none without engines)."""
-        return tuple(self.incidents.incidents()) if self._has_engines else ()
-
-    def send_incidents(self, found: Sequence[Incident], verdicts: Mapping[str, str]) -> None:
-        """Send the incidents' lanes, markers and highlights (``verdicts`` by incident id)."""
-        if not self._has_engines:
-            return
-        times = self.incidents.frame_times
-        lights = self.culprits.layout(
-            found, self.sink.labels, times, escape=rr.escape_entity_path_part
-        )
-        send_incidents(self.recording, found, verdicts, times, highlights=lights)
-
     def summary(
         self, output: str, elapsed_s: float, found: Sequence[Incident] = ()
     ) -> ReplaySummary:
         """What the pass sent to ``output`` in ``elapsed_s`` [s] of wall time."""
-        names = self.run.engine_names
         unsafe = self.violations.unsafe_per_engine
         return ReplaySummary(
             log=self._drive.info.path,
@@ -218,7 +278,7 @@ class DrivePass:
             output=output,
             elapsed_s=elapsed_s,
             violations=tuple(self.violations.violations()),
-            unsafe_frames={n: unsafe.get(n, 0) for n in names},
+            unsafe_frames={n: unsafe.get(n, 0) for n in self.engine_names},
             stopped_by=self.run.stopped_by,
             incidents=tuple(found),
         )

@@ -16,6 +16,7 @@ from workbench.sinks.rerun_drive import SEND_FRAMES
 from workbench.viewer.drive_pass import (
     APPLICATION_ID,
     DrivePass,
+    FeedSettings,
     PassWindow,
     ReplaySummary,
     recording_id,
@@ -118,10 +119,7 @@ def replay_drive(
         engines,
         window=PassWindow(start_ns, end_ns, lead_in),
         ego_size=ego_size,
-        incident_settings=incident_settings,
-        send_frames=send_frames,
-        labels=labels,
-        culprits=culprits,
+        settings=FeedSettings(incident_settings, send_frames, labels, culprits),
     )
     ego_at, objects_at = focus_m or (one.ego_start_m, ())
     blueprint = replay_blueprint(
