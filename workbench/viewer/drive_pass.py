@@ -92,19 +92,15 @@ class ReplaySummary:
 
 @dataclass(frozen=True, slots=True)
 class PassWindow:
-    """Which frames a pass evaluates and which it sends.
+    """Which frames a pass evaluates and sends.
 
     Attributes:
-        start_ns: Only frames at or after this time (the lead-in's start, if any).
+        start_ns: Only frames at or after this time.
         end_ns: Only frames before this time.
-        lead_in: ``(shown_from_ns, frame_offset)``: the frames before ``shown_from_ns`` warm
-            the engines up but are not sent; frame numbers are shifted by ``frame_offset``
-            (a clip numbered as its drive; :class:`~workbench.driver.run.DriveRun`).
     """
 
     start_ns: int | None = None
     end_ns: int | None = None
-    lead_in: tuple[int, int] | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -228,15 +224,8 @@ class DrivePass(RecordingFeed):
             settings: The feed's settings (:class:`FeedSettings`).
         """
         window = window or PassWindow()
-        shown_from_ns, frame_offset = window.lead_in or (None, 0)
         self.run = DriveRun(
-            drive,
-            engines,
-            start_ns=window.start_ns,
-            end_ns=window.end_ns,
-            ego_size=ego_size,
-            shown_from_ns=shown_from_ns,
-            frame_offset=frame_offset,
+            drive, engines, start_ns=window.start_ns, end_ns=window.end_ns, ego_size=ego_size
         )
         self._chunks = iter(self.run)
         self._first = next(self._chunks, None)

@@ -24,7 +24,7 @@ from workbench.viewer.drive_pass import (
 from workbench.viewer.outputs import LOCALHOST, Destination
 
 if TYPE_CHECKING:
-    from collections.abc import Callable, Mapping, Sequence
+    from collections.abc import Callable, Sequence
     from pathlib import Path
 
     from loaders.drive import Drive
@@ -33,7 +33,6 @@ if TYPE_CHECKING:
     from workbench.incidents import IncidentSettings
     from workbench.replay.highlight import CulpritBoxes
     from workbench.replay.short_labels import ShortLabels
-    from workbench.viewer.web_cursor import WebCursor
 
 __all__ = ["APPLICATION_ID", "ReplaySummary", "drop_empty", "recording_id", "replay_drive"]
 
@@ -54,12 +53,8 @@ def replay_drive(
     send_frames: int = SEND_FRAMES,
     ego_size: EgoSize | None = None,
     incident_settings: IncidentSettings | None = None,
-    verdicts: Mapping[str, str] | None = None,
     connect: str | None = None,
     selection: tuple[int, int] | None = None,
-    lead_in: tuple[int, int] | None = None,
-    focus_m: tuple[tuple[float, float], Sequence[tuple[float, float]]] | None = None,
-    web_cursor: WebCursor | None = None,
     culprits: CulpritBoxes | None = None,
     labels: ShortLabels | None = None,
 ) -> ReplaySummary:
@@ -83,17 +78,9 @@ def replay_drive(
         ego_size: The user's ego size for every engine and the viewer (``--rss-params``).
         incident_settings: How the engines' unsafe frames become incidents (lanes and
             markers sent after the last frame).
-        verdicts: Review verdict per incident id, shown on the lanes and markers.
         connect: Stream to a running viewer's gRPC proxy (``rerun+http://HOST:PORT/proxy``).
         selection: ``(first, last)`` frame of an incident: the blueprint's time panel selects
             and loops over it (a clip's review blueprint).
-        lead_in: ``(shown_from_ns, frame_offset)``: the frames before ``shown_from_ns`` warm
-            the engines up but are not sent; frame numbers are shifted by ``frame_offset``
-            (a clip numbered as its drive; :class:`~workbench.driver.run.DriveRun`).
-        focus_m: With ``selection``: ``(ego, objects)`` positions ``(x, y)`` [m] at the
-            incident's first frame; the camera frames them (else the ego at the first frame).
-        web_cursor: With ``serve``: serves the web page so the review loop can move the
-            browser's time cursor (:mod:`workbench.viewer.web_cursor`).
         culprits: Collects the culprits' boxes and the ego's positions at unsafe frames
             (the caller keeps it: the review camera looks there); a fresh one by default.
         labels: The drive's short object labels (``#1``), one table for the scene's
@@ -112,24 +99,20 @@ def replay_drive(
         connect=connect,
         bind=bind,
         ports=ports,
-        web_cursor=web_cursor,
     )
     one = DrivePass(
         drive,
         engines,
-        window=PassWindow(start_ns, end_ns, lead_in),
+        window=PassWindow(start_ns, end_ns),
         ego_size=ego_size,
         settings=FeedSettings(incident_settings, send_frames, labels, culprits),
     )
-    ego_at, objects_at = focus_m or (one.ego_start_m, ())
-    blueprint = replay_blueprint(
-        ego_at, engines=one.engine_names, selection=selection, focus_m=objects_at
-    )
+    blueprint = replay_blueprint(one.ego_start_m, engines=one.engine_names, selection=selection)
     try:
         with destination.attach(one.recording, blueprint) as to:
             one.stream(progress)
             found = one.found()
-            one.send_incidents(found, verdicts or {})
+            one.send_incidents(found, {})
             if on_served is not None and serve:
                 on_served(to)
             one.recording.disconnect()
