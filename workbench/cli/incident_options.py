@@ -216,7 +216,10 @@ def _signed(run: Callable[..., None], own: list[inspect.Parameter]) -> Callable[
 
 
 def with_incidents(
-    command: Callable[..., None], *, check: Callable[..., None] | None = None
+    command: Callable[..., None],
+    *,
+    check: Callable[..., None] | None = None,
+    find: bool = True,
 ) -> Callable[..., None]:
     """Give a command the incident options; it gets the drive's ``report`` found with them.
 
@@ -224,7 +227,9 @@ def with_incidents(
     returned function's signature (what typer reads) has ``log``, the command's options and
     the shared ones, so every incident command finds incidents, and so ids, the same way.
     ``check`` (see :func:`with_checked_incidents`) sees the command's own options first, so a
-    bad choice fails before the drive is evaluated.
+    bad choice fails before the drive is evaluated. ``find=False``: ``report`` is the
+    ``IncidentRequest`` and the command finds the incidents in a pass of its own
+    (``review`` with a viewer: one pass streams the drive and finds them).
     """
     own = _own(command, "report")
 
@@ -233,7 +238,8 @@ def with_incidents(
         shared = {p.name: kwargs.pop(p.name) for p in _SHARED}
         if check is not None:
             check(**kwargs)
-        command(report=find_with_progress(incident_request(kwargs["log"], **shared)), **kwargs)
+        request = incident_request(kwargs["log"], **shared)
+        command(report=find_with_progress(request) if find else request, **kwargs)
 
     return _signed(run, own)
 

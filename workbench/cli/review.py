@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
+import functools
 from typing import TYPE_CHECKING, Annotated
 
 import typer
@@ -16,21 +18,29 @@ from workbench.cli.incident_options import (
     MarginFilter,
     ObjectFilter,
     StoreOption,
+    find_with_progress,
     with_incidents,
 )
 from workbench.cli.options import GrpcPortOption, WebPortOption  # noqa: TC001 - typer reads them
 from workbench.errors import WorkbenchError
 
 if TYPE_CHECKING:
-    from workbench.incidents import IncidentReport
+    from collections.abc import Callable, Iterator, Sequence
+
+    from workbench.annotations import LabelStore
+    from workbench.incidents import Incident, IncidentReport, IncidentRequest
+    from workbench.replay.short_labels import ShortLabels
+    from workbench.review.loop import LiveReplay
+    from workbench.review.session import ReviewSession
+    from workbench.viewer.outputs import Destination
 
 __all__ = ["register"]
 
 
-@with_incidents
+@functools.partial(with_incidents, find=False)
 def review(
     log: LogArgument,
-    report: IncidentReport,
+    report: IncidentReport | IncidentRequest,
     *,
     store: StoreOption = None,
     reviewer: Annotated[
@@ -66,43 +76,89 @@ def review(
         default_reviewer,
         default_store_path,
     )
-    from workbench.annotations.attach import elsewhere_note  # noqa: PLC0415
-    from workbench.incidents import filter_incidents  # noqa: PLC0415
-    from workbench.review import ReviewSession  # noqa: PLC0415
-    from workbench.review.loop import review_in_viewer, run_review  # noqa: PLC0415
+    from workbench.incidents import IncidentReport, filter_incidents  # noqa: PLC0415
+    from workbench.review.loop import run_review  # noqa: PLC0415
+    from workbench.viewer.outputs import Destination  # noqa: PLC0415
 
     if sum((spawn, serve, connect is not None)) > 1:
         raise WorkbenchError("--spawn, --serve and --connect are mutually exclusive")
-    chosen = filter_incidents(
-        report.incidents,
-        engines=engine or (),
-        objects=obj or (),
-        causes=cause or (),
-        max_margin=max_margin,
-    )
     path = store or default_store_path()
-    with LabelStore(path) as labels:
-        note = elsewhere_note(report, labels.labels(report.drive_hash))  # before the filters
-        if note:
-            typer.echo(f"note: {note}", err=True)
-        report = dataclasses.replace(report, incidents=tuple(chosen))
-        by_event = by is Listing.event
-        session = ReviewSession(report, labels, reviewer or default_reviewer(), by_event=by_event)
+    with LabelStore(path) as labels, contextlib.ExitStack() as viewer:
+        session_of = functools.partial(
+            _session,
+            store=labels,
+            reviewer=reviewer or default_reviewer(),
+            by_event=by is Listing.event,
+            chosen=functools.partial(
+                filter_incidents,
+                engines=engine or (),
+                objects=obj or (),
+                causes=cause or (),
+                max_margin=max_margin,
+            ),
+        )
         if not (spawn or serve or connect):
+            found = report if isinstance(report, IncidentReport) else find_with_progress(report)
+            session = session_of(found, None)
             run_review(session)
         else:
-            review_in_viewer(
-                session,
+            from workbench.viewer.web_cursor import WebCursor  # noqa: PLC0415
+
+            web_cursor = WebCursor() if serve else None
+            destination = Destination(
+                spawn=spawn,
                 serve=serve,
                 connect=connect,
                 bind=bind,
                 ports=(grpc_port, web_port),
-                announce=lambda url: typer.echo(f"viewer: {url}"),
+                web_cursor=web_cursor,
             )
+            live = viewer.enter_context(_replay(report, destination))
+            if live.served is not None:
+                typer.echo(f"viewer: {live.served}")
+            session = session_of(live.report, live.labels)
+            live.review(session)
         typer.echo(
             f"{log.name}: {session.reviewed} of {len(session.incidents)} {session.unit}(s) reviewed"
             f" (store {path})"
         )
+
+
+def _session(
+    report: IncidentReport,
+    labels: ShortLabels | None,
+    *,
+    store: LabelStore,
+    reviewer: str,
+    by_event: bool,
+    chosen: Callable[[Sequence[Incident]], Sequence[Incident]],
+) -> ReviewSession:
+    """The review session of the drive's incidents that pass the filters (a note first)."""
+    from workbench.annotations.attach import elsewhere_note  # noqa: PLC0415
+    from workbench.review import ReviewSession  # noqa: PLC0415
+
+    note = elsewhere_note(report, store.labels(report.drive_hash))  # before the filters
+    if note:
+        typer.echo(f"note: {note}", err=True)
+    report = dataclasses.replace(report, incidents=tuple(chosen(report.incidents)))
+    return ReviewSession(report, store, reviewer, by_event=by_event, labels=labels)
+
+
+@contextlib.contextmanager
+def _replay(
+    source: IncidentReport | IncidentRequest, destination: Destination
+) -> Iterator[LiveReplay]:
+    """:func:`workbench.review.loop.replayed` with a progress bar while the drive is evaluated."""
+    from workbench.cli.progress import frame_progress  # noqa: PLC0415
+    from workbench.review.loop import replayed  # noqa: PLC0415
+
+    with contextlib.ExitStack() as stack:
+        with frame_progress() as bar:
+            task = bar.add_task(f"review {source.log.name}", total=None)
+            live = stack.enter_context(
+                replayed(source, destination, lambda done: bar.update(task, completed=done))
+            )
+        yield live
 
 
 def register(app: typer.Typer) -> None:

@@ -1,10 +1,9 @@
 """What a reviewer opens of a clip: its ``.rrd`` with the review blueprint and a thumbnail.
 
-Each clip's window is replayed with the same engines and settings as the incidents were
-found with, numbered with the drive's frame numbers. The engines start warm: they evaluate
-a lead-in of up to :data:`LEAD_IN_NS` before the window (not shown), so that their memory
-(RSS responses) at the window's start is the drive's and the clip's incident is the drive's,
-with its id and its verdict. The blueprint's time panel selects the incident's frames.
+Each clip's window is cut from one pass over the drive with the same engines and settings
+as the incidents were found with (:mod:`workbench.export.recordings`): the engines are warm
+from the drive's start, the frames numbered as in the drive, so the clip's incident is the
+drive's, with its id and its verdict. The blueprint's time panel selects the incident's frames.
 Thumbnails come from one headless viewer for the whole export
 (:mod:`workbench.viewer.screenshot`): the scene view alone at the incident's worst frame, framed
 on the ego and the incident's objects, highlighted (:mod:`workbench.export.thumbnail`); where
@@ -14,16 +13,13 @@ renamed.
 
 from __future__ import annotations
 
-import functools
 from typing import TYPE_CHECKING
 
+from workbench.driver.run import DriveRun
 from workbench.errors import WorkbenchError
+from workbench.export.recordings import ClipRecording
 from workbench.export.thumbnail import ThumbnailView, thumbnail_view
-from workbench.outputs import part_path
 from workbench.replay.blueprint import thumbnail_blueprint
-from workbench.replay.highlight import CulpritBoxes
-from workbench.replay.incidents import short_labels
-from workbench.viewer.replay import replay_drive
 from workbench.viewer.screenshot import ScreenshotUnavailableError, headless_viewer, screenshot
 
 if TYPE_CHECKING:
@@ -34,10 +30,7 @@ if TYPE_CHECKING:
     from workbench.incidents import IncidentReport, IncidentRequest
 
 __all__ = [
-    "LEAD_IN_NS",
     "THUMBNAIL_SIZE",
-    "incident_focus_m",
-    "lead_in",
     "write_recordings",
     "write_thumbnails",
 ]
@@ -45,49 +38,6 @@ __all__ = [
 
 #: Thumbnail size ``(width, height)`` [px]: the scene view fills it.
 THUMBNAIL_SIZE = (1280, 720)
-#: Longest lead-in evaluated before a clip's window to warm the engines up [ns].
-LEAD_IN_NS = 10_000_000_000
-
-
-def incident_focus_m(
-    report: IncidentReport, plan: ClipPlan
-) -> tuple[tuple[float, float], list[tuple[float, float]]] | None:
-    """Ego and incident objects' positions ``(x, y)`` [m] at the incident's first frame.
-
-    ``None`` for a window without incident, or when the detector recorded no position.
-    """
-    incident = plan.incident
-    if incident is None or incident.start_frame not in report.ego_at_start_m:
-        return None
-    objects = report.objects_at_start_m.get(incident.start_frame, {})
-    ego = report.ego_at_start_m[incident.start_frame]
-    return ego, [xy for oid, xy in sorted(objects.items()) if oid in incident.objects]
-
-
-def lead_in(report: IncidentReport, start_ns: int) -> tuple[int, int]:
-    """``(lead-in start [ns], drive frame number of its first frame)`` for a window start."""
-    times = report.frame_times
-    earliest = start_ns - LEAD_IN_NS
-    first = next(((i, t) for i, t in times if t >= earliest), None)
-    return (first[1], first[0]) if first is not None else (start_ns, 0)
-
-
-def _record(path: Path, replay: Callable[..., object]) -> bool:
-    """Run ``replay(out=part)``, rename the part into place; ``False``: it wrote nothing."""
-    part = part_path(path)
-    try:
-        replay(out=part)
-        if not part.is_file():  # no frame in the window
-            return False
-        part.replace(path)
-    except OSError as err:
-        part.unlink(missing_ok=True)
-        msg = f"{path}: cannot write the clip's recording ({err.strerror})"
-        raise WorkbenchError(msg) from err
-    except BaseException:
-        part.unlink(missing_ok=True)
-        raise
-    return True
 
 
 def write_recordings(
@@ -99,46 +49,74 @@ def write_recordings(
 ) -> dict[str, tuple[Path, ThumbnailView]]:
     """Write ``<stem>.rrd`` per plan; return ``{stem: (path, what its thumbnail shows)}``.
 
+    One pass evaluates the drive from its first frame to the end of the last clip with the
+    request's engines (:mod:`workbench.export.recordings`): each clip's engines are warm from
+    the drive's start, its frames numbered as in the drive.
+
     Raises:
         LoaderError: The drive cannot be read.
         WorkbenchError: A recording cannot be written.
     """
-    written: dict[str, tuple[Path, ThumbnailView]] = {}
-    drive = request.open_drive()  # once: the map is read once for every window
+    if not plans:
+        return {}
+    drive = request.open_drive()
+    clips: list[ClipRecording] = []
     try:
+        runners, ego = request.engines_for(drive, full_geometry=True)
+        names = [r.name for r in runners]
         for plan in plans:
-            incident = plan.incident
-            selection = plan.frames or (0, 0)
-            if incident is not None:
-                selection = (incident.start_frame, incident.end_frame)
-            runners, ego = request.engines_for(drive, full_geometry=True)
-            lead_start_ns, offset = lead_in(report, plan.start_ns)
-            label = plan.label
-            verdicts = {} if incident is None or label is None else {incident.id: label.verdict}
             path = out_dir / f"{plan.stem}.rrd"
-            culprits = CulpritBoxes()
-            replay = functools.partial(
-                replay_drive,
-                drive,
-                start_ns=lead_start_ns,
-                end_ns=plan.end_ns + 1,
-                engines=runners,
-                ego_size=ego,
-                incident_settings=request.settings,
-                verdicts=verdicts,
-                selection=selection,
-                lead_in=(plan.start_ns, offset),
-                focus_m=incident_focus_m(report, plan),
-                culprits=culprits,
-                labels=short_labels(report.incidents),
+            clips.append(
+                ClipRecording(
+                    plan,
+                    path,
+                    drive,
+                    report=report,
+                    engine_names=names,
+                    incident_settings=request.settings,
+                )
             )
-            if _record(path, replay):
-                written[plan.stem] = (path, thumbnail_view(report, plan, culprits))
-            if on_clip is not None:
-                on_clip()
+        end_ns = max(plan.end_ns for plan in plans) + 1
+        written = _cut(clips, DriveRun(drive, runners, end_ns=end_ns, ego_size=ego), on_clip)
+    except OSError as err:
+        for clip in clips:
+            clip.abandon()
+        msg = f"{out_dir}: cannot write the clips' recordings ({err.strerror})"
+        raise WorkbenchError(msg) from err
+    except BaseException:
+        for clip in clips:
+            clip.abandon()
+        raise
     finally:
         drive.close()
+    return {
+        clip.plan.stem: (clip.path, thumbnail_view(report, clip.plan, clip.feed.culprits))
+        for clip in written
+    }
+
+
+def _cut(
+    clips: Sequence[ClipRecording], run: DriveRun, on_clip: Callable[[], None] | None
+) -> list[ClipRecording]:
+    """Feed each chunk of the one pass to the clips; finish each once the pass is past it."""
+    open_clips = sorted(clips, key=lambda c: c.plan.end_ns)
+    written = []
+    for chunk in run:
+        for clip in open_clips:
+            clip.add_chunk(chunk)
+        past = chunk.frames[-1].t_ns
+        while open_clips and open_clips[0].plan.end_ns <= past:
+            written += _finish(open_clips.pop(0), on_clip)
+    for clip in open_clips:
+        written += _finish(clip, on_clip)
     return written
+
+
+def _finish(clip: ClipRecording, on_clip: Callable[[], None] | None) -> list[ClipRecording]:
+    done = clip.finish()
+    if on_clip is not None:
+        on_clip()
+    return [clip] if done else []
 
 
 def write_thumbnails(

@@ -116,6 +116,32 @@ class IncidentRequest:
             "merge_gap_s": self.settings.merge_gap_s,
         }
 
+    def report(
+        self, detector: IncidentDetector, info: DriveInfo, stopped_by: LoaderError | None
+    ) -> IncidentReport:
+        """The incidents ``detector`` found over one pass of this request's drive.
+
+        Args:
+            detector: Fed with every chunk of the pass (its drive hash is the report's).
+            info: The drive's metadata after the pass.
+            stopped_by: The loader error that ended the pass early, if any.
+        """
+        findings = detector.findings()
+        return IncidentReport(
+            log=self.log,
+            drive_hash=detector.drive_hash,
+            settings=self.record(),
+            incidents=tuple(detector.incidents(findings)),
+            frame_times=tuple(detector.frame_times),
+            start_ns=info.start_ns,
+            stopped_by=stopped_by,
+            ego_at_start_m=dict(detector.ego_at_start_m),
+            objects_at_start_m=dict(detector.objects_at_start_m),
+            request=self,
+            findings=findings,
+            info=info,
+        )
+
 
 @dataclass(frozen=True, slots=True)
 class IncidentReport:
@@ -183,21 +209,7 @@ def find_incidents(
             detector.add_chunk(chunk)
             if progress is not None:
                 progress(len(detector.frame_times))
-        start_ns, info = drive.info.start_ns, drive.info
+        info = drive.info
     finally:
         drive.close()
-    findings = detector.findings()
-    return IncidentReport(
-        log=request.log,
-        drive_hash=drive_hash,
-        settings=request.record(),
-        incidents=tuple(detector.incidents(findings)),
-        frame_times=tuple(detector.frame_times),
-        start_ns=start_ns,
-        stopped_by=run.stopped_by,
-        ego_at_start_m=dict(detector.ego_at_start_m),
-        objects_at_start_m=dict(detector.objects_at_start_m),
-        request=request,
-        findings=findings,
-        info=info,
-    )
+    return request.report(detector, info, run.stopped_by)

@@ -1,25 +1,36 @@
-"""Start the review loop: optionally replay the drive into a viewer, then run the UI."""
+"""Start the review loop: one pass over the drive into a viewer, then the UI after the pass.
+
+:func:`replayed` evaluates the drive once: that pass streams the scene and verdicts into the
+viewer and finds the incidents (or, for a batch's results, takes the report read back from
+them), so the engines run once per frame. The caller then builds the review session from
+:attr:`LiveReplay.report` and runs the UI with :meth:`LiveReplay.review`, outside the pass,
+while the viewer (a served one too) is still attached.
+"""
 
 from __future__ import annotations
 
+import contextlib
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 from urllib.parse import parse_qs, urlsplit
 
 from workbench.errors import WorkbenchError
+from workbench.incidents import IncidentReport
 from workbench.review.app import ReviewApp
 from workbench.review.viewer import RerunLink
 
 if TYPE_CHECKING:
-    from collections.abc import Callable, Sequence
+    from collections.abc import Callable, Iterator
 
-    from loaders.drive import Drive
-    from workbench.driver.run import EgoSize
-    from workbench.engines.base import EngineRunner
-    from workbench.incidents import IncidentSettings
+    from workbench.incidents import IncidentRequest
+    from workbench.replay.short_labels import ShortLabels
     from workbench.review.session import ReviewSession
     from workbench.review.viewer import ViewerLink
+    from workbench.viewer.drive_pass import DrivePass
+    from workbench.viewer.outputs import Destination
+    from workbench.viewer.web_cursor import WebCursor
 
-__all__ = ["SPAWN_URL", "review_in_viewer", "run_review"]
+__all__ = ["SPAWN_URL", "LiveReplay", "replayed", "run_review"]
 
 #: gRPC proxy of a viewer started by ``rr.spawn`` (its default port).
 SPAWN_URL = "rerun+http://127.0.0.1:9876/proxy"
@@ -30,120 +41,104 @@ def run_review(session: ReviewSession, viewer: ViewerLink | None = None) -> None
     ReviewApp(session, viewer).run()
 
 
-def review_in_viewer(
-    session: ReviewSession,
-    *,
-    serve: bool,
-    connect: str | None,
-    bind: str,
-    ports: tuple[int, int],
-    announce: Callable[[str], None],
-) -> None:
-    """Replay the drive with its incidents into a viewer, then review with it following.
+@dataclass(slots=True)
+class LiveReplay:
+    """A drive streamed into a viewer that stays attached, and the incidents of that pass.
 
-    The drive is opened again and evaluated with the settings the session's incidents were
-    found with (``session.report.request``), now with the viewer's geometry. The viewer is
-    spawned (native), served (web, on ``bind``) or already running (``connect``).
-
-    Args:
-        session: The review session.
-        serve: Serve a web viewer (on ``bind``) instead of spawning a native one.
-        connect: Use the running viewer at this gRPC proxy URL instead
-            (``rerun+http://HOST:PORT/proxy``; e.g. ``rerun --headless --bind 127.0.0.1``).
-        bind: Address ``serve`` listens on.
-        ports: ``(grpc_port, web_port)`` of ``serve``.
-        announce: Called with the web viewer URL (``serve``).
+    Attributes:
+        report: The drive's incidents (found in the pass, or the batch's report).
+        labels: The drive's short-label table as the viewer draws it (the session's).
+        grpc_url: The viewer's gRPC proxy, for the review's stream.
+        served: The web viewer's address (``serve``), else ``None``.
     """
-    request = session.report.request
-    if request is None:
-        raise WorkbenchError("this review session has no drive to replay")
-    drive = request.open_drive()
-    try:
-        runners, ego = request.engines_for(drive, full_geometry=True)
-        _replay_and_review(
-            session,
-            drive,
-            runners,
-            serve=serve,
-            connect=connect,
-            bind=bind,
-            ports=ports,
-            incident_settings=request.settings,
-            ego=ego,
-            announce=announce,
-        )
-    finally:
-        drive.close()
 
+    report: IncidentReport
+    labels: ShortLabels
+    grpc_url: str
+    served: str | None
+    _pass: DrivePass
+    _web_cursor: WebCursor | None
 
-def _replay_and_review(
-    session: ReviewSession,
-    drive: Drive,
-    runners: Sequence[EngineRunner],
-    *,
-    serve: bool,
-    connect: str | None,
-    bind: str,
-    ports: tuple[int, int],
-    incident_settings: IncidentSettings,
-    ego: EgoSize | None,
-    announce: Callable[[str], None],
-) -> None:
-    from workbench.replay.highlight import CulpritBoxes  # noqa: PLC0415
-    from workbench.viewer.replay import (  # noqa: PLC0415 - Rerun only when a viewer is asked
-        APPLICATION_ID,
-        recording_id,
-        replay_drive,
-    )
-    from workbench.viewer.web_cursor import WebCursor  # noqa: PLC0415
+    def review(self, session: ReviewSession) -> None:
+        """Send the incidents' lanes with the session's verdicts, then run the UI with the viewer.
 
-    web_cursor = WebCursor() if serve else None
-    positions = CulpritBoxes()  # filled by the replay: where the camera looks
+        The lanes show every incident of the drive; the session's (possibly filtered)
+        incidents are what the UI walks.
+        """
+        from workbench.viewer.replay import APPLICATION_ID  # noqa: PLC0415 - Rerun with a viewer
 
-    first = next(iter(drive.frames()), None)
-    ego_start = (first.ego.x_m, first.ego.y_m) if first is not None else None
-    names = [r.name for r in runners]
-    rid = recording_id(drive, None, None)
-    verdicts = {key: label.verdict for key, label in session.labels.items()}
-
-    def loop(grpc_url: str) -> None:
+        one = self._pass
+        verdicts = {key: label.verdict for key, label in session.labels.items()}
+        one.send_incidents(self.report.incidents, verdicts)
+        if self.served is None:
+            one.recording.disconnect()  # the review's own stream joins the same recording
+        else:
+            one.recording.flush()
         link = RerunLink(
-            grpc_url,
+            self.grpc_url,
             application_id=APPLICATION_ID,
-            recording_id=rid,
-            ego_start_m=ego_start,
-            engines=names,
+            recording_id=one.recording_id,
+            ego_start_m=one.ego_start_m,
+            engines=one.engine_names,
             ego_at_m=session.report.ego_at_start_m,
             objects_at_m=session.report.objects_at_start_m,
-            cursor=web_cursor,
-            positions=positions,
+            cursor=self._web_cursor,
+            positions=one.culprits,
         )
-        if web_cursor is not None:
-            web_cursor.on_loaded = link.show_again
+        if self._web_cursor is not None:
+            self._web_cursor.on_loaded = link.show_again
         try:
             run_review(session, link)
         finally:
             link.close()
 
-    def served(url: str) -> None:
-        announce(url)
-        loop(parse_qs(urlsplit(url).query)["url"][0])
 
-    replay_drive(
-        drive,
-        spawn=not serve and connect is None,
-        serve=serve,
-        connect=connect,
-        bind=bind,
-        ports=ports,
-        engines=runners,
-        on_served=served,
-        incident_settings=incident_settings,
-        verdicts=verdicts,
-        ego_size=ego,
-        web_cursor=web_cursor,
-        culprits=positions,
-        labels=session.short_labels,
-    )
-    if not serve:
-        loop(connect or SPAWN_URL)
+@contextlib.contextmanager
+def replayed(
+    source: IncidentReport | IncidentRequest,
+    destination: Destination,
+    progress: Callable[[int], None] | None = None,
+) -> Iterator[LiveReplay]:
+    """Evaluate the drive once into a viewer; yield its incidents with the viewer attached.
+
+    Args:
+        source: What finds the incidents (they are found in the pass), or a report of them
+            (a batch's: the pass only draws; its ``request`` says with what).
+        destination: A spawned (``spawn``), served (``serve``, with its ``web_cursor``) or
+            running (``connect``) viewer.
+        progress: Called with the number of frames evaluated after each chunk.
+
+    Raises:
+        WorkbenchError: A report without the request it was found with.
+        LoaderError: The drive cannot be read.
+    """
+    from workbench.replay.blueprint import replay_blueprint  # noqa: PLC0415 - Rerun only here
+    from workbench.replay.incidents import short_labels  # noqa: PLC0415
+    from workbench.viewer.drive_pass import DrivePass, FeedSettings  # noqa: PLC0415
+
+    found = source if isinstance(source, IncidentReport) else None
+    request = source.request if isinstance(source, IncidentReport) else source
+    if request is None:
+        raise WorkbenchError("this review session has no drive to replay")
+    drive = request.open_drive()
+    try:
+        runners, ego = request.engines_for(drive, full_geometry=True)
+        one = DrivePass(
+            drive,
+            runners,
+            ego_size=ego,
+            settings=FeedSettings(
+                request.settings, labels=None if found is None else short_labels(found.incidents)
+            ),
+        )
+        blueprint = replay_blueprint(one.ego_start_m, engines=one.engine_names)
+        with destination.attach(one.recording, blueprint) as to:
+            one.stream(progress)
+            report = found or request.report(one.incidents, drive.info, one.run.stopped_by)
+            served = to if destination.serve else None
+            grpc_url = parse_qs(urlsplit(to).query)["url"][0] if served else to
+            if to == "viewer":
+                grpc_url = SPAWN_URL
+            yield LiveReplay(report, one.sink.labels, grpc_url, served, one, destination.web_cursor)
+    finally:
+        drive.close()

@@ -24,6 +24,7 @@ if TYPE_CHECKING:
 
     from workbench.annotations import Label, LabelStore
     from workbench.incidents import Incident, IncidentReport
+    from workbench.replay.short_labels import ShortLabels
 
 __all__ = ["Pending", "ReviewSession"]
 
@@ -45,9 +46,19 @@ class ReviewSession:
     """
 
     def __init__(
-        self, report: IncidentReport, store: LabelStore, reviewer: str, *, by_event: bool = True
+        self,
+        report: IncidentReport,
+        store: LabelStore,
+        reviewer: str,
+        *,
+        by_event: bool = True,
+        labels: ShortLabels | None = None,
     ) -> None:
-        """Load the drive's labels and put the cursor on the first row not fully labelled."""
+        """Load the drive's labels and put the cursor on the first row not fully labelled.
+
+        ``labels``: the drive's short-label table when a replay numbered the objects already
+        (its viewer labels them so); by default the incidents' objects by first incident.
+        """
         self.report = report
         self.store = store
         self.reviewer = reviewer
@@ -63,7 +74,7 @@ class ReviewSession:
             self.incidents = report.incidents
         #: Short label per object (``#1``), the drive's one table: the TUI's object column
         #: and every label the viewer draws (scene highlights and engines) use it.
-        self.short_labels = short_labels(report.incidents)
+        self.short_labels = labels if labels is not None else short_labels(report.incidents)
         self.labels: dict[str, Label] = labels_for(report, store.labels(report.drive_hash))
         self._pending: dict[str, Pending] = {}
         self._undo: list[list[tuple[int, str]]] = []

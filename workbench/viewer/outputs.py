@@ -17,6 +17,7 @@ import subprocess
 import sys
 import threading
 import time
+from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -29,7 +30,7 @@ if TYPE_CHECKING:
 
     from workbench.viewer.web_cursor import WebCursor
 
-__all__ = ["LOCALHOST", "ReplayError", "attached"]
+__all__ = ["LOCALHOST", "Destination", "ReplayError", "attached"]
 
 #: ``--serve`` binds the gRPC server here; Rerun's own default is every interface.
 LOCALHOST = "127.0.0.1"
@@ -37,6 +38,46 @@ LOCALHOST = "127.0.0.1"
 
 class ReplayError(WorkbenchError):
     """The replay could not be written or served."""
+
+
+@dataclass(frozen=True, slots=True)
+class Destination:
+    """Exactly one place a recording goes (see :func:`attached`).
+
+    Attributes:
+        out: Write an ``.rrd`` file here (parent directories are created).
+        spawn: Start a native viewer and stream to it.
+        serve: Host a gRPC server plus the web viewer on ``bind``.
+        connect: Stream to a running viewer's gRPC proxy (``rerun+http://HOST:PORT/proxy``).
+        bind: With ``serve``, the address the gRPC proxy and the web viewer listen on.
+        ports: ``(grpc_port, web_port)`` for ``serve``.
+        web_cursor: With ``serve``: serves the web page so a review can move the browser's
+            time cursor (:mod:`workbench.viewer.web_cursor`).
+    """
+
+    out: Path | None = None
+    spawn: bool = False
+    serve: bool = False
+    connect: str | None = None
+    bind: str = LOCALHOST
+    ports: tuple[int, int] = (9876, 9090)
+    web_cursor: WebCursor | None = None
+
+    def attach(
+        self, rec: rr.RecordingStream, blueprint: rr.blueprint.Blueprint
+    ) -> contextlib.AbstractContextManager[str]:
+        """:func:`attached` to this destination."""
+        return attached(
+            rec,
+            blueprint,
+            out=self.out,
+            spawn=self.spawn,
+            serve=self.serve,
+            ports=self.ports,
+            bind=self.bind,
+            connect=self.connect,
+            web_cursor=self.web_cursor,
+        )
 
 
 @contextlib.contextmanager

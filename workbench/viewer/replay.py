@@ -1,85 +1,40 @@
-"""Replay a drive into Rerun: the driver's chunks into a recording, sent to one destination.
+"""Replay a drive into Rerun: one pass of the driver's chunks, sent to one destination.
 
-Frames are read, evaluated and sent in chunks so memory stays flat for long drives.
+The jobs are apart: :class:`~workbench.viewer.drive_pass.DrivePass` builds the run and feeds
+each chunk once to the Rerun sink, the violation intervals and the incident detector;
+:class:`~workbench.viewer.outputs.Destination` is where the recording goes. Frames are read,
+evaluated and sent in chunks so memory stays flat for long drives.
 """
 
 from __future__ import annotations
 
 import time
-import uuid
-from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
-import rerun as rr
-
-from workbench.driver.run import DriveRun, EgoSize
-from workbench.incidents import IncidentDetector, drive_content_hash
 from workbench.replay.blueprint import replay_blueprint
-from workbench.replay.highlight import CulpritBoxes
-from workbench.replay.incident_sink import send_incidents
-from workbench.sinks.rerun_drive import SEND_FRAMES, RerunDriveSink
-from workbench.sinks.violations import ViolationDetector
-from workbench.viewer.outputs import LOCALHOST, attached
+from workbench.sinks.rerun_drive import SEND_FRAMES
+from workbench.viewer.drive_pass import (
+    APPLICATION_ID,
+    DrivePass,
+    FeedSettings,
+    PassWindow,
+    ReplaySummary,
+    recording_id,
+)
+from workbench.viewer.outputs import LOCALHOST, Destination
 
 if TYPE_CHECKING:
-    from collections.abc import Callable, Iterator, Mapping, Sequence
+    from collections.abc import Callable, Sequence
     from pathlib import Path
 
     from loaders.drive import Drive
-    from loaders.errors import LoaderError
-    from workbench.driver.run import Chunk
+    from workbench.driver.run import EgoSize
     from workbench.engines.base import EngineRunner
-    from workbench.incidents import Incident, IncidentSettings
+    from workbench.incidents import IncidentSettings
+    from workbench.replay.highlight import CulpritBoxes
     from workbench.replay.short_labels import ShortLabels
-    from workbench.sinks.violations import Violation
-    from workbench.viewer.web_cursor import WebCursor
 
-__all__ = ["APPLICATION_ID", "ReplaySummary", "recording_id", "replay_drive"]
-
-APPLICATION_ID = "rss-workbench"
-
-
-@dataclass(frozen=True, slots=True)
-class ReplaySummary:
-    """What a replay did.
-
-    Attributes:
-        log: The drive file or directory.
-        source_format: Format detected by the loader.
-        frames: Frames sent.
-        actors_seen: Distinct actor ids over the replayed frames.
-        duration_s: Drive time covered by the frames sent.
-        output: The ``.rrd`` path, the viewer URL, or ``"viewer"`` for a spawned viewer.
-        elapsed_s: Wall-clock time for loading and logging.
-        violations: Violation intervals found by the engines, if any ran.
-        unsafe_frames: Unsafe frames per engine.
-        stopped_by: The loader error that ended a truncated or corrupted log early; the
-            output holds every frame read before it.
-        incidents: The engines' incidents (worst first), shown as lanes and markers.
-    """
-
-    log: Path
-    source_format: str
-    frames: int
-    actors_seen: int
-    duration_s: float
-    output: str
-    elapsed_s: float
-    violations: tuple[Violation, ...] = ()
-    unsafe_frames: Mapping[str, int] = field(default_factory=dict)
-    stopped_by: LoaderError | None = None
-    incidents: tuple[Incident, ...] = ()
-
-    @property
-    def frames_per_s(self) -> float:
-        """Throughput, load plus log."""
-        return self.frames / self.elapsed_s if self.elapsed_s > 0 else float("inf")
-
-
-def recording_id(drive: Drive, start_ns: int | None, end_ns: int | None) -> str:
-    """The replay's recording id: the same drive and window give the same id."""
-    key = f"{drive.info.path.resolve()}|{start_ns}|{end_ns}"
-    return str(uuid.uuid5(uuid.NAMESPACE_URL, key))
+__all__ = ["APPLICATION_ID", "ReplaySummary", "drop_empty", "recording_id", "replay_drive"]
 
 
 def replay_drive(
@@ -98,12 +53,8 @@ def replay_drive(
     send_frames: int = SEND_FRAMES,
     ego_size: EgoSize | None = None,
     incident_settings: IncidentSettings | None = None,
-    verdicts: Mapping[str, str] | None = None,
     connect: str | None = None,
     selection: tuple[int, int] | None = None,
-    lead_in: tuple[int, int] | None = None,
-    focus_m: tuple[tuple[float, float], Sequence[tuple[float, float]]] | None = None,
-    web_cursor: WebCursor | None = None,
     culprits: CulpritBoxes | None = None,
     labels: ShortLabels | None = None,
 ) -> ReplaySummary:
@@ -127,17 +78,9 @@ def replay_drive(
         ego_size: The user's ego size for every engine and the viewer (``--rss-params``).
         incident_settings: How the engines' unsafe frames become incidents (lanes and
             markers sent after the last frame).
-        verdicts: Review verdict per incident id, shown on the lanes and markers.
         connect: Stream to a running viewer's gRPC proxy (``rerun+http://HOST:PORT/proxy``).
         selection: ``(first, last)`` frame of an incident: the blueprint's time panel selects
             and loops over it (a clip's review blueprint).
-        lead_in: ``(shown_from_ns, frame_offset)``: the frames before ``shown_from_ns`` warm
-            the engines up but are not sent; frame numbers are shifted by ``frame_offset``
-            (a clip numbered as its drive; :class:`~workbench.driver.run.DriveRun`).
-        focus_m: With ``selection``: ``(ego, objects)`` positions ``(x, y)`` [m] at the
-            incident's first frame; the camera frames them (else the ego at the first frame).
-        web_cursor: With ``serve``: serves the web page so the review loop can move the
-            browser's time cursor (:mod:`workbench.viewer.web_cursor`).
         culprits: Collects the culprits' boxes and the ego's positions at unsafe frames
             (the caller keeps it: the review camera looks there); a fresh one by default.
         labels: The drive's short object labels (``#1``), one table for the scene's
@@ -149,91 +92,39 @@ def replay_drive(
         Counts and timings of the replay.
     """
     t0 = time.perf_counter()
-    shown_from_ns, frame_offset = lead_in or (None, 0)
-    run = DriveRun(
+    destination = Destination(
+        out=out,
+        spawn=spawn,
+        serve=serve,
+        connect=connect,
+        bind=bind,
+        ports=ports,
+    )
+    one = DrivePass(
         drive,
         engines,
-        start_ns=start_ns,
-        end_ns=end_ns,
+        window=PassWindow(start_ns, end_ns),
         ego_size=ego_size,
-        shown_from_ns=shown_from_ns,
-        frame_offset=frame_offset,
+        settings=FeedSettings(incident_settings, send_frames, labels, culprits),
     )
-    chunks = iter(run)
-    first = next(chunks, None)
-    ego_start = (first.frames[0].ego.x_m, first.frames[0].ego.y_m) if first else None
-    rec = rr.RecordingStream(APPLICATION_ID, recording_id=recording_id(drive, start_ns, end_ns))
-    ego_at, objects_at = focus_m or (ego_start, ())
-    blueprint = replay_blueprint(
-        ego_at, engines=run.engine_names, selection=selection, focus_m=objects_at
-    )
-    detector = ViolationDetector(drive.info.path.name)
-    path = drive.info.path
-    incidents = IncidentDetector(
-        drive_content_hash(path) if engines and path.exists() else "", incident_settings
-    )
-    sink = RerunDriveSink(rec, drive, run.engine_names, send_frames=send_frames, labels=labels)
-    culprits = culprits if culprits is not None else CulpritBoxes()
+    blueprint = replay_blueprint(one.ego_start_m, engines=one.engine_names, selection=selection)
     try:
-        with attached(
-            rec,
-            blueprint,
-            out=out,
-            spawn=spawn,
-            serve=serve,
-            ports=ports,
-            bind=bind,
-            connect=connect,
-            web_cursor=web_cursor,
-        ) as to:
-            for chunk in _with_first(first, chunks):
-                sink.add_chunk(chunk)
-                detector.add_chunk(chunk)
-                incidents.add_chunk(chunk)
-                if engines:
-                    culprits.add_chunk(chunk)
-                if progress is not None:
-                    progress(detector.frames)
-            sink.close()
-            found = tuple(incidents.incidents()) if engines else ()
-            if engines:
-                lights = culprits.layout(
-                    found,
-                    sink.labels,
-                    incidents.frame_times,
-                    escape=rr.escape_entity_path_part,
-                )
-                send_incidents(rec, found, verdicts or {}, incidents.frame_times, highlights=lights)
+        with destination.attach(one.recording, blueprint) as to:
+            one.stream(progress)
+            found = one.found()
+            one.send_incidents(found, {})
             if on_served is not None and serve:
                 on_served(to)
-            rec.disconnect()
+            one.recording.disconnect()
     except BaseException:
-        _drop_empty(out, sink.frames)
+        drop_empty(out, one.sink.frames)
         raise
-    if run.stopped_by is not None:
-        _drop_empty(out, sink.frames)
-    return ReplaySummary(
-        log=drive.info.path,
-        source_format=drive.info.source_format,
-        frames=sink.frames,
-        actors_seen=len(sink.actor_ids),
-        duration_s=sink.duration_s,
-        output=to,
-        elapsed_s=time.perf_counter() - t0,
-        violations=tuple(detector.violations()),
-        unsafe_frames={n: detector.unsafe_per_engine.get(n, 0) for n in run.engine_names},
-        stopped_by=run.stopped_by,
-        incidents=found,
-    )
+    if one.run.stopped_by is not None:
+        drop_empty(out, one.sink.frames)
+    return one.summary(to, time.perf_counter() - t0, found)
 
 
-def _drop_empty(out: Path | None, frames: int) -> None:
+def drop_empty(out: Path | None, frames: int) -> None:
     """Remove the ``.rrd`` of a failed run that holds no frame (no empty file left behind)."""
     if out is not None and frames == 0:
         out.unlink(missing_ok=True)
-
-
-def _with_first(first: Chunk | None, rest: Iterator[Chunk]) -> Iterator[Chunk]:
-    if first is not None:
-        yield first
-        yield from rest
