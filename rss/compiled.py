@@ -57,6 +57,11 @@ _LOG = logging.getLogger(__name__)
 MODULES = (
     "rss.structured.batch",
     "rss.structured.stacking",
+    "rss.structured.scalar_physics",
+    "rss.structured.scalar_extract",
+    "rss.structured.scalar_checks",
+    "rss.structured.small",
+    "rss.structured.small_output",
     "rss.scene.align",
     "rss.scene.border_stations",
     "rss.scene.connecting",
