@@ -97,9 +97,12 @@ def _tolerant(  # noqa: PLR0917 - a strided walk over one scale column
     current = math.nan
     for s in range(slot, len(valid), step):
         value = values[base + s]
-        if valid[s] and (math.isnan(current) or (value - current) * sign >= _P):
+        if valid[s] and (
+            current != current  # noqa: PLR0124 - NaN test, native when compiled
+            or (value - current) * sign >= _P
+        ):
             current = value
-    if math.isnan(current):
+    if current != current:  # noqa: PLR0124
         return 0.0
     if math.isinf(current):
         return math.copysign(_FLOAT_MAX, current)
@@ -190,7 +193,7 @@ def place(lanes: list[int], params: list[float], road: Road) -> Placed:
             value = starts[q] + params[q * n_regions + k] * road.scale_m[q * width + idx[k]]
             if n_regions == 1:
                 current[q] = value + (0.0 if hit else math.nan)
-            elif hit and (math.isnan(current[q]) or (value - current[q]) * _SIGNS[q] >= _P):
+            elif hit and (current[q] != current[q] or (value - current[q]) * _SIGNS[q] >= _P):
                 current[q] = value
         if hit:
             found = True
@@ -209,7 +212,7 @@ def object_valid(lanes: list[int], params: list[float], speeds: list[float]) -> 
     """
     lon_min, lon_max, lat_min, lat_max = speeds[0], speeds[1], speeds[2], speeds[3]
     for speed in speeds:
-        if not math.isfinite(speed):
+        if speed - speed != 0.0:  # not finite (native when compiled)
             return False
     if (
         lon_min < 0.0
@@ -226,7 +229,7 @@ def object_valid(lanes: list[int], params: list[float], speeds: list[float]) -> 
             continue
         p = [params[k], params[n_regions + k], params[2 * n_regions + k], params[3 * n_regions + k]]
         for value in p:
-            if not math.isfinite(value) or value < -_PARAM_EPS or value > 1.0 + _PARAM_EPS:
+            if value - value != 0.0 or value < -_PARAM_EPS or value > 1.0 + _PARAM_EPS:
                 return False
         if p[0] > p[1] or p[2] > p[3]:
             return False

@@ -59,8 +59,15 @@ def stopping_distance(speed_mps: float, decel_mps2: float) -> float:
     return speed_mps * speed_mps / (-2.0 * decel_mps2)
 
 
+def _negative_sign(value: float) -> bool:
+    """``np.signbit`` (``math.copysign`` only for zeros: native comparisons otherwise)."""
+    if value != 0.0:
+        return value < 0.0
+    return math.copysign(1.0, value) < 0.0
+
+
 def _stop_if_moving_against(speed_mps: float, decel_mps2: float) -> float:
-    if (math.copysign(1.0, speed_mps) < 0.0) != (math.copysign(1.0, decel_mps2) < 0.0):
+    if _negative_sign(speed_mps) != _negative_sign(decel_mps2):
         return stopping_distance(speed_mps, decel_mps2)
     return 0.0
 

@@ -48,7 +48,7 @@ __all__ = ["SMALL_FRAME_MAX", "check_frame_small"]
 
 #: Largest frame (constellations) :func:`rss.structured.engine.check_frame` evaluates row
 #: by row; measured crossover with the batched engine (docs/benchmarks.md).
-SMALL_FRAME_MAX = 64
+SMALL_FRAME_MAX = 128
 
 _EGO_VEHICLE, _INVALID_OBJECT = 1, 0
 _OPPOSITE, _EGO_PRIO, _UNSTRUCTURED = 2, 3, 6
@@ -89,18 +89,22 @@ class _Objects:
             ],
             axis=1,
         ).tolist()
+        bounds = 4 * self.n_regions
+        self.lane_rows: list[list[int]] = [row[2:] for row in self.ints]
+        self.param_rows: list[list[float]] = [row[:bounds] for row in self.floats]
+        self.speed_rows: list[list[float]] = [row[bounds:] for row in self.floats]
 
     def lanes(self, row: int) -> list[int]:
         """``(K,)`` region lane ids of ``row``."""
-        return self.ints[row][2:]
+        return self.lane_rows[row]
 
     def params(self, row: int) -> list[float]:
         """Region bounds of ``row`` (lon min, lon max, lat min, lat max; ``K`` each)."""
-        return self.floats[row][: 4 * self.n_regions]
+        return self.param_rows[row]
 
     def speeds(self, row: int) -> list[float]:
         """Speeds of ``row`` [m/s]: lon min, lon max, lat min, lat max."""
-        return self.floats[row][4 * self.n_regions :]
+        return self.speed_rows[row]
 
 
 class _Roads:

@@ -161,18 +161,6 @@ class Columns:
             self.memory.append((*key, prev_lon, prev_lat, prev_int))
 
 
-def _side(
-    rows: list[LateralRow], response: IntArray, floats: np.ndarray, first: int
-) -> LateralSide:
-    return LateralSide(
-        is_safe=np.array([row[0] for row in rows], dtype=np.bool_),
-        response=response,
-        evaluator=np.array([row[2] for row in rows], dtype=np.int64),
-        current_distance_m=floats[first],
-        safe_distance_m=floats[first + 1],
-    )
-
-
 def assemble(out: Columns) -> Parts:
     """The engine's records of one frame from its columns (``(C,)`` / ``(1,)`` arrays)."""
     floats = np.array(
@@ -195,15 +183,17 @@ def assemble(out: Columns) -> Parts:
             out.lat_position,
             out.lon_response,
             out.lon_evaluator,
-            out.left_response,
-            out.right_response,
             out.intersection_state,
+            out.left_response,
+            [row[2] for row in out.left],
+            out.right_response,
+            [row[2] for row in out.right],
         ],
         dtype=np.int64,
     )
-    flags = np.array(
-        [out.ego_correct, out.other_correct, out.lon_safe, out.dangerous], dtype=np.bool_
-    )
+    flag_columns = (out.ego_correct, out.other_correct, out.lon_safe, out.dangerous)
+    lateral_safe = ([row[0] for row in out.left], [row[0] for row in out.right])
+    flags = np.array([*flag_columns, *lateral_safe], dtype=np.bool_)
     zeros = np.zeros((2, out.size), dtype=np.int64)
     relative = Relative(
         lon_position=ints[0],
@@ -224,17 +214,24 @@ def assemble(out: Columns) -> Parts:
         lon_evaluator=ints[3],
         lon_current_distance_m=floats[6],
         lon_safe_distance_m=floats[7],
-        left=_side(out.left, ints[4], floats, 8),
-        right=_side(out.right, ints[5], floats, 10),
-        intersection_state=ints[6],
+        left=LateralSide(flags[4], ints[5], ints[6], floats[8], floats[9]),
+        right=LateralSide(flags[5], ints[7], ints[8], floats[10], floats[11]),
+        intersection_state=ints[4],
     )
     is_safe, codes, limits = out.response
+    code_rows = np.array(codes, dtype=np.int64).reshape(3, 1)
+    limit_rows = np.array(limits, dtype=np.float64).reshape(6, 1)
     responses = ProperResponses(
         np.array([is_safe]),
-        np.array([codes[0]], dtype=np.int64),
-        np.array([codes[1]], dtype=np.int64),
-        np.array([codes[2]], dtype=np.int64),
-        *np.array(limits, dtype=np.float64).reshape(6, 1),
+        code_rows[0],
+        code_rows[1],
+        code_rows[2],
+        limit_rows[0],
+        limit_rows[1],
+        limit_rows[2],
+        limit_rows[3],
+        limit_rows[4],
+        limit_rows[5],
     )
     if out.memory:
         keys = np.array([entry[:3] for entry in out.memory], dtype=np.int64).T
