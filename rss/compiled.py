@@ -53,7 +53,8 @@ __all__ = [
 
 _LOG = logging.getLogger(__name__)
 
-#: The compiled modules (the per-object Python of scene creation).
+#: The compiled modules (the per-object Python of scene creation and the row-by-row
+#: structured engine of small frames, ``rss.structured.small``).
 MODULES = (
     "rss.structured.batch",
     "rss.structured.stacking",
