@@ -53,10 +53,16 @@ __all__ = [
 
 _LOG = logging.getLogger(__name__)
 
-#: The compiled modules (the per-object Python of scene creation).
+#: The compiled modules (the per-object Python of scene creation and the row-by-row
+#: structured engine of small frames, ``rss.structured.small``).
 MODULES = (
     "rss.structured.batch",
     "rss.structured.stacking",
+    "rss.structured.scalar_physics",
+    "rss.structured.scalar_extract",
+    "rss.structured.scalar_checks",
+    "rss.structured.small",
+    "rss.structured.small_output",
     "rss.scene.align",
     "rss.scene.border_stations",
     "rss.scene.connecting",

@@ -21,6 +21,7 @@ from rss.structured.merge import merge_similar
 from rss.structured.response import ProperResponses, resolve
 from rss.structured.responsibility import Responsibility, responsibility, swap_roles
 from rss.structured.severity import Severity, severity
+from rss.structured.small import SMALL_FRAME_MAX, check_frame_small
 from rss.structured.states import InvalidReason
 
 if TYPE_CHECKING:
@@ -100,7 +101,17 @@ def check_frames(
 def check_frame(
     batch: ConstellationBatch, default_ego: RssDynamics, memory: RssMemory | None = None
 ) -> tuple[FrameResult, RssMemory]:
-    """Evaluate all constellations of one frame (see :func:`check_frames`)."""
+    """Evaluate all constellations of one frame (see :func:`check_frames`).
+
+    A frame of at most :data:`rss.structured.small.SMALL_FRAME_MAX` constellations is
+    evaluated row by row (:mod:`rss.structured.small`) when it can be; the result is the
+    same.
+    """
+    if 0 < batch.size <= SMALL_FRAME_MAX:
+        parts = check_frame_small(batch, default_ego, memory)
+        if parts is not None:
+            rel, states, dangerous, invalid, frame, responses, new_memory = parts
+            return FrameResult(rel, states, dangerous, invalid, frame, responses), new_memory
     return check_frames(batch, np.zeros(batch.size, dtype=np.int64), 1, default_ego, memory)
 
 

@@ -39,7 +39,8 @@ _DYNAMICS_FIELDS = tuple(f.name for f in dataclasses.fields(DynamicsArrays))
 
 def dynamics_rows(dyn: DynamicsArrays) -> FloatArray:
     """``(D, C)``: the fields of ``dyn`` stacked in dataclass order (see :func:`pick_rows`)."""
-    return np.stack([getattr(dyn, name) for name in _DYNAMICS_FIELDS])
+    out: FloatArray = np.array([getattr(dyn, name) for name in _DYNAMICS_FIELDS])
+    return out
 
 
 def pick_rows(mask: BoolArray, a: FloatArray, b: FloatArray) -> DynamicsArrays:

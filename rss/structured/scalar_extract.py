@@ -1,0 +1,251 @@
+"""Scalar twin of the situation extraction (:mod:`rss.structured.extraction`), one row at a time.
+
+Lane table, footprint and relative position of one constellation with plain floats, in the
+operation order of :mod:`rss.structured.footprint` and :mod:`rss.structured.extraction`
+(tolerant running min / max over lanes and regions, exclusive sums left to right). A row
+the batched engine would flag invalid is reported as such (``None``) and the caller hands
+the whole frame to the batched engine.
+
+Inputs are flat lists of one row of a :class:`rss.structured.batch.ConstellationBatch`
+(its columns concatenated, see :mod:`rss.structured.small`).
+"""
+
+from __future__ import annotations
+
+import math
+
+from rss.physics import DISTANCE_PRECISION
+
+__all__ = ["Placed", "Road", "lane_table", "object_valid", "place", "relative_position"]
+
+_P = DISTANCE_PRECISION
+_PARAM_EPS = 1e-9
+_SPEED_LIMIT_MPS = 100.0
+_FLOAT_MAX = 1.7976931348623157e308
+_INTERSECTION = 1
+_POSITIVE = 1
+_NEGATIVE = 2
+
+
+class Road:
+    """Lane table of one road area (:class:`rss.structured.footprint.LaneTable`, one row).
+
+    Attributes:
+        lane_id: ``(W,)`` lane ids of the flattened ``R x L`` slots (-1 = none).
+        direction: ``(W,)`` :class:`LaneDrivingDirection` codes.
+        n_lanes: ``L`` (slots per segment).
+        seg_min_m: ``(R,)`` segment starts, sums of min lengths.
+        seg_max_m: ``(R,)`` sums of max lengths.
+        col_min_m: ``(L,)`` column starts, sums of min widths.
+        col_max_m: ``(L,)`` sums of max widths.
+        scale_m: ``(4 W,)`` length min, length max, width min, width max of every slot.
+        intersection_min_m: Entry of the intersecting area (NaN if none).
+        intersection_max_m: Exit (NaN if none).
+    """
+
+    def __init__(  # noqa: PLR0917 - a record of the table's fields
+        self,
+        lane_id: list[int],
+        direction: list[int],
+        n_lanes: int,
+        seg_m: tuple[list[float], list[float]],
+        col_m: tuple[list[float], list[float]],
+        scale_m: list[float],
+        intersection_m: tuple[float, float],
+    ) -> None:
+        """Store the fields (see the class docstring)."""
+        self.lane_id = lane_id
+        self.direction = direction
+        self.n_lanes = n_lanes
+        self.seg_min_m, self.seg_max_m = seg_m
+        self.col_min_m, self.col_max_m = col_m
+        self.scale_m = scale_m
+        self.intersection_min_m, self.intersection_max_m = intersection_m
+
+
+class Placed:
+    """Metric extents of one object (:class:`rss.structured.footprint.Extents`, one row)."""
+
+    def __init__(  # noqa: PLR0917 - a record of the extents' fields
+        self,
+        lon_min_m: float,
+        lon_max_m: float,
+        lat_min_m: float,
+        lat_max_m: float,
+        on_positive_lane: bool,  # noqa: FBT001
+        on_negative_lane: bool,  # noqa: FBT001
+        found: bool,  # noqa: FBT001
+    ) -> None:
+        """Store the fields."""
+        self.lon_min_m = lon_min_m
+        self.lon_max_m = lon_max_m
+        self.lat_min_m = lat_min_m
+        self.lat_max_m = lat_max_m
+        self.on_positive_lane = on_positive_lane
+        self.on_negative_lane = on_negative_lane
+        self.found = found
+
+
+def _tolerant(  # noqa: PLR0917 - a strided walk over one scale column
+    values: list[float], base: int, slot: int, step: int, valid: list[bool], sign: float
+) -> float:
+    """Tolerant running min (``sign`` -1) or max (+1) of the valid slots ``slot::step``.
+
+    ``values[base + s]`` is the value of slot ``s``; NaN maps to 0 and +-inf to +-max as
+    in ``footprint._reduce``.
+    """
+    current = math.nan
+    for s in range(slot, len(valid), step):
+        value = values[base + s]
+        if valid[s] and (
+            current != current  # noqa: PLR0124 - NaN test, native when compiled
+            or (value - current) * sign >= _P
+        ):
+            current = value
+    if current != current:  # noqa: PLR0124
+        return 0.0
+    if math.isinf(current):
+        return math.copysign(_FLOAT_MAX, current)
+    return current
+
+
+def _exclusive_sums(values: list[float]) -> list[float]:
+    out = [0.0] * len(values)
+    if len(values) > 1:
+        out[1] = values[0]
+    for j in range(2, len(values)):
+        out[j] = out[j - 1] + values[j - 1]
+    return out
+
+
+def lane_table(ints: list[int], floats: list[float], n_segments: int, n_lanes: int) -> Road:
+    """Lane table of one road area (:func:`rss.structured.footprint.lane_table`, one row).
+
+    Args:
+        ints: lane ids ``(R, L)``, driving directions ``(R, L)`` and segment types ``(R,)``,
+            flattened one after the other.
+        floats: length min, length max, width min, width max (``(R, L)`` each), then the
+            minimum lengths before and after the intersecting area (``(R,)`` each).
+        n_segments: ``R``.
+        n_lanes: ``L``.
+    """
+    width = n_segments * n_lanes
+    ok = [lane >= 0 for lane in ints[:width]]
+    # lengths lane by lane within a segment, column widths segment by segment
+    seg_ok = [ok[r * n_lanes : (r + 1) * n_lanes] for r in range(n_segments)]
+    seg_len_min = [_tolerant(floats, r * n_lanes, 0, 1, seg_ok[r], -1.0) for r in range(n_segments)]
+    seg_len_max = [
+        _tolerant(floats, width + r * n_lanes, 0, 1, seg_ok[r], 1.0) for r in range(n_segments)
+    ]
+    col_w_min = [_tolerant(floats, 2 * width, j, n_lanes, ok, -1.0) for j in range(n_lanes)]
+    col_w_max = [_tolerant(floats, 3 * width, j, n_lanes, ok, 1.0) for j in range(n_lanes)]
+    seg_min, seg_max = _exclusive_sums(seg_len_min), _exclusive_sums(seg_len_max)
+    i_min, i_max = math.nan, math.nan
+    for r in range(n_segments):
+        if ints[2 * width + r] == _INTERSECTION:
+            i_min = seg_min[r] + floats[4 * width + r]
+            i_max = seg_max[r] + seg_len_max[r] - floats[4 * width + n_segments + r]
+            break
+    return Road(
+        ints[:width],
+        ints[width : 2 * width],
+        n_lanes,
+        (seg_min, seg_max),
+        (_exclusive_sums(col_w_min), _exclusive_sums(col_w_max)),
+        floats,
+        (i_min, i_max),
+    )
+
+
+_SIGNS = (-1.0, 1.0, -1.0, 1.0)
+
+
+def place(lanes: list[int], params: list[float], road: Road) -> Placed:
+    """Extents of one object in a road area (:func:`rss.structured.footprint.place`, one row).
+
+    Args:
+        lanes: ``(K,)`` lane id of each occupied region (-1 = none).
+        params: lon min, lon max, lat min, lat max of the regions (``(K,)`` each, flat).
+        road: The road area's lane table.
+    """
+    width, n_regions = len(road.lane_id), len(lanes)
+    slots: list[tuple[int, int]] = []  # (sort key, region)
+    hits: list[bool] = []
+    idx: list[int] = []
+    for k, lane in enumerate(lanes):
+        slot = road.lane_id.index(lane) if lane >= 0 and lane in road.lane_id else -1
+        hits.append(slot >= 0)
+        idx.append(max(slot, 0))
+        slots.append((slot if slot >= 0 else width, k))
+    order = [k for _, k in sorted(slots)] if n_regions > 1 else [0]
+    current = [math.nan, math.nan, math.nan, math.nan]
+    positive = negative = found = False
+    for k in order:
+        segment, column = divmod(idx[k], road.n_lanes)
+        starts = (
+            road.seg_min_m[segment],
+            road.seg_max_m[segment],
+            road.col_min_m[column],
+            road.col_max_m[column],
+        )
+        hit = hits[k]
+        for q in range(4):
+            value = starts[q] + params[q * n_regions + k] * road.scale_m[q * width + idx[k]]
+            if n_regions == 1:
+                current[q] = value + (0.0 if hit else math.nan)
+            elif hit and (current[q] != current[q] or (value - current[q]) * _SIGNS[q] >= _P):
+                current[q] = value
+        if hit:
+            found = True
+            positive |= road.direction[idx[k]] == _POSITIVE
+            negative |= road.direction[idx[k]] == _NEGATIVE
+    return Placed(current[0], current[1], current[2], current[3], positive, negative, found)
+
+
+def object_valid(lanes: list[int], params: list[float], speeds: list[float]) -> bool:
+    """Whether ``extraction._invalid_objects`` does not flag the object (speeds, regions).
+
+    Args:
+        lanes: ``(K,)`` lane id of each occupied region (-1 = none).
+        params: lon min, lon max, lat min, lat max of the regions (``(K,)`` each, flat).
+        speeds: lon min, lon max, lat min, lat max [m/s].
+    """
+    lon_min, lon_max, lat_min, lat_max = speeds[0], speeds[1], speeds[2], speeds[3]
+    for speed in speeds:
+        if speed - speed != 0.0:  # not finite (native when compiled)
+            return False
+    if (
+        lon_min < 0.0
+        or lon_max < lon_min
+        or lon_max > _SPEED_LIMIT_MPS
+        or lat_min < -_SPEED_LIMIT_MPS
+        or lat_max < lat_min
+        or lat_max > _SPEED_LIMIT_MPS
+    ):
+        return False
+    n_regions = len(lanes)
+    for k, lane in enumerate(lanes):
+        if lane < 0:
+            continue
+        p = [params[k], params[n_regions + k], params[2 * n_regions + k], params[3 * n_regions + k]]
+        for value in p:
+            if value - value != 0.0 or value < -_PARAM_EPS or value > 1.0 + _PARAM_EPS:
+                return False
+        if p[0] > p[1] or p[2] > p[3]:
+            return False
+    return True
+
+
+def relative_position(
+    ego_min: float, ego_max: float, other_min: float, other_max: float
+) -> tuple[int, float]:
+    """``(LongitudinalPosition code, distance)`` (:func:`extraction.relative_position`)."""
+    if ego_min - other_max >= _P:
+        return 0, ego_min - other_max
+    if other_min - ego_max >= _P:
+        return 4, other_min - ego_max
+    if ego_min - other_min >= _P and ego_max - other_max >= _P:
+        return 1, 0.0
+    if other_min - ego_min >= _P and other_max - ego_max >= _P:
+        return 3, 0.0
+    return 2, 0.0

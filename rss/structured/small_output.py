@@ -1,0 +1,243 @@
+"""Row results of the small-frame path (:mod:`rss.structured.small`) and their arrays.
+
+:class:`Columns` gathers one frame's rows as Python lists, applies the memory for one
+frame (``memory.apply_memory_both`` with ``F = 1`` and one row per key: every row is a run
+of its own, its remembered state is the memory's entry of its key) and :func:`assemble`
+turns the lists into the engine's records with a few array constructions.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from rss.structured.checks import LateralSide, RawStates
+from rss.structured.extraction import Relative
+from rss.structured.memory import RssMemory
+from rss.structured.response import ProperResponses
+
+if TYPE_CHECKING:
+    from rss.arrays import BoolArray, IntArray
+    from rss.structured.scalar_checks import LateralRow
+
+__all__ = ["Columns", "Parts", "assemble"]
+
+#: ``(relative, states, dangerous, invalid, frame, responses, memory)`` of one frame.
+Parts = tuple[Relative, RawStates, "BoolArray", "IntArray", "IntArray", ProperResponses, RssMemory]
+
+_EGO_PRIO, _SAME_DIRECTION = 3, 1
+_ABLE_TO_BRAKE, _SAFE_DISTANCE = 1, 2
+
+
+class Columns:
+    """One frame's rows as lists (the fields of :class:`Relative` and :class:`RawStates`)."""
+
+    def __init__(self, size: int) -> None:
+        """Empty columns for ``size`` rows."""
+        self.size = size
+        self.lon_position: list[int] = []
+        self.lon_distance_m: list[float] = []
+        self.lat_position: list[int] = []
+        self.lat_distance_m: list[float] = []
+        self.ego_correct: list[bool] = []
+        self.other_correct: list[bool] = []
+        self.enter_leave: list[tuple[float, float, float, float]] = []
+        self.lon_safe: list[bool] = []
+        self.lon_response: list[int] = []
+        self.lon_evaluator: list[int] = []
+        self.lon_current_m: list[float] = []
+        self.lon_safe_m: list[float] = []
+        self.left: list[LateralRow] = []
+        self.right: list[LateralRow] = []
+        self.left_response: list[int] = []
+        self.right_response: list[int] = []
+        self.intersection_state: list[int] = []
+        self.dangerous: list[bool] = []
+        self.memory: list[tuple[int, int, int, bool, bool, int]] = []
+        self.response: tuple[bool, tuple[int, int, int], tuple[float, ...]] = (
+            True,
+            (0, 0, 0),
+            (),
+        )
+
+    def add_relative(
+        self,
+        relative: tuple[int, float, int, float, bool],
+        other_correct: bool,  # noqa: FBT001
+        enter_leave: tuple[float, float, float, float],
+    ) -> None:
+        """Append one row's relative situation."""
+        self.lon_position.append(relative[0])
+        self.lon_distance_m.append(relative[1])
+        self.lat_position.append(relative[2])
+        self.lat_distance_m.append(relative[3])
+        self.ego_correct.append(relative[4])
+        self.other_correct.append(other_correct)
+        self.enter_leave.append(enter_leave)
+
+    def add_states(
+        self, states: tuple[bool, int, int, float, float, LateralRow, LateralRow, int]
+    ) -> None:
+        """Append one row's raw states (``scalar_checks.check_row``)."""
+        lon_safe, response, evaluator, current, safe, left, right, state = states
+        self.lon_safe.append(lon_safe)
+        self.lon_response.append(response)
+        self.lon_evaluator.append(evaluator)
+        self.lon_current_m.append(current)
+        self.lon_safe_m.append(safe)
+        self.left.append(left)
+        self.right.append(right)
+        self.left_response.append(left[1])
+        self.right_response.append(right[1])
+        self.intersection_state.append(state)
+        self.dangerous.append(not lon_safe and not (left[0] and right[0]))
+
+    def apply_memory(
+        self,
+        ctypes: list[int],
+        ego_ids: list[int],
+        other_ids: list[int],
+        memory: RssMemory | None,
+    ) -> None:
+        """Clear responses by the remembered safe states; gather the memory after the frame."""
+        before: dict[tuple[int, int, int], tuple[bool, bool, int]] = {}
+        if memory is not None and memory.size:
+            for key_e, key_o, key_t, lon, lat, state in zip(
+                memory.ego_id.tolist(),
+                memory.object_id.tolist(),
+                memory.constellation_type.tolist(),
+                memory.lon_safe.tolist(),
+                memory.lat_safe.tolist(),
+                memory.intersection_state.tolist(),
+                strict=True,
+            ):
+                before[key_e, key_o, key_t] = (lon, lat, state)  # the last entry of a key
+        for c, ctype in enumerate(ctypes):
+            self._remember(c, ctype, (ego_ids[c], other_ids[c], ctype), before)
+        self.memory.sort()
+
+    def _remember(
+        self,
+        c: int,
+        ctype: int,
+        key: tuple[int, int, int],
+        before: dict[tuple[int, int, int], tuple[bool, bool, int]],
+    ) -> None:
+        intersection = ctype >= _EGO_PRIO
+        dangerous, lon_safe = self.dangerous[c], self.lon_safe[c]
+        lat_safe = self.left[c][0] and self.right[c][0]
+        base = lon_safe if intersection else not dangerous
+        overlap_assumption = ctype == _SAME_DIRECTION and 1 <= self.lat_position[c] <= 3  # noqa: PLR2004
+        entry = before.get(key)
+        known = entry is not None
+        prev_lon, prev_lat, prev_int = entry if entry is not None else (False, False, 0)
+        synthetic = dangerous and not intersection and not known
+        store = base or synthetic
+        structured = dangerous and not intersection
+        clear_lon = structured and known and prev_lat and not prev_lon
+        clear_lat = structured and (
+            (known and prev_lon and not prev_lat) or (synthetic and overlap_assumption)
+        )
+        int_none = (
+            intersection
+            and not lon_safe
+            and known
+            and (
+                (prev_int == _ABLE_TO_BRAKE and ctype == _EGO_PRIO)
+                or (prev_int == _SAFE_DISTANCE and self.lon_position[c] == 0)
+            )
+        )
+        calm = not intersection and not dangerous
+        if clear_lon or int_none or calm:
+            self.lon_response[c] = 0
+        if clear_lat or calm:
+            self.left_response[c] = self.right_response[c] = 0
+        if store:
+            stored_int = self.intersection_state[c] if intersection and base else 0
+            stored_lat = not overlap_assumption if synthetic else lat_safe
+            self.memory.append((*key, True if synthetic else lon_safe, stored_lat, stored_int))
+        elif known:
+            self.memory.append((*key, prev_lon, prev_lat, prev_int))
+
+
+def assemble(out: Columns) -> Parts:
+    """The engine's records of one frame from its columns (``(C,)`` / ``(1,)`` arrays)."""
+    floats = np.array(
+        [
+            out.lon_distance_m,
+            out.lat_distance_m,
+            *zip(*out.enter_leave, strict=True),
+            out.lon_current_m,
+            out.lon_safe_m,
+            [row[3] for row in out.left],
+            [row[4] for row in out.left],
+            [row[3] for row in out.right],
+            [row[4] for row in out.right],
+        ],
+        dtype=np.float64,
+    )
+    ints = np.array(
+        [
+            out.lon_position,
+            out.lat_position,
+            out.lon_response,
+            out.lon_evaluator,
+            out.intersection_state,
+            out.left_response,
+            [row[2] for row in out.left],
+            out.right_response,
+            [row[2] for row in out.right],
+        ],
+        dtype=np.int64,
+    )
+    flag_columns = (out.ego_correct, out.other_correct, out.lon_safe, out.dangerous)
+    lateral_safe = ([row[0] for row in out.left], [row[0] for row in out.right])
+    flags = np.array([*flag_columns, *lateral_safe], dtype=np.bool_)
+    zeros = np.zeros((2, out.size), dtype=np.int64)
+    relative = Relative(
+        lon_position=ints[0],
+        lon_distance_m=floats[0],
+        lat_position=ints[1],
+        lat_distance_m=floats[1],
+        ego_in_correct_lane=flags[0],
+        other_in_correct_lane=flags[1],
+        ego_dist_to_enter_m=floats[2],
+        ego_dist_to_leave_m=floats[3],
+        other_dist_to_enter_m=floats[4],
+        other_dist_to_leave_m=floats[5],
+        invalid=zeros[0],
+    )
+    states = RawStates(
+        lon_is_safe=flags[2],
+        lon_response=ints[2],
+        lon_evaluator=ints[3],
+        lon_current_distance_m=floats[6],
+        lon_safe_distance_m=floats[7],
+        left=LateralSide(flags[4], ints[5], ints[6], floats[8], floats[9]),
+        right=LateralSide(flags[5], ints[7], ints[8], floats[10], floats[11]),
+        intersection_state=ints[4],
+    )
+    is_safe, codes, limits = out.response
+    code_rows = np.array(codes, dtype=np.int64).reshape(3, 1)
+    limit_rows = np.array(limits, dtype=np.float64).reshape(6, 1)
+    responses = ProperResponses(
+        np.array([is_safe]),
+        code_rows[0],
+        code_rows[1],
+        code_rows[2],
+        limit_rows[0],
+        limit_rows[1],
+        limit_rows[2],
+        limit_rows[3],
+        limit_rows[4],
+        limit_rows[5],
+    )
+    if out.memory:
+        keys = np.array([entry[:3] for entry in out.memory], dtype=np.int64).T
+        verdicts = np.array([entry[3:5] for entry in out.memory], dtype=np.bool_).T
+        states_after = np.array([entry[5] for entry in out.memory], dtype=np.int64)
+        memory = RssMemory(keys[0], keys[1], keys[2], verdicts[0], verdicts[1], states_after)
+    else:
+        memory = RssMemory.empty()
+    return relative, states, flags[3], zeros[0], zeros[1], responses, memory

@@ -1,0 +1,128 @@
+"""The small-frame path (``rss.structured.small``) against the batched engine.
+
+``check_frame`` evaluates frames of up to ``SMALL_FRAME_MAX`` constellations row by row;
+every field of its result and memory must equal what ``check_frames`` computes for the
+same frame and memory (integers and flags exactly, distances within 1e-9 m: nothing here
+depends on this CPU's last bits). Frames the small path does not cover (an invalid row,
+two rows of one key) must be handed to the batched engine.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from rss.conformance.cases import ParsedCase, parse_case, parse_defaults
+from rss.model import Constellation, SpeedInterval
+from rss.structured.engine import FrameResult, check_frame, check_frames
+from rss.structured.small import SMALL_FRAME_MAX, check_frame_small
+from rss.structured.stacking import stack_constellations
+from tests.rss.structured.generators import random_case, random_sequence, renumber
+
+if TYPE_CHECKING:
+    from rss.structured.memory import RssMemory
+
+_DEFAULTS = parse_defaults({})
+
+
+def _fields(record: Any, prefix: str = "") -> dict[str, np.ndarray]:
+    out: dict[str, np.ndarray] = {}
+    for field in dataclasses.fields(record):
+        value = getattr(record, field.name)
+        if dataclasses.is_dataclass(value):
+            out |= _fields(value, f"{prefix}{field.name}.")
+        elif value is not None:
+            out[prefix + field.name] = value
+    return out
+
+
+def _assert_same(ours: Any, batched: Any) -> None:
+    a, b = _fields(ours), _fields(batched)
+    assert a.keys() == b.keys()
+    for name, value in a.items():
+        expected = b[name]
+        assert value.dtype == expected.dtype, name
+        assert value.shape == expected.shape, name
+        if value.dtype.kind == "f":
+            np.testing.assert_allclose(value, expected, rtol=0.0, atol=1e-9, err_msg=name)
+        else:
+            np.testing.assert_array_equal(value, expected, err_msg=name)
+
+
+def _batched(frame: list[Constellation], memory: RssMemory | None) -> tuple[FrameResult, RssMemory]:
+    batch = stack_constellations(frame)
+    return check_frames(batch, np.zeros(batch.size, dtype=np.int64), 1, _DEFAULTS.ego, memory)
+
+
+def _one_ego(parsed: list[ParsedCase]) -> list[Constellation]:
+    """One ego (id 0) with the others numbered 1..N."""
+    out = []
+    for i, p in enumerate(parsed):
+        c = renumber(p, 0, i + 1).constellation
+        assert c is not None
+        out.append(c)
+    return out
+
+
+def _drive(seed: int, n_objects: int, steps: int) -> list[list[Constellation]]:
+    rng = np.random.default_rng(seed)
+    sequences = [random_sequence(rng, _DEFAULTS, f"s{j}", steps) for j in range(n_objects)]
+    return [
+        _one_ego([parse_case(seq["steps"][t], _DEFAULTS, "x") for seq in sequences])
+        for t in range(steps)
+    ]
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.integers(1, 24), st.integers(1, 5))
+def test_drive_frame_by_frame_equals_batched(seed: int, n_objects: int, steps: int) -> None:
+    """Random drives (all constellation types), memory carried frame by frame on both paths."""
+    ours_memory = batched_memory = None
+    for frame in _drive(seed, n_objects, steps):
+        ours, ours_memory = check_frame(stack_constellations(frame), _DEFAULTS.ego, ours_memory)
+        batched, batched_memory = _batched(frame, batched_memory)
+        _assert_same(ours, batched)
+        _assert_same(ours_memory, batched_memory)
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.integers(1, 12))
+def test_valid_frames_take_the_small_path(seed: int, n_objects: int) -> None:
+    """A frame of valid constellations with distinct keys is evaluated row by row."""
+    rng = np.random.default_rng(seed)
+    parsed = [
+        parse_case(random_case(rng, _DEFAULTS, "c"), _DEFAULTS, "c") for _ in range(n_objects)
+    ]
+    frame = _one_ego(parsed)
+    batch = stack_constellations(frame)
+    batched, _ = _batched(frame, None)
+    if (batched.invalid == 0).all():
+        assert check_frame_small(batch, _DEFAULTS.ego, None) is not None
+    assert n_objects <= SMALL_FRAME_MAX
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.integers(2, 10), st.sampled_from(["twice", "nan", "same_id"]))
+def test_uncovered_frames_go_to_the_batched_engine(seed: int, n_objects: int, how: str) -> None:
+    """Two rows of one key, a non-finite speed or an object with the ego's id: batched."""
+    frames = _drive(seed, n_objects, 2)
+    first = frames[0]
+    if how == "twice":
+        frame = [*first, first[0]]
+    elif how == "nan":
+        other = dataclasses.replace(first[0].other, speed=SpeedInterval(np.nan, 1.0, 0.0, 0.0))
+        frame = [dataclasses.replace(first[0], other=other), *first[1:]]
+    else:
+        other = dataclasses.replace(first[0].other, object_id=first[0].ego.object_id)
+        frame = [dataclasses.replace(first[0], other=other), *first[1:]]
+    batch = stack_constellations(frame)
+    assert check_frame_small(batch, _DEFAULTS.ego, None) is None
+    _, memory = check_frame(stack_constellations(frames[1]), _DEFAULTS.ego)
+    ours, ours_memory = check_frame(batch, _DEFAULTS.ego, memory)
+    batched, batched_memory = _batched(frame, memory)
+    _assert_same(ours, batched)
+    _assert_same(ours_memory, batched_memory)
