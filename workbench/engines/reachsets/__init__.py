@@ -11,28 +11,28 @@ from typing import TYPE_CHECKING, Any
 import rerun as rr
 import rerun.blueprint as rrb
 
+from reachsets.errors import ReachSetError
 from workbench.engines.base import EngineSpec
+from workbench.engines.reachsets.options import ReachOptions
 from workbench.engines.reachsets.record import reach_record
 
 if TYPE_CHECKING:
     from loaders.maps.model import LaneMap
-    from workbench.engines.base import EngineRunner, EngineSettings, EngineSink
+    from workbench.engines.base import EngineRunner, EngineSink
     from workbench.replay.short_labels import ShortLabels
 
 __all__ = ["SPEC"]
 
 
-def _build(lane_map: LaneMap | None, settings: EngineSettings) -> EngineRunner:
-    from reachsets.params import ReachMethod  # noqa: PLC0415 - heavy, on demand
-    from workbench.engines.reachsets.runner import ReachRunner  # noqa: PLC0415
+def _build(lane_map: LaneMap | None, options: ReachOptions, *, full_geometry: bool) -> EngineRunner:
+    from workbench.engines.reachsets.runner import ReachRunner  # noqa: PLC0415 - on demand
 
-    method = ReachMethod(settings.reach_method)
     return ReachRunner(
         lane_map,
-        method=method,
-        full_geometry=settings.full_geometry,
-        rules=settings.reach_rules,
-        trajectory=settings.reach_trajectory,
+        method=options.method,
+        full_geometry=full_geometry,
+        rules=options.rules.setting,
+        trajectory=options.trajectory.value,
     )
 
 
@@ -62,4 +62,7 @@ SPEC = EngineSpec(
     sink=_sink,
     views=_views,
     incident_overrides=_incident_overrides,
+    options=ReachOptions,
+    errors=(ReachSetError,),
+    packages=("reachsets",),
 )

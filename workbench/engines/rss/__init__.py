@@ -12,23 +12,32 @@ from typing import TYPE_CHECKING, Any
 import rerun as rr
 import rerun.blueprint as rrb
 
+from rss.errors import RssError
 from workbench.engines.base import EngineSpec
 from workbench.engines.rss.causes import CAUSES, join_causes
 from workbench.engines.rss.incident_facts import RssIncidentFacts
+from workbench.engines.rss.options import (
+    RssOptions,
+    describe,
+    load_params,
+    scene_sized,
+    what_if,
+)
 from workbench.engines.rss.record import rss_record
 
 if TYPE_CHECKING:
     from loaders.maps.model import LaneMap
-    from workbench.engines.base import EngineRunner, EngineSettings, EngineSink
+    from workbench.engines.base import EngineRunner, EngineSink
     from workbench.replay.short_labels import ShortLabels
 
 __all__ = ["SPEC"]
 
 
-def _build(lane_map: LaneMap | None, settings: EngineSettings) -> EngineRunner:
+def _build(lane_map: LaneMap | None, options: RssOptions, *, full_geometry: bool) -> EngineRunner:
     from workbench.engines.rss.runner import RssRunner  # noqa: PLC0415 - heavy, on demand
 
-    return RssRunner(lane_map, settings.rss_params, outlines=settings.full_geometry)
+    params = load_params(options, lane_map)
+    return scene_sized(RssRunner(lane_map, params, outlines=full_geometry), params)
 
 
 def _sink(recording: rr.RecordingStream, labels: ShortLabels) -> EngineSink:
@@ -67,4 +76,9 @@ SPEC = EngineSpec(
     incident_overrides=_incident_overrides,
     incident_facts=RssIncidentFacts,
     join_causes=join_causes,
+    options=RssOptions,
+    errors=(RssError,),
+    what_if=what_if,
+    describe=describe,
+    packages=("rss",),
 )

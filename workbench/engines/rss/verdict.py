@@ -7,6 +7,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from rss.profiles import LIBRARY_PROFILE
+
 if TYPE_CHECKING:
     from numpy.typing import NDArray
 
@@ -99,7 +101,7 @@ class RssVerdict:
     rejected: tuple[tuple[str, str], ...] = ()
     responsible: NDArray[np.int64] | None = None
     obligations: tuple[tuple[str, Obligation], ...] = ()
-    profile: str = "adrss-5.0"
+    profile: str = LIBRARY_PROFILE
 
     def severity(self) -> dict[str, ObjectSeverity]:
         """Severity facts per object dangerous from either side, sorted by label."""

@@ -16,7 +16,7 @@ import pytest
 
 from loaders import open_drive
 from tests.workbench.engines.helpers import record
-from workbench.engines import EngineSettings, build_runners
+from workbench.engines import build_runners
 from workbench.samples.generate import SCENARIOS as SAMPLE_BUILDERS
 
 SAMPLES = Path(__file__).resolve().parents[4] / "sample_logs"
@@ -27,7 +27,7 @@ SCENARIOS = list(SAMPLE_BUILDERS)
 def _frames(name: str) -> list[dict[str, Any]]:
     drive = open_drive(SAMPLES / f"{name}.mcap")
     try:
-        (runner,) = build_runners(["reachsets"], drive.lane_map, EngineSettings())
+        (runner,) = build_runners(["reachsets"], drive.lane_map)
         frames = list(drive.frames())
     finally:
         drive.close()
