@@ -8,15 +8,15 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
-import rerun as rr
-import rerun.blueprint as rrb
-
 from reachsets.errors import ReachSetError
 from workbench.engines.base import EngineSpec
 from workbench.engines.reachsets.options import ReachOptions
 from workbench.engines.reachsets.record import reach_record
 
 if TYPE_CHECKING:
+    import rerun as rr
+    import rerun.blueprint as rrb
+
     from loaders.maps.model import LaneMap
     from workbench.engines.base import EngineRunner, EngineSink
     from workbench.replay.short_labels import ShortLabels
@@ -43,11 +43,15 @@ def _sink(recording: rr.RecordingStream, labels: ShortLabels) -> EngineSink:
 
 
 def _views() -> list[rrb.View]:
+    import rerun.blueprint as rrb  # noqa: PLC0415 - the viewer's, on demand
+
     return [rrb.TimeSeriesView(name="first collision [s into plan]", origin="/plots/reach")]
 
 
 def _incident_overrides() -> dict[str, Any]:
     """In one incident's view: no per-object labels (the incident's objects are highlighted)."""
+    import rerun as rr  # noqa: PLC0415 - the viewer's, on demand
+
     return {"world/reach/collisions": rr.Points3D.from_fields(show_labels=False)}
 
 

@@ -9,9 +9,6 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
-import rerun as rr
-import rerun.blueprint as rrb
-
 from rss.errors import RssError
 from workbench.engines.base import EngineSpec
 from workbench.engines.rss.causes import CAUSES, join_causes
@@ -26,6 +23,9 @@ from workbench.engines.rss.options import (
 from workbench.engines.rss.record import rss_record
 
 if TYPE_CHECKING:
+    import rerun as rr
+    import rerun.blueprint as rrb
+
     from loaders.maps.model import LaneMap
     from workbench.engines.base import EngineRunner, EngineSink
     from workbench.replay.short_labels import ShortLabels
@@ -47,6 +47,8 @@ def _sink(recording: rr.RecordingStream, labels: ShortLabels) -> EngineSink:
 
 
 def _views() -> list[rrb.View]:
+    import rerun.blueprint as rrb  # noqa: PLC0415 - the viewer's, on demand
+
     return [
         rrb.TimeSeriesView(name="rss acceleration limits [m/s²]", origin="/plots/rss/acceleration"),
         rrb.TimeSeriesView(name="rss distance vs safe [m]", origin="/plots/rss/distances"),
@@ -59,6 +61,8 @@ def _views() -> list[rrb.View]:
 
 def _incident_overrides() -> dict[str, Any]:
     """In one incident's view: no per-object labels (the incident's objects are highlighted)."""
+    import rerun as rr  # noqa: PLC0415 - the viewer's, on demand
+
     return {"world/rss/constellations": rr.LineStrips3D.from_fields(show_labels=False)}
 
 
