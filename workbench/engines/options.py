@@ -227,7 +227,8 @@ def options_from(
     try:
         return spec.options(**values)
     except ValueError as err:
-        raise EngineOptionError(f"engine {spec.name}: {err}") from err
+        source = where if section else f"engine {spec.name}"
+        raise EngineOptionError(f"{source}: {err}") from err
 
 
 def options_json(spec: EngineSpec, options: Any) -> dict[str, Any]:

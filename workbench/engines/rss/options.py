@@ -59,7 +59,7 @@ class RssOptions:
     def __post_init__(self) -> None:
         """Refuse an unknown profile name."""
         if self.profile is not None and self.profile not in CHOICES:
-            msg = f"--rss-profile {self.profile!r}: choose one of {', '.join(CHOICES)}"
+            msg = f"profile {self.profile!r} (--rss-profile): choose one of {', '.join(CHOICES)}"
             raise ValueError(msg)
 
 
