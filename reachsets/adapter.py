@@ -6,7 +6,14 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from reachsets.inputs import EgoTrajectory, ObjectStates, ReachInputs, TrackBounds
+from reachsets.inputs import (
+    REFERENCE_EGO_LENGTH_M,
+    REFERENCE_EGO_WIDTH_M,
+    EgoTrajectory,
+    ObjectStates,
+    ReachInputs,
+    TrackBounds,
+)
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -23,8 +30,8 @@ def reach_inputs_from_arrays(
     ego_yaw_rad: Any,
     ego_speed_mps: Any,
     ego_t_s: Any = None,
-    ego_length_m: float = 4.7,
-    ego_width_m: float = 2.8,
+    ego_length_m: float = REFERENCE_EGO_LENGTH_M,
+    ego_width_m: float = REFERENCE_EGO_WIDTH_M,
     object_ids: Sequence[str] = (),
     object_x_m: Any = (),
     object_y_m: Any = (),

@@ -20,10 +20,17 @@ import numpy as np
 
 from reachsets.errors import InputShapeError
 
+#: The ego's size [m] when a caller of this library gives none: the reference
+#: TrajectorySupervisor's simulated vehicle. The workbench always passes the frame's size.
+REFERENCE_EGO_LENGTH_M = 4.7
+REFERENCE_EGO_WIDTH_M = 2.8
+
 if TYPE_CHECKING:
     from numpy.typing import NDArray
 
 __all__ = [
+    "REFERENCE_EGO_LENGTH_M",
+    "REFERENCE_EGO_WIDTH_M",
     "EgoTrajectory",
     "ObjectStates",
     "ReachInputs",
@@ -87,8 +94,8 @@ class EgoTrajectory:
     yaw_rad: NDArray[np.float64]
     speed_mps: NDArray[np.float64]
     t_s: NDArray[np.float64]
-    length_m: float = 4.7
-    width_m: float = 2.8
+    length_m: float = REFERENCE_EGO_LENGTH_M
+    width_m: float = REFERENCE_EGO_WIDTH_M
 
     def __post_init__(self) -> None:
         """Freeze arrays and check lengths and finiteness."""

@@ -133,8 +133,6 @@ class ReachParams:
         arc_points: Points per steering arc.
         arc_step_m: Chord length between arc points.
         arc_max_turn_rad: Arcs stop turning after this heading change (keeps them simple).
-        ego_length_m: Default length (ego and objects without size).
-        ego_width_m: Default width.
         closed_track_gap_m: A track whose centre line ends this close to its start is closed.
         keep_largest_part_only: Reference behaviour: keep only the largest polygon after
             trimming and subtraction. Off by default: dropping parts under-approximates.
@@ -164,8 +162,6 @@ class ReachParams:
     arc_points: int = 15
     arc_step_m: float = 3.0
     arc_max_turn_rad: float = math.pi / 2
-    ego_length_m: float = 4.7
-    ego_width_m: float = 2.8
     closed_track_gap_m: float = 35.0
     keep_largest_part_only: bool = False
     keep_object_body: bool = False
@@ -185,8 +181,6 @@ class ReachParams:
             "ay_max_mps2": self.ay_max_mps2,
             "turn_radius_m": self.turn_radius_m,
             "arc_step_m": self.arc_step_m,
-            "ego_length_m": self.ego_length_m,
-            "ego_width_m": self.ego_width_m,
         }
         for name, value in positive.items():
             if not (math.isfinite(value) and value > 0):

@@ -24,6 +24,7 @@ highway    Review of recorded drives on motorways: others rho = 1 s (reaction an
 
 from __future__ import annotations
 
+import enum
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -39,16 +40,27 @@ __all__ = [
     "STANDSTILL_SPEED_MPS",
     "URBAN_PROFILE",
     "Profile",
+    "ProfileName",
     "merged_tables",
     "profile",
 ]
 
+
+class ProfileName(enum.StrEnum):
+    """The names of the parameter profiles (the one place they are spelled)."""
+
+    ADRSS_5_0 = "adrss-5.0"
+    CARLA = "carla"
+    HIGHWAY = "highway"
+    URBAN = "urban"
+
+
 #: Profile of ``RssParams()`` and of the conformance checks.
-LIBRARY_PROFILE = "adrss-5.0"
+LIBRARY_PROFILE = ProfileName.ADRSS_5_0
 #: Profile of the review commands' ``auto`` choice on fast roads (docs/rss.md).
-REVIEW_PROFILE = "highway"
+REVIEW_PROFILE = ProfileName.HIGHWAY
 #: Profile of the review commands' ``auto`` choice in town (docs/rss.md).
-URBAN_PROFILE = "urban"
+URBAN_PROFILE = ProfileName.URBAN
 #: Standstill threshold of the review profiles [m/s]: ad-rss 5.0's own standstill test
 #: (unstructured constellations: both ``speed_range.max <= 0.1`` -> DriveAway).
 STANDSTILL_SPEED_MPS = 0.1
@@ -111,16 +123,16 @@ _URBAN_VEHICLE: dict[str, object] = {
 _REVIEW: dict[str, object] = {"standstill_speed": STANDSTILL_SPEED_MPS}
 
 PROFILES: dict[str, Profile] = {
-    p.name: p
+    str(p.name): p
     for p in (
         Profile(
-            name="adrss-5.0",
+            name=ProfileName.ADRSS_5_0,
             summary="ad-rss 5.0 unit-test defaults (ego rho 1 s, others 2 s); conformance",
             source="ad-rss-lib 5.0 ad_rss/test/test_support/TestSupport.cpp; CARLA pedestrians",
             tables={},
         ),
         Profile(
-            name="carla",
+            name=ProfileName.CARLA,
             summary="CARLA RssSensor defaults (RssCheck.cpp; unstructured step counts 0)",
             source="carla-simulator/carla LibCarla/source/carla/rss/RssCheck.cpp",
             tables={
@@ -130,7 +142,7 @@ PROFILES: dict[str, Profile] = {
             },
         ),
         Profile(
-            name="highway",
+            name=ProfileName.HIGHWAY,
             summary="review of recorded drives on fast roads (auto's choice there)",
             source=(
                 "docs/rss.md, Parameter profiles (legal reaction time; project calibration "
@@ -143,7 +155,7 @@ PROFILES: dict[str, Profile] = {
             },
         ),
         Profile(
-            name="urban",
+            name=ProfileName.URBAN,
             summary="review of recorded drives in town (auto's choice there)",
             source=(
                 "docs/rss.md, Parameter profiles (legal reaction time; AASHTO stopping "

@@ -2,12 +2,13 @@ r"""Convert CommonRoad scenarios to ROS 2 MCAP logs and, optionally, check them 
 
 For each ``X.xml`` it writes ``OUT/X.mcap`` (``workbench.samples.drive_mcap``: the drive
 ``workbench evaluate X.xml`` sees, as ``nav_msgs/Odometry`` + ``derived_object_msgs/
-ObjectArray`` + ``autoware_planning_msgs/Trajectory``) and ``OUT/X.ego.toml`` (the ego's
-size, which ``Odometry`` does not carry). The map is the scenario itself: ``--map X.xml``.
+ObjectArray`` + ``autoware_planning_msgs/Trajectory``) and ``OUT/X.ego-size`` (the ego's
+size as ``L,W,H``, which ``Odometry`` does not carry). The map is the scenario itself:
+``--map X.xml``.
 
 ``--check ENGINES`` then runs, per log::
 
-    workbench evaluate OUT/X.mcap --map X.xml --rss-params OUT/X.ego.toml \
+    workbench evaluate OUT/X.mcap --map X.xml --ego-size $(cat OUT/X.ego-size) \
         --engines ENGINES --per-frame OUT/X.jsonl
 
 and requires exit 0, no traceback, one JSON line per written frame and a record of every
@@ -31,23 +32,23 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from loaders import open_drive  # noqa: E402
-from workbench.samples.drive_mcap import ego_params_toml, write_drive_mcap  # noqa: E402
+from workbench.samples.drive_mcap import ego_size_option, write_drive_mcap  # noqa: E402
 
 #: The ``workbench`` console script, run by this interpreter from the checkout.
 _CLI = "from workbench.cli.main import main; main()"
 
 
 def convert(xml: Path, out: Path, ego_id: str | None) -> tuple[Path, Path, int]:
-    """Write ``out/<stem>.mcap`` and ``out/<stem>.ego.toml``; return them and the frames."""
+    """Write ``out/<stem>.mcap`` and ``out/<stem>.ego-size``; return them and the frames."""
     out.mkdir(parents=True, exist_ok=True)
-    mcap, toml = out / f"{xml.stem}.mcap", out / f"{xml.stem}.ego.toml"
+    mcap, toml = out / f"{xml.stem}.mcap", out / f"{xml.stem}.ego-size"
     drive = open_drive(xml, ego_id=ego_id)
     try:
         frames = write_drive_mcap(drive, mcap, map_name=xml.name)
         first = next(iter(drive.frames()))
     finally:
         drive.close()
-    toml.write_text(ego_params_toml(first.ego))
+    toml.write_text(ego_size_option(first.ego))
     return mcap, toml, frames
 
 
@@ -55,7 +56,7 @@ def check(xml: Path, mcap: Path, toml: Path, frames: int, engines: str) -> str:
     """Evaluate the log with the CLI; return a one-line result (``FAIL ...`` on a problem)."""
     lines = mcap.with_suffix(".jsonl")
     cmd = [sys.executable, "-c", _CLI, "evaluate", str(mcap), "--map", str(xml)]
-    cmd += ["--rss-params", str(toml), "--engines", engines, "--per-frame", str(lines)]
+    cmd += ["--ego-size", toml.read_text(), "--engines", engines, "--per-frame", str(lines)]
     start = time.perf_counter()
     done = subprocess.run(cmd, capture_output=True, text=True, check=False, cwd=ROOT)  # noqa: S603
     seconds = time.perf_counter() - start

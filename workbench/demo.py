@@ -10,17 +10,17 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from loaders import is_drive_path
-from workbench.drives import default_output, load_rss_params, open_log
-from workbench.engines.base import EngineSettings
-from workbench.engines.registry import build_runners
-from workbench.errors import USER_ERRORS
+from workbench.drives import default_output
+from workbench.engines.registry import user_errors
 
 if TYPE_CHECKING:
     from collections.abc import Callable, Sequence
     from pathlib import Path
 
     from loaders.drive import Drive
+    from workbench.driver.run import EgoSize
     from workbench.engines.base import EngineRunner
+    from workbench.incidents import IncidentRequest
     from workbench.viewer.replay import ReplaySummary
 
 __all__ = ["DemoRow", "find_sample_logs", "output_names", "primary_logs", "replay_one"]
@@ -87,26 +87,24 @@ class DemoRow:
 
 
 def replay_one(
-    log: Path,
+    request: IncidentRequest,
     target: Path,
-    engine_names: list[str],
-    replay: Callable[[Drive, Path, Sequence[EngineRunner]], ReplaySummary],
-    rss_profile: str | None = None,
+    replay: Callable[[Drive, Path, Sequence[EngineRunner], EgoSize | None], ReplaySummary],
 ) -> DemoRow:
-    """Evaluate and replay one log into ``target`` with ``replay(drive, target, runners)``.
+    """Evaluate and replay the request's log into ``target`` with its engines.
 
-    Errors of the user's input become the row's ``error``; the other logs go on.
+    ``replay(drive, target, runners, ego_size)`` does the replay. Errors of the user's input
+    become the row's ``error``; the other logs go on.
     """
+    log, engine_names = request.log, request.engines
     try:
-        drive = open_log(log, map_path=None, profile=None, ego_id=None)
+        drive = request.open_drive()
         try:
-            params = load_rss_params(None, rss_profile, drive.lane_map)
-            settings = EngineSettings(rss_params=params, full_geometry=True)
-            runners = build_runners(engine_names, drive.lane_map, settings)
-            s = replay(drive, target, runners)
+            runners, ego_size = request.engines_for(drive, full_geometry=True)
+            s = replay(drive, target, runners, ego_size)
         finally:
             drive.close()
-    except USER_ERRORS as err:
+    except user_errors() as err:
         return DemoRow(log=log.name, error=str(err))
     if s.stopped_by is not None and not s.frames:
         return DemoRow(log=log.name, error=f"no frame read (no {target.name}): {s.stopped_by}")

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING
 
 from loaders.timebase import s_to_ns
@@ -11,16 +12,12 @@ if TYPE_CHECKING:
     from pathlib import Path
 
     from loaders.drive import Drive
-    from loaders.maps.model import LaneMap
-    from rss.params import RssParams
     from workbench.driver.run import EgoSize
 
 __all__ = [
     "default_output",
-    "ego_size",
-    "load_rss_params",
     "open_log",
-    "rss_profile_line",
+    "parse_ego_size",
     "window_ns",
 ]
 
@@ -62,61 +59,24 @@ def open_log(
     return open_drive(log, map=map_path, profile=profile, ego_id=ego_id, ego_topic=ego_topic)
 
 
-def load_rss_params(
-    path: Path | None, profile: str | None = None, lane_map: LaneMap | None = None
-) -> RssParams:
-    """The RSS parameters of a command: ``--rss-profile NAME`` and ``--rss-params FILE.toml``.
+def parse_ego_size(text: str) -> EgoSize:
+    """``--ego-size L,W[,H]`` [m] as an :class:`EgoSize` (no height: the frame's).
 
-    Without a file: the named profile; ``None`` or ``auto`` choose by the drive's road
-    (:func:`workbench.engines.rss.auto_profile.auto_profile`, docs/rss.md). With a file: its
-    tables over the profile it or ``--rss-profile`` names (a file naming none starts from
-    ``adrss-5.0``, the library defaults, as before profiles existed).
-
-    Args:
-        path: ``--rss-params`` file, if any.
-        profile: ``--rss-profile`` value, if given.
-        lane_map: The drive's lane map (for ``auto``).
+    The ego's size of every engine and the viewer: this option, else the log's (CommonRoad
+    obstacle shape, ScenarioArchitect vehicle, OSI host vehicle), else the one default
+    ``loaders.records.DEFAULT_EGO_*`` (4.5 x 2.0 x 1.5 m).
 
     Raises:
-        WorkbenchError: The file cannot be read.
-        RssParameterError: The TOML is malformed or has an unknown table, key or bad value,
-            or the profile is unknown or contradicts the file's.
+        WorkbenchError: Not two or three positive, finite numbers.
     """
-    from rss.params import parse_rss_params, rss_params_from_mapping  # noqa: PLC0415
-    from workbench.engines.rss.auto_profile import AUTO, auto_profile  # noqa: PLC0415
-
-    if profile == AUTO or (profile is None and path is None):
-        profile = auto_profile(lane_map)
-    if path is None:
-        return rss_params_from_mapping({}, profile=profile)
-    try:
-        text = path.read_text()
-    except OSError as err:
-        raise WorkbenchError(f"--rss-params {path}: {err.strerror}") from err
-    return parse_rss_params(text, profile=profile)
-
-
-def ego_size(params: RssParams | None) -> EgoSize | None:
-    """The user's ego size of ``--rss-params [scene]`` (``None``: every frame keeps the log's)."""
     from workbench.driver.run import EgoSize  # noqa: PLC0415 - keeps CLI start-up light
 
-    if params is None:
-        return None
-    scene = params.scene
-    return EgoSize(scene.ego_length_m, scene.ego_width_m, scene.ego_height_m)
-
-
-def rss_profile_line(params: RssParams) -> str:
-    """``NAME: summary (key values)`` for ``workbench info``."""
-    from rss.params import ObjectClass  # noqa: PLC0415 - keeps CLI start-up light
-    from rss.profiles import profile  # noqa: PLC0415
-
-    ego, car = params.for_class(ObjectClass.EGO), params.for_class(ObjectClass.CAR)
-    still = params.standstill_speed_mps
-    rule = f"; standstill rule {still:g} m/s" if still > 0.0 else ""
-    return (
-        f"{params.profile_label}: {profile(params.profile).summary} "
-        f"(ego rho {ego.response_time_s:g} s, a_max {ego.accel_max_mps2:g}, "
-        f"b_min {ego.brake_min_mps2:g}; car rho {car.response_time_s:g} s, "
-        f"b_max {car.brake_max_mps2:g} m/s^2{rule})"
-    )
+    parts = text.split(",")
+    try:
+        sizes = [float(p) for p in parts]
+    except ValueError:
+        sizes = []
+    if len(sizes) not in {2, 3} or not all(0.0 < s < math.inf for s in sizes):
+        msg = f"--ego-size {text!r}: give length,width[,height] in metres, e.g. 4.5,2.0,1.5"
+        raise WorkbenchError(msg)
+    return EgoSize(*sizes)

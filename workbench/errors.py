@@ -1,10 +1,12 @@
-"""Errors of the workbench layer and the set of errors the CLI reports as one line."""
+"""Errors of the workbench layer and the base set of errors the CLI reports as one line.
+
+Each engine adds its own error types through its spec (``EngineSpec.errors``);
+:func:`workbench.engines.registry.user_errors` is the whole set.
+"""
 
 from __future__ import annotations
 
 from loaders.errors import LoaderError
-from reachsets.errors import ReachSetError
-from rss.errors import RssError
 
 __all__ = ["USER_ERRORS", "WorkbenchError"]
 
@@ -13,5 +15,5 @@ class WorkbenchError(Exception):
     """Root of errors raised by the pipeline, sinks, annotation store and exporters."""
 
 
-#: Errors that are the user's input, not our bug: the CLI prints them as one line.
-USER_ERRORS: tuple[type[Exception], ...] = (LoaderError, RssError, ReachSetError, WorkbenchError)
+#: Errors that are the user's input, not our bug, besides the engines' own (their specs).
+USER_ERRORS: tuple[type[Exception], ...] = (LoaderError, WorkbenchError)

@@ -24,16 +24,25 @@ if TYPE_CHECKING:
 __all__ = ["batch_request", "drive_reports", "request_record"]
 
 #: ``IncidentRequest`` fields that are paths.
-_PATHS = ("log", "map_path", "profile", "rss_params")
+_PATHS = ("log", "map_path", "profile")
 
 
 def request_record(request: IncidentRequest) -> dict[str, Any]:
-    """The request as JSON (paths as text, ``settings`` as its two numbers), for ``batch.json``."""
+    """The request as JSON, for ``batch.json``.
+
+    Paths as text, ``settings`` as its two numbers, ``ego_size`` as its three (``null``
+    for the log's), ``options`` as each registered engine's options by field name.
+    """
+    from workbench.engines.options import options_json  # noqa: PLC0415
+    from workbench.engines.registry import engine, names  # noqa: PLC0415
+
     out: dict[str, Any] = {}
     for f in dataclasses.fields(request):
         value = getattr(request, f.name)
-        if f.name == "settings":
-            value = dataclasses.asdict(value)
+        if f.name in {"settings", "ego_size"}:
+            value = None if value is None else dataclasses.asdict(value)
+        elif f.name == "options":
+            value = {n: options_json(engine(n), request.options_of(n)) for n in names()}
         elif f.name in _PATHS:
             value = None if value is None else str(value)
         elif isinstance(value, tuple):
@@ -48,6 +57,10 @@ def batch_request(results: Path) -> IncidentRequest:
     Raises:
         BatchError: ``batch.json`` is missing, unreadable or has no request.
     """
+    from workbench.driver.run import EgoSize  # noqa: PLC0415
+    from workbench.engines.options import options_from  # noqa: PLC0415
+    from workbench.engines.registry import engine  # noqa: PLC0415
+
     path = results / "batch.json"
     try:
         record = json.loads(path.read_text(encoding="utf-8"))["request"]
@@ -56,6 +69,12 @@ def batch_request(results: Path) -> IncidentRequest:
             values[name] = None if values.get(name) is None else Path(values[name])
         values["engines"] = tuple(values["engines"])
         values["settings"] = IncidentSettings(**values["settings"])
+        size = values.get("ego_size")
+        values["ego_size"] = None if size is None else EgoSize(**size)
+        values["options"] = {
+            name: options_from(engine(name), section=own, where=f"{path} options.{name}")
+            for name, own in values.get("options", {}).items()
+        }
         values["log"] = results
         return IncidentRequest(**values)
     except (OSError, ValueError, KeyError, TypeError) as err:

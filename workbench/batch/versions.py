@@ -21,15 +21,22 @@ __all__ = ["FINGERPRINTED", "engine_versions", "settings_hash"]
 
 _ROOT = Path(__file__).resolve().parents[2]
 
-#: Source folders (relative to the repository root) whose code decides incidents.
+#: Source folders (relative to the repository root) whose code decides incidents, besides
+#: the packages each engine's spec names (``EngineSpec.packages``).
 FINGERPRINTED = (
     "loaders",
-    "rss",
-    "reachsets",
     "workbench/driver",
     "workbench/engines",
     "workbench/incidents",
 )
+
+
+def _folders() -> tuple[str, ...]:
+    """:data:`FINGERPRINTED` and every registered engine's packages, once each."""
+    from workbench.engines.registry import engine, names  # noqa: PLC0415
+
+    packages = (p for name in names() for p in engine(name).packages)
+    return tuple(dict.fromkeys((*FINGERPRINTED, *packages)))
 
 
 @functools.cache
@@ -38,7 +45,7 @@ def engine_versions() -> dict[str, str]:
     from workbench import __version__  # noqa: PLC0415 - avoids a cycle at import
 
     digest = hashlib.sha256()
-    for folder in FINGERPRINTED:
+    for folder in _folders():
         for path in sorted((_ROOT / folder).rglob("*.py")):
             digest.update(path.relative_to(_ROOT).as_posix().encode() + b"\0")
             digest.update(path.read_bytes())

@@ -93,7 +93,7 @@ def batch(
     logs: Annotated[
         list[str], typer.Argument(help="Drives, directories (searched) or glob patterns.")
     ],
-    request: Callable[[Path], IncidentRequest],
+    requests: Callable[[Path], IncidentRequest],
     *,
     out: Annotated[Path, typer.Option("--out", help="Results directory (resumable).")],
     jobs: Annotated[
@@ -107,9 +107,9 @@ def batch(
     from workbench.batch.run import expand_logs, run_batch  # noqa: PLC0415
 
     paths = expand_logs(logs)
-    requests = [request(path) for path in paths]
+    chosen = [requests(path) for path in paths]
     with _progress() as bar, open_pool(cluster, jobs) as pool:
-        task = bar.add_task("batch", total=len(requests))
+        task = bar.add_task("batch", total=len(chosen))
 
         def started(todo: int, kept: int) -> None:
             bar.update(task, total=todo, description=f"batch ({kept} kept)" if kept else "batch")
@@ -117,7 +117,7 @@ def batch(
         def done(_record: dict[str, Any]) -> None:
             bar.advance(task)
 
-        summary = run_batch(requests, out, pool, on_start=started, on_done=done)
+        summary = run_batch(chosen, out, pool, on_start=started, on_done=done)
     _summary(summary, out)
 
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import shutil
 import sys
 from pathlib import Path
@@ -11,18 +12,20 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
-from workbench.cli.options import RssProfileOption  # noqa: TC001 - typer reads it at run time
 from workbench.cli.progress import run_with_progress
+from workbench.cli.request_options import RequestCommand
 from workbench.demo import find_sample_logs, output_names, primary_logs, replay_one
-from workbench.engines.registry import engine, parse_engines
+from workbench.engines.registry import cli_options, engine
 from workbench.errors import WorkbenchError
 
 if TYPE_CHECKING:
-    from collections.abc import Sequence
+    from collections.abc import Callable, Sequence
 
     from loaders.drive import Drive
     from workbench.demo import DemoRow
+    from workbench.driver.run import EgoSize
     from workbench.engines.base import EngineRunner
+    from workbench.incidents import IncidentRequest
     from workbench.viewer.replay import ReplaySummary
 
 __all__ = ["demo", "register"]
@@ -39,7 +42,9 @@ def _viewer_command() -> str:
     return "rerun"
 
 
-def _replay(drive: Drive, target: Path, runners: Sequence[EngineRunner]) -> ReplaySummary:
+def _replay(
+    drive: Drive, target: Path, runners: Sequence[EngineRunner], ego_size: EgoSize | None
+) -> ReplaySummary:
     return run_with_progress(
         drive,
         label=f"evaluate + replay {drive.info.path.name}",
@@ -47,6 +52,7 @@ def _replay(drive: Drive, target: Path, runners: Sequence[EngineRunner]) -> Repl
         end_s=None,
         out=target,
         engines=runners,
+        ego_size=ego_size,
     )
 
 
@@ -55,6 +61,12 @@ def _unsafe_cell(unsafe: dict[str, int] | None) -> str:
     if unsafe is None:
         return "-"
     return "  ".join(f"{engine(name).short} {n}" for name, n in unsafe.items())
+
+
+def _options_line(request: IncidentRequest) -> str:
+    """``reach_method turn, ..., rss_profile auto`` (``auto``: per drive, docs/rss.md)."""
+    record = request.record()
+    return ", ".join(f"{key} {record[key]}" for key in cli_options() if record.get(key) is not None)
 
 
 def _table(rows: list[DemoRow]) -> Table:
@@ -83,14 +95,11 @@ def _table(rows: list[DemoRow]) -> Table:
 
 def demo(
     samples_dir: Annotated[Path, typer.Argument(help="Directory of sample logs.")],
+    requests: Callable[[Path], IncidentRequest],
     *,
     out: Annotated[Path, typer.Option("--out", help="Directory for the .rrd files.")] = Path(
         "out/demo"
     ),
-    engines: Annotated[
-        str, typer.Option("--engines", help="Engines evaluated on every frame ('' for none).")
-    ] = "reachsets,rss,unstructured",
-    rss_profile: RssProfileOption = None,
 ) -> None:
     """Re-evaluate every sample log in SAMPLES_DIR, replay it into OUT/<name>.rrd, summarise."""
     if not samples_dir.is_dir():
@@ -99,15 +108,18 @@ def demo(
     if not logs:
         raise WorkbenchError(f"{samples_dir}: no .mcap, .bag, rosbag2 directory or .xml found")
     names = output_names(logs)
-    engine_names = parse_engines(engines)
     # The .bag and rosbag2 variants hold the same drive as the .mcap of that name: evaluate
     # one log per drive (the one keeping the plain name), replay the others only.
     primary = primary_logs(logs)
+    chosen = [requests(log) for log in logs]
+    engine_names = chosen[0].engines
     rows = [
         replay_one(
-            log, out / names[log], engine_names if log in primary else [], _replay, rss_profile
+            r if r.log in primary else dataclasses.replace(r, engines=()),
+            out / names[r.log],
+            _replay,
         )
-        for log in logs
+        for r in chosen
     ]
     console = Console(width=max(Console().width, 120))
     console.print(_table(rows))
@@ -116,7 +128,7 @@ def demo(
             console.print(f"[red]failed:[/red] {r.error}", highlight=False, soft_wrap=True)
     done = [r for r in rows if not r.error]
     if done:
-        console.print(f"RSS parameter profile: {rss_profile or 'auto (per drive, docs/rss.md)'}")
+        console.print(f"engine options: {_options_line(chosen[0])}", highlight=False)
         console.print(f"{len(done)} of {len(rows)} logs written to {out.resolve()}/")
         if engine_names:
             console.print(
@@ -134,4 +146,4 @@ def demo(
 
 def register(app: typer.Typer) -> None:
     """Add ``demo`` to the CLI."""
-    app.command("demo")(demo)
+    app.command("demo")(RequestCommand(demo, inject="requests", drive=False, need_engines=False))

@@ -10,21 +10,14 @@ from rich.table import Table
 
 from loaders.timebase import ns_to_s
 from workbench.cli.losses import VerboseOption, echo_losses
-from workbench.cli.options import (
-    EGO_TOPIC_HELP,
-    REACH_RULES_HELP,
-    REACH_TRAJECTORY_HELP,
-    ReachMethodOption,
-    ReachRulesOption,
-    ReachTrajectoryOption,
-    RssProfileOption,
-)
+from workbench.cli.options import LogArgument  # noqa: TC001 - typer reads it at run time
 from workbench.cli.progress import frame_progress
+from workbench.cli.request_options import RequestCommand
 from workbench.cli.tables import print_table
-from workbench.drives import ego_size, load_rss_params, open_log, window_ns
-from workbench.errors import WorkbenchError
+from workbench.drives import window_ns
 
 if TYPE_CHECKING:
+    from workbench.incidents import IncidentRequest
     from workbench.sinks.violations import Violation
 
 __all__ = ["register"]
@@ -48,26 +41,9 @@ def _summary_table(violations: list[Violation], t0_ns: int) -> Table:
 
 
 def evaluate(
-    log: Annotated[
-        Path, typer.Argument(help="Drive: .mcap, .bag, rosbag2 dir or .db3, .osi, .xml, .saa.")
-    ],
+    log: LogArgument,
+    request: IncidentRequest,
     *,
-    map_path: Annotated[Path | None, typer.Option("--map", help="Lane map file.")] = None,
-    profile: Annotated[Path | None, typer.Option("--profile", help="TOML topic profile.")] = None,
-    ego_id: Annotated[str | None, typer.Option("--ego-id", help="CommonRoad ego id.")] = None,
-    ego_topic: Annotated[str | None, typer.Option("--ego-topic", help=EGO_TOPIC_HELP)] = None,
-    engines: Annotated[
-        str, typer.Option("--engines", help="Comma-separated; `workbench engines` lists them.")
-    ] = "reachsets",
-    reach_method: Annotated[
-        ReachMethodOption, typer.Option("--reach-method", help="Reachable-set method.")
-    ] = ReachMethodOption.turn,
-    reach_rules: Annotated[
-        ReachRulesOption, typer.Option("--reach-rules", help=REACH_RULES_HELP)
-    ] = ReachRulesOption.public_road,
-    reach_trajectory: Annotated[
-        ReachTrajectoryOption, typer.Option("--reach-trajectory", help=REACH_TRAJECTORY_HELP)
-    ] = ReachTrajectoryOption.auto,
     per_frame: Annotated[
         Path | None, typer.Option("--per-frame", help="Write one JSON line per frame here.")
     ] = None,
@@ -76,31 +52,16 @@ def evaluate(
     ] = None,
     start: Annotated[float | None, typer.Option("--start", help="Seconds from start.")] = None,
     end: Annotated[float | None, typer.Option("--end", help="Seconds from start.")] = None,
-    rss_params: Annotated[
-        Path | None,
-        typer.Option("--rss-params", help="TOML with RSS dynamics and [scene] settings."),
-    ] = None,
-    rss_profile: RssProfileOption = None,
     verbose: VerboseOption = False,
 ) -> None:
     """Re-evaluate every frame; print the violations, optionally write per-frame JSON lines."""
     from workbench.driver.evaluate import evaluate_drive  # noqa: PLC0415 - keeps start-up light
-    from workbench.engines import EngineSettings, build_runners, parse_engines  # noqa: PLC0415
     from workbench.sinks.violations import write_violations  # noqa: PLC0415
 
-    names = parse_engines(engines)
-    if not names:
-        raise WorkbenchError("--engines: name at least one engine")
-    drive = open_log(log, map_path=map_path, profile=profile, ego_id=ego_id, ego_topic=ego_topic)
+    names = request.engines
+    drive = request.open_drive()
     try:
-        params = load_rss_params(rss_params, rss_profile, drive.lane_map)
-        settings = EngineSettings(
-            rss_params=params,
-            reach_method=reach_method.value,
-            reach_rules=reach_rules.setting,
-            reach_trajectory=reach_trajectory.value,
-        )
-        runners = build_runners(names, drive.lane_map, settings)
+        runners, ego_size = request.engines_for(drive)
         start_ns, end_ns = window_ns(drive, start, end)
         with frame_progress() as bar:
             task = bar.add_task(f"evaluate {log.name}", total=drive.info.frame_count or None)
@@ -111,7 +72,7 @@ def evaluate(
                 end_ns=end_ns,
                 per_frame=per_frame,
                 progress=lambda done: bar.update(task, completed=done),
-                ego_size=ego_size(params),
+                ego_size=ego_size,
             )
     finally:
         drive.close()
@@ -138,4 +99,4 @@ def evaluate(
 
 def register(app: typer.Typer) -> None:
     """Add ``evaluate`` to the CLI."""
-    app.command("evaluate")(evaluate)
+    app.command("evaluate")(RequestCommand(evaluate, inject="request"))

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-from pathlib import Path  # noqa: TC003 - typer resolves annotations at runtime
 from typing import TYPE_CHECKING, Annotated
 
 import typer
@@ -11,13 +10,14 @@ from rich.table import Table
 
 from loaders.timebase import ns_to_s
 from workbench.cli.losses import VerboseOption, echo_losses
-from workbench.cli.options import EGO_TOPIC_HELP, RssProfileOption
+from workbench.cli.options import LogArgument  # noqa: TC001 - typer reads it at run time
+from workbench.cli.request_options import RequestCommand
 from workbench.cli.tables import print_table
-from workbench.drives import load_rss_params, rss_profile_line
 
 if TYPE_CHECKING:
     from loaders.drive import Drive
     from loaders.errors import LoaderError
+    from workbench.incidents import IncidentRequest
     from workbench.quality import Finding
 
 __all__ = ["info", "quality_table", "register", "render_info"]
@@ -112,22 +112,10 @@ def _quality(drive: Drive, console: Console) -> LoaderError | None:
 
 
 def info(
-    log: Annotated[
-        Path, typer.Argument(help="Drive: .mcap, .bag, rosbag2 dir or .db3, .osi, .xml, .saa/.scn")
-    ],
+    log: LogArgument,
+    request: IncidentRequest,
     *,
-    map_path: Annotated[
-        Path | None, typer.Option("--map", help="Lane map file (Lanelet2 .osm)")
-    ] = None,
-    profile: Annotated[Path | None, typer.Option("--profile", help="TOML topic profile")] = None,
-    ego_id: Annotated[str | None, typer.Option("--ego-id", help="CommonRoad ego obstacle")] = None,
     verbose: VerboseOption = False,
-    ego_topic: Annotated[str | None, typer.Option("--ego-topic", help=EGO_TOPIC_HELP)] = None,
-    rss_profile: RssProfileOption = None,
-    rss_params: Annotated[
-        Path | None,
-        typer.Option("--rss-params", help="TOML with RSS dynamics and [scene] settings."),
-    ] = None,
     quality: Annotated[
         bool,
         typer.Option(
@@ -145,21 +133,22 @@ def info(
     command with its error after the summary. ``--quality`` reads every frame once more and
     lists the implausible data per object and kind (docs/data_quality.md).
     """
-    from loaders import LoaderError, open_drive  # noqa: PLC0415 - keeps CLI start-up light
+    from loaders import LoaderError  # noqa: PLC0415 - keeps CLI start-up light
     from loaders.losses import count_frames  # noqa: PLC0415
 
-    drive = open_drive(log, map=map_path, profile=profile, ego_id=ego_id, ego_topic=ego_topic)
+    del log  # the request's
+    drive = request.open_drive()
     stopped: LoaderError | None = None
     try:
-        params = load_rss_params(rss_params, rss_profile, drive.lane_map)
+        lines = _engine_lines(request, drive)
         try:
             frames: int | None = count_frames(drive)
         except LoaderError as err:
             frames, stopped = None, err
         console = Console(width=160)
         render_info(drive, console, frames)
-        chosen = "auto -> " if rss_profile in {None, "auto"} and rss_params is None else ""
-        console.print(f"rss profile {chosen}{rss_profile_line(params)}")
+        for line in lines:
+            console.print(line)
         if quality and stopped is None:
             stopped = _quality(drive, console)
     finally:
@@ -169,6 +158,19 @@ def info(
         raise stopped
 
 
+def _engine_lines(request: IncidentRequest, drive: Drive) -> list[str]:
+    """What each engine that describes its options says about them for this drive."""
+    from workbench.engines.registry import engine, names  # noqa: PLC0415
+
+    lines: list[str] = []
+    for name in names():
+        describe = engine(name).describe
+        line = None if describe is None else describe(drive.lane_map, request.options_of(name))
+        if line is not None and line not in lines:
+            lines.append(line)
+    return lines
+
+
 def register(app: typer.Typer) -> None:
     """Add the ``info`` command."""
-    app.command("info")(info)
+    app.command("info")(RequestCommand(info, inject="request", engines=None, need_engines=False))

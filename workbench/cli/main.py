@@ -13,7 +13,7 @@ from typing import Annotated
 import typer
 
 from workbench.cli import commands
-from workbench.errors import USER_ERRORS
+from workbench.engines.registry import user_errors
 
 __all__ = ["app", "main"]
 
@@ -46,7 +46,7 @@ def main(argv: list[str] | None = None) -> None:
     debug = "--debug" in args
     try:
         app(args=args, standalone_mode=True)
-    except USER_ERRORS as err:
+    except user_errors() as err:
         if debug:
             raise
         typer.secho(f"error: {err}", err=True, fg=typer.colors.RED)

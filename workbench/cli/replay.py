@@ -4,24 +4,18 @@ from __future__ import annotations
 
 import time
 from pathlib import Path
-from typing import Annotated
+from typing import TYPE_CHECKING, Annotated
 
 import typer
 
 from workbench.cli.losses import VerboseOption, echo_losses
-from workbench.cli.options import (
-    EGO_TOPIC_HELP,
-    REACH_RULES_HELP,
-    REACH_TRAJECTORY_HELP,
-    GrpcPortOption,
-    ReachMethodOption,
-    ReachRulesOption,
-    ReachTrajectoryOption,
-    RssProfileOption,
-    WebPortOption,
-)
+from workbench.cli.options import GrpcPortOption, LogArgument, WebPortOption  # noqa: TC001
 from workbench.cli.progress import run_with_progress
-from workbench.drives import default_output, ego_size, load_rss_params, open_log
+from workbench.cli.request_options import RequestCommand
+from workbench.drives import default_output
+
+if TYPE_CHECKING:
+    from workbench.incidents import IncidentRequest
 
 __all__ = ["register", "replay"]
 
@@ -41,21 +35,9 @@ def _wait_for_ctrl_c(url: str) -> None:
 
 
 def replay(
-    log: Annotated[
-        Path, typer.Argument(help="Drive: .mcap, .bag, rosbag2 directory or CommonRoad .xml.")
-    ],
+    log: LogArgument,
+    request: IncidentRequest,
     *,
-    map_path: Annotated[
-        Path | None,
-        typer.Option("--map", help="Lane map file (Lanelet2, CommonRoad, OpenDRIVE)."),
-    ] = None,
-    profile: Annotated[
-        Path | None, typer.Option("--profile", help="TOML profile overriding topic roles.")
-    ] = None,
-    ego_id: Annotated[
-        str | None, typer.Option("--ego-id", help="CommonRoad: obstacle id promoted to ego.")
-    ] = None,
-    ego_topic: Annotated[str | None, typer.Option("--ego-topic", help=EGO_TOPIC_HELP)] = None,
     out: Annotated[Path | None, typer.Option("--out", help="Write this .rrd file.")] = None,
     out_dir: Annotated[
         Path, typer.Option("--out-dir", help="Directory for the default <log stem>.rrd.")
@@ -76,46 +58,17 @@ def replay(
     end: Annotated[
         float | None, typer.Option("--end", help="Seconds from the drive start.")
     ] = None,
-    engines: Annotated[
-        str,
-        typer.Option(
-            "--engines", help="Also evaluate and show these (`workbench engines` lists them)."
-        ),
-    ] = "",
-    reach_method: Annotated[
-        ReachMethodOption, typer.Option("--reach-method", help="Reachable-set method.")
-    ] = ReachMethodOption.turn,
-    reach_rules: Annotated[
-        ReachRulesOption, typer.Option("--reach-rules", help=REACH_RULES_HELP)
-    ] = ReachRulesOption.public_road,
-    reach_trajectory: Annotated[
-        ReachTrajectoryOption, typer.Option("--reach-trajectory", help=REACH_TRAJECTORY_HELP)
-    ] = ReachTrajectoryOption.auto,
-    rss_params: Annotated[
-        Path | None,
-        typer.Option("--rss-params", help="TOML with RSS dynamics and [scene] settings."),
-    ] = None,
-    rss_profile: RssProfileOption = None,
     verbose: VerboseOption = False,
 ) -> None:
     """Replay a drive into Rerun: map, ego, actors, plan and plots on timelines frame/log_time."""
-    from workbench.engines import EngineSettings, build_runners, parse_engines  # noqa: PLC0415
     from workbench.viewer.outputs import ReplayError  # noqa: PLC0415
 
     if sum((out is not None, spawn, serve)) > 1:
         raise ReplayError("--out, --spawn and --serve are mutually exclusive")
     target = out if (out is not None or spawn or serve) else default_output(log, out_dir)
-    drive = open_log(log, map_path=map_path, profile=profile, ego_id=ego_id, ego_topic=ego_topic)
+    drive = request.open_drive()
     try:
-        params = load_rss_params(rss_params, rss_profile, drive.lane_map)
-        settings = EngineSettings(
-            rss_params=params,
-            reach_method=reach_method.value,
-            reach_rules=reach_rules.setting,
-            reach_trajectory=reach_trajectory.value,
-            full_geometry=True,
-        )
-        runners = build_runners(parse_engines(engines), drive.lane_map, settings)
+        runners, ego_size = request.engines_for(drive, full_geometry=True)
         summary = run_with_progress(
             drive,
             label=f"replay {log.name}",
@@ -128,7 +81,7 @@ def replay(
             engines=runners,
             bind=bind,
             ports=(grpc_port, web_port),
-            ego_size=ego_size(params),
+            ego_size=ego_size,
         )
     finally:
         drive.close()
@@ -150,4 +103,6 @@ def replay(
 
 def register(app: typer.Typer) -> None:
     """Add ``replay`` to the CLI."""
-    app.command("replay")(replay)
+    app.command("replay")(
+        RequestCommand(replay, inject="request", engines="none", need_engines=False)
+    )

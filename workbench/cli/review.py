@@ -18,10 +18,10 @@ from workbench.cli.incident_options import (
     MarginFilter,
     ObjectFilter,
     StoreOption,
-    find_with_progress,
     with_incidents,
 )
 from workbench.cli.options import GrpcPortOption, WebPortOption  # noqa: TC001 - typer reads them
+from workbench.cli.request_options import find_with_progress
 from workbench.errors import WorkbenchError
 
 if TYPE_CHECKING:

@@ -64,7 +64,7 @@ def evaluate_drive(
         per_frame: Write one JSON line per frame here (pinned format of DESIGN.md); the
             file appears whole when the evaluation ends (written beside it, then renamed).
         progress: Called with the number of frames evaluated after each chunk.
-        ego_size: The user's ego size for every engine (``--rss-params [scene]``).
+        ego_size: The user's ego size for every engine (``--ego-size``).
 
     Returns:
         The verdicts. A ``LoaderError`` raised while reading (truncated or corrupted log)

@@ -40,7 +40,7 @@ CHUNK_FRAMES = 32
 
 @dataclass(frozen=True, slots=True)
 class EgoSize:
-    """The user's ego size [m] (``--rss-params [scene] ego_length`` ...); ``None``: the log's."""
+    """The user's ego size [m] (``--ego-size L,W,H``); ``None`` fields: the frame's (the log's)."""
 
     length_m: float | None = None
     width_m: float | None = None
@@ -50,6 +50,11 @@ class EgoSize:
         """The ``EgoState`` fields to replace."""
         given = {"length_m": self.length_m, "width_m": self.width_m, "height_m": self.height_m}
         return {k: v for k, v in given.items() if v is not None}
+
+    def apply(self, frame: Frame) -> Frame:
+        """``frame`` with this size for its ego (fields that are ``None`` kept)."""
+        given = self.fields()
+        return dataclasses.replace(frame, ego=dataclasses.replace(frame.ego, **given))
 
 
 @dataclass(frozen=True, slots=True)
@@ -114,7 +119,7 @@ class DriveRun:
         self.runners = tuple(runners)
         self._window = (start_ns, end_ns)
         self._chunk_frames = chunk_frames
-        self._ego_size = ego_size.fields() if ego_size is not None else {}
+        self._ego_size = ego_size if ego_size is not None and ego_size.fields() else None
         self._shown_from_ns = shown_from_ns
         self._frame_offset = frame_offset
         #: The loader error that ended a truncated or corrupted log, once iterated.
@@ -128,9 +133,7 @@ class DriveRun:
     def _sized(self, frame: Frame) -> Frame:
         if self._frame_offset:
             frame = dataclasses.replace(frame, index=frame.index + self._frame_offset)
-        if not self._ego_size:
-            return frame
-        return dataclasses.replace(frame, ego=dataclasses.replace(frame.ego, **self._ego_size))
+        return frame if self._ego_size is None else self._ego_size.apply(frame)
 
     def _read(self) -> Iterator[list[Frame]]:
         """Frames in chunks; a loader error ends the drive after the frames read before it."""

@@ -2,7 +2,6 @@
 
 from workbench.engines.base import (
     EngineRunner,
-    EngineSettings,
     EngineSink,
     EngineSpec,
     Verdict,
@@ -13,7 +12,6 @@ from workbench.engines.registry import build_runners, engine, names, parse_engin
 
 __all__ = [
     "EngineRunner",
-    "EngineSettings",
     "EngineSink",
     "EngineSpec",
     "Verdict",

@@ -21,16 +21,16 @@ if TYPE_CHECKING:
 
     from loaders.maps.model import LaneMap
     from loaders.records import Frame
-    from rss.params import RssParams
     from workbench.engines.ids import ActorIds
     from workbench.replay.layout import ChunkLayout
     from workbench.replay.short_labels import ShortLabels
 
 __all__ = [
     "EngineRunner",
-    "EngineSettings",
     "EngineSink",
     "EngineSpec",
+    "NoOptions",
+    "RunnerFactory",
     "Verdict",
     "VerdictSummary",
     "summarise",
@@ -87,6 +87,26 @@ class EngineRunner(Protocol):
         ...
 
 
+class RunnerFactory(Protocol):
+    """Builds an engine's runner for one drive."""
+
+    def __call__(
+        self,
+        lane_map: LaneMap | None,
+        options: Any,
+        *,
+        full_geometry: bool,
+        actor_ids: ActorIds,
+    ) -> EngineRunner:
+        """A fresh runner for the drive's ``lane_map`` with the engine's own ``options``.
+
+        ``full_geometry``: compute everything a viewer draws (replays), not only verdicts.
+        ``actor_ids``: the drive's actor label table, one for all its engines (an engine
+        that reports objects by integer id maps them through it).
+        """
+        ...
+
+
 class EngineSink(Protocol):
     """Sends one engine's verdicts of a chunk of frames to a Rerun recording."""
 
@@ -101,30 +121,8 @@ class EngineSink(Protocol):
 
 
 @dataclass(frozen=True, slots=True)
-class EngineSettings:
-    """The user's settings every engine factory receives.
-
-    Attributes:
-        rss_params: RSS dynamics, scene settings and the ego's dimensions
-            (``--rss-params``); ``None`` = defaults.
-        reach_method: ``--reach-method`` (``simple``, ``turn`` or ``bound``).
-        full_geometry: Compute everything the viewer draws (replay), not only the verdict.
-        reach_rules: ``--reach-rules``: ``public_road`` (the reference's rules plus the lane
-            rules, the default for recorded drives) or ``reference``.
-        reach_trajectory: ``--reach-trajectory``: ``auto`` (the log's emergency trajectory
-            when it has one, else braking from the ego's state; the default), ``planned`` or
-            ``braking``.
-        actor_ids: The drive's actor label table, one for all its engines (set per drive by
-            :func:`~workbench.engines.registry.build_runners`; ``None``: a runner keeps its
-            own).
-    """
-
-    rss_params: RssParams | None = None
-    reach_method: str = "turn"
-    full_geometry: bool = False
-    reach_rules: str = "public_road"
-    reach_trajectory: str = "auto"
-    actor_ids: ActorIds | None = None
+class NoOptions:
+    """The options of an engine that has none."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -137,7 +135,8 @@ class EngineSpec:
         short: Column name in the ``demo`` table.
         state_origin: Entity path of its state lanes (the tab's origin).
         causes: The violation causes its verdicts can name (documentation, incident filters).
-        build: Runner factory from the drive's lane map and the user's settings.
+        build: Runner factory (:class:`RunnerFactory`) from the drive's lane map and the
+            engine's own options object (an instance of ``options``).
         record: The engine's part of the pinned per-frame JSON line, from one verdict.
         sink: Rerun sink factory (sends static configuration on creation) from the
             recording and the drive's short-label table: every object label the sink draws is
@@ -151,6 +150,20 @@ class EngineSpec:
             whatever causes its frames name, and this joins the causes of a run (the
             verdicts' typed causes, in order of appearance) into the incident's cause text;
             ``None``: a change of cause starts a new incident.
+        incident_overrides: Rerun property overrides of the engine's entities in one
+            incident's view, or ``None``.
+        options: The engine's options: a frozen dataclass whose fields are made with
+            :func:`workbench.engines.options.option` (name, type, default, flag, help;
+            validation in ``__post_init__``). The CLI options of every command that runs
+            engines, the engine's ``--settings`` TOML section and its part of the incident
+            request are generated from it.
+        errors: The engine's error types that are the user's input (one-line CLI messages).
+        what_if: The engine's what-if variants of its options for the review, as
+            ``(label, options)`` pairs, or ``None`` (no what-if).
+        describe: One line on the options in effect for a drive's lane map (``workbench
+            info``), or ``None``.
+        packages: Import packages the engine's verdicts depend on besides its folder (their
+            code is fingerprinted by ``workbench batch``).
     """
 
     name: str
@@ -158,10 +171,15 @@ class EngineSpec:
     short: str
     state_origin: str
     causes: tuple[str, ...]
-    build: Callable[[LaneMap | None, EngineSettings], EngineRunner]
+    build: RunnerFactory
     record: Callable[[Any], dict[str, Any]]
     sink: Callable[[rr.RecordingStream, ShortLabels], EngineSink]
     views: Callable[[], list[rrb.View]]
     incident_facts: Callable[[], Any] | None = None
     join_causes: Callable[[Sequence[object]], str] | None = None
     incident_overrides: Callable[[], dict[str, Any]] | None = None
+    options: type[Any] = NoOptions
+    errors: tuple[type[Exception], ...] = ()
+    what_if: Callable[[Any], Sequence[tuple[str, Any]]] | None = None
+    describe: Callable[[LaneMap | None, Any], str] | None = None
+    packages: tuple[str, ...] = ()

@@ -2,18 +2,19 @@
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from workbench.driver.run import DriveRun
-from workbench.drives import ego_size, load_rss_params, open_log
+from workbench.drives import open_log
 from workbench.incidents.content import drive_content_hash
 from workbench.incidents.detect import IncidentDetector
 from workbench.incidents.model import IncidentSettings
 
 if TYPE_CHECKING:
     from collections.abc import Callable, Mapping
-    from pathlib import Path
 
     from loaders.drive import Drive, DriveInfo
     from loaders.errors import LoaderError
@@ -27,7 +28,12 @@ __all__ = ["IncidentReport", "IncidentRequest", "find_incidents"]
 
 @dataclass(frozen=True, slots=True)
 class IncidentRequest:
-    """A drive and every setting that decides its incidents.
+    """A drive and every setting that decides its verdicts and incidents.
+
+    What every command that runs engines builds once from its options (``evaluate``,
+    ``replay``, ``incidents``, ``review``, ``export``, ``demo``, ``batch``) and consumes:
+    the drive, the drive-level options, the engines and each engine's own options object.
+    It names no engine: the engines' options are whatever their specs declare.
 
     Attributes:
         log: The drive file or rosbag2 directory.
@@ -36,12 +42,11 @@ class IncidentRequest:
         profile: TOML topic profile.
         ego_id: CommonRoad ego id.
         ego_topic: Ego topic of a ROS/MCAP log.
-        reach_method: ``--reach-method``.
-        rss_params: ``--rss-params`` TOML.
         settings: Minimum duration and gap merging.
-        rss_profile: ``--rss-profile`` (``None``: ``auto``, as ``evaluate``).
-        reach_rules: ``--reach-rules`` setting (``public_road`` or ``reference``).
-        reach_trajectory: ``--reach-trajectory`` (``auto``, ``planned`` or ``braking``).
+        ego_size: ``--ego-size`` for every engine and the viewer (``None``: the log's, else
+            the loaders' default).
+        options: Each registered engine's options object by engine name (an engine missing
+            here runs with its defaults).
     """
 
     log: Path
@@ -50,12 +55,20 @@ class IncidentRequest:
     profile: Path | None = None
     ego_id: str | None = None
     ego_topic: str | None = None
-    reach_method: str = "turn"
-    rss_params: Path | None = None
     settings: IncidentSettings = field(default_factory=IncidentSettings)
-    rss_profile: str | None = None
-    reach_rules: str = "public_road"
-    reach_trajectory: str = "auto"
+    ego_size: EgoSize | None = None
+    options: Mapping[str, Any] = field(default_factory=dict)
+
+    def options_of(self, name: str) -> Any:
+        """Engine ``name``'s options object (its defaults when the request has none)."""
+        from workbench.engines.registry import engine  # noqa: PLC0415
+
+        own = self.options.get(name)
+        return engine(name).options() if own is None else own
+
+    def with_options(self, name: str, options: Any) -> IncidentRequest:
+        """The same request with engine ``name``'s options replaced."""
+        return dataclasses.replace(self, options={**self.options, name: options})
 
     def open_drive(self) -> Drive:
         """Open the drive with these settings (the caller closes it).
@@ -77,37 +90,43 @@ class IncidentRequest:
     ) -> tuple[list[EngineRunner], EgoSize | None]:
         """Fresh runners of the requested engines for an opened drive, and the ego size.
 
-        The parameters are read once (the ``auto`` profile reads the drive's map); the ego
-        size is the one ``--rss-params [scene]`` gives, if any. ``full_geometry``: compute
-        what a viewer draws too (replays), not only the verdicts.
+        Each runner is built from its engine's own options (an ``auto`` profile reads the
+        drive's map). ``full_geometry``: compute what a viewer draws too (replays), not
+        only the verdicts.
 
         Raises:
-            WorkbenchError: Unknown engine or unreadable ``--rss-params``.
-            RssParameterError: Bad parameters or an unknown profile.
+            WorkbenchError: Unknown engine or an engine's unreadable file.
         """
-        from workbench.engines import EngineSettings, build_runners  # noqa: PLC0415
+        from workbench.engines.registry import build_runners  # noqa: PLC0415
 
-        params = load_rss_params(self.rss_params, self.rss_profile, drive.lane_map)
-        settings = EngineSettings(
-            rss_params=params,
-            reach_method=self.reach_method,
-            reach_rules=self.reach_rules,
-            reach_trajectory=self.reach_trajectory,
-            full_geometry=full_geometry,
+        runners = build_runners(
+            list(self.engines), drive.lane_map, self.options, full_geometry=full_geometry
         )
-        return build_runners(list(self.engines), drive.lane_map, settings), ego_size(params)
+        return runners, self.ego_size
 
     def record(self) -> dict[str, Any]:
-        """The settings that produced the incidents, as stored beside every label."""
-        files = {"map": self.map_path, "profile": self.profile, "rss_params": self.rss_params}
+        """The settings that produced the incidents, as stored beside every label.
+
+        Every registered engine's options by their flag (``reach_method``), file options as
+        the content hash of the file (``rss_params_sha256``).
+        """
+        from workbench.engines.registry import cli_options  # noqa: PLC0415
+
+        options: dict[str, Any] = {}
+        files = {"map": self.map_path, "profile": self.profile}
+        for key, (declared, engines) in cli_options().items():
+            value = getattr(self.options_of(engines[0]), declared.name)
+            if declared.kind is Path:
+                files[key] = value
+            else:
+                options[key] = declared.recorded(value)
+        size = {} if self.ego_size is None else {"ego_size_m": [*self.ego_size.fields().values()]}
         return {
             "engines": list(self.engines),
-            "rss_profile": self.rss_profile or "auto",
-            "reach_method": self.reach_method,
-            "reach_rules": self.reach_rules,
-            "reach_trajectory": self.reach_trajectory,
+            **options,
             "ego_id": self.ego_id,
             "ego_topic": self.ego_topic,
+            **size,
             **{
                 f"{name}_sha256": None if path is None else drive_content_hash(path)
                 for name, path in files.items()

@@ -202,14 +202,16 @@ class ReviewApp(App[None]):
         self._go(self.session.index)
 
     def action_what_if(self) -> None:
-        """Re-evaluate the incident under the next RSS parameter profile and say the outcome."""
-        from rss.profiles import PROFILES  # noqa: PLC0415 - light start-up
-        from workbench.incidents.whatif import what_if  # noqa: PLC0415
+        """Re-evaluate the incident under its engine's next what-if variant; say the outcome."""
+        from workbench.incidents.whatif import variants, what_if  # noqa: PLC0415
 
         incident, request = self.session.current, self.session.report.request
         if incident is None or request is None:
             return
-        names = sorted(PROFILES)
+        names = variants(request, incident)
+        if not names:
+            self.notify(f"no what-if for engine {incident.engine}")
+            return
         self._what_if_index = (self._what_if_index + 1) % len(names)
         outcome = what_if(request, incident, names[self._what_if_index])
         self.query_one("#facts", Static).update(self._facts(incident) + "\n" + outcome.line())

@@ -19,8 +19,8 @@ What survives the round trip (``docs/maps.md``, CommonRoad scenarios as ROS 2 MC
   (the message has one class for both);
 - the ego's acceleration is not carried (``Odometry`` has none): the reader takes the
   central difference of the speeds; no engine reads it;
-- the ego's size is not carried either: give it with ``--rss-params`` (``[scene]
-  ego_length``, ``ego_width``; :func:`ego_params_toml` writes that file).
+- the ego's size is not carried either: give it with ``--ego-size L,W,H``
+  (:func:`ego_size_option` writes that value).
 """
 
 from __future__ import annotations
@@ -43,7 +43,7 @@ if TYPE_CHECKING:
     from loaders.drive import Drive
     from loaders.records import ActorTable, EgoState, Frame, Plan
 
-__all__ = ["DRIVE_TOPICS", "ego_params_toml", "frames_as_messages", "write_drive_mcap"]
+__all__ = ["DRIVE_TOPICS", "ego_size_option", "frames_as_messages", "write_drive_mcap"]
 
 #: Topic -> message type of a converted drive, in the order each frame writes them.
 DRIVE_TOPICS: dict[str, str] = {
@@ -196,10 +196,6 @@ def write_drive_mcap(
     return count
 
 
-def ego_params_toml(ego: EgoState) -> str:
-    """``--rss-params`` text giving the ego's size, which ``Odometry`` does not carry."""
-    return (
-        "# The ego's size of the converted drive (nav_msgs/Odometry has none).\n"
-        f"[scene]\nego_length = {ego.length_m!r}\nego_width = {ego.width_m!r}\n"
-        f"ego_height = {ego.height_m!r}\n"
-    )
+def ego_size_option(ego: EgoState) -> str:
+    """``--ego-size`` value giving the ego's size [m], which ``Odometry`` does not carry."""
+    return f"{ego.length_m!r},{ego.width_m!r},{ego.height_m!r}"

@@ -19,7 +19,8 @@ import numpy as np
 import pytest
 import shapely
 
-from workbench.drives import load_rss_params, open_log
+from workbench.drives import open_log
+from workbench.engines.rss.options import RssOptions, load_params
 from workbench.engines.rss.runner import RssRunner
 
 if TYPE_CHECKING:
@@ -55,7 +56,7 @@ def peach(external_dir: Path) -> tuple[list[Frame], list[RssVerdict], list[RssVe
     """The frames and the RSS verdicts of both modes (default profile, as the CLI)."""
     drive = open_log(external_dir / SCENARIO, map_path=None, profile=None, ego_id=None)
     try:
-        params = load_rss_params(None, None, drive.lane_map)
+        params = load_params(RssOptions(), drive.lane_map)
         frames = list(drive.frames())
         default = RssRunner(drive.lane_map, params).step_many(frames)
         compat_scene = dataclasses.replace(params.scene, reproduce_adrss_5_0_defects=True)

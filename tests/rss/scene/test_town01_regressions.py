@@ -26,7 +26,8 @@ from mcap.reader import make_reader
 from mcap.writer import Writer
 
 from tests.conftest import require_external_dir, running_in_ci
-from workbench.drives import load_rss_params, open_log
+from workbench.drives import open_log
+from workbench.engines.rss.options import RssOptions, load_params
 from workbench.engines.rss.runner import RssRunner
 
 if TYPE_CHECKING:
@@ -74,7 +75,9 @@ def run_drive(regressions: Path, external_dir: Path, name: str, tmp_path: Path) 
         mcap, map_path=external_dir / "maps" / "Town01.xodr", profile=None, ego_id=None
     )
     try:
-        params = load_rss_params(regressions / "rss_params_compat.toml", None, drive.lane_map)
+        params = load_params(
+            RssOptions(params=regressions / "rss_params_compat.toml"), drive.lane_map
+        )
         assert params.scene.reproduce_adrss_5_0_defects
         frames = list(drive.frames())
         return RssRunner(drive.lane_map, params).step_many(frames)

@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING
 from tests.workbench.cli_runs import run_workbench
 from workbench.annotations import LabelStore
 from workbench.annotations.attach import elsewhere_note, labels_for
+from workbench.engines.registry import engine_options
 from workbench.incidents import IncidentRequest, drive_content_hash, find_incidents
 from workbench.review import ReviewSession
 
@@ -61,7 +62,9 @@ def test_a_label_of_an_incident_split_by_cause_attaches_to_the_per_object_incide
     """Labels written when RSS split an object's run at every change of cause still count."""
     log = LOG.with_name("urban_intersection.mcap")
     # adrss-5.0: the reference's junction verdicts change cause inside one run (auto: urban)
-    rep = find_incidents(IncidentRequest(log, ("rss",), rss_profile="adrss-5.0"))
+    rep = find_incidents(
+        IncidentRequest(log, ("rss",), options=engine_options({"rss_profile": "adrss-5.0"}))
+    )
     merged = next(i for i in rep.incidents if len(i.legacy_ids) > 1)
     older, newer = merged.legacy_ids[:2]
     assert merged.id not in (older, newer)

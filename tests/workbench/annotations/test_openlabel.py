@@ -9,6 +9,7 @@ from workbench.annotations import Label, LabelStore, ReviewVerdict
 from workbench.annotations.errors import OpenLabelError, TagError
 from workbench.annotations.openlabel import export_openlabel, write_openlabel
 from workbench.annotations.openlabel_import import Prefer, import_openlabel
+from workbench.engines.registry import engine_options
 from workbench.incidents import IncidentReport, IncidentRequest, find_incidents
 
 SAMPLES = Path(__file__).resolve().parents[3] / "sample_logs"
@@ -17,7 +18,11 @@ LOG = SAMPLES / "highway_cut_in.mcap"
 
 @pytest.fixture(scope="module")
 def report() -> IncidentReport:
-    return find_incidents(IncidentRequest(LOG, engines=("rss", "reachsets"), reach_method="simple"))
+    return find_incidents(
+        IncidentRequest(
+            LOG, engines=("rss", "reachsets"), options=engine_options({"reach_method": "simple"})
+        )
+    )
 
 
 @pytest.fixture

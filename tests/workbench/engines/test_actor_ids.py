@@ -10,7 +10,7 @@ import numpy as np
 
 from loaders import open_drive
 from loaders.records import ActorTable
-from workbench.engines import EngineSettings, build_runners
+from workbench.engines import build_runners
 from workbench.engines.ids import EGO_OBJECT_ID, FIRST_LABEL_ID, ActorIds
 from workbench.engines.rss.verdict import RssVerdict
 
@@ -57,8 +57,8 @@ def test_7_and_007_in_one_frame_are_reported_under_their_own_ids_by_every_engine
     drive = open_drive(SAMPLE)
     try:
         frames = [f for f in drive.frames() if f.index in WINDOW]
-        plain = build_runners(ENGINES, drive.lane_map, EngineSettings())
-        doubled = build_runners(ENGINES, drive.lane_map, EngineSettings())
+        plain = build_runners(ENGINES, drive.lane_map)
+        doubled = build_runners(ENGINES, drive.lane_map)
         expected = {r.name: r.step_many(frames) for r in plain}
         found = {r.name: r.step_many([_doubled(f) for f in frames]) for r in doubled}
     finally:

@@ -13,6 +13,7 @@ import pytest
 
 from tests.workbench.engines.helpers import rrd_states
 from workbench.engines import names
+from workbench.engines.registry import engine_options
 from workbench.export import Selection, plan_clips
 from workbench.export.recordings import clip_incident
 from workbench.export.views import write_recordings
@@ -45,7 +46,9 @@ def _check_clips(request: IncidentRequest, out: Path, ids: tuple[str, ...] = ())
 
 @pytest.mark.parametrize("log", sorted(p.name for p in SAMPLES.glob("*.mcap")))
 def test_every_clip_of_a_sample_finds_its_incident_under_the_drive_id(log, tmp_path):
-    request = IncidentRequest(SAMPLES / log, engines=tuple(names()), reach_method="simple")
+    request = IncidentRequest(
+        SAMPLES / log, engines=tuple(names()), options=engine_options({"reach_method": "simple"})
+    )
     assert _check_clips(request, tmp_path) > 0
 
 

@@ -11,6 +11,7 @@ from textual.widgets import Static
 
 from rss.profiles import PROFILES
 from workbench.annotations import LabelStore
+from workbench.engines.registry import engine_options
 from workbench.incidents import IncidentRequest, find_incidents
 from workbench.incidents.whatif import what_if
 from workbench.review import ReviewSession
@@ -29,7 +30,9 @@ def report():
 def test_what_if_agrees_with_the_whole_drive_under_that_profile(report, profile: str) -> None:
     incident = report.incidents[0]
     outcome = what_if(REQUEST, incident, profile)
-    whole = find_incidents(dataclasses.replace(REQUEST, rss_profile=profile))
+    whole = find_incidents(
+        dataclasses.replace(REQUEST, options=engine_options({"rss_profile": profile}))
+    )
     overlapping = [
         i
         for i in whole.incidents
@@ -67,9 +70,13 @@ def _overlaps(incident, others) -> bool:
 
 def test_an_incident_that_the_highway_profile_clears() -> None:
     log = LOG.with_name("urban_intersection.mcap")  # a junction: auto keeps adrss-5.0 here
-    reference = IncidentRequest(log, engines=("rss",), rss_profile="adrss-5.0")
+    reference = IncidentRequest(
+        log, engines=("rss",), options=engine_options({"rss_profile": "adrss-5.0"})
+    )
     strict = find_incidents(reference).incidents
-    relaxed = find_incidents(dataclasses.replace(reference, rss_profile="highway")).incidents
+    relaxed = find_incidents(
+        dataclasses.replace(reference, options=engine_options({"rss_profile": "highway"}))
+    ).incidents
     cleared = [i for i in strict if not _overlaps(i, relaxed)]
     assert cleared, "the stricter ad-rss defaults flag something the highway profile does not"
     outcome = what_if(reference, cleared[0], "highway")

@@ -7,7 +7,7 @@ import numpy as np
 from rerun.chunk import RrdReader
 
 from loaders import open_drive
-from workbench.engines import EngineSettings, build_runners
+from workbench.engines import build_runners
 from workbench.incidents import Incident, Severity
 from workbench.replay.blueprint import replay_blueprint
 from workbench.replay.incidents import INCIDENT_STATES, layout_incidents
@@ -70,7 +70,7 @@ def test_replay_rrd_holds_one_lane_per_incident_and_the_markers(tmp_path):
     out = tmp_path / "drive.rrd"
     drive = open_drive(SAMPLES / "highway_cut_in.mcap")
     try:
-        runners = build_runners(["rss"], drive.lane_map, EngineSettings(full_geometry=True))
+        runners = build_runners(["rss"], drive.lane_map, full_geometry=True)
         summary = replay_drive(
             drive, out=out, engines=runners, end_ns=drive.info.start_ns + 12 * 10**9
         )

@@ -29,6 +29,7 @@ from tests.workbench.review.test_tmux_e2e import (
     _wait_for,
     session_name,
 )
+from workbench.engines.registry import engine_options
 from workbench.incidents import IncidentRequest, find_incidents
 from workbench.review.viewer import worst_frame
 
@@ -150,8 +151,8 @@ def _wait_cursor(page: Any, frame: int) -> tuple[list[tuple[str, int]], str]:
 
 
 def test_the_web_viewer_follows_the_review_cursor(tmp_path, session_name, browser):
-    request = IncidentRequest(LOG, engines=("rss", "reachsets"), reach_method="simple",
-                              reach_rules="reference")  # fmt: skip
+    request = IncidentRequest(LOG, engines=("rss", "reachsets"), options=engine_options(
+        {"reach_method": "simple", "reach_rules": "reference"}))  # fmt: skip
     incidents = find_incidents(request).incidents
     frames = [worst_frame(i) for i in incidents]
     # the first incident further down the list whose worst frame is another one

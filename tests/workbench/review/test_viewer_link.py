@@ -16,6 +16,7 @@ import rerun_cli  # type: ignore[import-untyped]
 from rerun.experimental import ViewerClient
 
 from tests.conftest import running_in_ci
+from workbench.engines.registry import engine_options
 from workbench.incidents import IncidentRequest, find_incidents
 from workbench.review.viewer import RerunLink, ViewerCursor, worst_frame
 from workbench.viewer.replay import APPLICATION_ID, recording_id, replay_drive
@@ -90,7 +91,11 @@ def _cursor(client: ViewerClient, frame: int) -> tuple[str | None, int | None]:
 
 def test_each_incident_shown_selects_its_frames_in_the_live_recording(viewer_url):
     log = ROOT / "sample_logs" / "hard_braking_lead.mcap"
-    request = IncidentRequest(log, engines=ENGINES, reach_method="simple", reach_rules="reference")
+    request = IncidentRequest(
+        log,
+        engines=ENGINES,
+        options=engine_options({"reach_method": "simple", "reach_rules": "reference"}),
+    )
     report = find_incidents(request)
     client = _connect(viewer_url)
     drive = request.open_drive()

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from workbench.driver.run import DriveRun, EgoSize
-from workbench.engines import EngineSettings, build_runners
+from workbench.engines import build_runners
 from workbench.sinks.per_frame import frame_records
 
 if TYPE_CHECKING:
@@ -82,7 +82,7 @@ def verdict_records(
     drive: Drive, size: EgoSize, window: tuple[int | None, int | None] = (None, None)
 ) -> tuple[list[dict[str, Any]], list[tuple[float, ...]]]:
     """Per-frame JSON records and margins of every engine over ``window`` of ``drive``."""
-    runners = build_runners(list(ENGINES), drive.lane_map, EngineSettings())
+    runners = build_runners(list(ENGINES), drive.lane_map)
     records: list[dict[str, Any]] = []
     margins: list[tuple[float, ...]] = []
     for chunk in DriveRun(drive, runners, start_ns=window[0], end_ns=window[1], ego_size=size):

@@ -10,7 +10,6 @@ from mcap.reader import make_reader
 
 from loaders import open_drive
 from loaders.records import ActorTable, EgoState, Frame
-from rss.params import parse_rss_params
 from tests.loaders.test_commonroad import basic, write
 from tests.workbench.samples.drive_compare import (
     assert_same_frames,
@@ -18,10 +17,12 @@ from tests.workbench.samples.drive_compare import (
     ego_size_of,
     verdict_records,
 )
+from workbench.driver import EgoSize
+from workbench.drives import parse_ego_size
 from workbench.errors import WorkbenchError
 from workbench.samples.drive_mcap import (
     DRIVE_TOPICS,
-    ego_params_toml,
+    ego_size_option,
     frames_as_messages,
     write_drive_mcap,
 )
@@ -76,10 +77,9 @@ def test_window_limits_the_frames(tmp_path: Path) -> None:
     assert [f.t_ns for f in open_drive(log, map=xml).frames()] == [100_000_000, 200_000_000]
 
 
-def test_ego_params_give_the_size_back() -> None:
+def test_the_ego_size_option_gives_the_size_back() -> None:
     ego = EgoState(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, length_m=4.3, width_m=1.7, height_m=1.5)
-    scene = parse_rss_params(ego_params_toml(ego)).scene
-    assert (scene.ego_length_m, scene.ego_width_m, scene.ego_height_m) == (4.3, 1.7, 1.5)
+    assert parse_ego_size(ego_size_option(ego)) == EgoSize(4.3, 1.7, 1.5)
 
 
 def _frame(object_id: str) -> Frame:

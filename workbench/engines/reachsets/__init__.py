@@ -8,31 +8,36 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
-import rerun as rr
-import rerun.blueprint as rrb
-
+from reachsets.errors import ReachSetError
 from workbench.engines.base import EngineSpec
+from workbench.engines.reachsets.options import ReachOptions
 from workbench.engines.reachsets.record import reach_record
 
 if TYPE_CHECKING:
+    import rerun as rr
+    import rerun.blueprint as rrb
+
     from loaders.maps.model import LaneMap
-    from workbench.engines.base import EngineRunner, EngineSettings, EngineSink
+    from workbench.engines.base import EngineRunner, EngineSink
+    from workbench.engines.ids import ActorIds
     from workbench.replay.short_labels import ShortLabels
 
 __all__ = ["SPEC"]
 
 
-def _build(lane_map: LaneMap | None, settings: EngineSettings) -> EngineRunner:
-    from reachsets.params import ReachMethod  # noqa: PLC0415 - heavy, on demand
-    from workbench.engines.reachsets.runner import ReachRunner  # noqa: PLC0415
+def _build(
+    lane_map: LaneMap | None, options: ReachOptions, *, full_geometry: bool, actor_ids: ActorIds
+) -> EngineRunner:
+    from workbench.engines.reachsets.runner import ReachRunner  # noqa: PLC0415 - on demand
 
-    method = ReachMethod(settings.reach_method)
+    del actor_ids  # the reach sets report objects by their own string ids
+
     return ReachRunner(
         lane_map,
-        method=method,
-        full_geometry=settings.full_geometry,
-        rules=settings.reach_rules,
-        trajectory=settings.reach_trajectory,
+        method=options.method,
+        full_geometry=full_geometry,
+        rules=options.rules.setting,
+        trajectory=options.trajectory.value,
     )
 
 
@@ -43,11 +48,15 @@ def _sink(recording: rr.RecordingStream, labels: ShortLabels) -> EngineSink:
 
 
 def _views() -> list[rrb.View]:
+    import rerun.blueprint as rrb  # noqa: PLC0415 - the viewer's, on demand
+
     return [rrb.TimeSeriesView(name="first collision [s into plan]", origin="/plots/reach")]
 
 
 def _incident_overrides() -> dict[str, Any]:
     """In one incident's view: no per-object labels (the incident's objects are highlighted)."""
+    import rerun as rr  # noqa: PLC0415 - the viewer's, on demand
+
     return {"world/reach/collisions": rr.Points3D.from_fields(show_labels=False)}
 
 
@@ -62,4 +71,7 @@ SPEC = EngineSpec(
     sink=_sink,
     views=_views,
     incident_overrides=_incident_overrides,
+    options=ReachOptions,
+    errors=(ReachSetError,),
+    packages=("reachsets",),
 )

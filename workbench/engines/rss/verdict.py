@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from rss.profiles import LIBRARY_PROFILE
 from rss.structured.responsibility import Responsible
 
 if TYPE_CHECKING:
@@ -102,7 +103,7 @@ class RssVerdict:
     rejected: tuple[tuple[str, str], ...] = ()
     responsible: NDArray[np.int64] | None = None
     obligations: tuple[tuple[str, Obligation], ...] = ()
-    profile: str = "adrss-5.0"
+    profile: str = LIBRARY_PROFILE
 
     def severity(self) -> dict[str, ObjectSeverity]:
         """Severity facts per object dangerous from either side, sorted by label."""

@@ -8,7 +8,9 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from rss.errors import RssError
 from workbench.engines.base import EngineSpec
+from workbench.engines.rss.options import RssOptions, load_params, scene_sized, what_if
 from workbench.engines.unstructured.record import unstructured_record
 
 if TYPE_CHECKING:
@@ -16,16 +18,21 @@ if TYPE_CHECKING:
     import rerun.blueprint as rrb
 
     from loaders.maps.model import LaneMap
-    from workbench.engines.base import EngineRunner, EngineSettings, EngineSink
+    from workbench.engines.base import EngineRunner, EngineSink
+    from workbench.engines.ids import ActorIds
     from workbench.replay.short_labels import ShortLabels
 
 __all__ = ["SPEC"]
 
 
-def _build(lane_map: LaneMap | None, settings: EngineSettings) -> EngineRunner:
+def _build(
+    lane_map: LaneMap | None, options: RssOptions, *, full_geometry: bool, actor_ids: ActorIds
+) -> EngineRunner:
     from workbench.engines.unstructured.runner import UnstructuredRunner  # noqa: PLC0415
 
-    return UnstructuredRunner(lane_map, settings.rss_params, ids=settings.actor_ids)
+    del full_geometry  # the verdict is all it draws
+    params = load_params(options, lane_map)
+    return scene_sized(UnstructuredRunner(lane_map, params, ids=actor_ids), params)
 
 
 def _sink(recording: rr.RecordingStream, labels: ShortLabels) -> EngineSink:
@@ -53,4 +60,8 @@ SPEC = EngineSpec(
     record=unstructured_record,
     sink=_sink,
     views=_views,
+    options=RssOptions,
+    errors=(RssError,),
+    what_if=what_if,
+    packages=("rss",),
 )

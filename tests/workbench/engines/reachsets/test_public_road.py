@@ -14,7 +14,8 @@ import pytest
 
 from loaders import open_drive
 from tests.workbench.engines.helpers import record
-from workbench.engines import EngineSettings, build_runners
+from workbench.engines import build_runners
+from workbench.engines.reachsets.options import ReachOptions, ReachRules, ReachTrajectory
 from workbench.engines.reachsets.runner import ReachRunner
 
 SAMPLES = Path(__file__).resolve().parents[4] / "sample_logs"
@@ -28,10 +29,10 @@ EVENTS = {
 }
 
 
-def _records(name: str, settings: EngineSettings) -> list[tuple[float, dict[str, Any]]]:
+def _records(name: str, options: ReachOptions) -> list[tuple[float, dict[str, Any]]]:
     drive = open_drive(SAMPLES / name)
     try:
-        (runner,) = build_runners(["reachsets"], drive.lane_map, settings)
+        (runner,) = build_runners(["reachsets"], drive.lane_map, {"reachsets": options})
         frames = list(drive.frames())
     finally:
         drive.close()
@@ -47,7 +48,7 @@ def _records(name: str, settings: EngineSettings) -> list[tuple[float, dict[str,
 
 @pytest.fixture(scope="module")
 def defaults() -> dict[str, list[tuple[float, dict[str, Any]]]]:
-    return {name: _records(f"{name}.mcap", EngineSettings()) for name in EVENTS}
+    return {name: _records(f"{name}.mcap", ReachOptions()) for name in EVENTS}
 
 
 @pytest.mark.parametrize("name", list(EVENTS))
@@ -64,7 +65,9 @@ def test_safe_before_the_event_and_the_actor_named_during_it(name, defaults):
 def test_the_reference_settings_give_the_library_defaults():
     """``--reach-rules reference --reach-trajectory planned`` is the runner as before."""
     name = "highway_cut_in.mcap"
-    reference = _records(name, EngineSettings(reach_rules="reference", reach_trajectory="planned"))
+    reference = _records(
+        name, ReachOptions(rules=ReachRules.reference, trajectory=ReachTrajectory.planned)
+    )
     drive = open_drive(SAMPLES / name)
     try:
         runner = ReachRunner(drive.lane_map)
@@ -79,8 +82,8 @@ def test_the_reference_settings_give_the_library_defaults():
 
 
 def test_auto_rates_the_emergency_trajectory_of_a_log_that_has_one():
-    frames = _records("racing_overtake.saa", EngineSettings())
-    planned = _records("racing_overtake.saa", EngineSettings(reach_trajectory="planned"))
+    frames = _records("racing_overtake.saa", ReachOptions())
+    planned = _records("racing_overtake.saa", ReachOptions(trajectory=ReachTrajectory.planned))
     assert {r["trajectory"] for _, r in frames} == {"emergency"}
     assert frames == planned
 

@@ -9,8 +9,8 @@ import pytest
 
 from loaders.maps.model import Lane, LaneKind, LaneMap
 from loaders.open import open_drive
-from workbench.drives import load_rss_params
 from workbench.engines.rss.auto_profile import auto_profile
+from workbench.engines.rss.options import RssOptions, load_params
 
 SAMPLES = Path(__file__).resolve().parents[4] / "sample_logs"
 
@@ -66,7 +66,7 @@ def test_real_ngsim_maps(external_dir: Path, name: str, expected: str) -> None:
     drive = open_drive(external_dir / "commonroad_ngsim" / f"{name}.xml")
     try:
         assert auto_profile(drive.lane_map) == expected
-        params = load_rss_params(None, None, drive.lane_map)
+        params = load_params(RssOptions(), drive.lane_map)
     finally:
         drive.close()
     assert params.profile == expected
