@@ -7,7 +7,8 @@ takes the largest speed limit of its lanes, and ad-map gives a junction lane wit
 speed record 50 km/h, where we ignored the lane (docs/rss_scene.md, "Town01 regression
 drives"). Checked here in the compatibility mode (the drives' ``rss_params_compat.toml``)
 through the workbench's loader and RSS engine, every frame against the reference: same
-verdict and the same dangerous objects.
+verdict and the same dangerous objects; in the default mode (the same TOML with the key
+off) every object the reference calls dangerous is dangerous for us too.
 
 The drives write each stamp's ``/carla/objects`` message *after* the ``/ego/odom``
 message of the same stamp; the loader builds a frame from the object messages logged
