@@ -147,10 +147,12 @@ def _corridor(
         adrss = [f.constellation(kind, i, plans, None, ends, swap_headings=True)]
     if compat and adrss:
         return adrss
-    own = f.constellation(kind, i, plans, None, ends)
+    own: BuiltConstellation | None = f.constellation(kind, i, plans, None, ends)
     if own is None:
-        return [own]
-    return [own, *(c for c in adrss if c is not None and not _same_speeds(own, c))]
+        return [None]
+    out: list[BuiltConstellation | None] = [own]
+    out.extend(c for c in adrss if c is not None and not _same_speeds(own, c))
+    return out
 
 
 #: Lane-frame speeds closer than this are the same (rounding of headings on a straight
