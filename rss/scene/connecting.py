@@ -37,6 +37,7 @@ from rss.scene.routes import (
 if TYPE_CHECKING:
     from rss.scene.frame import FrameContext
     from rss.scene.lanegraph import Step
+    from rss.scene.match_records import MatchRow
     from rss.scene.memo import SceneMemo
     from rss.scene.prepared import PreparedGraph
 
@@ -135,9 +136,10 @@ def _direct(
     out: list[Connecting] = []
     moves: dict[int, tuple[int, int]] = {}
     found = False
+    compat = f.settings.reproduce_adrss_5_0_defects
     lengths = (
         memoised(prep, f.memo, segment_lengths_m)
-        if f.settings.reproduce_adrss_5_0_defects
+        if compat or tree is f.behind_tree
         else prep.scalars.centre_length_m
     )
     inside = prep.scalars.is_intersection
@@ -152,11 +154,12 @@ def _direct(
         beside = 1 if mid >= pos0 else -1
         first = tree.first[lane] or beside
         last = tree.last[lane] or beside
-        if tree.last[lane] == 0:
-            dist = abs(mid - pos0) * length
+        if compat:
+            gap = _admap_gap(f, tree, region, lengths, first=first, last=last)
+        elif tree.last[lane] == 0:
+            gap = max(0.0, abs(mid - pos0) * length - half)
         else:
-            dist = tree.cost_m[lane] + length * (mid if last > 0 else 1.0 - mid)
-        gap = max(0.0, dist - half)
+            gap = max(0.0, tree.cost_m[lane] + length * (mid if last > 0 else 1.0 - mid) - half)
         if gap > max_m:
             continue
         found = True
@@ -191,6 +194,45 @@ def _direct(
         for cr in kept
     ]
     return _drop_infeasible(rated), found
+
+
+def _admap_gap(
+    f: FrameContext,
+    tree: RouteTree,
+    region: MatchRow,
+    lengths: list[float],
+    *,
+    first: int,
+    last: int,
+) -> float:
+    """Length of the tree route to ``region`` between the two vehicles' regions [m].
+
+    ad-map measures a connecting route from the end of the ego's region on the route's
+    first lane to the near end of the object's region (``dropStartRegion`` /
+    ``dropEndRegion``), not from the box centres less half their lengths: where a box
+    straddles lanes its region on one of them is shorter than the box (seed-4
+    junction-route drive 1 frame 22: the route from the ego's region on 3390149 to the
+    car on 210151 is 120.43 m for ad-map and was 120.27 m here, inside the 120.36 m cut-off
+    one frame early). Compatibility mode; the default mode keeps the shorter measure.
+    """
+    root, pos0 = tree.root_pos
+    own = next(r for r in f.matches.regions(0) if r.lane == root)
+    e_lo, e_hi = _along(own, forward=tree.forward[root])
+    o_lo, o_hi = _along(region, forward=tree.forward[region.lane])
+    if tree.last[region.lane] == 0:
+        return max(0.0, o_lo - e_hi, e_lo - o_hi) * lengths[root]
+    # the tree's cost leaves the root lane at ``pos0``: move it to the region's end
+    start = (pos0 - e_hi) if first > 0 else (e_lo - pos0)
+    end = o_lo if last > 0 else 1.0 - o_hi
+    cost = tree.cost_m[region.lane] + start * tree.root_length_m
+    return max(0.0, cost + end * lengths[region.lane])
+
+
+def _along(region: MatchRow, *, forward: bool) -> tuple[float, float]:
+    """A region's longitudinal range along the road-area direction."""
+    if forward:
+        return region.lon_min, region.lon_max
+    return 1.0 - region.lon_max, 1.0 - region.lon_min
 
 
 def _beside(f: FrameContext, lane: int, lon_min: float, lon_max: float) -> bool:
@@ -318,7 +360,8 @@ def connecting_routes(f: FrameContext, box: int, max_m: float) -> list[Connectin
         direct += _direct(f, box, max_m, tree)[0]
     if f.behind_tree is not None:
         # ad-map's routes from the object to the ego: to the object's lanes that no
-        # route from the ego reaches (a lane reached ahead first is not reached behind)
+        # route from the ego reaches (a lane reached ahead first is not reached behind);
+        # both modes: the worst case of a car ahead that also reaches the ego from behind
         direct += _direct(f, box, max_m, f.behind_tree, f.tree)[0]
     if direct or found:
         return direct

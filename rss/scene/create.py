@@ -147,17 +147,16 @@ def create_scene(
         connect(prep, memo, lane, forward=fwd, horizon_m=horizon, start=start)
         for lane, fwd, start in more_roots(prep, matches, ego)
     ]
-    if settings.reproduce_adrss_5_0_defects:
-        frame.behind_tree = connect(
-            prep,
-            memo,
-            anchor,
-            forward=anchor_forward,
-            horizon_m=horizon,
-            start=float(anchor_s),
-            admap_lengths=True,
-            behind_only=True,
-        )
+    frame.behind_tree = connect(
+        prep,
+        memo,
+        anchor,
+        forward=anchor_forward,
+        horizon_m=horizon,
+        start=float(anchor_s),
+        admap_lengths=True,
+        behind_only=True,
+    )
     out: list[Constellation] = []
     areas: list[tuple[tuple[int, float, float], ...]] = []
     if road_boundaries:

@@ -115,8 +115,8 @@ class FrameContext:
         headings: Per box, the heading of each touched lane's point order at its centre.
         ego_velocity: ``(vx, vy)`` of the ego in the map frame.
         once: What this frame computes once.
-        behind_tree: Routes behind the ego only, from its anchor lane (compatibility
-            mode: ad-map's routes from the object to the ego, ``connecting_routes``).
+        behind_tree: Routes behind the ego only, from its anchor lane (both modes:
+            ad-map's routes from the object to the ego, ``connecting_routes``).
         other_trees: Connecting routes from the further lanes the ego occupies that no
             link joins to its anchor (overlapping junction lanes,
             ``rss.scene.create.more_roots``), asked for every object; their routes join

@@ -124,23 +124,53 @@ def _corridor(
 ) -> list[BuiltConstellation | None]:
     """Same/opposite-direction constellations along the connecting route ``cr``.
 
-    One, but under ``[scene] reproduce_adrss_5_0_defects``, where ad-rss 5.0's speeds
-    differ: it swaps the two vehicles' route headings on a route of an object following
-    the ego, and resolves the speeds of an opposing object beside the ego along the ends
-    of ad-map's routes between the two, one constellation per route
-    (:func:`admap_beside_ends`).
+    ad-rss 5.0's speeds differ from each vehicle's own road direction in two cases: it
+    swaps the two vehicles' route headings on a route of an object following the ego,
+    and resolves the speeds of an opposing object beside the ego along the ends of
+    ad-map's routes between the two, one constellation per route
+    (:func:`admap_beside_ends`). Under ``[scene] reproduce_adrss_5_0_defects`` those are
+    the constellations; in the default mode they are added to the one with the vehicles'
+    own headings where their speeds differ, and the engine merges them into their worst
+    case (speed intervals joined): never safe where ad-rss 5.0 is dangerous by these
+    speeds (docs/rss_scene.md, deviation table).
     """
     tree = f.tree if cr.tree is None else cr.tree
     compat = f.settings.reproduce_adrss_5_0_defects
     plans, ends = corridor_plans(
         f.prep, f.memo, tree, cr.target, f.matches, (0, i + 1), align=not compat
     )
-    if compat and ends is None and cr.kind == Kind.OPPOSING:
+    adrss: list[BuiltConstellation | None] = []
+    if ends is None and cr.kind == Kind.OPPOSING:
         routes = admap_beside_ends(f.prep, tree, cr.target, f.matches, i + 1)
-        if routes:
-            return [f.constellation(kind, i, plans, None, e) for e in routes]
-    swap = cr.kind == Kind.OBJECT_FOLLOWS and compat
-    return [f.constellation(kind, i, plans, None, ends, swap_headings=swap)]
+        adrss = [f.constellation(kind, i, plans, None, e) for e in routes]
+    elif ends and cr.kind == Kind.OBJECT_FOLLOWS:
+        adrss = [f.constellation(kind, i, plans, None, ends, swap_headings=True)]
+    if compat and adrss:
+        return adrss
+    own: BuiltConstellation | None = f.constellation(kind, i, plans, None, ends)
+    if own is None:
+        return [None]
+    out: list[BuiltConstellation | None] = [own]
+    out.extend(c for c in adrss if c is not None and not _same_speeds(own, c))
+    return out
+
+
+#: Lane-frame speeds closer than this are the same (rounding of headings on a straight
+#: lane) [m/s].
+_SAME_SPEED_MPS = 1e-6
+
+
+def _same_speeds(a: BuiltConstellation, b: BuiltConstellation) -> bool:
+    """Whether two constellations' lane-frame speed intervals agree (both vehicles)."""
+    pairs = (
+        (a.constellation.ego.speed, b.constellation.ego.speed),
+        (a.constellation.other.speed, b.constellation.other.speed),
+    )
+    return all(
+        abs(getattr(x, name) - getattr(y, name)) < _SAME_SPEED_MPS
+        for x, y in pairs
+        for name in ("lon_min_mps", "lon_max_mps", "lat_min_mps", "lat_max_mps")
+    )
 
 
 @dataclass(slots=True)

@@ -61,6 +61,7 @@ class RouteTree:
             direction, -1 against it, 0 none).
         root_pos: The root lane and the ego's position on it along the road-area
             direction, in [0, 1].
+        root_length_m: The root lane's length as the search measured it.
     """
 
     k: dict[int, int] = field(default_factory=dict)
@@ -71,6 +72,7 @@ class RouteTree:
     first: dict[int, int] = field(default_factory=dict)
     last: dict[int, int] = field(default_factory=dict)
     root_pos: tuple[int, float] = (-1, 0.5)
+    root_length_m: float = 0.0
 
     def path(self, lane: int) -> list[int]:
         """Lanes from the root to ``lane`` (which must be reached)."""
@@ -179,6 +181,7 @@ def connect(
     )
     pos0 = start if forward else 1.0 - start
     tree.root_pos = (root, pos0)
+    tree.root_length_m = float(lengths[root])
     # (cost, counter, lane, k, j, forward, parent, entry position, first move, last move)
     heap: list[tuple[float, int, int, int, int, bool, int, float, int, int]] = [
         (0.0, 0, root, 0, 0, forward, -1, pos0, 0, 0)

@@ -35,7 +35,6 @@ __all__ = [
     "DRIVE_ORACLE",
     "EGO_ID",
     "Agreement",
-    "beside_on_curve",
     "compare_drives",
     "oracle_drives",
     "our_drive",
@@ -192,32 +191,3 @@ def compare_drives(
             elif us and not ref:
                 stats.extra.append((d, k))
     return stats
-
-
-#: Distances of one constellation that agree on both sides (m).
-_SAME_M = 0.01
-
-
-def beside_on_curve(mine: dict[str, Any], theirs: dict[str, Any]) -> bool:
-    """Whether every object the reference alone calls dangerous in a frame is the
-    documented "beside on a curve" deviation (docs/rss_scene.md, deviation table).
-
-    The case: both sides model the object with one same OppositeDirection constellation
-    of longitudinal distance 0 (the vehicles beside each other on opposite neighbour
-    lanes) and the same lateral distance; only the lateral speeds differ, which ad-rss
-    resolves along its connecting route's end headings instead of the road direction at
-    each vehicle (up to 25 degrees apart on Town01's junction curves). The default mode
-    keeps the road direction; the compatibility mode reproduces ad-rss
-    (``rss.scene.corridor.admap_beside_ends``).
-    """
-    missed = set(theirs["dangerous"]) - set(mine["dangerous"])
-    for obj in missed:
-        a = [s for s in mine["situations"] if s["id"] == obj]
-        b = [s for s in theirs["situations"] if s["id"] == obj and s["type"] != "NotRelevant"]
-        if not (len(a) == len(b) == 1 and a[0]["type"] == b[0]["type"] == "OppositeDirection"):
-            return False
-        if max(a[0]["lon_d"], b[0]["lon_d"]) >= _SAME_M:
-            return False
-        if abs(a[0]["lat_d"] - b[0]["lat_d"]) >= _SAME_M:
-            return False
-    return bool(missed)

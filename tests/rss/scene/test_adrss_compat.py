@@ -133,7 +133,9 @@ def test_following_object_gets_the_ego_heading_and_vice_versa() -> None:
     object lon 5 / lat 0. ad-rss 5.0 gives the ego the road direction at the object's end
     (east): ego velocity (0, 10) against east: lon |0| = 0, lat (0, 10) . right-of-east
     (0, -1) = -10 (moving left); the object gets north: lon 0, lat (5, 0) . right-of-north
-    (1, 0) = +5.
+    (1, 0) = +5. The default mode keeps the own directions and adds ad-rss' swapped ones
+    (the engine merges the two into their worst case: never safe where ad-rss is
+    dangerous by its swapped speeds).
     """
     graph = straight_lanes(
         [((0.0, 0.0), (40.0, 0.0)), ((40.0, 0.0), (50.0, 10.0)), ((50.0, 10.0), (50.0, 60.0))],
@@ -141,15 +143,18 @@ def test_following_object_gets_the_ego_heading_and_vice_versa() -> None:
     )
     prep = prepare(graph)
     args = (ego(50.0, 30.0, math.pi / 2, 10.0), objects((20.0, 0.0, 0.0, 5.0)))
-    expected = {DEFAULT: (10.0, 0.0, 5.0, 0.0), COMPAT: (0.0, -10.0, 0.0, 5.0)}
-    for settings, (ego_lon, ego_lat, obj_lon, obj_lat) in expected.items():
-        (c,) = create_scene(prep, *args, settings).constellations
-        assert c.constellation_type == ConstellationType.SameDirection
-        speeds = (c.ego.speed, c.other.speed)
-        assert speeds[0].lon_min_mps == pytest.approx(ego_lon, abs=1e-9)
-        assert speeds[0].lat_min_mps == pytest.approx(ego_lat, abs=1e-9)
-        assert speeds[1].lon_min_mps == pytest.approx(obj_lon, abs=1e-9)
-        assert speeds[1].lat_min_mps == pytest.approx(obj_lat, abs=1e-9)
+    own, swapped = (10.0, 0.0, 5.0, 0.0), (0.0, -10.0, 0.0, 5.0)
+    expected = {DEFAULT: (own, swapped), COMPAT: (swapped,)}
+    for settings, rows in expected.items():
+        found = create_scene(prep, *args, settings).constellations
+        assert len(found) == len(rows)
+        for c, (ego_lon, ego_lat, obj_lon, obj_lat) in zip(found, rows, strict=True):
+            assert c.constellation_type == ConstellationType.SameDirection
+            speeds = (c.ego.speed, c.other.speed)
+            assert speeds[0].lon_min_mps == pytest.approx(ego_lon, abs=1e-9)
+            assert speeds[0].lat_min_mps == pytest.approx(ego_lat, abs=1e-9)
+            assert speeds[1].lon_min_mps == pytest.approx(obj_lon, abs=1e-9)
+            assert speeds[1].lat_min_mps == pytest.approx(obj_lat, abs=1e-9)
 
 
 def test_intersecting_area_is_measured_within_the_cut_windows() -> None:

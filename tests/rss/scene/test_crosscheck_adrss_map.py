@@ -316,15 +316,18 @@ def test_town01_against_ad_rss_map_integration(
     stats = compare([ours(prep, p) for p in pairs], theirs, defects)
     sys.stderr.write(f"ad-rss map integration cross-check: {stats}\n")
     # measured (docs/rss_scene.md; pairs uniform along the centre lines since the reader
-    # gives ad-map's border vertices): types 98.8 %, verdicts 94.2 % (98.8 % outside the 70
+    # gives ad-map's border vertices): types 98.8 %, verdicts 93.6 % (94.2 % before the
+    # default mode joined ad-rss' swapped headings to its own: 3 pairs of that class more
+    # are dangerous for us only by the joined speed intervals; 98.8 % outside the 70
     # pairs with ad-rss' swapped route headings, 99.7 % outside those and the 51 pairs where
     # ad-map's turn-direction defect is in play), lateral within 0.2 m 100 % / within 1 cm
     # 100 % (ad-map's lane widths, lattice points for lateral extremes), longitudinal within
     # 0.5 m 100 % and within 1 cm 99.6 % (239 / 240, pair 21 off; its tie rule, aligned
     # cuts of neighbour lanes, lane-end rule, unsimplified borders, lane changes costing
-    # the centre-line distance in the route search), median 0.02 mm
+    # the centre-line distance in the route search), median 0.02 mm; since the default
+    # mode joins ad-rss' readings, 184 pairs keep one constellation a side: all within 1 cm
     assert stats["types"] >= 0.985
-    assert stats["verdicts"] >= 0.94
+    assert stats["verdicts"] >= 0.935
     assert stats["verdicts_without_swapped_headings"] >= 0.985
     assert stats["verdicts_outside_defects"] >= 0.995
     assert stats["lat_within_0_2"] >= 0.995

@@ -7,7 +7,8 @@ takes the largest speed limit of its lanes, and ad-map gives a junction lane wit
 speed record 50 km/h, where we ignored the lane (docs/rss_scene.md, "Town01 regression
 drives"). Checked here in the compatibility mode (the drives' ``rss_params_compat.toml``)
 through the workbench's loader and RSS engine, every frame against the reference: same
-verdict and the same dangerous objects.
+verdict and the same dangerous objects; in the default mode (the same TOML with the key
+off) every object the reference calls dangerous is dangerous for us too.
 
 The drives write each stamp's ``/carla/objects`` message *after* the ``/ego/odom``
 message of the same stamp; the loader builds a frame from the object messages logged
@@ -18,6 +19,7 @@ objects and later frames take the previous stamp's, extrapolated).
 
 from __future__ import annotations
 
+import dataclasses
 import json
 from typing import TYPE_CHECKING, Any
 
@@ -67,8 +69,14 @@ def objects_first(src: Path, dst: Path) -> None:
         writer.finish()  # type: ignore[no-untyped-call]
 
 
-def run_drive(regressions: Path, external_dir: Path, name: str, tmp_path: Path) -> list[Any]:
-    """Our RSS verdicts per frame of one drive (compatibility mode, objects first)."""
+def run_drive(
+    regressions: Path, external_dir: Path, name: str, tmp_path: Path, *, compat: bool = True
+) -> list[Any]:
+    """Our RSS verdicts per frame of one drive (compatibility mode, objects first).
+
+    ``compat=False``: the same TOML with ``reproduce_adrss_5_0_defects`` off (the default
+    mode).
+    """
     mcap = tmp_path / f"{name}.mcap"
     objects_first(regressions / f"{name}.mcap", mcap)
     drive = open_log(
@@ -79,6 +87,9 @@ def run_drive(regressions: Path, external_dir: Path, name: str, tmp_path: Path) 
             RssOptions(params=regressions / "rss_params_compat.toml"), drive.lane_map
         )
         assert params.scene.reproduce_adrss_5_0_defects
+        if not compat:
+            scene = dataclasses.replace(params.scene, reproduce_adrss_5_0_defects=False)
+            params = dataclasses.replace(params, scene=scene)
         frames = list(drive.frames())
         return RssRunner(drive.lane_map, params).step_many(frames)
     finally:
@@ -101,3 +112,22 @@ def test_regression_drive_agrees_on_every_frame(
             differ.append((k, sorted(ours.culprits), want))
     assert differ == []
     assert any(not f["is_safe"] for f in reference["frames"])  # the drive has its danger
+
+
+@pytest.mark.parametrize("name", DRIVES)
+def test_regression_drive_default_mode_misses_no_danger(
+    regressions: Path, external_dir: Path, name: str, tmp_path: Path
+) -> None:
+    """Default mode: every object the reference calls dangerous is dangerous for us too.
+
+    The default mode may be more cautious than ad-rss (a lane without a speed limit is
+    unbounded there, not ad-map's 50 km/h), never less.
+    """
+    reference = json.loads((regressions / f"{name}.json").read_text())
+    verdicts = run_drive(regressions, external_dir, name, tmp_path, compat=False)
+    missed = [
+        (k, sorted(ours.culprits), theirs["dangerous_objects"])
+        for k, (ours, theirs) in enumerate(zip(verdicts, reference["frames"], strict=True))
+        if not {str(x) for x in theirs["dangerous_objects"]} <= set(ours.culprits)
+    ]
+    assert missed == []
