@@ -19,10 +19,25 @@ __all__ = [
 ]
 
 
+#: Longest detail and value text in a message (characters); a library's error can quote a
+#: whole message definition.
+MAX_DETAIL_CHARS = 300
+
+
+def _one_line(text: str) -> str:
+    """``text`` on one line (runs of white space become one space), cut to the limit."""
+    flat = " ".join(text.split())
+    if len(flat) <= MAX_DETAIL_CHARS:
+        return flat
+    return flat[: MAX_DETAIL_CHARS - 3] + "..."
+
+
 class LoaderError(Exception):
     """Root of every error the loaders raise.
 
-    The message is built from structured fields so that the CLI can print one clear line.
+    The message is built from structured fields so that the CLI can print one clear line:
+    the detail and the value are put on one line and cut to :data:`MAX_DETAIL_CHARS` (the
+    fields themselves keep what was given).
     """
 
     what = "cannot read drive"
@@ -66,9 +81,9 @@ class LoaderError(Exception):
         where = ", ".join(parts)
         text = f"{where}: {self.what}"
         if self.detail:
-            text += f": {self.detail}"
+            text += f": {_one_line(self.detail)}"
         if self.value is not None:
-            text += f" (value: {self.value!r})"
+            text += f" (value: {_one_line(repr(self.value))})"
         return text
 
 
