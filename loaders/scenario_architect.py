@@ -62,7 +62,7 @@ _TRAJ_FIELDS = ("x_m", "y_m", "yaw_rad", "curvature_inv_m", "speed_mps", "accel_
 #: What a damaged archive raises while its members are read: zlib/lzma errors in compressed
 #: data, ``RuntimeError`` for an encrypted member, ``NotImplementedError`` for an unknown
 #: compression method.
-_ARCHIVE_ERRORS: tuple[type[Exception], ...] = (
+_ARCHIVE_ERRORS = (
     zipfile.BadZipFile,
     EOFError,
     OSError,
