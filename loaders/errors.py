@@ -24,9 +24,14 @@ __all__ = [
 MAX_DETAIL_CHARS = 300
 
 
+def _printable(text: str) -> str:
+    """``text`` with characters that do not print escaped (a topic name of a damaged file)."""
+    return "".join(c if c.isprintable() else repr(c)[1:-1] for c in text)
+
+
 def _one_line(text: str) -> str:
     """``text`` on one line (runs of white space become one space), cut to the limit."""
-    flat = " ".join(text.split())
+    flat = _printable(" ".join(text.split()))
     if len(flat) <= MAX_DETAIL_CHARS:
         return flat
     return flat[: MAX_DETAIL_CHARS - 3] + "..."
@@ -71,9 +76,9 @@ class LoaderError(Exception):
         super().__init__(self._message())
 
     def _message(self) -> str:
-        parts = [f"{self.path}"]
+        parts = [_printable(str(self.path))]
         if self.topic is not None:
-            parts.append(f"topic {self.topic}")
+            parts.append(f"topic {_printable(self.topic)}")
         if self.t_ns is not None:
             parts.append(f"t={self.t_ns} ns")
         if self.offset is not None:

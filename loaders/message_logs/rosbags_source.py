@@ -34,6 +34,8 @@ READ_ERRORS: tuple[type[Exception], ...] = (
     struct.error,
     EOFError,
     ValueError,
+    OverflowError,  # a record length past the index range
+    MemoryError,  # a record length past what memory holds
     IndexError,
     KeyError,
     OSError,
