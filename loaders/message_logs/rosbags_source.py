@@ -7,6 +7,7 @@ import sqlite3
 import struct
 from typing import TYPE_CHECKING, Any
 
+import apsw
 from backports.zstd import ZstdError
 from rosbags.highlevel import AnyReader, AnyReaderError
 from rosbags.rosbag1 import ReaderError as Bag1ReaderError
@@ -29,6 +30,7 @@ __all__ = ["READ_ERRORS", "RosbagsSource"]
 #: What a damaged container raises while reading (wrapped into ``CorruptLogError``).
 READ_ERRORS: tuple[type[Exception], ...] = (
     AnyReaderError,
+    apsw.Error,  # rosbag2 sqlite3 storage: a damaged page met while reading messages
     Bag1ReaderError,
     Bag2ReaderError,
     struct.error,
@@ -47,6 +49,9 @@ READ_ERRORS: tuple[type[Exception], ...] = (
     sqlite3.Error,
 )
 _SERIALIZATION = re.compile(r"Serialization format (\{.*\}) is not supported")
+#: What opening a container raises besides: rosbags computes with a rosbag2
+#: ``metadata.yaml``'s values before it checks their types.
+_OPEN_ERRORS: tuple[type[Exception], ...] = (*READ_ERRORS, TypeError, AttributeError)
 
 
 def _size(path: Path) -> int:
@@ -71,7 +76,7 @@ class RosbagsSource:
         self._reader = AnyReader([path], default_typestore=typestore(2))
         try:
             self._reader.open()
-        except READ_ERRORS as err:
+        except _OPEN_ERRORS as err:
             if found := _SERIALIZATION.search(str(err)):
                 raise UnsupportedFormatError(
                     path, f"serialization format {found.group(1)}; only cdr is read"
