@@ -92,6 +92,11 @@ class RosbagsSource:
         counts: dict[str, int] = {}
         types: dict[str, str] = {}
         for conn in self._reader.connections:
+            if not isinstance(conn.topic, str) or not isinstance(conn.msgtype, str):
+                self._reader.close()  # a damaged sqlite3 topics table can hold bytes
+                detail = "a topic name or message type is not text"
+                value = (conn.topic, conn.msgtype)
+                raise CorruptLogError(path, detail, value=value, offset=_size(path))
             counts[conn.topic] = counts.get(conn.topic, 0) + int(conn.msgcount)
             types[conn.topic] = normalize_msgtype(conn.msgtype)
         self.topics = tuple(TopicInfo(t, types[t], counts[t]) for t in sorted(types))
