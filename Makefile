@@ -19,11 +19,19 @@ CRIME_STAMP := $(CRIME_VENV)/.installed
 MAP_ORACLE_VENV ?= .venv-oracle-adrss-map
 MAP_ORACLE_STAMP := $(MAP_ORACLE_VENV)/.installed
 
+# Side venv for the coverage-guided fuzzer (atheris, a binary wheel for CPython 3.11 on
+# x86-64 Linux): kept apart so that the project venv never carries it; sees the project venv.
+FUZZ_VENV ?= .venv-fuzz
+FUZZ_STAMP := $(FUZZ_VENV)/.installed
+# Seconds per target; FUZZ_TARGETS (space-separated) limits the run to some targets.
+FUZZ_SECONDS ?= 600
+FUZZ_TARGETS ?=
+
 # mypyc-compiled twins of the scene-creation modules (rss/compiled.py): rebuilt whenever a
 # source changes; skipped with a message where no C compiler exists (pure Python then).
 COMPILED := build/compiled/manifest.json
 
-.PHONY: all setup compiled demo test lint typecheck layers pytest oracle-commonroad oracle-crime acceptance oracle-adrss-map bench samples goldens screenshot clean
+.PHONY: all setup compiled demo test lint typecheck layers pytest oracle-commonroad oracle-crime acceptance oracle-adrss-map bench samples goldens screenshot fuzz clean
 
 all: test
 
@@ -99,6 +107,18 @@ oracle-adrss-map: $(STAMP) $(COMPILED) $(MAP_ORACLE_STAMP)
 		$(BIN)/python -m pytest -q -p no:cacheprovider tests/rss/scene/test_crosscheck_adrss_map.py \
 		tests/rss/scene/test_crosscheck_drives.py tests/rss/scene/test_scene_reference.py
 
+$(FUZZ_STAMP): $(STAMP)
+	$(PYTHON) -m venv $(FUZZ_VENV)
+	$(FUZZ_VENV)/bin/python -m pip install --quiet --upgrade pip
+	$(FUZZ_VENV)/bin/python -m pip install --quiet atheris==3.0.0
+	$(FUZZ_VENV)/bin/python -c 'import pathlib, sys, sysconfig; pathlib.Path(sysconfig.get_paths()["purelib"], "zz_project_venv.pth").write_text(f"import site; site.addsitedir({sys.argv[1]!r})\n")' "$$($(BIN)/python -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')"
+	@touch $(FUZZ_STAMP)
+
+# Coverage-guided fuzzing of every loader entry point, FUZZ_SECONDS each (docs/fuzzing.md);
+# resumes from $(OUT)/fuzz/<target>/corpus. Findings: exit 1, minimized inputs listed.
+fuzz: $(FUZZ_STAMP)
+	$(FUZZ_VENV)/bin/python -m tests.fuzz.run --seconds $(FUZZ_SECONDS) --out $(OUT)/fuzz $(FUZZ_TARGETS)
+
 test: lint typecheck layers pytest oracle-commonroad oracle-crime acceptance oracle-adrss-map
 
 bench: $(STAMP) $(COMPILED) $(MAP_ORACLE_STAMP)
@@ -119,4 +139,4 @@ screenshot: demo
 	bash tools/screenshot.sh $(OUT)/demo/highway_cut_in.rrd docs/replay_reach_highway_cut_in.png 120
 
 clean:
-	rm -rf $(VENV) $(ORACLE_VENV) $(CRIME_VENV) $(MAP_ORACLE_VENV) $(OUT) .mypy_cache .ruff_cache .pytest_cache build
+	rm -rf $(VENV) $(ORACLE_VENV) $(CRIME_VENV) $(MAP_ORACLE_VENV) $(FUZZ_VENV) $(OUT) .mypy_cache .ruff_cache .pytest_cache build

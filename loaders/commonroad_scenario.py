@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import functools
 import math
-import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from decimal import Decimal, InvalidOperation
 from typing import TYPE_CHECKING
@@ -26,8 +25,10 @@ import numpy as np
 
 from loaders.errors import CorruptLogError, InvalidValueError, UnsupportedFormatError
 from loaders.maps.commonroad import NETWORK_TAGS, id_sort_key, parse_float
+from loaders.maps.xmlsource import iter_xml
 
 if TYPE_CHECKING:
+    import xml.etree.ElementTree as ET
     from pathlib import Path
 
     from numpy.typing import NDArray
@@ -109,30 +110,26 @@ def _scan(path: Path) -> Scenario:
     depth = 0
     tracks: list[Track] = []
     network: list[ET.Element] = []
-    try:
-        for event, elem in ET.iterparse(path, events=("start", "end")):  # noqa: S314 - expat refuses external entities
-            if event == "start":
-                if root is None:
-                    root = elem
-                    if elem.tag != "commonRoad":
-                        raise UnsupportedFormatError(
-                            path, f"root element is <{elem.tag}>, not <commonRoad>"
-                        )
-                depth += 1
-                continue
-            depth -= 1
-            if depth != 1:
-                continue
-            if elem.tag in NETWORK_TAGS:
-                network.append(elem)
-            else:
-                track = _track(elem)
-                if track is not None:
-                    tracks.append(track)
-                elem.clear()
-    except ET.ParseError as err:
-        line, col = err.position
-        raise CorruptLogError(path, f"malformed XML at line {line}, column {col}") from err
+    for event, elem in iter_xml(path, ("start", "end"), CorruptLogError):
+        if event == "start":
+            if root is None:
+                root = elem
+                if elem.tag != "commonRoad":
+                    raise UnsupportedFormatError(
+                        path, f"root element is <{elem.tag}>, not <commonRoad>"
+                    )
+            depth += 1
+            continue
+        depth -= 1
+        if depth != 1:
+            continue
+        if elem.tag in NETWORK_TAGS:
+            network.append(elem)
+        else:
+            track = _track(elem)
+            if track is not None:
+                tracks.append(track)
+            elem.clear()
     assert root is not None
     return Scenario(
         version=root.get("commonRoadVersion", "unknown"),

@@ -19,10 +19,30 @@ __all__ = [
 ]
 
 
+#: Longest detail and value text in a message (characters); a library's error can quote a
+#: whole message definition.
+MAX_DETAIL_CHARS = 300
+
+
+def _printable(text: str) -> str:
+    """``text`` with characters that do not print escaped (a topic name of a damaged file)."""
+    return "".join(c if c.isprintable() else repr(c)[1:-1] for c in text)
+
+
+def _one_line(text: str) -> str:
+    """``text`` on one line (runs of white space become one space), cut to the limit."""
+    flat = _printable(" ".join(text.split()))
+    if len(flat) <= MAX_DETAIL_CHARS:
+        return flat
+    return flat[: MAX_DETAIL_CHARS - 3] + "..."
+
+
 class LoaderError(Exception):
     """Root of every error the loaders raise.
 
-    The message is built from structured fields so that the CLI can print one clear line.
+    The message is built from structured fields so that the CLI can print one clear line:
+    the detail and the value are put on one line and cut to :data:`MAX_DETAIL_CHARS` (the
+    fields themselves keep what was given).
     """
 
     what = "cannot read drive"
@@ -56,9 +76,9 @@ class LoaderError(Exception):
         super().__init__(self._message())
 
     def _message(self) -> str:
-        parts = [f"{self.path}"]
+        parts = [_printable(str(self.path))]
         if self.topic is not None:
-            parts.append(f"topic {self.topic}")
+            parts.append(f"topic {_printable(self.topic)}")
         if self.t_ns is not None:
             parts.append(f"t={self.t_ns} ns")
         if self.offset is not None:
@@ -66,9 +86,9 @@ class LoaderError(Exception):
         where = ", ".join(parts)
         text = f"{where}: {self.what}"
         if self.detail:
-            text += f": {self.detail}"
+            text += f": {_one_line(self.detail)}"
         if self.value is not None:
-            text += f" (value: {self.value!r})"
+            text += f" (value: {_one_line(repr(self.value))})"
         return text
 
 

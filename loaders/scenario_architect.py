@@ -26,8 +26,10 @@ from __future__ import annotations
 
 import io
 import json
+import lzma
 import math
 import zipfile
+import zlib
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Self
@@ -59,6 +61,20 @@ _COLUMNS = "time;x;y;heading;curv;vel;acc;ego_traj;ego_traj_em;object_array;safe
 _PLANS = {"emergency": "ego_traj_em", "performance": "ego_traj"}
 _PLAN_KINDS = {"emergency": PlanKind.EMERGENCY, "performance": PlanKind.NOMINAL}
 _TRAJ_FIELDS = ("x_m", "y_m", "yaw_rad", "curvature_inv_m", "speed_mps", "accel_mps2")
+
+
+#: What a damaged archive raises while its members are read: zlib/lzma errors in compressed
+#: data, ``RuntimeError`` for an encrypted member, ``NotImplementedError`` for an unknown
+#: compression method.
+_ARCHIVE_ERRORS = (
+    zipfile.BadZipFile,
+    EOFError,
+    OSError,
+    zlib.error,
+    lzma.LZMAError,
+    RuntimeError,
+    NotImplementedError,
+)
 
 
 def north0_to_enu(psi_rad: Any) -> Any:
@@ -171,7 +187,7 @@ class ScenarioArchitectDrive:
             if self._path.suffix == ".saa":
                 raise CorruptLogError(self._path, "not a valid ZIP archive")
             return self._path.open(encoding="utf-8")
-        except (zipfile.BadZipFile, OSError, UnicodeDecodeError) as err:
+        except (*_ARCHIVE_ERRORS, UnicodeDecodeError) as err:
             raise CorruptLogError(self._path, f"cannot open: {err}") from err
 
     def _scan(self) -> _Header:
@@ -192,7 +208,7 @@ class ScenarioArchitectDrive:
                         first = lineno + 1
                     elif first >= 0 and line.strip():
                         times.append(float(line.split(";", 1)[0]))
-            except (zipfile.BadZipFile, ValueError, EOFError, OSError) as err:
+            except (*_ARCHIVE_ERRORS, ValueError) as err:
                 if not times:
                     raise CorruptLogError(self._path, f"unreadable header: {err}") from err
         if "bound_l" not in bounds or "bound_r" not in bounds or first < 0:
@@ -274,7 +290,7 @@ class ScenarioArchitectDrive:
                 raise
             except (ValueError, IndexError, TypeError, KeyError) as err:
                 raise CorruptLogError(self._path, f"bad row: {err}", offset=lineno) from err
-            except (zipfile.BadZipFile, EOFError, OSError) as err:
+            except _ARCHIVE_ERRORS as err:
                 raise CorruptLogError(self._path, f"archive damaged: {err}", offset=lineno) from err
 
 

@@ -97,7 +97,7 @@ def _records(elems: list[ET.Element], key: str) -> tuple[_F, _F]:
 
 def _spiral(k0: float, k1: float, length: float, d: _F) -> tuple[_F, _F, _F]:
     """Local ``(u, v, heading)`` of a clothoid from curvature ``k0`` to ``k1`` at ``d``."""
-    rate = (k1 - k0) / length
+    rate = (k1 - k0) / length if length > 0 else 0.0  # a zero-length record: no curvature change
 
     def heading(x: _F) -> _F:
         out: _F = k0 * x + 0.5 * rate * x * x

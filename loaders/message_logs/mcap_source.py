@@ -53,6 +53,8 @@ MCAP_ERRORS: tuple[type[Exception], ...] = (
     struct.error,
     EOFError,
     ValueError,
+    OverflowError,  # a record length past the index range
+    MemoryError,  # a record length past what memory holds
     KeyError,
     OSError,
     RuntimeError,
@@ -235,10 +237,7 @@ class McapSource:
             elif channel.message_encoding in {"cdr", "ros1"} and schema is not None:
                 decode = _ros_decoder(schema, ros1=channel.message_encoding == "ros1")
             else:
-                # betterosi decodes the ASAM OSI schemas, mcap_protobuf every other schema
-                found = self._osi.decoder_for(
-                    channel.message_encoding, schema
-                ) or self._protobuf.decoder_for(channel.message_encoding, schema)
+                found = self._protobuf_decoder(channel, schema)
                 if found is None:
                     raise UnsupportedFormatError(
                         self.path, f"cannot decode {channel.message_encoding}", topic=channel.topic
@@ -246,6 +245,20 @@ class McapSource:
                 decode = found
             self._decoders[channel.id] = decode
         return decode
+
+    def _protobuf_decoder(
+        self, channel: Channel, schema: Schema | None
+    ) -> Callable[[bytes], Any] | None:
+        """The decoder of a protobuf channel: betterosi for ASAM OSI, else ``mcap_protobuf``."""
+        try:
+            return self._osi.decoder_for(
+                channel.message_encoding, schema
+            ) or self._protobuf.decoder_for(channel.message_encoding, schema)
+        except TypeError as err:  # mcap_protobuf: a descriptor set that does not build
+            name = None if schema is None else schema.name
+            raise CorruptLogError(
+                self.path, f"schema {name} does not build: {err}", topic=channel.topic
+            ) from err
 
     def _records(
         self, topics: Collection[str], start_ns: int | None, stop_ns: int | None

@@ -33,8 +33,16 @@ OSI_TOPICS: dict[str, tuple[str, str]] = {
     "SensorView": ("sensor_view", "osi3.SensorView"),
 }
 _PREFIX = 4  # bytes of the length prefix
-#: What reading a damaged trace raises (wrapped into ``CorruptLogError``).
-_OSI_ERRORS: tuple[type[Exception], ...] = (ValueError, KeyError, IndexError, struct.error, OSError)
+#: What reading a damaged trace raises (wrapped into ``CorruptLogError``); the protobuf
+#: decoder gives up on groups nested too deep with ``RecursionError``.
+_OSI_ERRORS: tuple[type[Exception], ...] = (
+    ValueError,
+    KeyError,
+    IndexError,
+    struct.error,
+    OSError,
+    RecursionError,
+)
 
 
 def _scan(path: Path) -> tuple[list[tuple[int, int]], tuple[int, str] | None]:

@@ -7,6 +7,7 @@ import sqlite3
 import struct
 from typing import TYPE_CHECKING, Any
 
+import apsw
 from backports.zstd import ZstdError
 from rosbags.highlevel import AnyReader, AnyReaderError
 from rosbags.rosbag1 import ReaderError as Bag1ReaderError
@@ -29,11 +30,14 @@ __all__ = ["READ_ERRORS", "RosbagsSource"]
 #: What a damaged container raises while reading (wrapped into ``CorruptLogError``).
 READ_ERRORS: tuple[type[Exception], ...] = (
     AnyReaderError,
+    apsw.Error,  # rosbag2 sqlite3 storage: a damaged page met while reading messages
     Bag1ReaderError,
     Bag2ReaderError,
     struct.error,
     EOFError,
     ValueError,
+    OverflowError,  # a record length past the index range
+    MemoryError,  # a record length past what memory holds
     IndexError,
     KeyError,
     OSError,
@@ -45,6 +49,9 @@ READ_ERRORS: tuple[type[Exception], ...] = (
     sqlite3.Error,
 )
 _SERIALIZATION = re.compile(r"Serialization format (\{.*\}) is not supported")
+#: What opening a container raises besides: rosbags computes with a rosbag2
+#: ``metadata.yaml``'s values before it checks their types.
+_OPEN_ERRORS: tuple[type[Exception], ...] = (*READ_ERRORS, TypeError, AttributeError)
 
 
 def _size(path: Path) -> int:
@@ -69,7 +76,7 @@ class RosbagsSource:
         self._reader = AnyReader([path], default_typestore=typestore(2))
         try:
             self._reader.open()
-        except READ_ERRORS as err:
+        except _OPEN_ERRORS as err:
             if found := _SERIALIZATION.search(str(err)):
                 raise UnsupportedFormatError(
                     path, f"serialization format {found.group(1)}; only cdr is read"
@@ -85,6 +92,11 @@ class RosbagsSource:
         counts: dict[str, int] = {}
         types: dict[str, str] = {}
         for conn in self._reader.connections:
+            if not isinstance(conn.topic, str) or not isinstance(conn.msgtype, str):
+                self._reader.close()  # a damaged sqlite3 topics table can hold bytes
+                detail = "a topic name or message type is not text"
+                value = (conn.topic, conn.msgtype)
+                raise CorruptLogError(path, detail, value=value, offset=_size(path))
             counts[conn.topic] = counts.get(conn.topic, 0) + int(conn.msgcount)
             types[conn.topic] = normalize_msgtype(conn.msgtype)
         self.topics = tuple(TopicInfo(t, types[t], counts[t]) for t in sorted(types))

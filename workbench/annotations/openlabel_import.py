@@ -25,8 +25,8 @@ import json
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-from workbench.annotations.errors import OpenLabelError
-from workbench.annotations.schema import ReviewVerdict
+from workbench.annotations.errors import OpenLabelError, TagError
+from workbench.annotations.schema import ReviewVerdict, check_tags
 from workbench.annotations.store import Label
 
 if TYPE_CHECKING:
@@ -154,33 +154,37 @@ def _labels(path: Path, root: dict[str, Any], drive_hash: str) -> list[Label]:
     for uid, action in sorted(actions.items(), key=lambda kv: (len(kv[0]), kv[0])):
         where = f"{path}: actions.{uid}.action_data"
         data = action.get("action_data", {}) if isinstance(action, dict) else {}
-        texts = data.get("text", [])
-        if not any(isinstance(t, dict) and t.get("name") == "verdict" for t in texts):
+        texts = data.get("text", []) if isinstance(data, dict) else []
+        if not isinstance(texts, list) or not any(
+            isinstance(t, dict) and t.get("name") == "verdict" for t in texts
+        ):
             continue
         text = {name: str(_field(texts, name, where)) for name in _TEXT_FIELDS}
-        try:
-            at_ns = int(text["labelled_ns"])
-        except ValueError as err:
-            raise OpenLabelError(f"{where}: labelled_ns {text['labelled_ns']!r}") from err
-        try:
-            verdict = ReviewVerdict(text["verdict"])
-        except ValueError as err:
-            raise OpenLabelError(f"{where}: verdict {text['verdict']!r}") from err
-        tags = _field(data.get("vec", []), "tags", where)
-        if not isinstance(tags, list):
-            raise OpenLabelError(f"{where}: tags {tags!r} is not a list")
-        labels.append(
-            Label(
-                drive_hash,
-                str(action.get("name", "")),
-                verdict,
-                tuple(sorted({str(t) for t in tags})),
-                text["note"],
-                text["reviewer"],
-                at_ns,
-            )
-        )
+        labels.append(_label(where, drive_hash, str(action.get("name", "")), text, data))
     return labels
+
+
+def _label(where: str, drive_hash: str, incident_id: str, text: dict[str, str], data: Any) -> Label:
+    """One reviewed action as a label; what the store would refuse is an error naming it."""
+    try:
+        verdict = ReviewVerdict(text["verdict"])
+    except ValueError as err:
+        known = ", ".join(v.value for v in ReviewVerdict)
+        raise OpenLabelError(
+            f"{where}: verdict {text['verdict']!r}, expected one of {known}"
+        ) from err
+    try:
+        at_ns = int(text["labelled_ns"])
+    except ValueError as err:
+        raise OpenLabelError(f"{where}: labelled_ns {text['labelled_ns']!r}") from err
+    tags = _field(data.get("vec", []), "tags", where)
+    if not isinstance(tags, list):
+        raise OpenLabelError(f"{where}: tags {tags!r} is not a list")
+    try:
+        checked = check_tags(sorted({str(t) for t in tags}))
+    except TagError as err:
+        raise OpenLabelError(f"{where}: {err}") from err
+    return Label(drive_hash, incident_id, verdict, checked, text["note"], text["reviewer"], at_ns)
 
 
 def import_openlabel(path: Path, store: LabelStore, prefer: Prefer = Prefer.newer) -> ImportReport:

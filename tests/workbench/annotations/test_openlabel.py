@@ -148,6 +148,18 @@ def test_cli_export_import_round_trip(tmp_path, capsys):
     assert "1 label(s) written" in capsys.readouterr().out
 
 
+def _reviewed(verdict: str, tags: list[str]) -> str:
+    """A one-incident OpenLABEL file as the workbench writes it, with this label."""
+    text = {"engine": "rss", "cause": "c", "verdict": verdict, "note": "", "reviewer": "r"}
+    data = {
+        "text": [{"name": k, "val": v} for k, v in {**text, "labelled_ns": "1"}.items()],
+        "vec": [{"name": "tags", "val": tags}],
+    }
+    meta = {"schema_version": "1.0.0", "drive_sha256": "d"}
+    action = {"name": "x", "type": "t", "action_data": data}
+    return json.dumps({"openlabel": {"metadata": meta, "actions": {"0": action}}})
+
+
 @pytest.mark.parametrize(
     ("text", "message"),
     [
@@ -163,6 +175,8 @@ def test_cli_export_import_round_trip(tmp_path, capsys):
             ),
             "actions.0.action_data: no 'engine'",
         ),
+        (_reviewed("maybe", []), "actions.0.action_data: verdict 'maybe', expected one of"),
+        (_reviewed("confirmed", ["two\nlines"]), "actions.0.action_data: tag 'two\\\\nlines'"),
     ],
 )
 def test_bad_files_are_one_line_errors(tmp_path, text, message, capsys):
