@@ -116,7 +116,7 @@ def _interp_rows(
     ``xp`` rows are non-decreasing; values are held beyond both ends.
     """
     n, k = xp.shape
-    j = np.clip((xp[:, None, :] <= q[None, :, None]).sum(axis=2) - 1, 0, k - 2)
+    j = np.minimum(np.maximum((xp[:, None, :] <= q[None, :, None]).sum(axis=2) - 1, 0), k - 2)
     j += (np.arange(n) * k)[:, None]  # flat index of the interval start
     x0 = xp.ravel()[j]
     span = xp.ravel()[j + 1] - x0

@@ -97,7 +97,7 @@ def _lane_directions(
         segment for the last point).
     """
     d2 = (centre[None, :, 0] - x[:, None]) ** 2 + (centre[None, :, 1] - y[:, None]) ** 2
-    k = np.clip(np.argmin(d2, axis=1), 0, len(centre) - 2)
+    k = np.minimum(np.maximum(np.argmin(d2, axis=1), 0), len(centre) - 2)
     t = centre[k + 1] - centre[k]
     return np.asarray(t / np.maximum(np.hypot(t[:, 0], t[:, 1]), 1e-12)[:, None])
 

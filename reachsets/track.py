@@ -91,7 +91,8 @@ class TrackGeometry:
         y = np.asarray(y_m, dtype=np.float64).reshape(-1)
         c = self.centre_m
         near = np.argmin((x[:, None] - c[:, 0]) ** 2 + (y[:, None] - c[:, 1]) ** 2, axis=1)
-        seg = np.clip(near[:, None] + _WINDOW, 0, len(self.seg_m) - 1)
+        # integer bounds: maximum/minimum (np.clip without its per-call iinfo look-up)
+        seg = np.minimum(np.maximum(near[:, None] + _WINDOW, 0), len(self.seg_m) - 1)
         dx = x[:, None] - c[seg, 0]
         dy = y[:, None] - c[seg, 1]
         sx, sy = self.seg_m[seg, 0], self.seg_m[seg, 1]
@@ -109,7 +110,7 @@ class TrackGeometry:
     def index_at(self, s_m: Any) -> NDArray[np.intp]:
         """Index of the centre point at or just before arc length ``s_m``."""
         idx = np.searchsorted(self.s_m, np.asarray(s_m, dtype=float), side="right") - 1
-        return np.clip(idx, 0, len(self.s_m) - 1)
+        return np.minimum(np.maximum(idx, 0), len(self.s_m) - 1)
 
     def ahead_m(self, s_from: Any, s_to: Any) -> NDArray[np.float64]:
         """Signed distance along the track from ``s_from`` to ``s_to`` (wraps on loops)."""

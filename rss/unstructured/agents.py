@@ -46,6 +46,10 @@ _MODEL[[ObjectType.Invalid, ObjectType.ArtificialObject]] = MotionModel.INVALID
 _MODEL[[ObjectType.Pedestrian, ObjectType.ArtificialPedestrian]] = MotionModel.PEDESTRIAN
 
 
+#: ``MotionModel.INVALID`` as a plain int (numpy looks attributes up on an enum class).
+_INVALID_MODEL = int(MotionModel.INVALID)
+
+
 def motion_model(object_type: IntArray) -> IntArray:
     """:class:`MotionModel` codes of ad-rss object type codes ``(N,)``."""
     return np.asarray(_MODEL[np.asarray(object_type, dtype=np.int64)])
@@ -139,7 +143,7 @@ class UnstructuredAgents:
             & (self.speed_min_mps <= self.speed_max_mps)
             & (self.length_m > 0.0)
             & (self.width_m > 0.0)
-            & (motion_model(self.object_type) != MotionModel.INVALID)
+            & (motion_model(self.object_type) != _INVALID_MODEL)
         )
 
 

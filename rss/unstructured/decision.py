@@ -99,6 +99,12 @@ class Decisions:
     both_brake_safe: BoolArray
 
 
+#: Response codes as plain ints (numpy looks attributes up on an enum class: slow per call).
+_BRAKE = int(UnstructuredResponse.Brake)
+_CONTINUE = int(UnstructuredResponse.ContinueForward)
+_DRIVE_AWAY = int(UnstructuredResponse.DriveAway)
+
+
 def decide(  # noqa: PLR0917  (one engine step over arrays)
     ego_b_oth_f: BoolArray,
     oth_b_ego_f: BoolArray,
@@ -132,13 +138,11 @@ def decide(  # noqa: PLR0917  (one engine step over arrays)
     ego_stopped = bool(le(ego.speed_max_mps[0], stopped, SPEED_PRECISION))
     both_stopped = ego_stopped & le(agents.speed_max_mps, stopped, SPEED_PRECISION)
     rule2 = ~safe & ~both_stopped & last
-    response = np.full(safe.shape, UnstructuredResponse.Brake, dtype=np.int64)
-    response[safe | (rule2 & gt(ego.speed_max_mps[0], stopped, SPEED_PRECISION))] = (
-        UnstructuredResponse.ContinueForward
-    )
-    response[~safe & (both_stopped | (rule2 & ego_stopped))] = UnstructuredResponse.DriveAway
-    is_safe = response == UnstructuredResponse.ContinueForward
-    drive = response == UnstructuredResponse.DriveAway
+    response = np.full(safe.shape, _BRAKE, dtype=np.int64)
+    response[safe | (rule2 & gt(ego.speed_max_mps[0], stopped, SPEED_PRECISION))] = _CONTINUE
+    response[~safe & (both_stopped | (rule2 & ego_stopped))] = _DRIVE_AWAY
+    is_safe = response == _CONTINUE
+    drive = response == _DRIVE_AWAY
     begin, end = np.full(safe.shape, np.nan), np.full(safe.shape, np.nan)
     if drive.any():
         phi = np.arctan2(ego.y_m[0] - agents.y_m, ego.x_m[0] - agents.x_m)
@@ -154,7 +158,7 @@ def decide(  # noqa: PLR0917  (one engine step over arrays)
             agents.y_m, memory.other_y_m[slot], DISTANCE_PRECISION
         )
         keep = has & ~drive & ~is_safe & unmoved & inside_heading_range(steering, s_begin, s_end)
-        response[keep] = UnstructuredResponse.DriveAway
+        response[keep] = _DRIVE_AWAY
         begin, end = np.where(keep, s_begin, begin), np.where(keep, s_end, end)
         drive = drive | keep
         pos_x = np.where(keep, memory.other_x_m[slot], pos_x)
