@@ -184,6 +184,12 @@ def fleet_review(
     from workbench.review.fleet import FleetSession, FleetViewer  # noqa: PLC0415
     from workbench.review.loop import drive_link, run_review  # noqa: PLC0415
 
+    if viewer_options.get("serve"):
+        msg = (
+            f"{log}: --serve restarts its web server per drive, so a results directory is"
+            " reviewed with --spawn or --connect"
+        )
+        raise WorkbenchError(msg)
     destination = _destination(**viewer_options)
     reports = {r.drive_hash: r for r in drive_reports(log, with_incidents_only=True)}
     if not reports:

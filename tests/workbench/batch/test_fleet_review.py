@@ -129,3 +129,13 @@ def test_review_of_a_results_dir_opens_each_drive_when_its_incident_comes_up(
     changes = [d for k, d in enumerate(walked) if k == 0 or walked[k - 1] != d]
     assert opened == changes  # a drive is opened when the queue reaches it, not before
     assert set(opened) == {f.drive_hash for f in load_queue(full)}
+
+
+def test_review_of_a_results_dir_refuses_serve_in_one_line(
+    full: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    store = ["--store", str(tmp_path / "labels.sqlite")]
+    assert run_workbench(["review", str(full), "--serve", *store]) != 0
+    err = capsys.readouterr().err.strip()
+    assert "--serve" in err
+    assert "Traceback" not in err
