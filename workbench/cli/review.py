@@ -191,7 +191,7 @@ def fleet_review(
         )
         raise WorkbenchError(msg)
     destination = _destination(**viewer_options)
-    reports = {r.drive_hash: r for r in drive_reports(log, with_incidents_only=True)}
+    reports = {str(r.log): r for r in drive_reports(log, with_incidents_only=True)}
     if not reports:
         typer.echo(f"{log.name}: no incidents in any drive")
         return
@@ -219,7 +219,7 @@ def fleet_review(
         if destination is not None:
             viewer = FleetViewer(
                 fleet,
-                lambda s: drive_link(reports[s.report.drive_hash], s, destination),
+                lambda s: drive_link(reports[str(s.report.log)], s, destination),
             )
         try:
             run_review(fleet, viewer)
