@@ -31,7 +31,7 @@ FUZZ_TARGETS ?=
 # source changes; skipped with a message where no C compiler exists (pure Python then).
 COMPILED := build/compiled/manifest.json
 
-.PHONY: all setup compiled demo test lint typecheck layers pytest oracle-commonroad oracle-crime acceptance oracle-adrss-map bench samples goldens screenshot fuzz clean
+.PHONY: all setup compiled demo test lint typecheck layers pytest oracle-commonroad oracle-crime acceptance oracle-adrss-map bench bench-fleet samples goldens screenshot fuzz clean
 
 all: test
 
@@ -140,3 +140,8 @@ screenshot: demo
 
 clean:
 	rm -rf $(VENV) $(ORACLE_VENV) $(CRIME_VENV) $(MAP_ORACLE_VENV) $(FUZZ_VENV) $(OUT) .mypy_cache .ruff_cache .pytest_cache build
+
+# Issue 30's scale facts: the fleet section of docs/benchmarks.md (FLEET_DRIVES=200 by default).
+FLEET_DRIVES ?= 200
+bench-fleet: $(STAMP) $(COMPILED)
+	$(BIN)/python -m bench.bench_fleet --drives $(FLEET_DRIVES) --out docs/benchmarks.md

@@ -15,7 +15,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from workbench.batch.executors import BatchError
-from workbench.batch.queue import incident_of, load_queue, read_table
+from workbench.batch.queue import incident_of, read_table
 from workbench.incidents import IncidentReport, IncidentRequest, IncidentSettings
 
 if TYPE_CHECKING:
@@ -91,15 +91,12 @@ def _frame_times(request: IncidentRequest) -> tuple[tuple[int, int], ...]:
     return tuple(times)
 
 
-def drive_reports(
-    results: Path, *, with_incidents_only: bool = False, worst_first: bool = False
-) -> Iterator[IncidentReport]:
+def drive_reports(results: Path, *, with_incidents_only: bool = False) -> Iterator[IncidentReport]:
     """One report per drive the batch evaluated (not ``failed``), in ``drives.parquet`` order.
 
     Args:
         results: The results directory.
         with_incidents_only: Skip drives without incidents (no loader pass for them).
-        worst_first: Drives in the order of their worst incident (the review queue's order).
 
     Raises:
         BatchError: The batch's files cannot be read.
@@ -111,12 +108,6 @@ def drive_reports(
     for row in read_table(results, "incidents.parquet"):
         by_drive.setdefault(row["drive_path"], []).append(row)
     drives = read_table(results, "drives.parquet")
-    if worst_first:
-        rank = {
-            path: k
-            for k, path in enumerate(dict.fromkeys(i.drive_path for i in load_queue(results)))
-        }
-        drives.sort(key=lambda d: rank.get(d["path"], len(rank)))
     for drive in drives:
         rows = by_drive.get(drive["path"], [])
         if drive["status"] == "failed" or (with_incidents_only and not rows):

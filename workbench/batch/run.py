@@ -8,10 +8,13 @@ from __future__ import annotations
 import dataclasses
 import datetime as dt
 import glob
+import re
 from concurrent.futures import FIRST_COMPLETED, Future, wait
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
+from urllib.parse import urlsplit
+from urllib.request import url2pathname
 
 from workbench.batch.executors import BatchError
 from workbench.batch.reports import request_record
@@ -30,6 +33,8 @@ __all__ = ["LOG_SUFFIXES", "MAX_ATTEMPTS", "BatchSummary", "expand_logs", "run_b
 
 #: Files a directory argument contributes (rosbag2 directories are taken whole).
 LOG_SUFFIXES = (".mcap", ".bag", ".db3", ".xml", ".saa", ".scn")
+#: A URL argument (``scheme://``), not a path.
+_URL = re.compile(r"^[A-Za-z][A-Za-z0-9+.-]*://")
 #: Times a log is submitted before a lost worker counts as its failure.
 MAX_ATTEMPTS = 3
 
@@ -50,17 +55,36 @@ def _walk(folder: Path) -> list[Path]:
     return found
 
 
+def _local(argument: str) -> str:
+    """A ``file://`` URL as the local path it names (the workers read it there); else as is.
+
+    Raises:
+        BatchError: A URL of another scheme or host (not read yet), with the argument.
+    """
+    parts = urlsplit(argument)
+    if not _URL.match(argument):
+        return argument
+    if parts.scheme == "file" and parts.netloc in {"", "localhost"}:
+        return url2pathname(parts.path)
+    msg = (
+        f"{argument}: only file:// URLs on this host are read for now"
+        f" ({parts.scheme}:// logs: copy them to a file system the workers share)"
+    )
+    raise BatchError(msg)
+
+
 def expand_logs(arguments: Sequence[str]) -> list[Path]:
-    """The logs named by files, directories (searched for logs) and globs.
+    """The logs named by files, directories (searched for logs), globs and ``file://`` URLs.
 
     Absolute, sorted, unique. A rosbag2 directory (it holds ``metadata.yaml``) is one log;
     ``.db3`` files inside it are not listed again.
 
     Raises:
-        BatchError: An argument matches nothing.
+        BatchError: An argument matches nothing, or is a URL of another kind.
     """
     out: dict[Path, None] = {}
-    for argument in arguments:
+    for given in arguments:
+        argument = _local(given)
         found = sorted(glob.glob(argument))  # noqa: PTH207 - a user's pattern, maybe absolute
         matches = [Path(m).resolve() for m in found] or [Path(argument).resolve()]
         for path in matches:

@@ -114,7 +114,6 @@ def each_drive(
     out_for: Callable[[Path, str], Path] | None,
     *,
     incidents_only: bool,
-    worst_first: bool = False,
 ) -> Callable[..., None]:
     """``command`` (made by ``with_incidents``) taking RESULTS_DIR too: run once per drive.
 
@@ -127,7 +126,6 @@ def each_drive(
         out_for: Where one drive's output goes, from ``--out`` and a portable drive stem
             (``None``: the command has no ``--out``).
         incidents_only: Skip drives without incidents.
-        worst_first: Drives in the order of their worst incident.
     """
     own = command.__wrapped__  # type: ignore[attr-defined]
     names = set(inspect.signature(own).parameters) - {"log", "report"}
@@ -137,9 +135,7 @@ def each_drive(
         from workbench.export.plan import safe_stem  # noqa: PLC0415
 
         base = {name: kwargs[name] for name in names}
-        reports = drive_reports(
-            kwargs["log"], with_incidents_only=incidents_only, worst_first=worst_first
-        )
+        reports = drive_reports(kwargs["log"], with_incidents_only=incidents_only)
         for report in reports:
             if out_for is not None:
                 stem = f"{safe_stem(report.log.name)}-{report.drive_hash[:8]}"

@@ -5,7 +5,7 @@ from __future__ import annotations
 import contextlib
 import dataclasses
 import functools
-from typing import TYPE_CHECKING, Annotated
+from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
@@ -26,6 +26,7 @@ from workbench.errors import WorkbenchError
 
 if TYPE_CHECKING:
     from collections.abc import Callable, Iterator, Sequence
+    from pathlib import Path
 
     from workbench.annotations import LabelStore
     from workbench.incidents import Incident, IncidentReport, IncidentRequest
@@ -78,10 +79,15 @@ def review(
     )
     from workbench.incidents import IncidentReport, filter_incidents  # noqa: PLC0415
     from workbench.review.loop import run_review  # noqa: PLC0415
-    from workbench.viewer.outputs import Destination  # noqa: PLC0415
 
-    if sum((spawn, serve, connect is not None)) > 1:
-        raise WorkbenchError("--spawn, --serve and --connect are mutually exclusive")
+    destination = _destination(
+        spawn=spawn,
+        serve=serve,
+        connect=connect,
+        bind=bind,
+        grpc_port=grpc_port,
+        web_port=web_port,
+    )
     path = store or default_store_path()
     with LabelStore(path) as labels, contextlib.ExitStack() as viewer:
         session_of = functools.partial(
@@ -97,22 +103,11 @@ def review(
                 max_margin=max_margin,
             ),
         )
-        if not (spawn or serve or connect):
+        if destination is None:
             found = report if isinstance(report, IncidentReport) else find_with_progress(report)
             session = session_of(found, None)
             run_review(session)
         else:
-            from workbench.viewer.web_cursor import WebCursor  # noqa: PLC0415
-
-            web_cursor = WebCursor() if serve else None
-            destination = Destination(
-                spawn=spawn,
-                serve=serve,
-                connect=connect,
-                bind=bind,
-                ports=(grpc_port, web_port),
-                web_cursor=web_cursor,
-            )
             live = viewer.enter_context(_replay(report, destination))
             if live.served is not None:
                 typer.echo(f"viewer: {live.served}")
@@ -161,8 +156,113 @@ def _replay(
         yield live
 
 
-def register(app: typer.Typer) -> None:
-    """Add ``review`` to the CLI (a batch's RESULTS_DIR: drive after drive, worst first)."""
-    from workbench.cli.fleet import each_drive  # noqa: PLC0415
+def fleet_review(
+    *,
+    log: Path,
+    store: Path | None = None,
+    reviewer: str | None = None,
+    engine: list[str] | None = None,
+    obj: list[str] | None = None,
+    cause: list[str] | None = None,
+    max_margin: float | None = None,
+    by: Listing = Listing.event,
+    **viewer_options: Any,
+) -> None:
+    """``workbench review RESULTS_DIR``: one queue over every drive's incidents, worst first.
 
-    app.command("review")(each_drive(review, None, incidents_only=True, worst_first=True))
+    The incidents are the batch's (nothing is evaluated again); with a viewer, each drive
+    is drawn into it when the first of its rows comes up.
+    """
+    from workbench.annotations import (  # noqa: PLC0415
+        LabelStore,
+        default_reviewer,
+        default_store_path,
+    )
+    from workbench.batch.reports import drive_reports  # noqa: PLC0415
+    from workbench.incidents import filter_incidents  # noqa: PLC0415
+    from workbench.replay.incidents import short_labels  # noqa: PLC0415
+    from workbench.review.fleet import FleetSession, FleetViewer  # noqa: PLC0415
+    from workbench.review.loop import drive_link, run_review  # noqa: PLC0415
+
+    if viewer_options.get("serve"):
+        msg = (
+            f"{log}: --serve restarts its web server per drive, so a results directory is"
+            " reviewed with --spawn or --connect"
+        )
+        raise WorkbenchError(msg)
+    destination = _destination(**viewer_options)
+    reports = {str(r.log): r for r in drive_reports(log, with_incidents_only=True)}
+    if not reports:
+        typer.echo(f"{log.name}: no incidents in any drive")
+        return
+    path = store or default_store_path()
+    with LabelStore(path) as labels:
+        sessions = [
+            _session(
+                report,
+                short_labels(report.incidents),  # as the viewer numbers the drive's objects
+                store=labels,
+                reviewer=reviewer or default_reviewer(),
+                by_event=by is Listing.event,
+                chosen=functools.partial(
+                    filter_incidents,
+                    engines=engine or (),
+                    objects=obj or (),
+                    causes=cause or (),
+                    max_margin=max_margin,
+                ),
+            )
+            for report in reports.values()
+        ]
+        fleet = FleetSession(sessions)
+        viewer = None
+        if destination is not None:
+            viewer = FleetViewer(
+                fleet,
+                lambda s: drive_link(reports[str(s.report.log)], s, destination),
+            )
+        try:
+            run_review(fleet, viewer)
+        finally:
+            if viewer is not None:
+                viewer.close()
+        typer.echo(
+            f"{log.name}: {fleet.reviewed} of {len(fleet.incidents)} {fleet.unit}(s) reviewed"
+            f" in {len(sessions)} drive(s) (store {path})"
+        )
+
+
+def _destination(
+    *,
+    spawn: bool = False,
+    serve: bool = False,
+    connect: str | None = None,
+    bind: str = "127.0.0.1",
+    grpc_port: int = 9876,
+    web_port: int = 9090,
+    **_settings: Any,
+) -> Destination | None:
+    """The viewer the options name (``None``: the UI alone)."""
+    from workbench.viewer.outputs import Destination  # noqa: PLC0415
+
+    if sum((spawn, serve, connect is not None)) > 1:
+        raise WorkbenchError("--spawn, --serve and --connect are mutually exclusive")
+    if not (spawn or serve or connect):
+        return None
+    from workbench.viewer.web_cursor import WebCursor  # noqa: PLC0415
+
+    return Destination(
+        spawn=spawn,
+        serve=serve,
+        connect=connect,
+        bind=bind,
+        ports=(grpc_port, web_port),
+        web_cursor=WebCursor() if serve else None,
+    )
+
+
+def register(app: typer.Typer) -> None:
+    """Add ``review`` to the CLI (a batch's RESULTS_DIR: one queue, worst first)."""
+    from workbench.cli.fleet import on_results  # noqa: PLC0415
+
+    app.command("review")(on_results(fleet_review)(review))

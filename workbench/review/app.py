@@ -30,6 +30,7 @@ from workbench.review.viewer import NoViewer, worst_frame
 
 if TYPE_CHECKING:
     from workbench.incidents import Incident
+    from workbench.review.fleet import FleetSession
     from workbench.review.session import ReviewSession
     from workbench.review.viewer import ViewerLink
 
@@ -61,15 +62,15 @@ class ReviewApp(App[None]):
         Binding("q", "quit", "quit"),
     ]
 
-    def __init__(self, session: ReviewSession, viewer: ViewerLink | None = None) -> None:
+    def __init__(
+        self, session: ReviewSession | FleetSession, viewer: ViewerLink | None = None
+    ) -> None:
         """Review ``session``'s incidents, moving ``viewer`` along."""
         super().__init__()
         self.session = session
         self.viewer = viewer or NoViewer()
         self._asking: str | None = None
         self._what_if_index = -1
-        #: Short label per object id (``#1``...), as the viewer labels them.
-        self.short = session.short_labels
         self._full_ids = False
 
     def compose(self) -> ComposeResult:
@@ -85,8 +86,8 @@ class ReviewApp(App[None]):
         table = self.query_one(DataTable)
         table.add_column("verdict", width=max(map(len, _SHOWN.values())))
         table.add_columns("id", "engine", "object", "cause", "start s", "dur s", "margin")
-        t0 = self.session.report.start_ns
         for incident in self.session.incidents:
+            t0 = self.session.session_of(incident).report.start_ns
             margin = incident.severity.worst_margin
             table.add_row(
                 self._verdict_cell(incident),
@@ -106,9 +107,9 @@ class ReviewApp(App[None]):
         """The incident's objects by short label (``#1``), with the full ids when ``full``."""
         if not incident.objects:
             return NONE
+        short = self.session.session_of(incident).short_labels
         return " ".join(
-            f"{self.short.get(o, o)} = {o}" if full else self.short.get(o, o)
-            for o in incident.objects
+            f"{short.get(o, o)} = {o}" if full else short.get(o, o) for o in incident.objects
         )
 
     def _verdict_cell(self, incident: Incident) -> str:
@@ -127,11 +128,14 @@ class ReviewApp(App[None]):
             return "no incidents in this drive with these settings"
         tags, note = self.session.tags_and_note(incident)
         label = self.session.labels.get(incident.id)
-        t0 = self.session.report.start_ns
+        own = self.session.session_of(incident)
+        t0 = own.report.start_ns
+        drive = [] if own is self.session else [f"drive {own.report.log.name}"]
         facts = facts_text(incident.severity.record(), t0_ns=t0)
         objects = self._objects(incident, full=self._full_ids)
         return "\n".join(
             [
+                *drive,
                 f"{incident.id}  [{label.verdict if label else 'unreviewed'}]"
                 + (f" by {label.reviewer}" if label else ""),
                 f"{incident.engine}: {incident.cause}; object {objects}"

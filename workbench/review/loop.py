@@ -24,19 +24,20 @@ if TYPE_CHECKING:
 
     from workbench.incidents import IncidentRequest
     from workbench.replay.short_labels import ShortLabels
+    from workbench.review.fleet import FleetSession
     from workbench.review.session import ReviewSession
     from workbench.review.viewer import ViewerLink
     from workbench.viewer.drive_pass import DrivePass
     from workbench.viewer.outputs import Destination
     from workbench.viewer.web_cursor import WebCursor
 
-__all__ = ["SPAWN_URL", "LiveReplay", "replayed", "run_review"]
+__all__ = ["SPAWN_URL", "LiveReplay", "drive_link", "replayed", "run_review"]
 
 #: gRPC proxy of a viewer started by ``rr.spawn`` (its default port).
 SPAWN_URL = "rerun+http://127.0.0.1:9876/proxy"
 
 
-def run_review(session: ReviewSession, viewer: ViewerLink | None = None) -> None:
+def run_review(session: ReviewSession | FleetSession, viewer: ViewerLink | None = None) -> None:
     """Run the terminal UI until the reviewer quits."""
     ReviewApp(session, viewer).run()
 
@@ -59,11 +60,11 @@ class LiveReplay:
     _pass: DrivePass
     _web_cursor: WebCursor | None
 
-    def review(self, session: ReviewSession) -> None:
-        """Send the incidents' lanes with the session's verdicts, then run the UI with the viewer.
+    def link(self, session: ReviewSession) -> RerunLink:
+        """Send the incidents' lanes with the session's verdicts; the viewer's link for the UI.
 
         The lanes show every incident of the drive; the session's (possibly filtered)
-        incidents are what the UI walks.
+        incidents are what the UI walks. The caller closes the link.
         """
         from workbench.viewer.replay import APPLICATION_ID  # noqa: PLC0415 - Rerun with a viewer
 
@@ -87,6 +88,11 @@ class LiveReplay:
         )
         if self._web_cursor is not None:
             self._web_cursor.on_loaded = link.show_again
+        return link
+
+    def review(self, session: ReviewSession) -> None:
+        """Run the UI over ``session`` with this viewer (:meth:`link`)."""
+        link = self.link(session)
         try:
             run_review(session, link)
         finally:
@@ -142,3 +148,20 @@ def replayed(
             yield LiveReplay(report, one.sink.labels, grpc_url, served, one, destination.web_cursor)
     finally:
         drive.close()
+
+
+@contextlib.contextmanager
+def drive_link(
+    report: IncidentReport, session: ReviewSession, destination: Destination
+) -> Iterator[ViewerLink]:
+    """A batch's drive drawn into the viewer (its incidents are ``report``'s); its link.
+
+    For a review queue across drives: the UI is up, so no progress bar; the pass and the
+    link end when the caller leaves the drive.
+    """
+    with replayed(report, destination) as live:
+        link = live.link(session)
+        try:
+            yield link
+        finally:
+            link.close()

@@ -104,13 +104,23 @@ class ReviewSession:
             )
         return lines
 
-    def _done(self, incident: Incident) -> bool:
+    def done(self, incident: Incident) -> bool:
+        """Whether every incident of the row has a label."""
         return all(m.id in self.labels for m in self.members(incident))
+
+    def session_of(self, incident: Incident) -> ReviewSession:  # noqa: ARG002 - one drive
+        """The drive's session a row belongs to (this one: a fleet's is per drive)."""
+        return self
+
+    @property
+    def writes(self) -> int:
+        """Writes this session can still take back (its undo depth)."""
+        return len(self._undo)
 
     def resume_index(self) -> int:
         """The first row (worst first) not fully labelled; the last one if all are."""
         for k, incident in enumerate(self.incidents):
-            if not self._done(incident):
+            if not self.done(incident):
                 return k
         return max(len(self.incidents) - 1, 0)
 
@@ -122,7 +132,7 @@ class ReviewSession:
     @property
     def reviewed(self) -> int:
         """Rows (events or incidents) of this drive whose incidents all have a label."""
-        return sum(self._done(i) for i in self.incidents)
+        return sum(self.done(i) for i in self.incidents)
 
     def move(self, step: int) -> Incident | None:
         """Move the cursor by ``step`` (clamped); returns the new current incident."""

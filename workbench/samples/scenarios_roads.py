@@ -11,11 +11,22 @@ from workbench.samples.motion import LaneChange, Track, drive, time_axis
 from workbench.samples.roads import RoadSpec, add_road
 from workbench.samples.scenario import SIZE_M, RosLayout, Scenario, actor
 
-__all__ = ["hard_braking_lead", "highway_cut_in", "wrong_way_oncoming"]
+__all__ = ["hard_braking_lead", "highway_cut_in", "highway_spec", "wrong_way_oncoming"]
 
 _SOLID = ("line_thick", "solid")
 _DASHED = ("line_thin", "dashed")
 _BORDER: tuple[str, str | None] = ("road_border", None)
+
+
+def highway_spec() -> RoadSpec:
+    """A 3-lane one-way highway, 3.75 m lanes, 130 km/h (lanes numbered from the left)."""
+    return RoadSpec(
+        (5.625, 1.875, -1.875, -5.625),
+        (_SOLID, _DASHED, _DASHED, _SOLID),
+        (True, True, True),
+        130.0,
+        "nonurban",
+    )
 
 
 def highway_cut_in(seed: int = 1) -> Scenario:
@@ -23,13 +34,7 @@ def highway_cut_in(seed: int = 1) -> Scenario:
     rng = np.random.default_rng(seed)
     b = MapBuilder()
     ref = build_path((0.0, 0.0), 0.0, [(400.0, 0.0), (400.0, 1 / 1000)], step_m=2.0)
-    spec = RoadSpec(
-        (5.625, 1.875, -1.875, -5.625),
-        (_SOLID, _DASHED, _DASHED, _SOLID),
-        (True, True, True),
-        130.0,
-        "nonurban",
-    )
+    spec = highway_spec()
     lanes = add_road(b, ref, (0.0, 200.0, 400.0, 600.0, 800.0), spec)
     t = time_axis(20.0)
     left, mid, right = (spec.centre_offset_m(i) for i in range(3))

@@ -61,23 +61,3 @@ def test_export_of_a_results_dir_cuts_the_confirmed_incidents_of_every_drive(
     ids = [clip["id"] for index in written for clip in index]
     assert ids == [chosen.incident.id]
     assert len(list(out.glob("*/*.mcap"))) == 1
-
-
-def test_review_of_a_results_dir_walks_the_drives_worst_first(
-    full: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
-) -> None:
-    seen: list[tuple[str, list[str]]] = []
-
-    def fake_review(session: Any) -> None:
-        seen.append((str(session.report.log), [i.id for i in session.incidents]))
-
-    monkeypatch.setattr("workbench.incidents.find_incidents", _no_evaluation)
-    monkeypatch.setattr("workbench.incidents.find.find_incidents", _no_evaluation)
-    monkeypatch.setattr("workbench.review.loop.run_review", fake_review)
-    store = tmp_path / "labels.sqlite"
-    assert run_workbench(["review", str(full), "--store", str(store)]) == 0
-    queue = load_queue(full)
-    drives = list(dict.fromkeys(i.drive_path for i in queue))
-    assert [path for path, _ in seen] == drives
-    for path, ids in seen:
-        assert sorted(ids) == sorted(i.incident.id for i in queue if i.drive_path == path)
