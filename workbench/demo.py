@@ -19,7 +19,7 @@ if TYPE_CHECKING:
 
     from loaders.drive import Drive
     from workbench.driver.run import EgoSize
-    from workbench.engines.base import EngineRunner
+    from workbench.engines.base import BoundRunner
     from workbench.incidents import IncidentRequest
     from workbench.viewer.replay import ReplaySummary
 
@@ -89,7 +89,7 @@ class DemoRow:
 def replay_one(
     request: IncidentRequest,
     target: Path,
-    replay: Callable[[Drive, Path, Sequence[EngineRunner], EgoSize | None], ReplaySummary],
+    replay: Callable[[Drive, Path, Sequence[BoundRunner], EgoSize | None], ReplaySummary],
 ) -> DemoRow:
     """Evaluate and replay the request's log into ``target`` with its engines.
 

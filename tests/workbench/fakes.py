@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -11,14 +12,28 @@ import numpy as np
 from loaders.drive import DriveInfo, TopicInfo, TopicRoles
 from loaders.maps.model import Lane, LaneMap, LineType
 from loaders.records import ActorTable, EgoState, Frame, ObjectClass, Plan
+from workbench.engines.base import BoundRunner
+from workbench.engines.registry import engine, find
 
 if TYPE_CHECKING:
     from collections.abc import Iterator
 
-__all__ = ["FakeDrive", "straight_road", "synthetic_frame"]
+    from workbench.engines.base import EngineRunner
+
+__all__ = ["FakeDrive", "bound", "straight_road", "synthetic_frame"]
 
 T0_NS = 1_700_000_000_000_000_000
 DT_NS = 100_000_000  # 10 Hz
+
+
+def bound(runner: EngineRunner) -> BoundRunner:
+    """``runner`` with its registered engine's spec, as the driver takes it.
+
+    A probe runner of no registered name gets a copy of the reach-set spec under its name
+    (for driver tests that look at the frames only, never at a sink's output).
+    """
+    spec = find(runner.name) or dataclasses.replace(engine("reachsets"), name=runner.name)
+    return BoundRunner(spec, runner)
 
 
 def straight_road(length_m: float = 400.0, lanes: int = 3, width_m: float = 3.5) -> LaneMap:

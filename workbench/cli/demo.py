@@ -24,7 +24,7 @@ if TYPE_CHECKING:
     from loaders.drive import Drive
     from workbench.demo import DemoRow
     from workbench.driver.run import EgoSize
-    from workbench.engines.base import EngineRunner
+    from workbench.engines.base import BoundRunner
     from workbench.incidents import IncidentRequest
     from workbench.viewer.replay import ReplaySummary
 
@@ -43,7 +43,7 @@ def _viewer_command() -> str:
 
 
 def _replay(
-    drive: Drive, target: Path, runners: Sequence[EngineRunner], ego_size: EgoSize | None
+    drive: Drive, target: Path, runners: Sequence[BoundRunner], ego_size: EgoSize | None
 ) -> ReplaySummary:
     return run_with_progress(
         drive,

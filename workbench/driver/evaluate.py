@@ -16,7 +16,7 @@ if TYPE_CHECKING:
 
     from loaders.drive import Drive
     from loaders.errors import LoaderError
-    from workbench.engines.base import EngineRunner
+    from workbench.engines.base import BoundRunner
 
 __all__ = ["Evaluation", "evaluate_drive"]
 
@@ -46,7 +46,7 @@ class Evaluation:
 
 def evaluate_drive(
     drive: Drive,
-    engines: Sequence[EngineRunner],
+    engines: Sequence[BoundRunner],
     *,
     start_ns: int | None = None,
     end_ns: int | None = None,

@@ -5,8 +5,8 @@ incident, review and export commands to come) iterates a :class:`DriveRun` and h
 chunks to sinks (:mod:`workbench.sinks`)::
 
     drive.frames(start, end) --> CHUNK_FRAMES frames --> runner.step_many(frames) per engine
-                                         |                        |
-                                         +------ Chunk(frames, {engine: verdicts}) --> sinks
+                                   |                        |
+                                   +-- Chunk(frames, {engine: verdicts}, {engine: spec}) --> sinks
 
 Chunk policy: engines get :data:`CHUNK_FRAMES` consecutive frames per call (their batched
 kernels' sweet spot; verdicts do not depend on it, every runner is tested against one
@@ -30,7 +30,7 @@ if TYPE_CHECKING:
 
     from loaders.drive import Drive
     from loaders.records import Frame
-    from workbench.engines.base import EngineRunner, Verdict
+    from workbench.engines.base import BoundRunner, EngineSpec, Verdict
 
 __all__ = ["CHUNK_FRAMES", "Chunk", "DriveRun", "EgoSize", "evaluate_chunk"]
 
@@ -64,23 +64,23 @@ class Chunk:
     Attributes:
         frames: ``N`` frames in time order.
         verdicts: Per engine name (in the order the engines run), ``N`` verdicts.
+        specs: Per engine name, the spec its runner was built from (what the sinks use).
     """
 
     frames: tuple[Frame, ...]
     verdicts: Mapping[str, tuple[Verdict, ...]]
+    specs: Mapping[str, EngineSpec]
 
-    def since(self, t_ns: int) -> Chunk:
-        """The frames at or after ``t_ns`` and their verdicts."""
-        k = sum(f.t_ns < t_ns for f in self.frames)
-        if k == 0:
-            return self
-        return Chunk(self.frames[k:], {n: v[k:] for n, v in self.verdicts.items()})
+    def part(self, start: int, stop: int) -> Chunk:
+        """Frames ``start:stop`` of the chunk and their verdicts."""
+        verdicts = {n: v[start:stop] for n, v in self.verdicts.items()}
+        return Chunk(self.frames[start:stop], verdicts, self.specs)
 
 
-def evaluate_chunk(frames: Sequence[Frame], runners: Sequence[EngineRunner]) -> Chunk:
+def evaluate_chunk(frames: Sequence[Frame], runners: Sequence[BoundRunner]) -> Chunk:
     """Run every engine on ``frames`` (advancing each runner's state)."""
     verdicts = {r.name: tuple(r.step_many(frames)) for r in runners}
-    return Chunk(tuple(frames), verdicts)
+    return Chunk(tuple(frames), verdicts, {r.name: r.spec for r in runners})
 
 
 class DriveRun:
@@ -92,36 +92,30 @@ class DriveRun:
     def __init__(
         self,
         drive: Drive,
-        runners: Sequence[EngineRunner] = (),
+        runners: Sequence[BoundRunner] = (),
         *,
         start_ns: int | None = None,
         end_ns: int | None = None,
         chunk_frames: int = CHUNK_FRAMES,
         ego_size: EgoSize | None = None,
-        shown_from_ns: int | None = None,
-        frame_offset: int = 0,
     ) -> None:
         """Set up the run.
 
         Args:
             drive: An opened drive; the caller closes it.
-            runners: Engine runners, each carrying its own state from chunk to chunk.
+            runners: Engine runners with their specs, each carrying its own state from chunk
+                to chunk.
             start_ns: Only frames at or after this time.
             end_ns: Only frames before this time.
             chunk_frames: Frames per chunk (tests; the default is the policy).
             ego_size: The user's ego size, replacing the log's in every frame before any
                 engine or sink sees it (``None`` or ``None`` fields: keep the log's).
-            shown_from_ns: Frames before this time are evaluated (the engines' memory starts
-                warm) but not yielded: a lead-in (``None``: every frame is yielded).
-            frame_offset: Added to every frame index (a window numbered as in the whole drive).
         """
         self.drive = drive
         self.runners = tuple(runners)
         self._window = (start_ns, end_ns)
         self._chunk_frames = chunk_frames
         self._ego_size = ego_size if ego_size is not None and ego_size.fields() else None
-        self._shown_from_ns = shown_from_ns
-        self._frame_offset = frame_offset
         #: The loader error that ended a truncated or corrupted log, once iterated.
         self.stopped_by: LoaderError | None = None
 
@@ -130,9 +124,12 @@ class DriveRun:
         """Names of the engines that run, in order."""
         return tuple(r.name for r in self.runners)
 
+    @property
+    def specs(self) -> tuple[EngineSpec, ...]:
+        """Specs of the engines that run, in order."""
+        return tuple(r.spec for r in self.runners)
+
     def _sized(self, frame: Frame) -> Frame:
-        if self._frame_offset:
-            frame = dataclasses.replace(frame, index=frame.index + self._frame_offset)
         return frame if self._ego_size is None else self._ego_size.apply(frame)
 
     def _read(self) -> Iterator[list[Frame]]:
@@ -157,8 +154,4 @@ class DriveRun:
         """Chunks in time order; :attr:`stopped_by` is set once the drive ended early."""
         with engine_gc():
             for frames in self._read():
-                chunk = evaluate_chunk(frames, self.runners)
-                if self._shown_from_ns is not None:
-                    chunk = chunk.since(self._shown_from_ns)
-                if chunk.frames:
-                    yield chunk
+                yield evaluate_chunk(frames, self.runners)

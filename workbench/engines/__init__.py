@@ -1,6 +1,7 @@
 """Engines as plugins: one folder and one :class:`EngineSpec` each, one registry for all."""
 
 from workbench.engines.base import (
+    BoundRunner,
     EngineRunner,
     EngineSink,
     EngineSpec,
@@ -11,6 +12,7 @@ from workbench.engines.base import (
 from workbench.engines.registry import build_runners, engine, names, parse_engines, register
 
 __all__ = [
+    "BoundRunner",
     "EngineRunner",
     "EngineSink",
     "EngineSpec",

@@ -26,6 +26,7 @@ if TYPE_CHECKING:
     from workbench.replay.short_labels import ShortLabels
 
 __all__ = [
+    "BoundRunner",
     "EngineRunner",
     "EngineSink",
     "EngineSpec",
@@ -80,7 +81,10 @@ def summarise(verdict: Verdict) -> VerdictSummary:
 class EngineRunner(Protocol):
     """A stateful wrapper of one pure engine, carrying its explicit state across calls."""
 
-    name: str
+    @property
+    def name(self) -> str:
+        """The engine's name."""
+        ...
 
     def step_many(self, frames: Sequence[Frame]) -> Sequence[Verdict]:
         """Evaluate consecutive frames (same verdicts as one frame per call, in turn)."""
@@ -183,3 +187,25 @@ class EngineSpec:
     what_if: Callable[[Any], Sequence[tuple[str, Any]]] | None = None
     describe: Callable[[LaneMap | None, Any], str] | None = None
     packages: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True, slots=True)
+class BoundRunner:
+    """An engine's runner with the spec it was built from (an :class:`EngineRunner`).
+
+    The driver's chunks carry the specs of their engines, so the sinks and the incident
+    detector use the engine's own ``record``, ``sink`` and incident hooks without asking the
+    registry for a name.
+    """
+
+    spec: EngineSpec
+    runner: EngineRunner
+
+    @property
+    def name(self) -> str:
+        """The engine's name."""
+        return self.spec.name
+
+    def step_many(self, frames: Sequence[Frame]) -> Sequence[Verdict]:
+        """The runner's verdicts on consecutive ``frames``."""
+        return self.runner.step_many(frames)

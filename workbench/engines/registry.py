@@ -18,6 +18,7 @@ import importlib
 from importlib.metadata import entry_points
 from typing import TYPE_CHECKING
 
+from workbench.engines.base import BoundRunner
 from workbench.errors import USER_ERRORS, WorkbenchError
 
 if TYPE_CHECKING:
@@ -26,7 +27,7 @@ if TYPE_CHECKING:
     from typing import Any
 
     from loaders.maps.model import LaneMap
-    from workbench.engines.base import EngineRunner, EngineSpec
+    from workbench.engines.base import EngineSpec
     from workbench.engines.options import Declared
 
 __all__ = [
@@ -201,8 +202,10 @@ def build_runners(
     options: Mapping[str, Any] | None = None,
     *,
     full_geometry: bool = False,
-) -> list[EngineRunner]:
+) -> list[BoundRunner]:
     """One runner per engine name for the drive's lane map: own options, one actor label table.
+
+    Each runner carries its engine's spec (:class:`~workbench.engines.base.BoundRunner`).
 
     Args:
         names_: Engine names, in order.
@@ -219,5 +222,6 @@ def build_runners(
         spec = engine(name)
         own = options.get(name)
         own = spec.options() if own is None else own
-        runners.append(spec.build(lane_map, own, full_geometry=full_geometry, actor_ids=actor_ids))
+        runner = spec.build(lane_map, own, full_geometry=full_geometry, actor_ids=actor_ids)
+        runners.append(BoundRunner(spec, runner))
     return runners

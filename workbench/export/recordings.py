@@ -18,7 +18,6 @@ from __future__ import annotations
 import contextlib
 from typing import TYPE_CHECKING
 
-from workbench.driver.run import Chunk
 from workbench.outputs import part_path
 from workbench.replay.blueprint import replay_blueprint
 from workbench.replay.incidents import short_labels
@@ -30,6 +29,8 @@ if TYPE_CHECKING:
     from pathlib import Path
 
     from loaders.drive import Drive
+    from workbench.driver.run import Chunk
+    from workbench.engines.base import EngineSpec
     from workbench.export.plan import ClipPlan
     from workbench.incidents import Incident, IncidentReport, IncidentSettings
 
@@ -58,8 +59,7 @@ def within(chunk: Chunk, start_ns: int, end_ns: int) -> Chunk | None:
         return None
     if len(keep) == len(chunk.frames):
         return chunk
-    a, b = keep[0], keep[-1] + 1
-    return Chunk(chunk.frames[a:b], {n: v[a:b] for n, v in chunk.verdicts.items()})
+    return chunk.part(keep[0], keep[-1] + 1)
 
 
 def clip_incident(found: Sequence[Incident], incident: Incident) -> Incident | None:
@@ -102,7 +102,7 @@ class ClipRecording:
         drive: Drive,
         *,
         report: IncidentReport,
-        engine_names: Sequence[str],
+        engines: Sequence[EngineSpec],
         incident_settings: IncidentSettings,
     ) -> None:
         """Set up the clip's recording; its file is opened at the first frame of its window."""
@@ -113,7 +113,7 @@ class ClipRecording:
         self._end_ns = plan.end_ns + 1
         self.feed = RecordingFeed(
             drive,
-            engine_names,
+            engines,
             recording_id(drive, plan.start_ns, self._end_ns),
             drive_hash=report.drive_hash,
             settings=FeedSettings(incident_settings, labels=short_labels(report.incidents)),

@@ -63,7 +63,7 @@ def write_recordings(
     clips: list[ClipRecording] = []
     try:
         runners, ego = request.engines_for(drive, full_geometry=True)
-        names = [r.name for r in runners]
+        specs = [r.spec for r in runners]
         for plan in plans:
             path = out_dir / f"{plan.stem}.rrd"
             clips.append(
@@ -72,7 +72,7 @@ def write_recordings(
                     path,
                     drive,
                     report=report,
-                    engine_names=names,
+                    engines=specs,
                     incident_settings=request.settings,
                 )
             )

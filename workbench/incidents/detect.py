@@ -30,7 +30,7 @@ if TYPE_CHECKING:
 
     from loaders.records import Frame
     from workbench.driver.run import Chunk
-    from workbench.engines.base import Verdict
+    from workbench.engines.base import EngineSpec, Verdict
     from workbench.incidents.model import Fact
     from workbench.quality import Finding
 
@@ -56,8 +56,18 @@ class IncidentDetector:
     incidents and the frame count (one time stamp per frame), not with the verdicts.
     """
 
-    def __init__(self, drive_hash: str, settings: IncidentSettings | None = None) -> None:
-        """Start empty for the drive of content hash ``drive_hash``."""
+    def __init__(
+        self,
+        drive_hash: str,
+        settings: IncidentSettings | None = None,
+        *,
+        engines: Sequence[EngineSpec] = (),
+    ) -> None:
+        """Start empty for the drive of content hash ``drive_hash``.
+
+        ``engines``: the specs of the engines whose verdicts :meth:`add` gets (their cause
+        joining and severity facts); the chunks of :meth:`add_chunk` bring their own.
+        """
         self.drive_hash = drive_hash
         self.settings = settings or IncidentSettings()
         self._runs: RunMerger[IncidentKey] = RunMerger(s_to_ns(self.settings.merge_gap_s))
@@ -68,7 +78,7 @@ class IncidentDetector:
         #: Positions ``(x, y)`` [m] of the frame's culprits at the first frame of each
         #: incident, by object id (chunks only): where the review camera looks.
         self.objects_at_start_m: dict[int, dict[str, tuple[float, float]]] = {}
-        self._joins: dict[str, Callable[[Sequence[object]], str] | None] = {}
+        self._specs = {spec.name: spec for spec in engines}
         #: Per run of an engine that joins causes (by key and start frame): ``(frame,
         #: cause)`` where the (typed) cause changed, in order.
         self._trails: dict[tuple[IncidentKey, int], list[tuple[int, object]]] = {}
@@ -76,12 +86,8 @@ class IncidentDetector:
         self.tracks = TrackCollector()
 
     def _join_of(self, engine: str) -> Callable[[Sequence[object]], str] | None:
-        if engine not in self._joins:
-            from workbench.engines.registry import find  # noqa: PLC0415 - light start-up
-
-            spec = find(engine)
-            self._joins[engine] = None if spec is None else spec.join_causes
-        return self._joins[engine]
+        spec = self._specs.get(engine)
+        return None if spec is None else spec.join_causes
 
     def _hits(
         self, verdicts: Mapping[str, Verdict]
@@ -120,7 +126,9 @@ class IncidentDetector:
         for run in self._runs.add(frame, t_ns, own):
             if run.unsafe_frames == 1:
                 started = True
-                run.extra = [MotionFacts(), *collectors_for(run.key[0])]
+                spec = self._specs.get(run.key[0])
+                facts = None if spec is None else spec.incident_facts
+                run.extra = [MotionFacts(), *collectors_for(run.key[0], facts)]
             if scene is not None and run.key[1]:
                 if index is None:
                     index = {oid: j for j, oid in enumerate(scene.actors.ids.tolist())}
@@ -138,6 +146,7 @@ class IncidentDetector:
 
     def add_chunk(self, chunk: Chunk) -> None:
         """Add every frame of a driver chunk."""
+        self._specs.update(chunk.specs)
         self.tracks.add(chunk.frames)
         for k, frame in enumerate(chunk.frames):
             verdicts = {n: v[k] for n, v in chunk.verdicts.items()}

@@ -51,14 +51,10 @@ def unregister_facts(engine: str, factory: Callable[[], FactCollector]) -> None:
     _FACTORIES.get(engine, []).remove(factory)
 
 
-def collectors_for(engine: str) -> list[FactCollector]:
+def collectors_for(engine: str, own: Callable[[], FactCollector] | None) -> list[FactCollector]:
     """Fresh collectors for one incident of ``engine``.
 
-    The engine's own (``EngineSpec.incident_facts``) first, then the registered ones.
+    The engine's own (``own``: its spec's ``incident_facts``) first, then the registered ones.
     """
-    from workbench.engines.registry import find  # noqa: PLC0415 - light start-up
-
-    spec = find(engine)
-    own = None if spec is None else spec.incident_facts
     factories = ([own] if own is not None else []) + _FACTORIES.get(engine, [])
     return [factory() for factory in factories]

@@ -19,7 +19,7 @@ if TYPE_CHECKING:
     from loaders.drive import Drive, DriveInfo
     from loaders.errors import LoaderError
     from workbench.driver.run import EgoSize
-    from workbench.engines.base import EngineRunner
+    from workbench.engines.base import BoundRunner
     from workbench.incidents.model import Incident
     from workbench.quality import Finding
 
@@ -87,7 +87,7 @@ class IncidentRequest:
 
     def engines_for(
         self, drive: Drive, *, full_geometry: bool = False
-    ) -> tuple[list[EngineRunner], EgoSize | None]:
+    ) -> tuple[list[BoundRunner], EgoSize | None]:
         """Fresh runners of the requested engines for an opened drive, and the ego size.
 
         Each runner is built from its engine's own options (an ``auto`` profile reads the

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any, Self, TextIO
 
-from workbench.engines.registry import engine
 from workbench.outputs import json_text, part_path
 
 if TYPE_CHECKING:
@@ -24,7 +23,7 @@ __all__ = ["PerFrameJsonl", "frame_records"]
 
 def frame_records(chunk: Chunk) -> list[dict[str, Any]]:
     """The per-frame JSON records of a chunk."""
-    writers = {name: engine(name).record for name in chunk.verdicts}
+    writers = {name: chunk.specs[name].record for name in chunk.verdicts}
     lines = []
     for k, frame in enumerate(chunk.frames):
         line: dict[str, Any] = {"t_ns": frame.t_ns, "frame": frame.index}

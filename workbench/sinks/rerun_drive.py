@@ -11,7 +11,6 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from loaders.timebase import ns_to_s
-from workbench.engines.registry import engine
 from workbench.replay.layout import layout_chunk, layout_map
 from workbench.replay.properties import drive_properties, recording_name, software_properties
 from workbench.replay.short_labels import ShortLabels
@@ -25,7 +24,7 @@ if TYPE_CHECKING:
     from loaders.drive import Drive
     from loaders.records import Frame
     from workbench.driver.run import Chunk
-    from workbench.engines.base import EngineSink, Verdict
+    from workbench.engines.base import EngineSink, EngineSpec, Verdict
 
 __all__ = ["SEND_FRAMES", "RerunDriveSink"]
 
@@ -40,7 +39,7 @@ class RerunDriveSink:
         self,
         recording: rr.RecordingStream,
         drive: Drive,
-        engine_names: Sequence[str],
+        engines: Sequence[EngineSpec],
         *,
         send_frames: int = SEND_FRAMES,
         labels: ShortLabels | None = None,
@@ -50,7 +49,7 @@ class RerunDriveSink:
         Args:
             recording: The stream everything goes to.
             drive: The drive (its info and lane map are sent first).
-            engine_names: The engines whose verdicts come with each chunk.
+            engines: The engines whose verdicts come with each chunk.
             send_frames: Frames per columnar batch.
             labels: The drive's short-label table every engine's labels use (the review
                 numbers its incidents' objects first); a fresh one by default.
@@ -58,7 +57,8 @@ class RerunDriveSink:
         self.recording = recording
         self._send_frames = send_frames
         self._drive = drive
-        self._names = tuple(engine_names)
+        self._specs = tuple(engines)
+        self._names = tuple(spec.name for spec in self._specs)
         #: The drive's short labels: culprits numbered as they first turn up, then the other
         #: actors as they appear (scene, highlights and every engine use this one table).
         self.labels = labels if labels is not None else ShortLabels()
@@ -102,7 +102,7 @@ class RerunDriveSink:
             properties={**drive_properties(info), **software_properties(self._names)},
             map_layout=layout_map(lane_map) if lane_map is not None else None,
         )
-        return {name: engine(name).sink(self.recording, self.labels) for name in self._names}
+        return {spec.name: spec.sink(self.recording, self.labels) for spec in self._specs}
 
     def _number_culprits(self, n: int, verdicts: dict[str, list[Verdict]]) -> None:
         """Number each unsafe frame's culprits (frame order, ties by id) before any bystander.

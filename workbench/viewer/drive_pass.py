@@ -29,7 +29,7 @@ if TYPE_CHECKING:
     from loaders.drive import Drive
     from loaders.errors import LoaderError
     from workbench.driver.run import Chunk
-    from workbench.engines.base import EngineRunner
+    from workbench.engines.base import BoundRunner, EngineSpec
     from workbench.incidents import Incident, IncidentSettings
     from workbench.replay.short_labels import ShortLabels
     from workbench.sinks.violations import Violation
@@ -137,7 +137,7 @@ class RecordingFeed:
     def __init__(
         self,
         drive: Drive,
-        engine_names: Sequence[str],
+        engines: Sequence[EngineSpec],
         rid: str,
         *,
         drive_hash: str,
@@ -147,22 +147,22 @@ class RecordingFeed:
 
         Args:
             drive: The drive the chunks come from (its info and map are sent first).
-            engine_names: The engines whose verdicts come with each chunk.
+            engines: The engines whose verdicts come with each chunk.
             rid: The recording's id.
             drive_hash: The drive's content hash (the incidents' ids).
             settings: Incident settings, batch size, short labels, culprits' boxes.
         """
         settings = settings or FeedSettings()
         self._drive = drive
-        self._names = tuple(engine_names)
+        self._names = tuple(spec.name for spec in engines)
         self.recording_id = rid
         self.recording = rr.RecordingStream(APPLICATION_ID, recording_id=rid)
         self.violations = ViolationDetector(drive.info.path.name)
-        self.incidents = IncidentDetector(drive_hash, settings.incident_settings)
+        self.incidents = IncidentDetector(drive_hash, settings.incident_settings, engines=engines)
         self.sink = RerunDriveSink(
             self.recording,
             drive,
-            self._names,
+            engines,
             send_frames=settings.send_frames,
             labels=settings.labels,
         )
@@ -208,7 +208,7 @@ class DrivePass(RecordingFeed):
     def __init__(
         self,
         drive: Drive,
-        engines: Sequence[EngineRunner] = (),
+        engines: Sequence[BoundRunner] = (),
         *,
         window: PassWindow | None = None,
         ego_size: EgoSize | None = None,
@@ -218,7 +218,8 @@ class DrivePass(RecordingFeed):
 
         Args:
             drive: An opened drive; the caller closes it.
-            engines: Runners evaluated on every frame (fresh: they carry the engines' state).
+            engines: Runners evaluated on every frame (fresh: they carry the engines' state)
+                with their specs.
             window: Frames evaluated and sent (the whole drive by default).
             ego_size: The user's ego size for every engine and the viewer.
             settings: The feed's settings (:class:`FeedSettings`).
@@ -234,7 +235,7 @@ class DrivePass(RecordingFeed):
         path = drive.info.path
         super().__init__(
             drive,
-            self.run.engine_names,
+            self.run.specs,
             recording_id(drive, window.start_ns, window.end_ns),
             drive_hash=drive_content_hash(path) if engines and path.exists() else "",
             settings=settings,

@@ -29,7 +29,7 @@ if TYPE_CHECKING:
 
     from loaders.drive import Drive
     from workbench.driver.run import EgoSize
-    from workbench.engines.base import EngineRunner
+    from workbench.engines.base import BoundRunner
     from workbench.incidents import IncidentSettings
     from workbench.replay.highlight import CulpritBoxes
     from workbench.replay.short_labels import ShortLabels
@@ -48,7 +48,7 @@ def replay_drive(
     end_ns: int | None = None,
     ports: tuple[int, int] = (9876, 9090),
     on_served: Callable[[str], None] | None = None,
-    engines: Sequence[EngineRunner] = (),
+    engines: Sequence[BoundRunner] = (),
     bind: str = LOCALHOST,
     send_frames: int = SEND_FRAMES,
     ego_size: EgoSize | None = None,

@@ -14,6 +14,7 @@ from loaders import open_drive
 from loaders.records import DEFAULT_EGO_HEIGHT_M, DEFAULT_EGO_LENGTH_M, DEFAULT_EGO_WIDTH_M
 from rss.params import RssParams
 from rss.scene import prepare
+from tests.workbench.fakes import bound
 from workbench.cli.main import app
 from workbench.driver import DriveRun, EgoSize
 from workbench.drives import parse_ego_size
@@ -61,7 +62,9 @@ def test_ros_logs_carry_the_one_default_size_and_the_rss_engines_read_it():
 def test_the_users_size_replaces_the_logs_in_every_frame_engines_see():
     drive = open_drive(SAMPLE)
     seen = _Seen()
-    run = DriveRun(drive, [seen], end_ns=drive.info.start_ns + 10**9, ego_size=EgoSize(6.0, 2.5))
+    run = DriveRun(
+        drive, [bound(seen)], end_ns=drive.info.start_ns + 10**9, ego_size=EgoSize(6.0, 2.5)
+    )
     frames = [f for chunk in run for f in chunk.frames]
     drive.close()
     assert seen.sizes == {(6.0, 2.5, frames[0].ego.height_m)}
@@ -93,7 +96,9 @@ def test_the_rss_scene_ego_size_sizes_the_rss_engines_only(tmp_path):
     loaded = load_params(RssOptions(params=params), None)
     seen = _Seen()
     drive = open_drive(SAMPLE)
-    frames = list(DriveRun(drive, [scene_sized(seen, loaded)], end_ns=drive.info.start_ns + 10**9))
+    frames = list(
+        DriveRun(drive, [bound(scene_sized(seen, loaded))], end_ns=drive.info.start_ns + 10**9)
+    )
     drive.close()
     assert seen.sizes == {(6.0, 2.5, DEFAULT_EGO_HEIGHT_M)}
     logged = {(f.ego.length_m, f.ego.width_m) for chunk in frames for f in chunk.frames}

@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING, cast
 
 import pytest
 
+from tests.workbench.fakes import bound
 from workbench.driver import CHUNK_FRAMES, ENGINE_GC_THRESHOLD, DriveRun, engine_gc
 from workbench.engines.base import VerdictSummary
 
@@ -90,7 +91,7 @@ def test_the_drive_run_is_under_the_policy(threshold):
 
     # the driver reads only frames(start, end), and of a frame only index and t_ns
     drive = cast("Drive", SimpleNamespace(frames=lambda _s, _e: iter(frames)))
-    run = DriveRun(drive, [Probe()])
+    run = DriveRun(drive, [bound(Probe())])
     indices = [f.index for chunk in run for f in chunk.frames]
     assert indices == list(range(CHUNK_FRAMES + 5))
     assert seen == [(ENGINE_GC_THRESHOLD, 10, 10)] * 2

@@ -5,6 +5,7 @@ import pytest
 
 from rss.structured.states import LateralResponse, LongitudinalResponse
 from workbench.engines.base import VerdictSummary
+from workbench.engines.registry import engine, names
 from workbench.engines.rss.causes import RssCause
 from workbench.incidents import (
     Incident,
@@ -17,6 +18,9 @@ from workbench.incidents import (
 
 T0 = 1_000_000_000
 DT = 100_000_000  # 10 Hz
+
+#: The registered engines' specs (what a chunk of the driver carries).
+SPECS = tuple(engine(name) for name in names())
 
 
 BRAKE = RssCause(lon=LongitudinalResponse.BrakeMin)
@@ -40,7 +44,7 @@ SAFE = VerdictSummary(is_safe=True)
 
 
 def _detect(frames, drive_hash="h1", settings=None) -> list[Incident]:
-    detector = IncidentDetector(drive_hash, settings)
+    detector = IncidentDetector(drive_hash, settings, engines=SPECS)
     for i, verdicts in enumerate(frames):
         detector.add(i, T0 + i * DT, verdicts)
     return detector.incidents()

@@ -13,6 +13,7 @@ import pytest
 
 from rss.structured.states import LongitudinalResponse
 from workbench.engines.base import VerdictSummary
+from workbench.engines.registry import engine, names
 from workbench.engines.rss.causes import RssCause
 from workbench.incidents import Incident, IncidentDetector, Severity, severity_key
 from workbench.incidents.kinematics import Box, box_gap_m, motion, time_to_contact_s
@@ -25,6 +26,9 @@ if TYPE_CHECKING:
 
 T0 = 1_000_000_000
 DT = 100_000_000
+
+#: The registered engines' specs (what a chunk of the driver carries).
+SPECS = tuple(engine(name) for name in names())
 
 
 def test_a_stopped_car_ahead_gives_gap_closing_ttc_and_deceleration():
@@ -110,7 +114,7 @@ def _scene(ego_x: float, objects: dict[str, tuple[float, float, float]]) -> Simp
 def test_each_incident_gets_its_own_objects_margin_and_facts():
     # US101-5_1 in small: a follower "476" far behind with a larger ratio and "462" close
     # ahead with the frame's smallest one; 476 used to carry 462's ratio and rank first
-    detector = IncidentDetector("h")
+    detector = IncidentDetector("h", engines=SPECS)
     for k in range(5):
         verdict = _Frame(False, ("462", "476"), BRAKE, 0.37, {"462": 0.37, "476": 0.41})
         x = 10.0 * k * 0.1
@@ -163,7 +167,7 @@ def test_records_hold_no_non_finite_number():
 
 
 def test_summaries_without_states_have_no_physical_facts():
-    detector = IncidentDetector("h")
+    detector = IncidentDetector("h", engines=SPECS)
     summary = VerdictSummary(False, ("a",), "unstructured: brake", 0.2)
     detector.add(0, T0, {"unstructured": summary})
     (only,) = detector.incidents()
@@ -196,7 +200,7 @@ def test_a_reach_set_incident_keeps_its_own_objects_collision_offset():
     hits = (Collision("a", 0.8, 8), Collision("b", 1.6, 16), Collision("a", 1.2, 12))
     result = SimpleNamespace(collisions=hits)
     verdict = ReachVerdict(False, ("a", "b"), "reach-set collision", 0.8, result)  # type: ignore[arg-type]
-    detector = IncidentDetector("h")
+    detector = IncidentDetector("h", engines=SPECS)
     detector.add(0, T0, {"reachsets": verdict})
     margins = {i.objects[0]: i.severity.worst_margin for i in detector.incidents()}
     assert margins == {"a": 0.8, "b": 1.6}

@@ -9,7 +9,7 @@ from rerun.chunk import RrdReader
 
 from loaders import open_drive
 from tests.workbench.engines.helpers import step
-from tests.workbench.fakes import FakeDrive
+from tests.workbench.fakes import FakeDrive, bound
 from workbench.engines.reachsets.layout import layout_reach
 from workbench.engines.reachsets.runner import ReachRunner
 from workbench.replay.strips import time_colors
@@ -55,7 +55,7 @@ def test_replay_with_reach_engine_logs_results_and_violations(tmp_path):
     drive = FakeDrive(n_frames=12, n_actors=3)
     out = tmp_path / "reach.rrd"
     runner = ReachRunner(drive.lane_map, full_geometry=True)
-    summary = replay_drive(drive, out=out, send_frames=5, engines=[runner])
+    summary = replay_drive(drive, out=out, send_frames=5, engines=[bound(runner)])
     check = ReachRunner(drive.lane_map)
     verdicts = [step(check, f).is_safe for f in drive.frames()]
     assert summary.unsafe_frames == {"reachsets": verdicts.count(False)}

@@ -11,6 +11,7 @@ import pytest
 from loaders import open_drive
 from loaders.errors import CorruptLogError
 from tests.workbench.engines.helpers import record, step
+from tests.workbench.fakes import bound
 from workbench.driver import CHUNK_FRAMES, DriveRun
 from workbench.engines.reachsets.runner import ReachRunner
 
@@ -53,7 +54,7 @@ def test_driver_hands_chunks_to_step_many_and_keeps_order():
             calls.append(len(chunk))
             return super().step_many(chunk)
 
-    chunks = list(DriveRun(_drive_of(frames), [Counting(drive.lane_map)]))
+    chunks = list(DriveRun(_drive_of(frames), [bound(Counting(drive.lane_map))]))
     assert [f.index for c in chunks for f in c.frames] == [f.index for f in frames]
     assert max(calls) == CHUNK_FRAMES
     assert sum(calls) == len(frames)
@@ -73,7 +74,7 @@ def test_driver_evaluates_the_frames_read_before_a_reader_error():
         raise OSError("truncated")
 
     seen: list[int] = []
-    chunks = iter(DriveRun(_drive_of(broken()), [ReachRunner(drive.lane_map)]))
+    chunks = iter(DriveRun(_drive_of(broken()), [bound(ReachRunner(drive.lane_map))]))
     with pytest.raises(OSError, match="truncated"):
         seen.extend(f.index for chunk in chunks for f in chunk.frames)
     assert seen == [f.index for f in frames]
@@ -89,7 +90,7 @@ def test_driver_keeps_the_frames_before_a_loader_error_and_reports_it():
         yield from frames
         raise stop
 
-    run = DriveRun(_drive_of(truncated()), [ReachRunner(drive.lane_map)])
+    run = DriveRun(_drive_of(truncated()), [bound(ReachRunner(drive.lane_map))])
     seen = [f.index for chunk in run for f in chunk.frames]
     assert seen == [f.index for f in frames]
     assert run.stopped_by is stop

@@ -9,6 +9,7 @@ from rerun.chunk import RrdReader
 from loaders.records import Frame
 from rss.structured.responsibility import Responsible
 from tests.workbench.engines.helpers import forward_fill, open_window, rrd_states, rss_window
+from tests.workbench.fakes import bound
 from workbench.engines.rss.duties import NO_DUTY, layout_duties
 from workbench.engines.rss.runner import RssRunner
 from workbench.engines.rss.sink import duty_path
@@ -69,7 +70,7 @@ def test_replay_logs_duty_lanes_and_compliance_plots(tmp_path, braking):
     frames, verdicts = braking
     path = tmp_path / "duties.rrd"
     drive = open_window(LOG, WINDOW_S)
-    replay_drive(drive, out=path, send_frames=7, engines=[RssRunner(drive.lane_map)])
+    replay_drive(drive, out=path, send_frames=7, engines=[bound(RssRunner(drive.lane_map))])
     drive.close()
     cols = layout_duties(verdicts)
     index = [f.index for f in frames]

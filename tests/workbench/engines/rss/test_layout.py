@@ -18,6 +18,7 @@ from tests.workbench.engines.helpers import (
     rss_window,
     step,
 )
+from tests.workbench.fakes import bound
 from workbench.engines.rss.layout import layout_rss
 from workbench.engines.rss.runner import RssRunner
 from workbench.engines.rss.sink import object_path
@@ -144,7 +145,7 @@ def test_replay_logs_state_lanes_constellations_and_plots(tmp_path, cut_in):
     path = tmp_path / "rss.rrd"
     drive = open_window(CUT_IN, WINDOW_S)
     runner = RssRunner(drive.lane_map, outlines=True)
-    summary = replay_drive(drive, out=path, send_frames=7, engines=[runner])
+    summary = replay_drive(drive, out=path, send_frames=7, engines=[bound(runner)])
     drive.close()
     assert summary.unsafe_frames == {"rss": sum(not o.is_safe for o in outputs)}
     cols = layout_rss(frames, outputs)
