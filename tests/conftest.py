@@ -48,3 +48,14 @@ def external_dir() -> Path:
     environment variable ``CI`` is ``true``.
     """
     return require_external_dir(EXTERNAL_DIR, ci=running_in_ci())
+
+
+@pytest.fixture(scope="session")
+def town01_regressions(external_dir: Path) -> Path:
+    """The Town01 regression drives with the reference's verdicts (conformance/town01_regressions).
+
+    Skipped when absent; a failure under ``CI``.
+    """
+    return require_external_dir(
+        external_dir.parent / "conformance" / "town01_regressions", ci=running_in_ci()
+    )

@@ -19,21 +19,12 @@ from mcap.reader import make_reader
 
 from loaders import open_drive
 from loaders.typestore import typestore
-from tests.conftest import require_external_dir, running_in_ci
 from tests.workbench.cli_runs import run_workbench
 
 if TYPE_CHECKING:
     from pathlib import Path
 
 DRIVES = ("drive_004", "drive_005")
-
-
-@pytest.fixture(scope="module")
-def regressions(external_dir: Path) -> Path:
-    """The regression drives' directory (skipped when absent; a failure under ``CI``)."""
-    return require_external_dir(
-        external_dir.parent / "conformance" / "town01_regressions", ci=running_in_ci()
-    )
 
 
 def _recorded(path: Path) -> tuple[list[str], dict[int, set[str]]]:
@@ -53,11 +44,11 @@ def _recorded(path: Path) -> tuple[list[str], dict[int, set[str]]]:
 
 
 @pytest.mark.parametrize("name", DRIVES)
-def test_every_frame_takes_its_own_stamps_objects(regressions: Path, name: str) -> None:
-    order, objects = _recorded(regressions / f"{name}.mcap")
+def test_every_frame_takes_its_own_stamps_objects(town01_regressions: Path, name: str) -> None:
+    order, objects = _recorded(town01_regressions / f"{name}.mcap")
     # as recorded: each stamp's ego message, then its objects message
     assert order == ["/ego/odom", "/carla/objects"] * 50
-    with closing(open_drive(regressions / f"{name}.mcap")) as drive:
+    with closing(open_drive(town01_regressions / f"{name}.mcap")) as drive:
         frames = list(drive.frames())
         notes = drive.info.notes
     assert [f.t_ns for f in frames] == sorted(objects)
@@ -70,20 +61,20 @@ def test_every_frame_takes_its_own_stamps_objects(regressions: Path, name: str) 
 
 @pytest.mark.parametrize("name", DRIVES)
 def test_readme_command_agrees_with_the_reference_on_every_frame(
-    regressions: Path, external_dir: Path, name: str, tmp_path: Path
+    town01_regressions: Path, external_dir: Path, name: str, tmp_path: Path
 ) -> None:
     out = tmp_path / "out.jsonl"
     args = [
         "evaluate",
-        str(regressions / f"{name}.mcap"),
+        str(town01_regressions / f"{name}.mcap"),
         *("--map", str(external_dir / "maps" / "Town01.xodr")),
         *("--engines", "rss"),
-        *("--rss-params", str(regressions / "rss_params_compat.toml")),
+        *("--rss-params", str(town01_regressions / "rss_params_compat.toml")),
         *("--per-frame", str(out)),
     ]
     assert run_workbench(args) == 0
     ours = [json.loads(line) for line in out.read_text().splitlines()]
-    reference = json.loads((regressions / f"{name}.json").read_text())["frames"]
+    reference = json.loads((town01_regressions / f"{name}.json").read_text())["frames"]
     assert len(ours) == len(reference) == 50
     got = [(o["t_ns"], o["rss"]["is_safe"], sorted(o["rss"]["dangerous_objects"])) for o in ours]
     want = [

@@ -77,7 +77,7 @@ def review(
         default_reviewer,
         default_store_path,
     )
-    from workbench.incidents import IncidentReport, filter_incidents  # noqa: PLC0415
+    from workbench.incidents import IncidentReport  # noqa: PLC0415
     from workbench.review.loop import run_review  # noqa: PLC0415
 
     destination = _destination(
@@ -95,13 +95,7 @@ def review(
             store=labels,
             reviewer=reviewer or default_reviewer(),
             by_event=by is Listing.event,
-            chosen=functools.partial(
-                filter_incidents,
-                engines=engine or (),
-                objects=obj or (),
-                causes=cause or (),
-                max_margin=max_margin,
-            ),
+            chosen=_chooser(engine, obj, cause, max_margin),
         )
         if destination is None:
             found = report if isinstance(report, IncidentReport) else find_with_progress(report)
@@ -117,6 +111,24 @@ def review(
             f"{log.name}: {session.reviewed} of {len(session.incidents)} {session.unit}(s) reviewed"
             f" (store {path})"
         )
+
+
+def _chooser(
+    engine: Sequence[str] | None,
+    obj: Sequence[str] | None,
+    cause: Sequence[str] | None,
+    max_margin: float | None,
+) -> Callable[[Sequence[Incident]], Sequence[Incident]]:
+    """The filter of the command's --engine, --object, --cause and --max-margin."""
+    from workbench.incidents import filter_incidents  # noqa: PLC0415
+
+    return functools.partial(
+        filter_incidents,
+        engines=engine or (),
+        objects=obj or (),
+        causes=cause or (),
+        max_margin=max_margin,
+    )
 
 
 def _session(
@@ -179,7 +191,6 @@ def fleet_review(
         default_store_path,
     )
     from workbench.batch.reports import drive_reports  # noqa: PLC0415
-    from workbench.incidents import filter_incidents  # noqa: PLC0415
     from workbench.replay.incidents import short_labels  # noqa: PLC0415
     from workbench.review.fleet import FleetSession, FleetViewer  # noqa: PLC0415
     from workbench.review.loop import drive_link, run_review  # noqa: PLC0415
@@ -204,13 +215,7 @@ def fleet_review(
                 store=labels,
                 reviewer=reviewer or default_reviewer(),
                 by_event=by is Listing.event,
-                chosen=functools.partial(
-                    filter_incidents,
-                    engines=engine or (),
-                    objects=obj or (),
-                    causes=cause or (),
-                    max_margin=max_margin,
-                ),
+                chosen=_chooser(engine, obj, cause, max_margin),
             )
             for report in reports.values()
         ]

@@ -27,7 +27,6 @@ import pytest
 from mcap.reader import make_reader
 from mcap.writer import Writer
 
-from tests.conftest import require_external_dir, running_in_ci
 from workbench.drives import open_log
 from workbench.engines.rss.options import RssOptions, load_params
 from workbench.engines.rss.runner import RssRunner
@@ -36,14 +35,6 @@ if TYPE_CHECKING:
     from pathlib import Path
 
 DRIVES = ("drive_004", "drive_005")
-
-
-@pytest.fixture(scope="module")
-def regressions(external_dir: Path) -> Path:
-    """The regression drives' directory (skipped when absent; a failure under ``CI``)."""
-    return require_external_dir(
-        external_dir.parent / "conformance" / "town01_regressions", ci=running_in_ci()
-    )
 
 
 def objects_first(src: Path, dst: Path) -> None:
@@ -70,7 +61,7 @@ def objects_first(src: Path, dst: Path) -> None:
 
 
 def run_drive(
-    regressions: Path, external_dir: Path, name: str, tmp_path: Path, *, compat: bool = True
+    town01_regressions: Path, external_dir: Path, name: str, tmp_path: Path, *, compat: bool = True
 ) -> list[Any]:
     """Our RSS verdicts per frame of one drive (compatibility mode, objects first).
 
@@ -78,13 +69,13 @@ def run_drive(
     mode).
     """
     mcap = tmp_path / f"{name}.mcap"
-    objects_first(regressions / f"{name}.mcap", mcap)
+    objects_first(town01_regressions / f"{name}.mcap", mcap)
     drive = open_log(
         mcap, map_path=external_dir / "maps" / "Town01.xodr", profile=None, ego_id=None
     )
     try:
         params = load_params(
-            RssOptions(params=regressions / "rss_params_compat.toml"), drive.lane_map
+            RssOptions(params=town01_regressions / "rss_params_compat.toml"), drive.lane_map
         )
         assert params.scene.reproduce_adrss_5_0_defects
         if not compat:
@@ -98,11 +89,11 @@ def run_drive(
 
 @pytest.mark.parametrize("name", DRIVES)
 def test_regression_drive_agrees_on_every_frame(
-    regressions: Path, external_dir: Path, name: str, tmp_path: Path
+    town01_regressions: Path, external_dir: Path, name: str, tmp_path: Path
 ) -> None:
     """Every frame: the reference's verdict and dangerous objects (50 / 50 frames)."""
-    reference = json.loads((regressions / f"{name}.json").read_text())
-    verdicts = run_drive(regressions, external_dir, name, tmp_path)
+    reference = json.loads((town01_regressions / f"{name}.json").read_text())
+    verdicts = run_drive(town01_regressions, external_dir, name, tmp_path)
     assert len(verdicts) == reference["n_frames"] == len(reference["frames"])
     differ = []
     for k, (ours, theirs) in enumerate(zip(verdicts, reference["frames"], strict=True)):
@@ -116,15 +107,15 @@ def test_regression_drive_agrees_on_every_frame(
 
 @pytest.mark.parametrize("name", DRIVES)
 def test_regression_drive_default_mode_misses_no_danger(
-    regressions: Path, external_dir: Path, name: str, tmp_path: Path
+    town01_regressions: Path, external_dir: Path, name: str, tmp_path: Path
 ) -> None:
     """Default mode: every object the reference calls dangerous is dangerous for us too.
 
     The default mode may be more cautious than ad-rss (a lane without a speed limit is
     unbounded there, not ad-map's 50 km/h), never less.
     """
-    reference = json.loads((regressions / f"{name}.json").read_text())
-    verdicts = run_drive(regressions, external_dir, name, tmp_path, compat=False)
+    reference = json.loads((town01_regressions / f"{name}.json").read_text())
+    verdicts = run_drive(town01_regressions, external_dir, name, tmp_path, compat=False)
     missed = [
         (k, sorted(ours.culprits), theirs["dangerous_objects"])
         for k, (ours, theirs) in enumerate(zip(verdicts, reference["frames"], strict=True))

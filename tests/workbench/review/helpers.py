@@ -3,15 +3,22 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from workbench.incidents import Incident, IncidentReport, Severity
+
+if TYPE_CHECKING:
+    from workbench.incidents.model import Fact
 
 T0 = 1_700_000_000_000_000_000
 
 
-def incident(n: int, margin: float) -> Incident:
+def incident(
+    n: int, margin: float, *, drive: str = "abc", facts: dict[str, Fact] | None = None
+) -> Incident:
+    """Incident ``n`` of object ``n`` (frames 10n..10n+4) with this margin and facts."""
     return Incident(
-        id=f"rss-{n:06d}-abc",
+        id=f"rss-{n:06d}-{drive}",
         engine="rss",
         objects=(str(n),),
         cause="RSS BrakeMin",
@@ -19,7 +26,7 @@ def incident(n: int, margin: float) -> Incident:
         end_frame=10 * n + 4,
         start_ns=T0 + n * 10**9,
         end_ns=T0 + n * 10**9 + 4 * 10**8,
-        severity=Severity(margin, 5, 0.4),
+        severity=Severity(margin, 5, 0.4, facts=facts or {}),
     )
 
 

@@ -8,9 +8,8 @@ import dataclasses
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from tests.workbench.review.helpers import T0, report
+from tests.workbench.review.helpers import incident, report
 from workbench.annotations import LabelStore
-from workbench.incidents import Incident, IncidentReport, Severity
 from workbench.review import ReviewSession
 from workbench.review.app import ReviewApp
 from workbench.review.fleet import FleetSession, FleetViewer
@@ -18,21 +17,13 @@ from workbench.review.fleet import FleetSession, FleetViewer
 if TYPE_CHECKING:
     from collections.abc import Iterator
 
+    from workbench.incidents import Incident, IncidentReport
+
 
 def _drive(name: str, criticalities: list[float]) -> IncidentReport:
     """A drive whose incidents have these criticalities (the first fact of the order)."""
     found = tuple(
-        Incident(
-            id=f"rss-{n:06d}-{name}",
-            engine="rss",
-            objects=(str(n),),
-            cause="RSS BrakeMin",
-            start_frame=10 * n,
-            end_frame=10 * n + 4,
-            start_ns=T0 + n * 10**9,
-            end_ns=T0 + n * 10**9 + 4 * 10**8,
-            severity=Severity(1.0, 5, 0.4, facts={"criticality": c}),
-        )
+        incident(n, 1.0, drive=name, facts={"criticality": c})
         for n, c in enumerate(criticalities, start=1)
     )
     return dataclasses.replace(
