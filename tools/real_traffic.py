@@ -41,8 +41,6 @@ JUDGEMENTS = ROOT / "docs" / "real_traffic_judgements.json"
 #: Severity facts shown first when an entry has them (the rest follow, up to ``MAX_FACTS``).
 PREFERRED = ("min_gap_m", "ttc_s", "min_ttc_s", "required_decel_mps2", "closing_speed_mps")
 MAX_FACTS = 6
-#: How near a conflict an entry's span must come to cover it [s] (as the acceptance test).
-TOLERANCE_S = 0.5
 
 
 def _verdict(xml: Path) -> dict[str, Any] | None:
@@ -52,16 +50,6 @@ def _verdict(xml: Path) -> dict[str, Any] | None:
         tool = [str(CRIME_PYTHON), str(ROOT / "tools" / "crime_crosscheck.py"), str(xml)]
         subprocess.run([*tool, "--near-path"], check=True, env=env, cwd=ROOT)  # noqa: S603
     return json.loads(cache.read_text()) if cache.exists() else None
-
-
-def _covers(entry: Entry, conflict: dict[str, Any], dt_ns: int) -> bool:
-    first, last = conflict["steps"]
-    tolerance_ns = int(TOLERANCE_S * 1e9)
-    return (
-        conflict["object"] in entry.objects
-        and entry.start_ns <= last * dt_ns + tolerance_ns
-        and entry.end_ns >= first * dt_ns - tolerance_ns
-    )
 
 
 def _number(value: object) -> str:
@@ -91,7 +79,7 @@ def _facts(entry: Entry) -> str:
 
 def _independent(xml: Path, entry: Entry, conflicts: list[dict[str, Any]]) -> str:
     scenario = load_scenario(xml)
-    real = [c for c in conflicts if _covers(entry, c, scenario.dt_ns)]
+    real = [c for c in conflicts if entry.covers(c, scenario.dt_ns)]
     if real:
         c = real[0]
         return (
@@ -160,7 +148,7 @@ def _drive(xml: Path, shots: Path | None, judgements: dict[str, str], page: Path
     ego, first = ego_track.id, int(ego_track.steps[0])
     found = []
     for c in conflicts:
-        rank = next((e.rank for e in listing if _covers(e, c, dt_ns)), None)
+        rank = next((e.rank for e in listing if e.covers(c, dt_ns)), None)
         found.append(
             f"object {c['object']} frames {c['frames'][0]}-{c['frames'][1]} (TTC "
             f"{c['min_ttc_s']:.2f} s, gap {c['min_gap_m']:.2f} m): "

@@ -20,6 +20,9 @@ from typing import Any
 
 from tests.workbench.cli_runs import run_workbench
 
+#: An entry covers a conflict when their time spans come within this of each other [s].
+SPAN_TOLERANCE_S = 0.5
+
 
 @dataclass(frozen=True, slots=True)
 class Entry:
@@ -42,6 +45,20 @@ class Entry:
     end_ns: int
     incidents: tuple[dict[str, Any], ...]
     record: dict[str, Any]
+
+    def covers(self, conflict: dict[str, Any], dt_ns: int) -> bool:
+        """Whether the entry has the conflict's object and a span within the tolerance of its.
+
+        ``conflict``: ``object`` and ``steps`` (first, last) of the independent measure;
+        ``dt_ns``: the scenario's time step.
+        """
+        first, last = conflict["steps"]
+        tolerance_ns = int(SPAN_TOLERANCE_S * 1e9)
+        return (
+            conflict["object"] in self.objects
+            and self.start_ns <= last * dt_ns + tolerance_ns
+            and self.end_ns >= first * dt_ns - tolerance_ns
+        )
 
     def describe(self) -> str:
         """``#rank id objects [start, end] s`` for messages."""

@@ -6,7 +6,7 @@ output: ``listing.py``) is held against facts computed independently of our engi
 (a) every real conflict of the independent measure (commonroad-crime's TTC and required
     deceleration, confirmed by a plain recompute: ``crime_side.drive_verdict``) is in the top
     three of its drive: an entry among the first three has the conflict's object and a time
-    span within ``SPAN_TOLERANCE_S`` of the conflict's;
+    span within ``listing.SPAN_TOLERANCE_S`` of the conflict's;
 (b) no entry in a drive's top five is benign throughout (at every step one of: both parties
     stand, the gap is over 15 m and opening, laterally clear by 1.5 m and not converging;
     ``benign.py``, from the scenario's states);
@@ -40,8 +40,6 @@ pytestmark = [pytest.mark.external, pytest.mark.acceptance]
 
 SCENARIO_DIR = EXTERNAL_DIR / "commonroad_ngsim"
 SCENARIOS = sorted(p.name for p in SCENARIO_DIR.glob("*.xml")) or ["(none found)"]
-#: An entry covers a conflict when their time spans come within this of each other [s].
-SPAN_TOLERANCE_S = 0.5
 IN_CRIME_ENV = os.environ.get("WORKBENCH_ORACLE_ENV") == "crime"
 
 
@@ -55,16 +53,6 @@ def _scenario(external_dir: Path, name: str) -> Path:
 @functools.cache
 def _verdict(xml: Path) -> dict[str, Any]:
     return crime_side.drive_verdict(xml)
-
-
-def _covers(entry: Entry, conflict: dict[str, Any], dt_ns: int) -> bool:
-    first, last = conflict["steps"]
-    tolerance_ns = int(SPAN_TOLERANCE_S * 1e9)
-    return (
-        conflict["object"] in entry.objects
-        and entry.start_ns <= last * dt_ns + tolerance_ns
-        and entry.end_ns >= first * dt_ns - tolerance_ns
-    )
 
 
 @pytest.mark.oracle
@@ -81,9 +69,9 @@ def test_real_conflicts_in_top_three(external_dir: Path, name: str) -> None:
     missed = [
         f"object {c['object']} frames {c['frames']} (TTC {c['min_ttc_s']} s, "
         f"decel {c['max_required_decel_mps2']} m/s², gap {c['min_gap_m']} m); listed at "
-        + (", ".join(e.describe() for e in listing if _covers(e, c, dt_ns)) or "nowhere")
+        + (", ".join(e.describe() for e in listing if e.covers(c, dt_ns)) or "nowhere")
         for c in verdict["conflicts"]
-        if not any(_covers(e, c, dt_ns) for e in listing[:3])
+        if not any(e.covers(c, dt_ns) for e in listing[:3])
     ]
     assert not missed, f"{name}: real conflicts not in the top three: {missed}"
 
