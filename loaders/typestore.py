@@ -15,15 +15,17 @@ types itself.
 from __future__ import annotations
 
 import functools
+import re
 from importlib import resources
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
+from rosbags.typesys.base import TypesysError
 
 if TYPE_CHECKING:
     from rosbags.typesys.store import Typestore
 
-__all__ = ["CUSTOM_MSGTYPES", "typestore"]
+__all__ = ["CUSTOM_MSGTYPES", "check_definitions", "typestore"]
 
 
 def _custom_types() -> dict[str, object]:
@@ -40,6 +42,39 @@ def _custom_types() -> dict[str, object]:
 CUSTOM_MSGTYPES: tuple[str, ...] = tuple(
     sorted(t for t in _custom_types() if not t.startswith(("unique_identifier_msgs/", "tf2_msgs/")))
 )
+
+
+#: A name rosbags can turn into Python: its grammar admits a leading digit, Python does not.
+_PYTHON_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+
+
+def check_definitions(types: dict[str, Any]) -> dict[str, Any]:
+    """Refuse message definitions whose names cannot become Python before rosbags compiles them.
+
+    rosbags' ``Typestore.register`` writes the parsed definitions as Python source (one
+    dataclass per type) and compiles it. Its msg grammar limits names to letters, digits,
+    ``_`` and ``/``, so nothing but names reaches that source; a name starting with a digit
+    (``MSG: 2d_msgs/Point``) still makes the source unparsable (``SyntaxError``). This check
+    names the offending type or field instead, and keeps anything but well-formed
+    identifiers out of the compiled source.
+
+    Args:
+        types: ``get_types_from_msg``'s result: type name -> (constants, fields).
+
+    Returns:
+        ``types`` unchanged.
+
+    Raises:
+        TypesysError: A type, field or constant name is not a Python identifier.
+    """
+    for name, (consts, fields) in types.items():
+        names = [("type", segment) for segment in name.split("/")]
+        names += [("field", str(f[0])) for f in fields] + [("constant", str(c[0])) for c in consts]
+        for what, value in names:
+            if not _PYTHON_NAME.fullmatch(value):
+                msg = f"message type {name!r}: {what} name {value!r} is not a Python name"
+                raise TypesysError(msg)
+    return types
 
 
 @functools.cache

@@ -39,6 +39,7 @@ from zstandard import ZstdError
 from loaders.drive import TopicInfo
 from loaders.errors import CorruptLogError, EmptyLogError, UnsupportedFormatError
 from loaders.message_logs.registry import normalize_msgtype
+from loaders.typestore import check_definitions
 
 if TYPE_CHECKING:
     from collections.abc import Callable, Collection, Iterator
@@ -85,7 +86,7 @@ def is_service_event(channel: Channel, schema: Schema | None) -> bool:
 
 def _ros_decoder(schema: Schema, *, ros1: bool) -> Callable[[bytes], Any]:
     store = get_typestore(Stores.EMPTY)
-    types = get_types_from_msg(schema.data.decode(), schema.name)
+    types = check_definitions(get_types_from_msg(schema.data.decode(), schema.name))
     store.register(types)
     name = next(iter(types))
     if ros1:

@@ -76,6 +76,9 @@ class RosbagsSource:
         self._reader = AnyReader([path], default_typestore=typestore(2))
         try:
             self._reader.open()
+        except SyntaxError as err:  # rosbags compiles the definitions (see check_definitions)
+            detail = f"a message definition has a name that is not a Python name: {err.msg}"
+            raise CorruptLogError(path, detail, offset=_size(path)) from err
         except _OPEN_ERRORS as err:
             if found := _SERIALIZATION.search(str(err)):
                 raise UnsupportedFormatError(
