@@ -217,7 +217,10 @@ def _limit_bytes(folder: Path) -> int:
 def _copy(fs: Any, source: str, target: Path, budget: int, url: str) -> int:
     target.parent.mkdir(parents=True, exist_ok=True)
     done = 0
-    with fs.open(source, "rb") as src, target.open("wb") as dst:
+    # One sequential read: HTTP as a stream (no range requests, which not every server
+    # answers); the other file systems read ahead in blocks of their own size.
+    stream = {"block_size": 0} if "http" in fs.protocol else {}
+    with fs.open(source, "rb", **stream) as src, target.open("wb") as dst:
         while block := src.read(CHUNK_BYTES):
             done += len(block)
             if done > budget:

@@ -25,6 +25,7 @@ from tests.workbench.batch.drives import (
     ROOT,
     die_once,
     drive_rows,
+    free_port,
     incident_rows,
 )
 from tests.workbench.cli_runs import run_workbench
@@ -154,19 +155,13 @@ def test_ray_local_gives_the_same_tables(logs: list[str], full: Path, tmp_path: 
     }
 
 
-def _free_port() -> int:
-    with socket.socket() as sock:
-        sock.bind(("127.0.0.1", 0))
-        return int(sock.getsockname()[1])
-
-
 @pytest.fixture(scope="module")
 def ray_head(tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
     """``ray://127.0.0.1:PORT`` of a Ray head (``ray start --head --block``) on 127.0.0.1."""
     folder = tmp_path_factory.mktemp("ray")
-    client_port = _free_port()
+    client_port = free_port()
     args = ["start", "--head", "--block", "--node-ip-address", "127.0.0.1"]
-    args += ["--port", str(_free_port()), "--ray-client-server-port", str(client_port)]
+    args += ["--port", str(free_port()), "--ray-client-server-port", str(client_port)]
     args += ["--num-cpus", "2", "--include-dashboard", "false", "--disable-usage-stats"]
     # Ray's single-machine mode: its servers listen on 127.0.0.1, not the network address.
     head = _spawn(args, folder / "head.log", "ray", RAY_ENABLE_WINDOWS_OR_OSX_CLUSTER="0")

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import functools
 import json
+import random
 import shutil
 import sys
 import threading
@@ -23,7 +24,7 @@ from tests.workbench.batch.conftest import ENGINES
 from tests.workbench.batch.drives import BAD, GOOD, SAMPLES, drive_rows, incident_rows
 from tests.workbench.cli_runs import run_workbench
 from workbench.batch import BatchError, expand_logs, remote, requests_for, run_batch
-from workbench.incidents import IncidentRequest
+from workbench.incidents import IncidentRequest, drive_content_hash
 
 if TYPE_CHECKING:
     from collections.abc import Callable, Iterator
@@ -64,10 +65,21 @@ class _Quiet(SimpleHTTPRequestHandler):
         """No access log on stderr."""
 
 
+#: Bytes of a log larger than fsspec's HTTP block (5 MiB): read as one stream.
+BIG_BYTES = 6 << 20
+
+
 @pytest.fixture(scope="module")
-def http_fleet(fleet: Path) -> Iterator[str]:
-    """``http://127.0.0.1:PORT`` serving the fleet folder (directory listings included)."""
-    server = ThreadingHTTPServer(("127.0.0.1", 0), functools.partial(_Quiet, directory=fleet))
+def http_root(fleet: Path, tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
+    """``http://127.0.0.1:PORT``: a copy of the fleet in ``/fleet``, ``/big/big.mcap``.
+
+    Python's server: directory listings, no range requests, no ETag.
+    """
+    folder = tmp_path_factory.mktemp("served")
+    shutil.copytree(fleet, folder / "fleet")
+    (folder / "big").mkdir()
+    (folder / "big" / "big.mcap").write_bytes(random.Random(30).randbytes(BIG_BYTES))  # noqa: S311
+    server = ThreadingHTTPServer(("127.0.0.1", 0), functools.partial(_Quiet, directory=folder))
     thread = threading.Thread(target=server.serve_forever, daemon=True)
     thread.start()
     try:
@@ -76,6 +88,12 @@ def http_fleet(fleet: Path) -> Iterator[str]:
         server.shutdown()
         thread.join()
         server.server_close()
+
+
+@pytest.fixture(scope="module")
+def http_fleet(http_root: str) -> str:
+    """The fleet's folder on the server."""
+    return f"{http_root}/fleet"
 
 
 def test_http_globs_and_directories_list_like_paths(fleet: Path, http_fleet: str) -> None:
@@ -88,15 +106,28 @@ def test_http_globs_and_directories_list_like_paths(fleet: Path, http_fleet: str
     assert expand_logs([missing]) == [missing]  # not checked where the batch starts
 
 
-def test_mixed_local_and_http_drives_on_the_process_pool(
-    fleet: Path, full: Path, http_fleet: str, tmp_path: Path
-) -> None:
-    """Same rows as the all-local batch; the URL drives keep their URL; resume keeps them."""
-    as_url = {name: f"{http_fleet}/{name}" for name in (GOOD[0], *BAD)}
-    logs = [str(fleet / GOOD[1]), *as_url.values(), f"{http_fleet}/missing.mcap"]
-    out = tmp_path / "mixed"
+@pytest.fixture(scope="module")
+def mixed(
+    fleet: Path, http_root: str, http_fleet: str, tmp_path_factory: pytest.TempPathFactory
+) -> tuple[Path, list[str]]:
+    """A process-pool batch of one local drive, the fleet's others over HTTP, a 404 and a
+    6 MiB log: its results directory and its command line.
+    """
+    logs = [str(fleet / GOOD[1]), *(f"{http_fleet}/{name}" for name in (GOOD[0], *BAD))]
+    logs += [f"{http_fleet}/missing.mcap", f"{http_root}/big/big.mcap"]
+    out = tmp_path_factory.mktemp("mixed") / "results"
     args = ["batch", *logs, "--out", str(out), "--jobs", "2", "--engines", ENGINES]
     assert run_workbench(args) == 0
+    return out, args
+
+
+def test_mixed_local_and_http_drives_on_the_process_pool(
+    fleet: Path, full: Path, http_fleet: str, mixed: tuple[Path, list[str]], tmp_path: Path
+) -> None:
+    """Same rows as the all-local batch; the URL drives keep their URL; resume keeps them."""
+    out, args = mixed
+    as_url = {name: f"{http_fleet}/{name}" for name in (GOOD[0], *BAD)}
+    (tmp_path / "big.mcap").write_bytes(random.Random(30).randbytes(BIG_BYTES))  # noqa: S311
 
     def located(path: str) -> str:
         return as_url.get(Path(path).name, path)
@@ -112,13 +143,48 @@ def test_mixed_local_and_http_drives_on_the_process_pool(
             assert got[key] == row[key], (name, key)
         if row["error"] is not None:  # the message names the URL, not the worker's copy
             assert got["error"] == row["error"].replace(str(fleet), http_fleet)
+    big = drives["big.mcap"]  # fetched whole, then refused by the loader
+    assert big["error_type"] == "CorruptLogError"
+    assert big["content_hash"] == drive_content_hash(tmp_path / "big.mcap")
     missing = drives["missing.mcap"]
     assert (missing["status"], missing["error_type"]) == ("failed", "FetchError")
     assert f"{http_fleet}/missing.mcap" in missing["error"]
 
     assert run_workbench(args) == 0  # resumed: only the unreachable URL is tried again
-    assert json.loads((out / "batch.json").read_text())["evaluated"] == 1
+    assert json.loads((out / "batch.json").read_text())["evaluated"] == 1  # missing.mcap
     assert incident_rows(out) == expected
+
+
+def test_fleet_commands_fetch_url_drives_again(
+    full: Path, mixed: tuple[Path, list[str]], tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """``labels export``, ``export`` and ``review`` of a results directory with URL drives."""
+    out, _ = mixed
+    store = ["--store", str(tmp_path / "labels.sqlite")]
+    written = {}
+    for name, results in (("url", out), ("local", full)):
+        folder = tmp_path / name
+        assert run_workbench(["labels", "export", str(results), "--out", str(folder), *store]) == 0
+        written[name] = {p.name: p.read_bytes() for p in folder.iterdir()}
+    assert len(written["url"]) == 3  # the good drives and the partial one
+    assert written["url"] == written["local"]
+
+    clips = tmp_path / "clips"
+    args = ["export", str(out), "--all", "--out", str(clips), "--no-rrd", "--no-thumbnails"]
+    assert run_workbench([*args, *store]) == 0
+    sources = {c["source"] for p in clips.glob("*/clips.json") for c in json.loads(p.read_text())}
+    assert sources == {r["drive_path"] for r in incident_rows(out)}
+    assert any(s.startswith("http://") for s in sources)
+
+    alive: list[bool] = []
+
+    def reviewer(session: Any, viewer: Any = None) -> None:
+        assert viewer is None
+        alive.extend(s.report.log.exists() for s in session.sessions)
+
+    monkeypatch.setattr("workbench.review.loop.run_review", reviewer)
+    assert run_workbench(["review", str(out), *store]) == 0
+    assert alive == [True, True]  # the copies live while the queue is reviewed
 
 
 class _InlinePool:
