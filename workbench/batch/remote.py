@@ -26,6 +26,7 @@ from pathlib import Path, PurePosixPath
 from typing import TYPE_CHECKING, Any
 
 from loaders.message_logs.mapsource import sidecar_candidates
+from loaders.open import LOG_SUFFIXES, SCENARIO_SUFFIXES
 from workbench.batch.executors import BatchError
 from workbench.incidents.content import CHUNK_BYTES
 
@@ -186,7 +187,8 @@ def expand_url(url: str, suffixes: Sequence[str]) -> list[str]:
 def _files(fs: Any, path: str) -> dict[str, str]:
     """The object's files by their path relative to the drive's parent."""
     name = PurePosixPath(path.rstrip("/")).name
-    if not fs.isdir(path):
+    # A drive file's suffix: a file, without asking (an HTTP "isdir" is a GET of the page).
+    if _suffix(name) in LOG_SUFFIXES or not fs.isdir(path):
         return {name: path}
     root = path.rstrip("/")
     return {f"{name}/{f[len(root) + 1 :]}": f for f in sorted(fs.find(root))}
@@ -257,7 +259,8 @@ def fetch(url: str, folder: Path) -> Fetched:
             fetched += _copy(fs, source, folder / rel, budget - fetched, url)
         log = folder / PurePosixPath(path.rstrip("/")).name
         parent = path.rstrip("/").rpartition("/")[0]
-        for candidate in sidecar_candidates(log):
+        scenario = log.suffix.lower() in SCENARIO_SUFFIXES  # CommonRoad, .saa: no sidecar
+        for candidate in [] if scenario else sidecar_candidates(log):
             remote = f"{parent}/{candidate.relative_to(folder).as_posix()}"
             if not candidate.exists() and fs.isfile(remote):
                 fetched += _copy(fs, remote, candidate, budget - fetched, url)
