@@ -191,7 +191,9 @@ def _files(fs: Any, path: str) -> dict[str, str]:
     if _suffix(name) in LOG_SUFFIXES or not fs.isdir(path):
         return {name: path}
     root = path.rstrip("/")
-    return {f"{name}/{f[len(root) + 1 :]}": f for f in sorted(fs.find(root))}
+    inside = {f[len(root) + 1 :]: f for f in sorted(fs.find(root)) if f.startswith(f"{root}/")}
+    # A listing's links name files under the drive only: no "..", nothing absolute.
+    return {f"{name}/{rel}": f for rel, f in inside.items() if ".." not in rel.split("/")}
 
 
 def stamp(url: str) -> str:
@@ -221,7 +223,8 @@ def _copy(fs: Any, source: str, target: Path, budget: int, url: str) -> int:
     done = 0
     # One sequential read: HTTP as a stream (no range requests, which not every server
     # answers); the other file systems read ahead in blocks of their own size.
-    stream = {"block_size": 0} if "http" in fs.protocol else {}
+    protocols = (fs.protocol,) if isinstance(fs.protocol, str) else tuple(fs.protocol)
+    stream = {"block_size": 0} if {"http", "https"} & set(protocols) else {}
     with fs.open(source, "rb", **stream) as src, target.open("wb") as dst:
         while block := src.read(CHUNK_BYTES):
             done += len(block)
