@@ -87,8 +87,11 @@ def scale_lines(m: dict[str, Any]) -> list[str]:
             f" (extrapolated), {_gib(_FLEET * hour_bytes)} for the fleet; a core consumes"
             f" {hour_bytes / hour_s / 2**20:.2f} MiB/s, a {NODE_CORES}-core node"
             f" {NODE_CORES * hour_bytes / hour_s / 2**20:.0f} MiB/s — logs are read where the task"
-            " runs (today a file system the workers share, by path or `file://` URL;"
-            " object-store URLs are not read yet), never through the scheduler."
+            " runs, never through the scheduler: by path on a file system the workers share, or"
+            " at any fsspec URL (`s3://`, `gcs://`, `http://`), which each task fetches into its"
+            f" worker's temporary directory ({_gib(NODE_CORES * hour_bytes)} of local disk per"
+            f" {NODE_CORES}-core node for the logs in flight; the fetch's CPU cost is in"
+            " docs/fleet.md)."
         ),
         (
             f"- **Results**: {per_incident:.0f} B per incident row in `incidents.parquet` (this"

@@ -38,12 +38,13 @@ if TYPE_CHECKING:
     from loaders.drive import Drive
     from loaders.message_logs.source import MessageSource
 
-__all__ = ["LOG_SUFFIXES", "is_drive_path", "is_rosbag2_dir", "open_drive"]
+__all__ = ["LOG_SUFFIXES", "SCENARIO_SUFFIXES", "is_drive_path", "is_rosbag2_dir", "open_drive"]
 
 #: File suffixes ``open_drive`` accepts (lower case; besides rosbag2 directories).
 LOG_SUFFIXES: tuple[str, ...] = (".mcap", ".bag", ".db3", ".osi", ".xml", ".saa", ".scn")
-#: Suffixes of the drives that are not message logs (CommonRoad, ScenarioArchitect).
-_SCENARIO_SUFFIXES = frozenset({".xml", ".saa", ".scn"})
+#: Suffixes of the drives that are not message logs (CommonRoad, ScenarioArchitect): no
+#: sidecar map.
+SCENARIO_SUFFIXES = frozenset({".xml", ".saa", ".scn"})
 
 
 def is_rosbag2_dir(path: Path) -> bool:
@@ -150,7 +151,7 @@ def open_drive(
         raise UnsupportedFormatError(
             path, f"suffix {suffix or '(none)'}; expected one of {', '.join(LOG_SUFFIXES)}"
         )
-    if suffix in _SCENARIO_SUFFIXES:
+    if suffix in SCENARIO_SUFFIXES:
         return _open_other(path, suffix, map_path, ego_id, plan)
     prof = _profile(profile)
     source = _open_source(path)

@@ -18,7 +18,7 @@ if TYPE_CHECKING:
     from loaders.maps.model import LaneMap
     from loaders.message_logs.source import MessageSource
 
-__all__ = ["find_map", "read_map", "sidecar_map"]
+__all__ = ["find_map", "read_map", "sidecar_candidates", "sidecar_map"]
 
 
 def read_map(source: Path | bytes, name: str) -> LaneMap:
@@ -42,7 +42,8 @@ def read_map(source: Path | bytes, name: str) -> LaneMap:
     return reader(source, name=name)
 
 
-def _sidecars(path: Path) -> list[Path]:
+def sidecar_candidates(path: Path) -> list[Path]:
+    """Where a sidecar map of the log may lie, in the order they are tried (existing or not)."""
     if path.is_dir():
         return [path / "map.osm", path.with_suffix(".osm")]
     return [path.with_suffix(".osm")]
@@ -50,7 +51,7 @@ def _sidecars(path: Path) -> list[Path]:
 
 def sidecar_map(path: Path) -> Path | None:
     """The map file lying beside the log (``LOG.osm``; in a bag directory ``map.osm``), if any."""
-    return next((c for c in _sidecars(path) if c.is_file()), None)
+    return next((c for c in sidecar_candidates(path) if c.is_file()), None)
 
 
 def find_map(

@@ -180,6 +180,16 @@ def _dask(kind: str, where: str, cluster: str) -> Iterator[Pool]:
         yield _ExecutorPool(executor, f"dask {cluster}, {workers} worker thread(s)", workers)
 
 
+def _ray_token_available() -> bool:
+    """Whether a Ray authentication token is set or saved (``RAY_AUTH_TOKEN[_PATH]``, ~/.ray)."""
+    from pathlib import Path  # noqa: PLC0415
+
+    if os.environ.get("RAY_AUTH_TOKEN"):
+        return True
+    saved = os.environ.get("RAY_AUTH_TOKEN_PATH") or str(Path.home() / ".ray" / "auth_token")
+    return Path(saved).is_file()
+
+
 @contextlib.contextmanager
 def _ray(kind: str, where: str, cluster: str) -> Iterator[Pool]:
     os.environ.setdefault("RAY_USAGE_STATS_ENABLED", "0")
@@ -187,6 +197,10 @@ def _ray(kind: str, where: str, cluster: str) -> Iterator[Pool]:
         # Ray's single-machine mode (as on macOS): every address is 127.0.0.1, not the
         # machine's network address.
         os.environ.setdefault("RAY_ENABLE_WINDOWS_OR_OSX_CLUSTER", "0")
+    elif "RAY_AUTH_MODE" not in os.environ and _ray_token_available():
+        # A cluster started by `ray start` has token authentication on and writes the token
+        # to ~/.ray/auth_token; a Ray Client sends it only in token mode.
+        os.environ["RAY_AUTH_MODE"] = "token"
     ray = _need("ray", "ray", cluster)
     try:
         if kind == "ray-local":
@@ -200,7 +214,8 @@ def _ray(kind: str, where: str, cluster: str) -> Iterator[Pool]:
         else:
             ray.init(address=where, log_to_driver=False, logging_level=logging.WARNING)
     except (ConnectionError, RuntimeError, ValueError) as err:
-        raise BatchError(f"--cluster {cluster}: cannot start or reach Ray ({err})") from err
+        detail = " ".join(str(err).split())
+        raise BatchError(f"--cluster {cluster}: cannot start or reach Ray ({detail})") from err
     try:
         yield _RayPool(ray, f"ray {cluster}")
     finally:

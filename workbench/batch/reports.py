@@ -10,12 +10,14 @@ from __future__ import annotations
 import contextlib
 import dataclasses
 import json
-from contextlib import closing
+import tempfile
+from contextlib import ExitStack, closing
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from workbench.batch.executors import BatchError
 from workbench.batch.queue import incident_of, read_table
+from workbench.batch.remote import fetch, is_url
 from workbench.incidents import IncidentReport, IncidentRequest, IncidentSettings
 
 if TYPE_CHECKING:
@@ -76,6 +78,7 @@ def batch_request(results: Path) -> IncidentRequest:
             for name, own in values.get("options", {}).items()
         }
         values["log"] = results
+        values["url"] = None  # the first drive's, when it was a URL
         return IncidentRequest(**values)
     except (OSError, ValueError, KeyError, TypeError) as err:
         raise BatchError(f"{path}: no readable request ({err})") from err
@@ -91,15 +94,22 @@ def _frame_times(request: IncidentRequest) -> tuple[tuple[int, int], ...]:
     return tuple(times)
 
 
-def drive_reports(results: Path, *, with_incidents_only: bool = False) -> Iterator[IncidentReport]:
+def drive_reports(
+    results: Path, *, with_incidents_only: bool = False, copies: ExitStack | None = None
+) -> Iterator[IncidentReport]:
     """One report per drive the batch evaluated (not ``failed``), in ``drives.parquet`` order.
 
     Args:
         results: The results directory.
         with_incidents_only: Skip drives without incidents (no loader pass for them).
+        copies: Keeps the local copies of URL drives until it closes (default: each copy
+            lives until the next report is asked for).
+
+    A URL drive is fetched again (:func:`workbench.batch.remote.fetch`) into a temporary
+    directory (see ``copies``).
 
     Raises:
-        BatchError: The batch's files cannot be read.
+        BatchError: The batch's files cannot be read; a URL drive cannot be fetched.
         LoaderError: A drive cannot be opened any more.
     """
     template = batch_request(results)
@@ -112,13 +122,31 @@ def drive_reports(results: Path, *, with_incidents_only: bool = False) -> Iterat
         rows = by_drive.get(drive["path"], [])
         if drive["status"] == "failed" or (with_incidents_only and not rows):
             continue
-        request = dataclasses.replace(template, log=Path(drive["path"]))
-        yield IncidentReport(
-            log=request.log,
-            drive_hash=drive["content_hash"],
-            settings=settings,
-            incidents=tuple(incident_of(r) for r in rows),
-            frame_times=_frame_times(request),
-            start_ns=int(drive["start_ns"] or 0),
-            request=request,
-        )
+        with ExitStack() as own:
+            request = (copies or own).enter_context(_drive_request(template, drive["path"]))
+            yield IncidentReport(
+                log=request.log,
+                drive_hash=drive["content_hash"],
+                settings=settings,
+                incidents=tuple(incident_of(r) for r in rows),
+                frame_times=_frame_times(request),
+                start_ns=int(drive["start_ns"] or 0),
+                request=request,
+            )
+
+
+@contextlib.contextmanager
+def _drive_request(template: IncidentRequest, location: str) -> Iterator[IncidentRequest]:
+    """The request of one drive of the batch (a URL drive: its local copy).
+
+    A URL drive is fetched into a temporary directory kept while the caller holds its report.
+
+    Raises:
+        FetchError: The URL drive cannot be fetched any more.
+    """
+    if not is_url(location):
+        yield dataclasses.replace(template, log=Path(location))
+        return
+    with tempfile.TemporaryDirectory(prefix="rss-wb-") as folder:
+        fetched = fetch(location, Path(folder))
+        yield dataclasses.replace(template, log=fetched.log, url=location)

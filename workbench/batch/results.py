@@ -30,6 +30,8 @@ if TYPE_CHECKING:
     from collections.abc import Iterable, Sequence
     from pathlib import Path
 
+    from workbench.incidents import IncidentRequest
+
 __all__ = [
     "DRIVES_SCHEMA",
     "INCIDENTS_SCHEMA",
@@ -120,37 +122,44 @@ class Results:
             return None
         return record if isinstance(record, dict) and record.get("path") == log else None
 
-    def is_fresh(self, log: Path, versions: dict[str, str], settings_hash: str) -> bool:
-        """Whether ``log`` was evaluated with these engine versions, settings and content.
+    def is_fresh(self, request: IncidentRequest, versions: dict[str, str], s_hash: str) -> bool:
+        """Whether the request's log was evaluated with these engine versions, settings, content.
 
-        The log is hashed only when a record with these versions and settings exists.
+        Keyed by the log's location (path or URL). A local log is hashed again only when a
+        record with these versions and settings exists; a URL log is not fetched again: its
+        record is kept while the object's :func:`~workbench.batch.remote.stamp` (size and
+        modification time or ETag, from metadata) is the one recorded when its content hash
+        was computed.
         """
+        from workbench.batch.remote import stamp  # noqa: PLC0415
         from workbench.incidents import drive_content_hash  # noqa: PLC0415
 
-        record = self.get(str(log))
+        record = self.get(request.location)
         if record is None or record.get("engine_versions") != versions:
             return False
-        if record.get("settings_hash") != settings_hash:
+        if record.get("settings_hash") != s_hash:
             return False
-        if not log.exists():
-            return record.get("content_hash") == ""
         try:
-            return bool(record.get("content_hash") == drive_content_hash(log))
-        except Exception:  # noqa: BLE001 - unreadable now: evaluate again
+            if request.url is not None:
+                return bool(record.get("source_stamp") == stamp(request.url))
+            if not request.log.exists():
+                return record.get("content_hash") == ""
+            return bool(record.get("content_hash") == drive_content_hash(request.log))
+        except Exception:  # noqa: BLE001 - unreadable now: evaluate again (the task reports it)
             return False
 
-    def assemble(self, logs: Sequence[Path], batch: dict[str, Any]) -> list[dict[str, Any]]:
+    def assemble(self, logs: Sequence[str], batch: dict[str, Any]) -> list[dict[str, Any]]:
         """Write ``incidents.parquet``, ``drives.parquet`` and ``batch.json`` for ``logs``.
 
         Args:
-            logs: The batch's logs, in table order.
+            logs: The batch's logs (paths or URLs), in table order.
             batch: What ``batch.json`` holds besides the counts and the failed logs.
 
         Returns:
             The drives' records (without their incidents), in ``logs`` order; a log without
             a record (never finished) is left out.
         """
-        records = [r for r in (self.get(str(log)) for log in logs) if r is not None]
+        records = [r for r in (self.get(log) for log in logs) if r is not None]
         incidents = [row for r in records for row in r["incidents"]]
         drives = [_drive_row(r) for r in records]
         self._parquet("incidents.parquet", _incident_table(incidents), INCIDENTS_SCHEMA)

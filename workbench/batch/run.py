@@ -8,15 +8,15 @@ from __future__ import annotations
 import dataclasses
 import datetime as dt
 import glob
-import re
 from concurrent.futures import FIRST_COMPLETED, Future, wait
 from dataclasses import dataclass
-from pathlib import Path
+from pathlib import Path, PurePosixPath
 from typing import TYPE_CHECKING, Any
 from urllib.parse import urlsplit
 from urllib.request import url2pathname
 
 from workbench.batch.executors import BatchError
+from workbench.batch.remote import expand_url, is_url
 from workbench.batch.reports import request_record
 from workbench.batch.results import Results
 from workbench.batch.task import evaluate_log, failed_record
@@ -29,12 +29,18 @@ if TYPE_CHECKING:
     from workbench.batch.executors import Pool
     from workbench.incidents import IncidentRequest
 
-__all__ = ["LOG_SUFFIXES", "MAX_ATTEMPTS", "BatchSummary", "expand_logs", "run_batch"]
+__all__ = [
+    "LOG_SUFFIXES",
+    "MAX_ATTEMPTS",
+    "BatchSummary",
+    "expand_logs",
+    "request_of",
+    "requests_for",
+    "run_batch",
+]
 
 #: Files a directory argument contributes (rosbag2 directories are taken whole).
 LOG_SUFFIXES = (".mcap", ".bag", ".db3", ".xml", ".saa", ".scn")
-#: A URL argument (``scheme://``), not a path.
-_URL = re.compile(r"^[A-Za-z][A-Za-z0-9+.-]*://")
 #: Times a log is submitted before a lost worker counts as its failure.
 MAX_ATTEMPTS = 3
 
@@ -55,47 +61,58 @@ def _walk(folder: Path) -> list[Path]:
     return found
 
 
-def _local(argument: str) -> str:
-    """A ``file://`` URL as the local path it names (the workers read it there); else as is.
+def _local(argument: str) -> str | None:
+    """The local path a ``file://`` URL on this host names; ``None`` for any other URL.
+
+    Not a URL: the argument as is.
 
     Raises:
-        BatchError: A URL of another scheme or host (not read yet), with the argument.
+        BatchError: A ``file://`` URL naming another host.
     """
-    parts = urlsplit(argument)
-    if not _URL.match(argument):
+    if not is_url(argument):
         return argument
-    if parts.scheme == "file" and parts.netloc in {"", "localhost"}:
-        return url2pathname(parts.path)
-    msg = (
-        f"{argument}: only file:// URLs on this host are read for now"
-        f" ({parts.scheme}:// logs: copy them to a file system the workers share)"
-    )
-    raise BatchError(msg)
+    parts = urlsplit(argument)
+    if parts.scheme != "file":
+        return None
+    if parts.netloc not in {"", "localhost"}:
+        msg = f"{argument}: a file:// URL of another host (give a path the workers share)"
+        raise BatchError(msg)
+    return url2pathname(parts.path)
 
 
-def expand_logs(arguments: Sequence[str]) -> list[Path]:
-    """The logs named by files, directories (searched for logs), globs and ``file://`` URLs.
+def _expand_path(argument: str) -> list[Path]:
+    found = sorted(glob.glob(argument))  # noqa: PTH207 - a user's pattern, maybe absolute
+    logs: list[Path] = []
+    for path in [Path(m).resolve() for m in found] or [Path(argument).resolve()]:
+        if path.is_dir() and not _is_rosbag2(path):
+            logs.extend(_walk(path))
+        elif path.exists():
+            logs.append(path)
+        else:
+            raise BatchError(f"{argument}: no such file, directory or match")
+    inside_bags = {p for p in logs if p.suffix == ".db3" and _is_rosbag2(p.parent)}
+    return [p for p in logs if p not in inside_bags]
 
-    Absolute, sorted, unique. A rosbag2 directory (it holds ``metadata.yaml``) is one log;
-    ``.db3`` files inside it are not listed again.
+
+def expand_logs(arguments: Sequence[str]) -> list[Path | str]:
+    """The logs named by files, directories (searched for logs), globs and URLs.
+
+    Paths absolute; a ``file://`` URL on this host is the path it names; any other URL
+    (fsspec: ``s3://``, ``http://``, ``gcs://``, chains) stays a URL, globbed or searched
+    with fsspec where it is a pattern or a directory (:func:`workbench.batch.remote.expand_url`).
+    Sorted, unique. A rosbag2 directory (it holds ``metadata.yaml``) is one log; ``.db3``
+    files inside it are not listed again.
 
     Raises:
-        BatchError: An argument matches nothing, or is a URL of another kind.
+        BatchError: An argument matches nothing; a URL of an unknown protocol or whose
+            file system is not installed.
     """
-    out: dict[Path, None] = {}
+    out: dict[Path | str, None] = {}
     for given in arguments:
-        argument = _local(given)
-        found = sorted(glob.glob(argument))  # noqa: PTH207 - a user's pattern, maybe absolute
-        matches = [Path(m).resolve() for m in found] or [Path(argument).resolve()]
-        for path in matches:
-            if path.is_dir() and not _is_rosbag2(path):
-                out.update(dict.fromkeys(_walk(path)))
-            elif path.exists():
-                out.update(dict.fromkeys([path]))
-            else:
-                raise BatchError(f"{argument}: no such file, directory or match")
-    inside_bags = {p for p in out if p.suffix == ".db3" and _is_rosbag2(p.parent)}
-    return sorted(p for p in out if p not in inside_bags)
+        local = _local(given)
+        found = expand_url(given, LOG_SUFFIXES) if local is None else _expand_path(local)
+        out.update(dict.fromkeys(found))
+    return sorted(out, key=str)
 
 
 @dataclass(frozen=True, slots=True)
@@ -150,17 +167,17 @@ def run_batch(
     results = Results(out)
     versions = engine_versions()
     s_hash = settings_hash(requests[0]) if requests else ""
-    todo = [r for r in requests if not results.is_fresh(r.log, versions, s_hash)]
+    todo = [r for r in requests if not results.is_fresh(r, versions, s_hash)]
     if on_start is not None:
         on_start(len(todo), len(requests) - len(todo))
-    attempts: dict[Path, int] = {}
+    attempts: dict[str, int] = {}
     queue = list(reversed(todo))
     flying: dict[Future[Any], IncidentRequest] = {}
     limit = window or max(8, 4 * pool.workers)
     while queue or flying:
         while queue and len(flying) < limit:
             request = queue.pop()
-            attempts[request.log] = attempts.get(request.log, 0) + 1
+            attempts[request.location] = attempts.get(request.location, 0) + 1
             flying[pool.submit(task, request)] = request
         done, _ = wait(flying, return_when=FIRST_COMPLETED)
         for future in done:
@@ -169,7 +186,7 @@ def run_batch(
                 record = future.result()
             except Exception as err:  # noqa: BLE001 - the task never raises: a lost worker
                 pool.recover()
-                if attempts[request.log] < MAX_ATTEMPTS:
+                if attempts[request.location] < MAX_ATTEMPTS:
                     queue.append(request)
                     continue
                 detail = f"worker lost {MAX_ATTEMPTS} times ({type(err).__name__}: {err})"
@@ -177,7 +194,7 @@ def run_batch(
             results.put(record)
             if on_done is not None:
                 on_done(record)
-    logs = sorted((r.log for r in requests), key=str)
+    logs = sorted(r.location for r in requests)
     batch = {
         "settings": requests[0].record() if requests else {},
         "request": request_record(requests[0]) if requests else None,
@@ -193,6 +210,18 @@ def run_batch(
     return BatchSummary(drives, len(todo), len(requests) - len(todo), pool.name, text)
 
 
-def requests_for(logs: Sequence[Path], template: IncidentRequest) -> list[IncidentRequest]:
-    """One request per log with the template's settings."""
-    return [dataclasses.replace(template, log=log) for log in logs]
+def request_of(log: Path | str, make: Callable[[Path], IncidentRequest]) -> IncidentRequest:
+    """The request of one log of :func:`expand_logs` (a URL: ``url`` set, ``log`` its name)."""
+    if isinstance(log, Path):
+        return make(log)
+    name = PurePosixPath(urlsplit(log.split("::")[-1]).path.rstrip("/")).name
+    return dataclasses.replace(make(Path(name)), url=log)
+
+
+def requests_for(logs: Sequence[Path | str], template: IncidentRequest) -> list[IncidentRequest]:
+    """One request per log (path or URL) with the template's settings."""
+
+    def make(path: Path) -> IncidentRequest:
+        return dataclasses.replace(template, log=path, url=None)
+
+    return [request_of(log, make) for log in logs]

@@ -17,11 +17,16 @@ Statuses:
 
 from __future__ import annotations
 
+import contextlib
+import dataclasses
 import os
 import socket
+import tempfile
 import time
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from workbench.batch.remote import fetch, one_line
 from workbench.batch.versions import engine_versions, settings_hash
 
 if TYPE_CHECKING:
@@ -43,14 +48,15 @@ def _count(value: str) -> int:
 def incident_rows(report: IncidentReport) -> list[dict[str, Any]]:
     """The report's incidents as rows of ``incidents.parquet``.
 
-    Drive path and hash first, then the row of ``workbench incidents --out FILE.parquet``, then
-    ``severity_names``: the severity facts' names in their order.
+    Drive path (its URL for a URL drive) and hash first, then the row of ``workbench
+    incidents --out FILE.parquet``, then ``severity_names``: the severity facts' names in
+    their order.
     """
     from workbench.incidents.table import flat_rows  # noqa: PLC0415 - worker-side import
 
     return [
         {
-            "drive_path": str(report.log),
+            "drive_path": str(report.log) if report.request is None else report.request.location,
             "drive_hash": report.drive_hash,
             **row,
             "severity_names": list(incident.severity.record()),
@@ -75,7 +81,7 @@ def failed_record(
         worker: Who tried (default: this process).
     """
     return {
-        "path": str(request.log),
+        "path": request.location,
         "content_hash": "",
         "format": "",
         "frames": 0,
@@ -123,6 +129,10 @@ def _from_report(record: dict[str, Any], report: IncidentReport) -> None:
 def evaluate_log(request: IncidentRequest) -> dict[str, Any]:
     """Evaluate one drive; never raises (a failure is the record's ``status``).
 
+    A URL drive (``request.url``) is fetched into a temporary directory of this worker
+    first (:func:`workbench.batch.remote.fetch`); its record keeps the URL as ``path`` and
+    the object's ``source_stamp``.
+
     Args:
         request: The drive and every setting that decides its incidents.
 
@@ -133,21 +143,28 @@ def evaluate_log(request: IncidentRequest) -> dict[str, Any]:
     """
     started = time.perf_counter()
     record = failed_record(request, "", "")
+    folder = ""
     try:
         from workbench.incidents import (  # noqa: PLC0415 - worker-side import
             drive_content_hash,
             find_incidents,
         )
 
-        if request.log.exists():
-            record["content_hash"] = drive_content_hash(request.log)
-        _from_report(record, find_incidents(request))
+        with contextlib.ExitStack() as stack:
+            if request.url is not None:
+                folder = stack.enter_context(tempfile.TemporaryDirectory(prefix="rss-wb-"))
+                fetched = fetch(request.url, Path(folder))
+                record["source_stamp"] = fetched.stamp
+                request = dataclasses.replace(request, log=fetched.log)
+            if request.log.exists():
+                record["content_hash"] = drive_content_hash(request.log)
+            _from_report(record, find_incidents(request))
     except Exception as err:  # noqa: BLE001 - the task reports every failure as a record
-        record.update(status="failed", error_type=type(err).__name__, error=_one_line(err))
+        record.update(status="failed", error_type=type(err).__name__, error=one_line(err))
+    if folder and request.url is not None:  # messages name the URL, not the local copy
+        parent = request.url.rpartition("/")[0]
+        for key in ("error", "stopped_by"):
+            if record[key]:
+                record[key] = record[key].replace(folder, parent)
     record["wall_s"] = time.perf_counter() - started
     return record
-
-
-def _one_line(err: BaseException) -> str:
-    text = " ".join(str(err).split())
-    return text or type(err).__name__

@@ -91,7 +91,10 @@ def _summary(summary: BatchSummary, out: Path) -> None:
 @with_requests
 def batch(
     logs: Annotated[
-        list[str], typer.Argument(help="Drives, directories (searched) or glob patterns.")
+        list[str],
+        typer.Argument(
+            help="Drives, directories (searched), glob patterns or fsspec URLs (s3://b/d/*.mcap)."
+        ),
     ],
     requests: Callable[[Path], IncidentRequest],
     *,
@@ -104,10 +107,9 @@ def batch(
 ) -> None:
     """Evaluate many drives (one task each) into RESULTS: incidents, drives, batch.json."""
     from workbench.batch.executors import open_pool  # noqa: PLC0415 - light start-up
-    from workbench.batch.run import expand_logs, run_batch  # noqa: PLC0415
+    from workbench.batch.run import expand_logs, request_of, run_batch  # noqa: PLC0415
 
-    paths = expand_logs(logs)
-    chosen = [requests(path) for path in paths]
+    chosen = [request_of(log, requests) for log in expand_logs(logs)]
     with _progress() as bar, open_pool(cluster, jobs) as pool:
         task = bar.add_task("batch", total=len(chosen))
 

@@ -202,12 +202,13 @@ def fleet_review(
         )
         raise WorkbenchError(msg)
     destination = _destination(**viewer_options)
-    reports = {str(r.log): r for r in drive_reports(log, with_incidents_only=True)}
+    copies = contextlib.ExitStack()  # local copies of URL drives, for the whole review
+    reports = {str(r.log): r for r in drive_reports(log, with_incidents_only=True, copies=copies)}
     if not reports:
         typer.echo(f"{log.name}: no incidents in any drive")
         return
     path = store or default_store_path()
-    with LabelStore(path) as labels:
+    with copies, LabelStore(path) as labels:
         sessions = [
             _session(
                 report,

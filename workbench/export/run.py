@@ -62,7 +62,7 @@ class ExportedClip:
         return {
             "stem": self.plan.stem,
             **self.plan.record(),
-            "source": str(report.log),
+            "source": str(report.log) if report.request is None else report.request.location,
             "drive_sha256": report.drive_hash,
             "messages": self.messages,
             "messages_per_topic": dict(sorted(self.per_topic.items())),

@@ -47,6 +47,9 @@ class IncidentRequest:
             the loaders' default).
         options: Each registered engine's options object by engine name (an engine missing
             here runs with its defaults).
+        url: The drive's fsspec URL when it is not a local path (``workbench batch``): the
+            batch task fetches it where it runs and evaluates the local copy, ``log``
+            (until then ``log`` is the URL's last component and is not opened).
     """
 
     log: Path
@@ -58,6 +61,12 @@ class IncidentRequest:
     settings: IncidentSettings = field(default_factory=IncidentSettings)
     ego_size: EgoSize | None = None
     options: Mapping[str, Any] = field(default_factory=dict)
+    url: str | None = None
+
+    @property
+    def location(self) -> str:
+        """The drive as its user named it: the URL, else the path."""
+        return str(self.log) if self.url is None else self.url
 
     def options_of(self, name: str) -> Any:
         """Engine ``name``'s options object (its defaults when the request has none)."""

@@ -17,6 +17,7 @@ import os
 import random
 import shutil
 import signal
+import socket
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -27,7 +28,16 @@ from workbench.batch import evaluate_log
 if TYPE_CHECKING:
     from workbench.incidents import IncidentRequest
 
-__all__ = ["BAD", "GOOD", "ROOT", "die_once", "drive_rows", "incident_rows", "make_fleet"]
+__all__ = [
+    "BAD",
+    "GOOD",
+    "ROOT",
+    "die_once",
+    "drive_rows",
+    "free_port",
+    "incident_rows",
+    "make_fleet",
+]
 
 ROOT = Path(__file__).resolve().parents[3]
 SAMPLES = ROOT / "sample_logs"
@@ -83,3 +93,10 @@ def die_once(marker: str, request: IncidentRequest) -> dict[str, Any]:
     os.close(fd)
     os.kill(os.getpid(), signal.SIGKILL)
     raise AssertionError("unreachable")
+
+
+def free_port() -> int:
+    """A TCP port free on 127.0.0.1 now."""
+    with socket.socket() as sock:
+        sock.bind(("127.0.0.1", 0))
+        return int(sock.getsockname()[1])

@@ -183,7 +183,8 @@ def test_log_arguments_expand_to_drives(tmp_path: Path) -> None:
     from workbench.batch import BatchError, expand_logs  # noqa: PLC0415
 
     samples = ROOT / "sample_logs"
-    found = expand_logs([str(samples)])
+    found = [p for p in expand_logs([str(samples)]) if isinstance(p, Path)]
+    assert found == expand_logs([str(samples)])  # paths, no URL
     names = [p.name for p in found]
     assert "highway_cut_in_rosbag2" in names  # a rosbag2 directory is one drive
     assert not [n for n in names if n.endswith((".db3", ".osm", ".json"))]

@@ -1,13 +1,16 @@
-"""The same batch on a stand-alone Dask cluster (scheduler + 2 workers on 127.0.0.1) and on
-a local Ray instance: the same tables as the process pool, a killed worker changes nothing.
+"""The same batch on a stand-alone Dask cluster (scheduler + 2 workers on 127.0.0.1), on a
+local Ray instance and on a Ray head (`ray start --head`, 127.0.0.1) through Ray Client
+(``ray://``): the same tables as the process pool, a killed worker changes nothing.
 """
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import json
 import os
 import signal
+import socket
 import subprocess
 import sys
 import time
@@ -22,6 +25,7 @@ from tests.workbench.batch.drives import (
     ROOT,
     die_once,
     drive_rows,
+    free_port,
     incident_rows,
 )
 from tests.workbench.cli_runs import run_workbench
@@ -40,11 +44,13 @@ def logs(fleet: Path) -> list[str]:
     return [str(fleet / name) for name in (*GOOD, *BAD)]
 
 
-def _spawn(args: list[str], log: Path) -> subprocess.Popen[bytes]:
-    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+def _spawn(
+    args: list[str], log: Path, program: str = "dask", **env_vars: str
+) -> subprocess.Popen[bytes]:
+    env = {**os.environ, "PYTHONPATH": str(ROOT), **env_vars}
     with log.open("wb") as fh:
-        return subprocess.Popen(  # noqa: S603 - the venv's own dask
-            [str(Path(sys.executable).with_name("dask")), *args],
+        return subprocess.Popen(  # noqa: S603 - the venv's own dask or ray
+            [str(Path(sys.executable).with_name(program)), *args],
             env=env,
             stdout=fh,
             stderr=subprocess.STDOUT,
@@ -147,3 +153,42 @@ def test_ray_local_gives_the_same_tables(logs: list[str], full: Path, tmp_path: 
     assert {n: d["status"] for n, d in drives.items()} == {
         n: d["status"] for n, d in drive_rows(full).items()
     }
+
+
+@pytest.fixture(scope="module")
+def ray_head(tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
+    """``ray://127.0.0.1:PORT`` of a Ray head (``ray start --head --block``) on 127.0.0.1."""
+    folder = tmp_path_factory.mktemp("ray")
+    client_port = free_port()
+    args = ["start", "--head", "--block", "--node-ip-address", "127.0.0.1"]
+    args += ["--port", str(free_port()), "--ray-client-server-port", str(client_port)]
+    args += ["--num-cpus", "2", "--include-dashboard", "false", "--disable-usage-stats"]
+    # Ray's single-machine mode: its servers listen on 127.0.0.1, not the network address.
+    head = _spawn(args, folder / "head.log", "ray", RAY_ENABLE_WINDOWS_OR_OSX_CLUSTER="0")
+    try:
+        deadline = time.monotonic() + START_TIMEOUT_S
+        while time.monotonic() < deadline and head.poll() is None:
+            with contextlib.suppress(OSError), socket.create_connection(("127.0.0.1", client_port)):
+                break
+            time.sleep(0.5)
+        assert head.poll() is None, (folder / "head.log").read_text()
+        yield f"ray://127.0.0.1:{client_port}"
+    finally:
+        _stop([head])  # SIGTERM: `ray start --block` drains and stops its processes
+
+
+def test_ray_client_gives_the_same_tables(
+    logs: list[str], full: Path, ray_head: str, tmp_path: Path
+) -> None:
+    out = tmp_path / "ray-client"
+    args = ["batch", *logs, "--out", str(out), "--cluster", ray_head, "--engines", "rss"]
+    assert run_workbench(args) == 0
+    assert incident_rows(out) == incident_rows(full)
+    timing = ("wall_s", "worker")
+    drives, expected = drive_rows(out), drive_rows(full)
+    assert drives.keys() == expected.keys()
+    for name, row in drives.items():
+        assert {k: v for k, v in row.items() if k not in timing} == {
+            k: v for k, v in expected[name].items() if k not in timing
+        }
+    assert json.loads((out / "batch.json").read_text())["executor"] == f"ray {ray_head}"

@@ -4,12 +4,12 @@ from __future__ import annotations
 
 import contextlib
 import json
-import socket
 from typing import TYPE_CHECKING, Any
 
 import pytest
 import rerun as rr
 
+from tests.workbench.batch.drives import free_port
 from tests.workbench.cli_runs import run_workbench
 from workbench.annotations.store import LabelStore
 from workbench.batch.queue import load_queue
@@ -29,12 +29,6 @@ def _no_evaluation(*_args: Any, **_kwargs: Any) -> Any:
 def _no_find(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr("workbench.incidents.find_incidents", _no_evaluation)
     monkeypatch.setattr("workbench.incidents.find.find_incidents", _no_evaluation)
-
-
-def _free_port() -> int:
-    with socket.socket() as sock:
-        sock.bind(("127.0.0.1", 0))
-        return int(sock.getsockname()[1])
 
 
 def test_review_of_a_results_dir_is_one_queue_worst_first_across_drives(
@@ -123,7 +117,7 @@ def test_review_of_a_results_dir_opens_each_drive_when_its_incident_comes_up(
     monkeypatch.setattr(loop, "replayed", counted)
     monkeypatch.setattr(loop, "run_review", reviewer)
     sink = rr.RecordingStream("fleet-review-test")  # an in-process gRPC proxy as the viewer
-    url = rr.serve_grpc(grpc_port=_free_port(), recording=sink)
+    url = rr.serve_grpc(grpc_port=free_port(), recording=sink)
     store = ["--store", str(tmp_path / "labels.sqlite")]
     assert run_workbench(["review", str(full), "--connect", url, *store]) == 0
     changes = [d for k, d in enumerate(walked) if k == 0 or walked[k - 1] != d]
