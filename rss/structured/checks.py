@@ -16,9 +16,12 @@ import numpy as np
 from rss.model import ConstellationType
 from rss.physics import DISTANCE_MAX_M, DISTANCE_PRECISION, gt
 from rss.structured.formulas import (
-    dynamics_rows,
+    LATERAL_FIELDS,
+    OPPOSITE_FIELDS,
+    SAME_FOLLOWER_FIELDS,
+    SAME_LEADER_FIELDS,
     pick,
-    pick_rows,
+    pick_fields,
     safe_lateral_distance,
     safe_longitudinal_distance_opposite,
     safe_longitudinal_distance_same,
@@ -34,7 +37,7 @@ from rss.structured.states import (
 
 if TYPE_CHECKING:
     from rss.arrays import BoolArray, FloatArray, IntArray
-    from rss.structured.batch import ConstellationBatch
+    from rss.structured.batch import ConstellationBatch, DynamicsArrays
     from rss.structured.extraction import Relative
 
 __all__ = ["IntersectionState", "LateralSide", "RawStates", "check_all"]
@@ -90,15 +93,15 @@ class RawStates:
 
 
 def _longitudinal(
-    batch: ConstellationBatch, rel: Relative, ego_d: FloatArray, oth_d: FloatArray
+    batch: ConstellationBatch, rel: Relative, ego_d: DynamicsArrays, oth_d: DynamicsArrays
 ) -> tuple[BoolArray, IntArray, IntArray, FloatArray]:
     ego, oth = batch.ego, batch.other
     # same direction
     ego_leads = rel.lon_position <= int(LongitudinalPosition.OverlapFront)  # InFront, OverlapFront
     sd_safe_dist = safe_longitudinal_distance_same(
-        pick_rows(ego_leads, oth_d, ego_d),
+        pick_fields(ego_leads, oth_d, ego_d, SAME_FOLLOWER_FIELDS),
         pick(ego_leads, oth.speed_lon_max_mps, ego.speed_lon_max_mps),
-        pick_rows(ego_leads, ego_d, oth_d),
+        pick_fields(ego_leads, ego_d, oth_d, SAME_LEADER_FIELDS),
         pick(ego_leads, ego.speed_lon_min_mps, oth.speed_lon_min_mps),
     )
     sd_eval = np.where(
@@ -113,9 +116,9 @@ def _longitudinal(
     od_safe_dist = sd_safe_dist
     if opposite.any():
         od_safe_dist = safe_longitudinal_distance_opposite(
-            pick_rows(ego_correct, ego_d, oth_d),
+            pick_fields(ego_correct, ego_d, oth_d, OPPOSITE_FIELDS),
             pick(ego_correct, ego.speed_lon_max_mps, oth.speed_lon_max_mps),
-            pick_rows(ego_correct, oth_d, ego_d),
+            pick_fields(ego_correct, oth_d, ego_d, OPPOSITE_FIELDS),
             pick(ego_correct, oth.speed_lon_max_mps, ego.speed_lon_max_mps),
         )
     od_eval = np.where(
@@ -132,16 +135,16 @@ def _longitudinal(
 
 
 def _lateral(
-    batch: ConstellationBatch, rel: Relative, ego_d: FloatArray, oth_d: FloatArray
+    batch: ConstellationBatch, rel: Relative, ego_d: DynamicsArrays, oth_d: DynamicsArrays
 ) -> tuple[LateralSide, LateralSide]:
     ego, oth = batch.ego, batch.other
     ego_left = rel.lat_position == LateralPosition.AtLeft
     ego_right = rel.lat_position == LateralPosition.AtRight
     # only one side is evaluated per pair: left vehicle = ego if it is AtLeft, else the other
     safe_dist = safe_lateral_distance(
-        pick_rows(ego_left, ego_d, oth_d),
+        pick_fields(ego_left, ego_d, oth_d, LATERAL_FIELDS),
         pick(ego_left, ego.speed_lat_max_mps, oth.speed_lat_max_mps),
-        pick_rows(ego_left, oth_d, ego_d),
+        pick_fields(ego_left, oth_d, ego_d, LATERAL_FIELDS),
         pick(ego_left, oth.speed_lat_min_mps, ego.speed_lat_min_mps),
     )
     gap_safe = gt(rel.lat_distance_m, safe_dist, _P)
@@ -178,8 +181,7 @@ def check_all(batch: ConstellationBatch, rel: Relative) -> RawStates:
     Returns:
         Raw states; NotRelevant constellations are safe with evaluator None.
     """
-    # the dynamics as (D, C) rows once: every row-wise pick is one np.where
-    ego_d, oth_d = dynamics_rows(batch.ego_dynamics), dynamics_rows(batch.other_dynamics)
+    ego_d, oth_d = batch.ego_dynamics, batch.other_dynamics
     lon_safe, lon_resp, lon_eval, lon_safe_dist = _longitudinal(batch, rel, ego_d, oth_d)
     left, right = _lateral(batch, rel, ego_d, oth_d)
     ctype = batch.constellation_type
