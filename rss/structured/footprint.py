@@ -169,7 +169,12 @@ def place(obj: ObjectArrays, table: LaneTable) -> Extents:
     c, k = obj.region_lane_id.shape
     hit, idx = _find_lanes(obj.region_lane_id, table.lane_id)
     width = table.lane_id.shape[0]
-    params = (obj.region_lon_min, obj.region_lon_max, obj.region_lat_min, obj.region_lat_max)
+    params: tuple[FloatArray, ...] = (
+        obj.region_lon_min,
+        obj.region_lon_max,
+        obj.region_lat_min,
+        obj.region_lat_max,
+    )
     rows = np.arange(c)[:, None]
     if k > 1:
         # ad-rss walks the road area segment by segment, lane by lane, and merges each
