@@ -22,7 +22,7 @@ from rss.structured.states import InvalidReason, LateralPosition, LongitudinalPo
 
 if TYPE_CHECKING:
     from rss.arrays import BoolArray, FloatArray, IntArray
-    from rss.structured.batch import ConstellationBatch
+    from rss.structured.batch import ConstellationBatch, ObjectArrays
 
 __all__ = ["Relative", "extract", "relative_position"]
 
@@ -126,49 +126,86 @@ def _distances_to_intersection(ext: Extents) -> tuple[FloatArray, FloatArray]:
     return enter, leave
 
 
+def _any_column(flags: BoolArray) -> BoolArray:
+    """``flags.any(axis=1)`` of ``(C, K)`` flags, one step per column (K is a handful)."""
+    out = flags[:, 0].copy()
+    for k in range(1, flags.shape[1]):
+        out |= flags[:, k]
+    return out
+
+
+def _object_problems(obj: ObjectArrays) -> tuple[BoolArray, BoolArray, BoolArray]:
+    """``(bad region, bad speed, not finite)`` per object, ``(C,)`` each."""
+    speeds = (
+        obj.speed_lon_min_mps,
+        obj.speed_lon_max_mps,
+        obj.speed_lat_min_mps,
+        obj.speed_lat_max_mps,
+    )
+    used = obj.region_lane_id >= 0
+    # unused region slots count as 0.5 (in range, finite)
+    params = [
+        np.where(used, p, 0.5)
+        for p in (obj.region_lon_min, obj.region_lon_max, obj.region_lat_min, obj.region_lat_max)
+    ]
+    with np.errstate(invalid="ignore"):
+        bad_speed = obj.speed_lon_min_mps < 0.0
+        bad_speed |= obj.speed_lon_max_mps < obj.speed_lon_min_mps
+        bad_speed |= obj.speed_lon_max_mps > _SPEED_LIMIT_MPS
+        bad_speed |= obj.speed_lat_min_mps < -_SPEED_LIMIT_MPS
+        bad_speed |= obj.speed_lat_max_mps < obj.speed_lat_min_mps
+        bad_speed |= obj.speed_lat_max_mps > _SPEED_LIMIT_MPS
+        bad = params[0] > params[1]
+        bad |= params[2] > params[3]
+        finite = np.isfinite(params[0])
+        for p in params:
+            bad |= p < -_PARAM_EPS
+            bad |= p > 1.0 + _PARAM_EPS
+            finite &= np.isfinite(p)
+    not_finite = ~_all_column(finite)
+    for v in speeds:
+        not_finite |= ~np.isfinite(v)
+    return _any_column(bad), bad_speed, not_finite
+
+
+def _all_column(flags: BoolArray) -> BoolArray:
+    """``flags.all(axis=1)`` of ``(C, K)`` flags, one step per column."""
+    out = flags[:, 0].copy()
+    for k in range(1, flags.shape[1]):
+        out &= flags[:, k]
+    return out
+
+
 def _invalid_objects(batch: ConstellationBatch) -> IntArray:
     reason = np.zeros(batch.size, dtype=np.int64)
+    # the other object's problems first, the ego's override them; within an object a
+    # non-finite value overrides a bad speed, which overrides a bad region
     for obj in (batch.other, batch.ego):
-        speeds = np.stack(
-            [
-                obj.speed_lon_min_mps,
-                obj.speed_lon_max_mps,
-                obj.speed_lat_min_mps,
-                obj.speed_lat_max_mps,
-            ]
-        )
-        used = obj.region_lane_id >= 0
-        params = np.stack(
-            [obj.region_lon_min, obj.region_lon_max, obj.region_lat_min, obj.region_lat_max]
-        )
-        params = np.where(used, params, 0.5)
-        with np.errstate(invalid="ignore"):
-            bad_speed = (
-                (obj.speed_lon_min_mps < 0.0)
-                | (obj.speed_lon_max_mps < obj.speed_lon_min_mps)
-                | (obj.speed_lon_max_mps > _SPEED_LIMIT_MPS)
-                | (obj.speed_lat_min_mps < -_SPEED_LIMIT_MPS)
-                | (obj.speed_lat_max_mps < obj.speed_lat_min_mps)
-                | (obj.speed_lat_max_mps > _SPEED_LIMIT_MPS)
-            )
-            bad_region = (
-                ((params < -_PARAM_EPS) | (params > 1.0 + _PARAM_EPS)).any(axis=0)
-                | (params[0] > params[1])
-                | (params[2] > params[3])
-            ).any(axis=1)
-        reason = np.where(bad_region, InvalidReason.RegionOutOfRange, reason)
-        reason = np.where(bad_speed, InvalidReason.SpeedOutOfRange, reason)
-        finite = np.isfinite(speeds).all(axis=0) & np.isfinite(params).all(axis=(0, 2))
-        reason = np.where(~finite, InvalidReason.NonFiniteValue, reason)
+        for flags, code in zip(
+            _object_problems(obj),
+            (
+                InvalidReason.RegionOutOfRange,
+                InvalidReason.SpeedOutOfRange,
+                InvalidReason.NonFiniteValue,
+            ),
+            strict=True,
+        ):
+            if flags.any():
+                reason[flags] = code
     other_type = batch.other.object_type
-    bad_type = (
-        (batch.ego.object_type != ObjectType.EgoVehicle)
-        | (other_type == ObjectType.Invalid)
-        | (other_type == ObjectType.EgoVehicle)
-    )
-    reason = np.where(bad_type & (reason == 0), InvalidReason.InvalidObjectType, reason)
+    bad_type = batch.ego.object_type != ObjectType.EgoVehicle
+    bad_type |= other_type == ObjectType.Invalid
+    bad_type |= other_type == ObjectType.EgoVehicle
+    unset = reason == 0
+    if bad_type.any():
+        bad_type &= unset
+        reason[bad_type] = InvalidReason.InvalidObjectType
+        unset &= ~bad_type
     same = batch.ego.object_id == batch.other.object_id
-    return np.where(same & (reason == 0), InvalidReason.SameObjectIds, reason).astype(np.int64)
+    same &= unset
+    if same.any():
+        reason[same] = InvalidReason.SameObjectIds
+    return reason
 
 
 def _other_extents(
