@@ -105,12 +105,11 @@ def _runs(memory: RssMemory, batch: ConstellationBatch, frame: IntArray) -> _Run
     ctype = np.concatenate([memory.constellation_type, batch.constellation_type])
     when = np.concatenate([np.full(m, -1, dtype=np.int64), frame])
     order_all = np.lexsort((when, ctype, other, ego))
-    same_key = np.zeros(order_all.size, dtype=np.bool_)
-    same_key[1:] = (
-        (ego[order_all[1:]] == ego[order_all[:-1]])
-        & (other[order_all[1:]] == other[order_all[:-1]])
-        & (ctype[order_all[1:]] == ctype[order_all[:-1]])
-    )
+    same_key = np.ones(order_all.size, dtype=np.bool_)
+    same_key[:1] = False
+    for part in (ego, other, ctype):  # each key part gathered once in sorted order
+        ordered = part.take(order_all)
+        same_key[1:] &= ordered[1:] == ordered[:-1]
     prev_row = np.concatenate([[-1], order_all[:-1]])
     is_batch = order_all >= m
     # the memory row directly before a key's frame-0 row is its initial memory
