@@ -135,11 +135,9 @@ def _object_problems(obj: ObjectArrays) -> tuple[BoolArray, BoolArray, BoolArray
         obj.speed_lat_max_mps,
     )
     used = obj.region_lane_id >= 0
-    # unused region slots count as 0.5 (in range, finite)
-    params = [
-        np.where(used, p, 0.5)
-        for p in (obj.region_lon_min, obj.region_lon_max, obj.region_lat_min, obj.region_lat_max)
-    ]
+    params = [obj.region_lon_min, obj.region_lon_max, obj.region_lat_min, obj.region_lat_max]
+    if not used.all():  # unused region slots count as 0.5 (in range, finite)
+        params = [np.where(used, p, 0.5) for p in params]
     with np.errstate(invalid="ignore"):
         bad_speed = obj.speed_lon_min_mps < 0.0
         bad_speed |= obj.speed_lon_max_mps < obj.speed_lon_min_mps

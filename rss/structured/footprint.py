@@ -203,7 +203,8 @@ def place(obj: ObjectArrays, table: LaneTable) -> Extents:
     if k > 1:
         merged = _merge(bounds, hit, _BOUND_SIGN)
     else:  # one region per object: no reduction over regions needed
-        merged = bounds[:, :, 0] + np.where(hit[:, 0], 0.0, np.nan)
+        # + 0.0 as the merge's result (-0.0 becomes 0.0), NaN where the region is not found
+        merged = bounds[:, :, 0] + (0.0 if hit.all() else np.where(hit[:, 0], 0.0, np.nan))
     return Extents(
         lon_min_m=merged[0],
         lon_max_m=merged[1],
