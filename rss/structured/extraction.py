@@ -17,7 +17,14 @@ import numpy as np
 from rss.model import ConstellationType, ObjectType
 from rss.physics import DISTANCE_PRECISION, gt
 from rss.structured.batch import take_rows
-from rss.structured.footprint import Extents, LaneTable, lane_table, object_extents, place
+from rss.structured.footprint import (
+    Extents,
+    LaneTable,
+    any_column,
+    lane_table,
+    object_extents,
+    place,
+)
 from rss.structured.states import InvalidReason, LateralPosition, LongitudinalPosition
 
 if TYPE_CHECKING:
@@ -118,14 +125,6 @@ def _distances_to_intersection(ext: Extents) -> tuple[FloatArray, FloatArray]:
     return enter, leave
 
 
-def _any_column(flags: BoolArray) -> BoolArray:
-    """``flags.any(axis=1)`` of ``(C, K)`` flags, one step per column (K is a handful)."""
-    out = flags[:, 0].copy()
-    for k in range(1, flags.shape[1]):
-        out |= flags[:, k]
-    return out
-
-
 def _object_problems(obj: ObjectArrays) -> tuple[BoolArray, BoolArray, BoolArray]:
     """``(bad region, bad speed, not finite)`` per object, ``(C,)`` each."""
     speeds = (
@@ -152,18 +151,10 @@ def _object_problems(obj: ObjectArrays) -> tuple[BoolArray, BoolArray, BoolArray
             bad |= p < -_PARAM_EPS
             bad |= p > 1.0 + _PARAM_EPS
             finite &= np.isfinite(p)
-    not_finite = ~_all_column(finite)
+    not_finite = any_column(~finite)
     for v in speeds:
         not_finite |= ~np.isfinite(v)
-    return _any_column(bad), bad_speed, not_finite
-
-
-def _all_column(flags: BoolArray) -> BoolArray:
-    """``flags.all(axis=1)`` of ``(C, K)`` flags, one step per column."""
-    out = flags[:, 0].copy()
-    for k in range(1, flags.shape[1]):
-        out &= flags[:, k]
-    return out
+    return any_column(bad), bad_speed, not_finite
 
 
 def _invalid_objects(batch: ConstellationBatch) -> IntArray:

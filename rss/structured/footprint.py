@@ -21,7 +21,7 @@ if TYPE_CHECKING:
     from rss.arrays import BoolArray, FloatArray, IntArray
     from rss.structured.batch import ObjectArrays, RoadAreaArrays
 
-__all__ = ["Extents", "LaneTable", "lane_table", "object_extents", "place"]
+__all__ = ["Extents", "LaneTable", "any_column", "lane_table", "object_extents", "place"]
 
 
 @dataclass(frozen=True)
@@ -210,16 +210,16 @@ def place(obj: ObjectArrays, table: LaneTable) -> Extents:
         lon_max_m=merged[1],
         lat_min_m=merged[2],
         lat_max_m=merged[3],
-        on_positive_lane=_any_region(hit & (direction == LaneDrivingDirection.Positive)),
-        on_negative_lane=_any_region(hit & (direction == LaneDrivingDirection.Negative)),
-        found=_any_region(hit),
+        on_positive_lane=any_column(hit & (direction == LaneDrivingDirection.Positive)),
+        on_negative_lane=any_column(hit & (direction == LaneDrivingDirection.Negative)),
+        found=any_column(hit),
         intersection_min_m=table.intersection_min_m,
         intersection_max_m=table.intersection_max_m,
     )
 
 
-def _any_region(flags: BoolArray) -> BoolArray:
-    """``flags.any(axis=1)`` of ``(C, K)`` flags, one step per region slot."""
+def any_column(flags: BoolArray) -> BoolArray:
+    """``flags.any(axis=1)`` of ``(C, K)`` flags, one step per column (K is a handful)."""
     out = flags[:, 0].copy()
     for k in range(1, flags.shape[1]):
         out |= flags[:, k]

@@ -88,8 +88,15 @@ def _may_share(frame: IntArray, batch: ConstellationBatch, rows: IntArray) -> bo
     One sort of a 64-bit mix of the four: equal keys give equal mixes, so False is exact;
     True only asks for the exact comparison.
     """
-    parts = (frame, batch.ego.object_id[rows], batch.other.object_id[rows])
-    mixed = batch.constellation_type[rows].astype(np.uint64) * np.uint64(_MIX[3])
+    columns: tuple[IntArray, ...] = (
+        batch.ego.object_id,
+        batch.other.object_id,
+        batch.constellation_type,
+    )
+    if rows.size < batch.size:
+        columns = tuple(column[rows] for column in columns)
+    parts = (frame, columns[0], columns[1])
+    mixed = columns[2].astype(np.uint64) * np.uint64(_MIX[3])
     for part, factor in zip(parts, _MIX, strict=False):
         term = part.astype(np.uint64)
         term *= np.uint64(factor)
