@@ -31,7 +31,6 @@ __all__ = [
     "dynamics_rows",
     "pick",
     "pick_fields",
-    "pick_rows",
     "safe_lateral_distance",
     "safe_longitudinal_distance_opposite",
     "safe_longitudinal_distance_same",
@@ -43,18 +42,9 @@ _DYNAMICS_FIELDS = tuple(f.name for f in dataclasses.fields(DynamicsArrays))
 
 
 def dynamics_rows(dyn: DynamicsArrays) -> FloatArray:
-    """``(D, C)``: the fields of ``dyn`` stacked in dataclass order (see :func:`pick_rows`)."""
+    """``(D, C)``: the fields of ``dyn`` stacked in dataclass order."""
     out: FloatArray = np.array([getattr(dyn, name) for name in _DYNAMICS_FIELDS])
     return out
-
-
-def pick_rows(mask: BoolArray, a: FloatArray, b: FloatArray) -> DynamicsArrays:
-    """Row-wise choice between two :func:`dynamics_rows` (``a`` where ``mask``).
-
-    One ``np.where`` over all fields, not one per field.
-    """
-    chosen = np.where(mask, a, b)
-    return DynamicsArrays(**dict(zip(_DYNAMICS_FIELDS, chosen, strict=True)))
 
 
 def pick_fields(

@@ -15,7 +15,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 import pytest
 
-from rss.structured.batch import readonly_ints
+from rss.structured import formulas
+from rss.structured.batch import DynamicsArrays, readonly_ints
 from rss.structured.extraction import relative_position
 from rss.structured.merge import _may_share
 from rss.structured.scalar_extract import relative_position as scalar_relative_position
@@ -96,3 +97,58 @@ def test_may_share_finds_every_repeated_key() -> None:
     assert not _may_share(split, batch, rows)
     # rows left out of the selection do not count
     assert not _may_share(frames[rows != 17], batch, rows[rows != 17])
+
+
+def _dynamics(rng: np.random.Generator, n: int) -> DynamicsArrays:
+    brake_max = rng.uniform(-10.0, -6.0, n)
+    brake_min = rng.uniform(-6.0, -3.0, n)
+    return DynamicsArrays(
+        accel_max_mps2=rng.choice([0.0, 2.0, 3.5], n),
+        brake_max_mps2=brake_max,
+        brake_min_mps2=brake_min,
+        brake_min_correct_mps2=rng.uniform(-3.0, -1.0, n),
+        lat_accel_max_mps2=rng.choice([0.0, 0.2, 1.0], n),
+        lat_brake_min_mps2=rng.uniform(-1.5, -0.5, n),
+        lateral_fluctuation_margin_m=rng.uniform(0.0, 0.3, n),
+        response_time_s=rng.uniform(0.2, 2.0, n),
+        max_speed_on_acceleration_mps=rng.uniform(5.0, 40.0, n),
+        min_longitudinal_safety_distance_m=rng.uniform(0.0, 2.0, n),
+    )
+
+
+def _only(dyn: DynamicsArrays, names: tuple[str, ...]) -> DynamicsArrays:
+    """``dyn`` with every field but ``names`` NaN (a formula reading one shows NaN)."""
+    nan = np.full(dyn.response_time_s.shape, np.nan)
+    fields = {
+        f.name: getattr(dyn, f.name) if f.name in names else nan for f in dataclasses.fields(dyn)
+    }
+    return DynamicsArrays(**fields)
+
+
+def test_field_lists_name_everything_the_formulas_read() -> None:
+    # pick_fields picks only the named fields: a formula reading another one would get the
+    # wrong party's value there, so each list must cover what its formula reads
+    rng = np.random.default_rng(11)
+    n = 500
+    a, b = _dynamics(rng, n), _dynamics(rng, n)
+    v1, v2 = rng.uniform(0.0, 30.0, n), rng.uniform(-2.0, 2.0, n)
+    same = formulas.safe_longitudinal_distance_same
+    opposite = formulas.safe_longitudinal_distance_opposite
+    lateral = formulas.safe_lateral_distance
+    checks = [
+        (same, formulas.SAME_FOLLOWER_FIELDS, formulas.SAME_LEADER_FIELDS, v1),
+        (opposite, formulas.OPPOSITE_FIELDS, formulas.OPPOSITE_FIELDS, v1),
+        (lateral, formulas.LATERAL_FIELDS, formulas.LATERAL_FIELDS, v2),
+    ]
+    for formula, first, second, speed in checks:
+        full = formula(a, speed, b, speed[::-1])
+        reduced = formula(_only(a, first), speed, _only(b, second), speed[::-1])
+        assert np.isfinite(full).all()
+        np.testing.assert_allclose(reduced, full, rtol=0.0, atol=0.0)
+    mask = rng.random(n) < 0.5
+    picked = formulas.pick_fields(mask, a, b, formulas.LATERAL_FIELDS)
+    for name in formulas.LATERAL_FIELDS:
+        assert (
+            getattr(picked, name).tolist()
+            == np.where(mask, getattr(a, name), getattr(b, name)).tolist()
+        )
