@@ -122,7 +122,7 @@ def lane_table(road: RoadAreaArrays) -> LaneTable:
     if is_intersection.any():
         i_min, i_max = _intersection_area(road, is_intersection, seg_len, seg_start)
     else:  # no intersecting area in any road area
-        i_min = i_max = np.full(c, np.nan)
+        i_min, i_max = np.full(c, np.nan), np.full(c, np.nan)
     return LaneTable(
         lane_id=np.ascontiguousarray(road.lane_id.reshape(c, r * n_lanes).T),
         direction=road.driving_direction.reshape(c, r * n_lanes),
