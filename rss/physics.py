@@ -109,17 +109,23 @@ def accelerated_limited_movement(
     Returns:
         ``(v1, d)``: final speed [m/s] and travelled distance [m].
     """
-    v1 = speed_mps + accel_mps2 * duration_s
-    v1 = np.where(le(v1, 0.0, SPEED_PRECISION), 0.0, v1)
-    cap = tmax(max_speed_mps, speed_mps, SPEED_PRECISION)
-    v1 = tmin(cap, v1, SPEED_PRECISION)
-    no_accel = eq(accel_mps2, 0.0, ACCELERATION_PRECISION)
-    safe_a = np.where(no_accel, 1.0, accel_mps2)
-    t_acc = np.where(no_accel, 0.0, (v1 - speed_mps) / safe_a)
+    v1 = np.asarray(speed_mps + accel_mps2 * duration_s, dtype=np.float64)
+    # the tolerant comparisons against 0 compare the value itself (x - 0.0 is x)
+    v1 = np.where(v1 < SPEED_PRECISION, 0.0, v1)  # le(v1, 0)
+    # the cap is tmax(max_speed, speed), then v1 becomes tmin(cap, v1)
+    cap = np.where(
+        np.subtract(speed_mps, max_speed_mps) >= SPEED_PRECISION, speed_mps, max_speed_mps
+    )
+    v1 = np.where(np.subtract(cap, v1) >= SPEED_PRECISION, v1, cap)
+    gained = v1 - speed_mps
+    no_accel = np.abs(accel_mps2) < ACCELERATION_PRECISION  # eq(accel, 0)
+    if np.any(no_accel):
+        safe_a = np.where(no_accel, 1.0, accel_mps2)
+        t_acc = np.where(no_accel, 0.0, gained / safe_a)
+    else:
+        t_acc = gained / accel_mps2
     distance = (
-        speed_mps * duration_s
-        + 0.5 * accel_mps2 * t_acc * t_acc
-        + (v1 - speed_mps) * (duration_s - t_acc)
+        speed_mps * duration_s + 0.5 * accel_mps2 * t_acc * t_acc + gained * (duration_s - t_acc)
     )
     return np.asarray(v1, dtype=np.float64), np.asarray(distance, dtype=np.float64)
 
@@ -134,16 +140,19 @@ def stopping_distance(speed_mps: FloatArray, decel_mps2: FloatArray) -> FloatArr
     Returns:
         Signed stopping distance [m] (sign of the speed).
     """
-    safe = np.where(decel_mps2 == 0.0, -1.0, decel_mps2)
-    return np.asarray(
-        np.where(decel_mps2 == 0.0, 0.0, speed_mps * speed_mps / (-2.0 * safe)), dtype=np.float64
-    )
+    zero = np.equal(decel_mps2, 0.0)
+    if not np.any(zero):
+        return np.asarray(speed_mps * speed_mps / (-2.0 * decel_mps2), dtype=np.float64)
+    safe = np.where(zero, -1.0, decel_mps2)
+    return np.asarray(np.where(zero, 0.0, speed_mps * speed_mps / (-2.0 * safe)), dtype=np.float64)
 
 
 def _stop_if_moving_against(speed_mps: FloatArray, decel_mps2: FloatArray) -> FloatArray:
     """Stopping distance, applied only when speed and deceleration have different sign bits."""
-    moving_against = np.signbit(speed_mps) != np.signbit(decel_mps2)
-    return np.where(moving_against, stopping_distance(speed_mps, decel_mps2), 0.0)
+    moving_along = np.signbit(speed_mps) == np.signbit(decel_mps2)
+    distance = stopping_distance(speed_mps, decel_mps2)  # a fresh array of the broadcast shape
+    distance[moving_along] = 0.0
+    return distance
 
 
 def stated_braking_longitudinal(

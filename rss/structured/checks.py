@@ -16,9 +16,12 @@ import numpy as np
 from rss.model import ConstellationType
 from rss.physics import DISTANCE_MAX_M, DISTANCE_PRECISION, gt
 from rss.structured.formulas import (
-    dynamics_rows,
+    LATERAL_FIELDS,
+    OPPOSITE_FIELDS,
+    SAME_FOLLOWER_FIELDS,
+    SAME_LEADER_FIELDS,
     pick,
-    pick_rows,
+    pick_fields,
     safe_lateral_distance,
     safe_longitudinal_distance_opposite,
     safe_longitudinal_distance_same,
@@ -34,7 +37,7 @@ from rss.structured.states import (
 
 if TYPE_CHECKING:
     from rss.arrays import BoolArray, FloatArray, IntArray
-    from rss.structured.batch import ConstellationBatch
+    from rss.structured.batch import ConstellationBatch, DynamicsArrays
     from rss.structured.extraction import Relative
 
 __all__ = ["IntersectionState", "LateralSide", "RawStates", "check_all"]
@@ -89,83 +92,110 @@ class RawStates:
     intersection_state: IntArray
 
 
+#: Codes as plain ints (an enum member costs an attribute look-up and a conversion per use).
+_SD_EGO_FRONT = int(_E.LongitudinalDistanceSameDirectionEgoFront)
+_SD_OTHER_FRONT = int(_E.LongitudinalDistanceSameDirectionOtherInFront)
+_OD_CORRECT = int(_E.LongitudinalDistanceOppositeDirectionEgoCorrectLane)
+_OD = int(_E.LongitudinalDistanceOppositeDirection)
+_LAT_EVAL = int(_E.LateralDistance)
+_BRAKE_MIN = int(_LON.BrakeMin)
+_BRAKE_MIN_CORRECT = int(_LON.BrakeMinCorrect)
+_LAT_BRAKE_MIN = int(_LAT.BrakeMin)
+
+
 def _longitudinal(
-    batch: ConstellationBatch, rel: Relative, ego_d: FloatArray, oth_d: FloatArray
+    batch: ConstellationBatch, rel: Relative, ego_d: DynamicsArrays, oth_d: DynamicsArrays
 ) -> tuple[BoolArray, IntArray, IntArray, FloatArray]:
     ego, oth = batch.ego, batch.other
     # same direction
     ego_leads = rel.lon_position <= int(LongitudinalPosition.OverlapFront)  # InFront, OverlapFront
-    sd_safe_dist = safe_longitudinal_distance_same(
-        pick_rows(ego_leads, oth_d, ego_d),
+    safe_dist = safe_longitudinal_distance_same(
+        pick_fields(ego_leads, oth_d, ego_d, SAME_FOLLOWER_FIELDS),
         pick(ego_leads, oth.speed_lon_max_mps, ego.speed_lon_max_mps),
-        pick_rows(ego_leads, ego_d, oth_d),
+        pick_fields(ego_leads, ego_d, oth_d, SAME_LEADER_FIELDS),
         pick(ego_leads, ego.speed_lon_min_mps, oth.speed_lon_min_mps),
     )
-    sd_eval = np.where(
-        ego_leads,
-        _E.LongitudinalDistanceSameDirectionEgoFront,
-        _E.LongitudinalDistanceSameDirectionOtherInFront,
-    )
-    sd_resp = np.where(ego_leads, _LON.None_, _LON.BrakeMin)
-    # opposite direction
-    ego_correct = rel.ego_in_correct_lane
+    evaluator = np.where(ego_leads, _SD_EGO_FRONT, _SD_OTHER_FRONT)
+    response = np.where(ego_leads, 0, _BRAKE_MIN)
+    # opposite direction (only computed when a constellation is of that type)
     opposite = batch.constellation_type == ConstellationType.OppositeDirection
-    od_safe_dist = sd_safe_dist
     if opposite.any():
+        ego_correct = rel.ego_in_correct_lane
         od_safe_dist = safe_longitudinal_distance_opposite(
-            pick_rows(ego_correct, ego_d, oth_d),
+            pick_fields(ego_correct, ego_d, oth_d, OPPOSITE_FIELDS),
             pick(ego_correct, ego.speed_lon_max_mps, oth.speed_lon_max_mps),
-            pick_rows(ego_correct, oth_d, ego_d),
+            pick_fields(ego_correct, oth_d, ego_d, OPPOSITE_FIELDS),
             pick(ego_correct, oth.speed_lon_max_mps, ego.speed_lon_max_mps),
         )
-    od_eval = np.where(
-        ego_correct,
-        _E.LongitudinalDistanceOppositeDirectionEgoCorrectLane,
-        _E.LongitudinalDistanceOppositeDirection,
-    )
-    od_resp = np.where(ego_correct, _LON.BrakeMinCorrect, _LON.BrakeMin)
-    safe_dist = pick(opposite, od_safe_dist, sd_safe_dist)
+        np.copyto(safe_dist, od_safe_dist, where=opposite)
+        np.copyto(evaluator, np.where(ego_correct, _OD_CORRECT, _OD), where=opposite)
+        np.copyto(response, np.where(ego_correct, _BRAKE_MIN_CORRECT, _BRAKE_MIN), where=opposite)
     is_safe = gt(rel.lon_distance_m, safe_dist, _P)
-    response = np.where(is_safe, _LON.None_, np.where(opposite, od_resp, sd_resp)).astype(np.int64)
-    evaluator = np.where(opposite, od_eval, sd_eval).astype(np.int64)
-    return is_safe, response, evaluator, safe_dist
+    response[is_safe] = 0
+    return (
+        is_safe,
+        response.astype(np.int64, copy=False),
+        evaluator.astype(np.int64, copy=False),
+        safe_dist,
+    )
 
 
 def _lateral(
-    batch: ConstellationBatch, rel: Relative, ego_d: FloatArray, oth_d: FloatArray
+    batch: ConstellationBatch, rel: Relative, ego_d: DynamicsArrays, oth_d: DynamicsArrays
 ) -> tuple[LateralSide, LateralSide]:
     ego, oth = batch.ego, batch.other
-    ego_left = rel.lat_position == LateralPosition.AtLeft
-    ego_right = rel.lat_position == LateralPosition.AtRight
+    lat_position = rel.lat_position
+    ego_left = lat_position == LateralPosition.AtLeft
+    ego_right = lat_position == LateralPosition.AtRight
     # only one side is evaluated per pair: left vehicle = ego if it is AtLeft, else the other
     safe_dist = safe_lateral_distance(
-        pick_rows(ego_left, ego_d, oth_d),
+        pick_fields(ego_left, ego_d, oth_d, LATERAL_FIELDS),
         pick(ego_left, ego.speed_lat_max_mps, oth.speed_lat_max_mps),
-        pick_rows(ego_left, oth_d, ego_d),
+        pick_fields(ego_left, oth_d, ego_d, LATERAL_FIELDS),
         pick(ego_left, oth.speed_lat_min_mps, ego.speed_lat_min_mps),
     )
     gap_safe = gt(rel.lat_distance_m, safe_dist, _P)
     overlap = ~(ego_left | ego_right)
-    zero = np.zeros_like(rel.lat_distance_m)
-    far = np.full_like(zero, DISTANCE_MAX_M)
+    # distances of an overlap are 0, of a side not evaluated "max"
+    unevaluated = np.where(overlap, 0.0, DISTANCE_MAX_M)
+    evaluator = np.where(overlap, _LAT_EVAL, 0)
 
-    def side(
-        evaluated: BoolArray, gap_safe: BoolArray, safe_dist: FloatArray, overlap_safe: BoolArray
-    ) -> LateralSide:
-        is_safe = np.where(evaluated, gap_safe, np.where(overlap, overlap_safe, np.True_))
+    def side(evaluated: BoolArray, overlap_code: int) -> LateralSide:
+        # evaluated and overlap exclude each other
+        is_safe = lat_position == overlap_code  # an overlap is safe on its own side
+        is_safe |= ~overlap
+        np.copyto(is_safe, gap_safe, where=evaluated)
+        side_evaluator = evaluator.copy()
+        side_evaluator[evaluated] = _LAT_EVAL
+        current = unevaluated.copy()
+        np.copyto(current, rel.lat_distance_m, where=evaluated)
+        safe = unevaluated.copy()
+        np.copyto(safe, safe_dist, where=evaluated)
         return LateralSide(
-            is_safe=np.asarray(is_safe, dtype=np.bool_),
-            response=np.where(is_safe, _LAT.None_, _LAT.BrakeMin).astype(np.int64),
-            evaluator=np.where(evaluated | overlap, _E.LateralDistance, _E.None_).astype(np.int64),
-            current_distance_m=np.where(
-                evaluated, rel.lat_distance_m, np.where(overlap, zero, far)
-            ),
-            safe_distance_m=np.where(evaluated, safe_dist, np.where(overlap, zero, far)),
+            is_safe=is_safe,
+            response=np.where(is_safe, 0, _LAT_BRAKE_MIN).astype(np.int64, copy=False),
+            evaluator=side_evaluator.astype(np.int64, copy=False),
+            current_distance_m=current,
+            safe_distance_m=safe,
         )
 
-    left = side(ego_right, gap_safe, safe_dist, rel.lat_position == LateralPosition.OverlapLeft)
-    right = side(ego_left, gap_safe, safe_dist, rel.lat_position == LateralPosition.OverlapRight)
+    left = side(ego_right, int(LateralPosition.OverlapLeft))
+    right = side(ego_left, int(LateralPosition.OverlapRight))
     return left, right
+
+
+def _fixed(
+    side: LateralSide, rows: BoolArray, *, safe: bool, distance_m: float, evaluator: int
+) -> None:
+    """Set ``rows`` of ``side`` in place: no response, the given verdict, distance, evaluator."""
+    if safe:
+        side.is_safe[rows] = True
+    else:
+        side.is_safe[rows] = False
+    side.response[rows] = 0
+    side.evaluator[rows] = evaluator
+    side.current_distance_m[rows] = distance_m
+    side.safe_distance_m[rows] = distance_m
 
 
 def check_all(batch: ConstellationBatch, rel: Relative) -> RawStates:
@@ -178,52 +208,43 @@ def check_all(batch: ConstellationBatch, rel: Relative) -> RawStates:
     Returns:
         Raw states; NotRelevant constellations are safe with evaluator None.
     """
-    # the dynamics as (D, C) rows once: every row-wise pick is one np.where
-    ego_d, oth_d = dynamics_rows(batch.ego_dynamics), dynamics_rows(batch.other_dynamics)
+    ego_d, oth_d = batch.ego_dynamics, batch.other_dynamics
     lon_safe, lon_resp, lon_eval, lon_safe_dist = _longitudinal(batch, rel, ego_d, oth_d)
     left, right = _lateral(batch, rel, ego_d, oth_d)
     ctype = batch.constellation_type
+    lon_current = rel.lon_distance_m.copy()
+    state = np.zeros(batch.size, dtype=np.int64)
+    # the arrays above are this call's own: intersection and NotRelevant rows are
+    # overwritten in place (the two kinds exclude each other)
     intersection = ctype >= ConstellationType.IntersectionEgoHasPriority
-    i_safe, i_eval, i_current, i_safe_dist, i_state = intersection_checks(batch, rel, intersection)
-    relevant = ctype != ConstellationType.NotRelevant
-
-    lon_safe = np.where(intersection, i_safe, lon_safe) | ~relevant
-    lon_eval = np.where(intersection, i_eval, lon_eval)
-    lon_resp = np.where(lon_safe, _LON.None_, np.where(intersection, _LON.BrakeMin, lon_resp))
-    lon_current = np.where(intersection, i_current, rel.lon_distance_m)
-    lon_safe_dist = np.where(intersection, i_safe_dist, lon_safe_dist)
-
-    zero = np.zeros_like(lon_current)
-    far = np.full_like(zero, DISTANCE_MAX_M)
-    none_eval = np.zeros(zero.shape, dtype=np.int64)
-
-    def adjust(side: LateralSide) -> LateralSide:
-        fixed = intersection | ~relevant
-        return LateralSide(
-            is_safe=np.where(intersection, np.False_, side.is_safe) | ~relevant,
-            response=np.where(fixed, _LAT.None_, side.response).astype(np.int64),
-            evaluator=np.where(
-                intersection,
-                int(_E.LateralDistance),
-                np.where(relevant, side.evaluator, int(_E.None_)),
-            ),
-            current_distance_m=np.where(
-                intersection, zero, np.where(relevant, side.current_distance_m, far)
-            ),
-            safe_distance_m=np.where(
-                intersection, zero, np.where(relevant, side.safe_distance_m, far)
-            ),
+    if intersection.any():
+        i_safe, i_eval, i_current, i_safe_dist, i_state = intersection_checks(
+            batch, rel, intersection
         )
-
+        np.copyto(lon_safe, i_safe, where=intersection)
+        np.copyto(lon_eval, i_eval, where=intersection)
+        lon_resp[intersection] = _BRAKE_MIN
+        np.copyto(lon_current, i_current, where=intersection)
+        np.copyto(lon_safe_dist, i_safe_dist, where=intersection)
+        np.copyto(state, i_state, where=intersection & i_safe)
+        for side in (left, right):
+            _fixed(side, intersection, safe=False, distance_m=0.0, evaluator=_LAT_EVAL)
+    irrelevant = ctype == ConstellationType.NotRelevant
+    if irrelevant.any():
+        lon_safe |= irrelevant
+        lon_eval[irrelevant] = 0
+        lon_current[irrelevant] = DISTANCE_MAX_M
+        lon_safe_dist[irrelevant] = DISTANCE_MAX_M
+        for side in (left, right):
+            _fixed(side, irrelevant, safe=True, distance_m=DISTANCE_MAX_M, evaluator=0)
+    lon_resp[lon_safe] = 0
     return RawStates(
-        lon_is_safe=np.asarray(lon_safe, dtype=np.bool_),
-        lon_response=lon_resp.astype(np.int64),
-        lon_evaluator=np.where(relevant, lon_eval, none_eval),
-        lon_current_distance_m=np.where(relevant, lon_current, far),
-        lon_safe_distance_m=np.where(relevant, lon_safe_dist, far),
-        left=adjust(left),
-        right=adjust(right),
-        intersection_state=np.where(intersection & i_safe, i_state, IntersectionState.NONE).astype(
-            np.int64
-        ),
+        lon_is_safe=lon_safe,
+        lon_response=lon_resp,
+        lon_evaluator=lon_eval,
+        lon_current_distance_m=lon_current,
+        lon_safe_distance_m=lon_safe_dist,
+        left=left,
+        right=right,
+        intersection_state=state,
     )

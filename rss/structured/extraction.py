@@ -15,14 +15,21 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from rss.model import ConstellationType, ObjectType
-from rss.physics import DISTANCE_PRECISION, gt, lt
+from rss.physics import DISTANCE_PRECISION, gt
 from rss.structured.batch import take_rows
-from rss.structured.footprint import Extents, LaneTable, lane_table, object_extents, place
+from rss.structured.footprint import (
+    Extents,
+    LaneTable,
+    any_column,
+    lane_table,
+    object_extents,
+    place,
+)
 from rss.structured.states import InvalidReason, LateralPosition, LongitudinalPosition
 
 if TYPE_CHECKING:
     from rss.arrays import BoolArray, FloatArray, IntArray
-    from rss.structured.batch import ConstellationBatch
+    from rss.structured.batch import ConstellationBatch, ObjectArrays
 
 __all__ = ["Relative", "extract", "relative_position"]
 
@@ -85,35 +92,27 @@ def relative_position(
     Returns:
         ``(position, distance)``; distance 0 for overlaps.
     """
-    ahead = gt(ego_min, other_max, _P)
-    behind = ~ahead & gt(other_min, ego_max, _P)
-    overlap_front = gt(ego_min, other_min, _P) & gt(ego_max, other_max, _P)
-    overlap_back = lt(ego_min, other_min, _P) & lt(ego_max, other_max, _P)
-    position = np.where(
-        ahead,
-        _IN_FRONT,
-        np.where(
-            behind,
-            _AT_BACK,
-            np.where(
-                overlap_front, _OVERLAP_FRONT, np.where(overlap_back, _OVERLAP_BACK, _OVERLAP)
-            ),
-        ),
-    ).astype(np.int64)
-    distance = np.where(ahead, ego_min - other_max, np.where(behind, other_min - ego_max, 0.0))
+    ahead_gap = np.subtract(ego_min, other_max)
+    ahead = ahead_gap >= _P  # gt(ego_min, other_max)
+    behind_gap = np.subtract(other_min, ego_max)
+    behind = behind_gap >= _P
+    behind &= ~ahead
+    # gt(a, b) is a - b >= p and lt(a, b) is -(a - b) >= p (negation is exact): one
+    # difference per bound; overlap front and back exclude each other
+    low, high = np.subtract(ego_min, other_min), np.subtract(ego_max, other_max)
+    overlap_front = low >= _P
+    overlap_front &= high >= _P
+    overlap_back = low <= -_P
+    overlap_back &= high <= -_P
+    position = overlap_back.astype(np.int64)
+    position += _OVERLAP
+    position -= overlap_front
+    np.copyto(position, _IN_FRONT, where=ahead)
+    np.copyto(position, _AT_BACK, where=behind)
+    distance = np.zeros(position.shape)
+    np.copyto(distance, ahead_gap, where=ahead)
+    np.copyto(distance, behind_gap, where=behind)
     return position, distance
-
-
-_LAT_FROM_LON = np.array(
-    [
-        LateralPosition.AtRight,  # InFront: ego.min > other.max
-        LateralPosition.OverlapRight,
-        LateralPosition.Overlap,
-        LateralPosition.OverlapLeft,
-        LateralPosition.AtLeft,
-    ],
-    dtype=np.int64,
-)
 
 
 def _distances_to_intersection(ext: Extents) -> tuple[FloatArray, FloatArray]:
@@ -126,49 +125,68 @@ def _distances_to_intersection(ext: Extents) -> tuple[FloatArray, FloatArray]:
     return enter, leave
 
 
+def _object_problems(obj: ObjectArrays) -> tuple[BoolArray, BoolArray, BoolArray]:
+    """``(bad region, bad speed, not finite)`` per object, ``(C,)`` each."""
+    speeds = (
+        obj.speed_lon_min_mps,
+        obj.speed_lon_max_mps,
+        obj.speed_lat_min_mps,
+        obj.speed_lat_max_mps,
+    )
+    used = obj.region_lane_id >= 0
+    params = [obj.region_lon_min, obj.region_lon_max, obj.region_lat_min, obj.region_lat_max]
+    if not used.all():  # unused region slots count as 0.5 (in range, finite)
+        params = [np.where(used, p, 0.5) for p in params]
+    with np.errstate(invalid="ignore"):
+        bad_speed = obj.speed_lon_min_mps < 0.0
+        bad_speed |= obj.speed_lon_max_mps < obj.speed_lon_min_mps
+        bad_speed |= obj.speed_lon_max_mps > _SPEED_LIMIT_MPS
+        bad_speed |= obj.speed_lat_min_mps < -_SPEED_LIMIT_MPS
+        bad_speed |= obj.speed_lat_max_mps < obj.speed_lat_min_mps
+        bad_speed |= obj.speed_lat_max_mps > _SPEED_LIMIT_MPS
+        bad = params[0] > params[1]
+        bad |= params[2] > params[3]
+        finite = np.isfinite(params[0])
+        for p in params:
+            bad |= p < -_PARAM_EPS
+            bad |= p > 1.0 + _PARAM_EPS
+            finite &= np.isfinite(p)
+    not_finite = any_column(~finite)
+    for v in speeds:
+        not_finite |= ~np.isfinite(v)
+    return any_column(bad), bad_speed, not_finite
+
+
 def _invalid_objects(batch: ConstellationBatch) -> IntArray:
     reason = np.zeros(batch.size, dtype=np.int64)
+    # the other object's problems first, the ego's override them; within an object a
+    # non-finite value overrides a bad speed, which overrides a bad region
     for obj in (batch.other, batch.ego):
-        speeds = np.stack(
-            [
-                obj.speed_lon_min_mps,
-                obj.speed_lon_max_mps,
-                obj.speed_lat_min_mps,
-                obj.speed_lat_max_mps,
-            ]
-        )
-        used = obj.region_lane_id >= 0
-        params = np.stack(
-            [obj.region_lon_min, obj.region_lon_max, obj.region_lat_min, obj.region_lat_max]
-        )
-        params = np.where(used, params, 0.5)
-        with np.errstate(invalid="ignore"):
-            bad_speed = (
-                (obj.speed_lon_min_mps < 0.0)
-                | (obj.speed_lon_max_mps < obj.speed_lon_min_mps)
-                | (obj.speed_lon_max_mps > _SPEED_LIMIT_MPS)
-                | (obj.speed_lat_min_mps < -_SPEED_LIMIT_MPS)
-                | (obj.speed_lat_max_mps < obj.speed_lat_min_mps)
-                | (obj.speed_lat_max_mps > _SPEED_LIMIT_MPS)
-            )
-            bad_region = (
-                ((params < -_PARAM_EPS) | (params > 1.0 + _PARAM_EPS)).any(axis=0)
-                | (params[0] > params[1])
-                | (params[2] > params[3])
-            ).any(axis=1)
-        reason = np.where(bad_region, InvalidReason.RegionOutOfRange, reason)
-        reason = np.where(bad_speed, InvalidReason.SpeedOutOfRange, reason)
-        finite = np.isfinite(speeds).all(axis=0) & np.isfinite(params).all(axis=(0, 2))
-        reason = np.where(~finite, InvalidReason.NonFiniteValue, reason)
+        for flags, code in zip(
+            _object_problems(obj),
+            (
+                InvalidReason.RegionOutOfRange,
+                InvalidReason.SpeedOutOfRange,
+                InvalidReason.NonFiniteValue,
+            ),
+            strict=True,
+        ):
+            if flags.any():
+                reason[flags] = code
     other_type = batch.other.object_type
-    bad_type = (
-        (batch.ego.object_type != ObjectType.EgoVehicle)
-        | (other_type == ObjectType.Invalid)
-        | (other_type == ObjectType.EgoVehicle)
-    )
-    reason = np.where(bad_type & (reason == 0), InvalidReason.InvalidObjectType, reason)
+    bad_type = batch.ego.object_type != ObjectType.EgoVehicle
+    bad_type |= other_type == ObjectType.Invalid
+    bad_type |= other_type == ObjectType.EgoVehicle
+    unset = reason == 0
+    if bad_type.any():
+        bad_type &= unset
+        reason[bad_type] = InvalidReason.InvalidObjectType
+        unset &= ~bad_type
     same = batch.ego.object_id == batch.other.object_id
-    return np.where(same & (reason == 0), InvalidReason.SameObjectIds, reason).astype(np.int64)
+    same &= unset
+    if same.any():
+        reason[same] = InvalidReason.SameObjectIds
+    return reason
 
 
 def _other_extents(
@@ -210,49 +228,55 @@ def extract(batch: ConstellationBatch) -> Relative:
     ego_table = lane_table(batch.ego_road)
     ego = place(batch.ego, ego_table)
     other = _other_extents(batch, intersection, ego_table)
-    # one call for all frames of reference: longitudinal, lateral and (intersection
-    # types) longitudinal relative to the own intersection entry, as rows of (n, C)
-    ego_min, ego_max = [ego.lon_min_m, ego.lat_min_m], [ego.lon_max_m, ego.lat_max_m]
-    other_min, other_max = [other.lon_min_m, other.lat_min_m], [other.lon_max_m, other.lat_max_m]
-    crossing = bool(intersection.any())
-    if crossing:
-        ego_min.append(ego.lon_min_m - ego.intersection_min_m)
-        ego_max.append(ego.lon_max_m - ego.intersection_min_m)
-        other_min.append(other.lon_min_m - other.intersection_min_m)
-        other_max.append(other.lon_max_m - other.intersection_min_m)
-    position, distance = relative_position(
-        np.stack(ego_min), np.stack(ego_max), np.stack(other_min), np.stack(other_max)
+    lon_pos, lon_dist = relative_position(
+        ego.lon_min_m, ego.lon_max_m, other.lon_min_m, other.lon_max_m
     )
-    lon_pos, lon_dist = position[0], distance[0]
-    lat_pos, lat_dist = _LAT_FROM_LON[position[1]], distance[1]
-
-    ego_enter, ego_leave = _distances_to_intersection(ego)
-    other_enter, other_leave = _distances_to_intersection(other)
-    if crossing:
-        lon_pos = np.where(intersection, position[2], lon_pos)
-        lon_dist = np.where(intersection, distance[2], lon_dist)
-    lat_pos = np.where(intersection, LateralPosition.Overlap, lat_pos)
-    lat_dist = np.where(intersection, 0.0, lat_dist)
-    zero = np.zeros(batch.size)
-
+    # lateral: the same codes mirrored (ego.min > other.max is AtRight = 4 - InFront, ...)
+    lat_code, lat_dist = relative_position(
+        ego.lat_min_m, ego.lat_max_m, other.lat_min_m, other.lat_max_m
+    )
+    lat_pos = _AT_BACK - lat_code
     invalid = _invalid_objects(batch)
     not_found = ~(ego.found & other.found)
-    invalid = np.where((invalid == 0) & not_found, InvalidReason.NotInRoadArea, invalid)
-    no_area = intersection & ~(
-        np.isfinite(ego.intersection_min_m) & np.isfinite(other.intersection_min_m)
-    )
-    invalid = np.where((invalid == 0) & no_area, InvalidReason.NoIntersection, invalid)
+    not_found &= invalid == 0
+    invalid[not_found] = InvalidReason.NotInRoadArea
+    zero = np.zeros(batch.size)
+    distances = [np.zeros(batch.size) for _ in range(4)]
+    if intersection.any():
+        # intersection types: longitudinal relative to the own intersection entry
+        i_pos, i_dist = relative_position(
+            ego.lon_min_m - ego.intersection_min_m,
+            ego.lon_max_m - ego.intersection_min_m,
+            other.lon_min_m - other.intersection_min_m,
+            other.lon_max_m - other.intersection_min_m,
+        )
+        np.copyto(lon_pos, i_pos, where=intersection)
+        np.copyto(lon_dist, i_dist, where=intersection)
+        np.copyto(lat_pos, int(LateralPosition.Overlap), where=intersection)
+        np.copyto(lat_dist, 0.0, where=intersection)
+        distances = [
+            np.where(intersection, d, zero)
+            for d in (*_distances_to_intersection(ego), *_distances_to_intersection(other))
+        ]
+        no_area = intersection & ~(
+            np.isfinite(ego.intersection_min_m) & np.isfinite(other.intersection_min_m)
+        )
+        no_area &= invalid == 0
+        invalid[no_area] = InvalidReason.NoIntersection
     opposite = ctype == ConstellationType.OppositeDirection
+    other_correct = ~other.on_negative_lane
+    if opposite.any():
+        other_correct = np.where(opposite, ~other.on_positive_lane, other_correct)
     return Relative(
-        lon_position=lon_pos.astype(np.int64),
+        lon_position=lon_pos,
         lon_distance_m=lon_dist,
-        lat_position=lat_pos.astype(np.int64),
+        lat_position=lat_pos,
         lat_distance_m=lat_dist,
         ego_in_correct_lane=~ego.on_negative_lane,
-        other_in_correct_lane=np.where(opposite, ~other.on_positive_lane, ~other.on_negative_lane),
-        ego_dist_to_enter_m=np.where(intersection, ego_enter, zero),
-        ego_dist_to_leave_m=np.where(intersection, ego_leave, zero),
-        other_dist_to_enter_m=np.where(intersection, other_enter, zero),
-        other_dist_to_leave_m=np.where(intersection, other_leave, zero),
-        invalid=invalid.astype(np.int64),
+        other_in_correct_lane=other_correct,
+        ego_dist_to_enter_m=distances[0],
+        ego_dist_to_leave_m=distances[1],
+        other_dist_to_enter_m=distances[2],
+        other_dist_to_leave_m=distances[3],
+        invalid=invalid,
     )

@@ -21,7 +21,7 @@ if TYPE_CHECKING:
     from rss.arrays import BoolArray, FloatArray, IntArray
     from rss.structured.batch import ObjectArrays, RoadAreaArrays
 
-__all__ = ["Extents", "LaneTable", "lane_table", "object_extents", "place"]
+__all__ = ["Extents", "LaneTable", "any_column", "lane_table", "object_extents", "place"]
 
 
 @dataclass(frozen=True)
@@ -84,8 +84,9 @@ class LaneTable:
             of the min / max segment lengths before it.
         column_start_m: ``(2, C, L)`` start of each lane column from the left border:
             sums of the min / max column widths left of it.
-        scale_m: ``(4, C * W)`` lane length min / max and width min / max, in the order
-            of the extents ``lon_min, lon_max, lat_min, lat_max``.
+        scale_m: Lane length min / max and width min / max, ``(C * W,)`` each (flat views
+            of the road area's arrays), in the order of the extents ``lon_min, lon_max,
+            lat_min, lat_max``.
         intersection_min_m: ``(C,)`` entry of the intersecting area (NaN if none).
         intersection_max_m: ``(C,)`` exit of the intersecting area (NaN if none).
     """
@@ -94,7 +95,7 @@ class LaneTable:
     direction: IntArray
     segment_start_m: FloatArray
     column_start_m: FloatArray
-    scale_m: FloatArray
+    scale_m: tuple[FloatArray, FloatArray, FloatArray, FloatArray]
     intersection_min_m: FloatArray
     intersection_max_m: FloatArray
 
@@ -118,6 +119,31 @@ def lane_table(road: RoadAreaArrays) -> LaneTable:
     col_start = _exclusive_cumsum(col_w)  # (2, C, L)
 
     is_intersection = road.segment_type == RoadSegmentType.Intersection  # (C, R)
+    if is_intersection.any():
+        i_min, i_max = _intersection_area(road, is_intersection, seg_len, seg_start)
+    else:  # no intersecting area in any road area
+        i_min, i_max = np.full(c, np.nan), np.full(c, np.nan)
+    return LaneTable(
+        lane_id=np.ascontiguousarray(road.lane_id.reshape(c, r * n_lanes).T),
+        direction=road.driving_direction.reshape(c, r * n_lanes),
+        segment_start_m=seg_start,
+        column_start_m=col_start,
+        scale_m=(
+            road.length_min_m.ravel(),
+            road.length_max_m.ravel(),
+            road.width_min_m.ravel(),
+            road.width_max_m.ravel(),
+        ),
+        intersection_min_m=i_min,
+        intersection_max_m=i_max,
+    )
+
+
+def _intersection_area(
+    road: RoadAreaArrays, is_intersection: BoolArray, seg_len: FloatArray, seg_start: FloatArray
+) -> tuple[FloatArray, FloatArray]:
+    """Entry and exit of the first Intersection segment of each road area (NaN if none)."""
+    c, r = is_intersection.shape
     first = np.zeros(c, dtype=np.int64)  # is_intersection.argmax(axis=1), slot by slot
     for segment in range(r - 1, -1, -1):
         first[is_intersection[:, segment]] = segment
@@ -126,17 +152,7 @@ def lane_table(road: RoadAreaArrays) -> LaneTable:
     start_min, start_max = seg_start[:, rows, first]
     i_min = start_min + road.before_intersection_m[rows, first]
     i_max = start_max + seg_len[1, rows, first] - road.after_intersection_m[rows, first]
-
-    scale = np.stack([road.length_min_m, road.length_max_m, road.width_min_m, road.width_max_m])
-    return LaneTable(
-        lane_id=np.ascontiguousarray(road.lane_id.reshape(c, r * n_lanes).T),
-        direction=road.driving_direction.reshape(c, r * n_lanes),
-        segment_start_m=seg_start,
-        column_start_m=col_start,
-        scale_m=scale.reshape(4, -1),
-        intersection_min_m=np.where(has_intersection, i_min, np.nan),
-        intersection_max_m=np.where(has_intersection, i_max, np.nan),
-    )
+    return np.where(has_intersection, i_min, np.nan), np.where(has_intersection, i_max, np.nan)
 
 
 def place(obj: ObjectArrays, table: LaneTable) -> Extents:
@@ -153,8 +169,11 @@ def place(obj: ObjectArrays, table: LaneTable) -> Extents:
     c, k = obj.region_lane_id.shape
     hit, idx = _find_lanes(obj.region_lane_id, table.lane_id)
     width = table.lane_id.shape[0]
-    params = np.stack(
-        [obj.region_lon_min, obj.region_lon_max, obj.region_lat_min, obj.region_lat_max]
+    params: tuple[FloatArray, ...] = (
+        obj.region_lon_min,
+        obj.region_lon_max,
+        obj.region_lat_min,
+        obj.region_lat_max,
     )
     rows = np.arange(c)[:, None]
     if k > 1:
@@ -166,33 +185,41 @@ def place(obj: ObjectArrays, table: LaneTable) -> Extents:
         key = np.where(hit, idx, width) + rows * (width + 1)
         order = np.argsort(key.ravel(), kind="stable").reshape(c, k)
         idx, hit = idx.ravel()[order], hit.ravel()[order]
-        params = params.reshape(4, c * k)[:, order]
-    lane_row = idx + rows * width  # (C, K)
-    segment, column = np.divmod(idx, table.column_start_m.shape[2])
-    start = np.concatenate(
-        [table.segment_start_m[:, rows, segment], table.column_start_m[:, rows, column]]
-    )
-    bounds = start + params * table.scale_m[:, lane_row]  # (4, C, K)
-    direction = table.direction.ravel()[lane_row]
+        params = tuple(p.ravel()[order] for p in params)
+    lane_row = idx + rows * width  # (C, K) flat slot of each region
+    n_segments, n_columns = table.segment_start_m.shape[2], table.column_start_m.shape[2]
+    segment, column = np.divmod(idx, n_columns)
+    segment += rows * n_segments  # flat (row, segment) / (row, column) positions
+    column += rows * n_columns
+    segment_start = table.segment_start_m.reshape(2, -1)
+    column_start = table.column_start_m.reshape(2, -1)
+    starts = (segment_start[0], segment_start[1], column_start[0], column_start[1])
+    where = (segment, segment, column, column)
+    bounds = np.empty((4, c, k))  # start + param * scale per extent, one gather each
+    for q in range(4):
+        np.multiply(params[q], table.scale_m[q].take(lane_row), out=bounds[q])
+        bounds[q] += starts[q].take(where[q])
+    direction = table.direction.ravel().take(lane_row)
     if k > 1:
         merged = _merge(bounds, hit, _BOUND_SIGN)
     else:  # one region per object: no reduction over regions needed
-        merged = bounds[:, :, 0] + np.where(hit[:, 0], 0.0, np.nan)
+        # + 0.0 as the merge's result (-0.0 becomes 0.0), NaN where the region is not found
+        merged = bounds[:, :, 0] + (0.0 if hit.all() else np.where(hit[:, 0], 0.0, np.nan))
     return Extents(
         lon_min_m=merged[0],
         lon_max_m=merged[1],
         lat_min_m=merged[2],
         lat_max_m=merged[3],
-        on_positive_lane=_any_region(hit & (direction == LaneDrivingDirection.Positive)),
-        on_negative_lane=_any_region(hit & (direction == LaneDrivingDirection.Negative)),
-        found=_any_region(hit),
+        on_positive_lane=any_column(hit & (direction == LaneDrivingDirection.Positive)),
+        on_negative_lane=any_column(hit & (direction == LaneDrivingDirection.Negative)),
+        found=any_column(hit),
         intersection_min_m=table.intersection_min_m,
         intersection_max_m=table.intersection_max_m,
     )
 
 
-def _any_region(flags: BoolArray) -> BoolArray:
-    """``flags.any(axis=1)`` of ``(C, K)`` flags, one step per region slot."""
+def any_column(flags: BoolArray) -> BoolArray:
+    """``flags.any(axis=1)`` of ``(C, K)`` flags, one step per column (K is a handful)."""
     out = flags[:, 0].copy()
     for k in range(1, flags.shape[1]):
         out |= flags[:, k]
@@ -256,12 +283,16 @@ def _merge(values: FloatArray, hit: BoolArray, sign: FloatArray) -> FloatArray:
         ``(M, N)``; NaN where no entry counts. The loop runs over the region slots ``K``
         (a handful), each step vectorised over ``N`` and ``M``.
     """
-    current = np.full(values.shape[:2], np.nan)
-    for k in range(values.shape[2]):
+    # the first slot: every current value is NaN, so a hit is taken
+    current = np.where(hit[:, 0], values[:, :, 0], np.nan)
+    for k in range(1, values.shape[2]):
         value = values[:, :, k]
-        better = (value - current) * sign >= DISTANCE_PRECISION
-        take = hit[:, k] & (np.isnan(current) | better)
-        current = np.where(take, value, current)
+        take = np.subtract(value, current)
+        take *= sign
+        take = take >= DISTANCE_PRECISION
+        take |= np.isnan(current)
+        take &= hit[:, k]
+        np.copyto(current, value, where=take)
     return current
 
 

@@ -24,9 +24,13 @@ if TYPE_CHECKING:
     from rss.arrays import BoolArray, FloatArray
 
 __all__ = [
+    "LATERAL_FIELDS",
+    "OPPOSITE_FIELDS",
+    "SAME_FOLLOWER_FIELDS",
+    "SAME_LEADER_FIELDS",
     "dynamics_rows",
     "pick",
-    "pick_rows",
+    "pick_fields",
     "safe_lateral_distance",
     "safe_longitudinal_distance_opposite",
     "safe_longitudinal_distance_same",
@@ -38,18 +42,21 @@ _DYNAMICS_FIELDS = tuple(f.name for f in dataclasses.fields(DynamicsArrays))
 
 
 def dynamics_rows(dyn: DynamicsArrays) -> FloatArray:
-    """``(D, C)``: the fields of ``dyn`` stacked in dataclass order (see :func:`pick_rows`)."""
+    """``(D, C)``: the fields of ``dyn`` stacked in dataclass order."""
     out: FloatArray = np.array([getattr(dyn, name) for name in _DYNAMICS_FIELDS])
     return out
 
 
-def pick_rows(mask: BoolArray, a: FloatArray, b: FloatArray) -> DynamicsArrays:
-    """Row-wise choice between two :func:`dynamics_rows` (``a`` where ``mask``).
+def pick_fields(
+    mask: BoolArray, a: DynamicsArrays, b: DynamicsArrays, names: tuple[str, ...]
+) -> DynamicsArrays:
+    """Row-wise choice of the fields ``names`` (``a`` where ``mask``), one ``np.where`` each.
 
-    One ``np.where`` over all fields, not one per field.
+    The other fields hold ``a``'s values unpicked: only for a formula that reads ``names``
+    alone (the ``*_FIELDS`` tuples below name what each formula reads of each party).
     """
-    chosen = np.where(mask, a, b)
-    return DynamicsArrays(**dict(zip(_DYNAMICS_FIELDS, chosen, strict=True)))
+    chosen = {name: np.where(mask, getattr(a, name), getattr(b, name)) for name in names}
+    return DynamicsArrays(**{name: chosen.get(name, getattr(a, name)) for name in _DYNAMICS_FIELDS})
 
 
 def pick(mask: BoolArray, a: FloatArray, b: FloatArray) -> FloatArray:
@@ -68,6 +75,26 @@ def stated_braking(
         dyn.accel_max_mps2,
         decel,
     )
+
+
+#: The fields :func:`safe_longitudinal_distance_same` reads of the follower (of the leader).
+SAME_FOLLOWER_FIELDS = (
+    "max_speed_on_acceleration_mps",
+    "response_time_s",
+    "accel_max_mps2",
+    "brake_min_mps2",
+    "min_longitudinal_safety_distance_m",
+)
+SAME_LEADER_FIELDS = ("brake_max_mps2",)
+#: The fields :func:`safe_longitudinal_distance_opposite` reads of either party.
+OPPOSITE_FIELDS = (*SAME_FOLLOWER_FIELDS, "brake_min_correct_mps2")
+#: The fields :func:`safe_lateral_distance` reads of either party.
+LATERAL_FIELDS = (
+    "response_time_s",
+    "lat_accel_max_mps2",
+    "lat_brake_min_mps2",
+    "lateral_fluctuation_margin_m",
+)
 
 
 def safe_longitudinal_distance_same(

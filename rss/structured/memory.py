@@ -43,6 +43,7 @@ if TYPE_CHECKING:
 __all__ = ["RssMemory", "apply_memory", "apply_memory_both", "is_dangerous"]
 
 _OBJECT_PRIO = int(ConstellationType.IntersectionObjectHasPriority)
+_NO_STATE = IntersectionState.NONE
 
 
 @dataclass(frozen=True)
@@ -100,23 +101,27 @@ class _Runs:
 def _runs(memory: RssMemory, batch: ConstellationBatch, frame: IntArray) -> _Runs:
     """Sort by (key, frame) with the memory rows as pseudo-frame -1 in front of their key."""
     m, c = memory.size, batch.size
-    ego = np.concatenate([memory.ego_id, batch.ego.object_id])
-    other = np.concatenate([memory.object_id, batch.other.object_id])
-    ctype = np.concatenate([memory.constellation_type, batch.constellation_type])
-    when = np.concatenate([np.full(m, -1, dtype=np.int64), frame])
+    ego, other = batch.ego.object_id, batch.other.object_id
+    ctype, when = batch.constellation_type, frame
+    if m:
+        ego = np.concatenate([memory.ego_id, ego])
+        other = np.concatenate([memory.object_id, other])
+        ctype = np.concatenate([memory.constellation_type, ctype])
+        when = np.concatenate([np.full(m, -1, dtype=np.int64), when])
     order_all = np.lexsort((when, ctype, other, ego))
-    same_key = np.zeros(order_all.size, dtype=np.bool_)
-    same_key[1:] = (
-        (ego[order_all[1:]] == ego[order_all[:-1]])
-        & (other[order_all[1:]] == other[order_all[:-1]])
-        & (ctype[order_all[1:]] == ctype[order_all[:-1]])
-    )
+    same_key = np.ones(order_all.size, dtype=np.bool_)
+    same_key[:1] = False
+    for part in (ego, other, ctype):  # each key part gathered once in sorted order
+        ordered = part.take(order_all)
+        same_key[1:] &= ordered[1:] == ordered[:-1]
     prev_row = np.concatenate([[-1], order_all[:-1]])
     is_batch = order_all >= m
     # the memory row directly before a key's frame-0 row is its initial memory
-    initial_all = np.where(
-        same_key & (prev_row < m) & (prev_row >= 0) & (when[order_all] == 0), prev_row, -1
-    )
+    initial_all = np.full(order_all.size, -1, dtype=np.int64)
+    if m:
+        initial_all = np.where(
+            same_key & (prev_row < m) & (prev_row >= 0) & (when[order_all] == 0), prev_row, -1
+        )
     order = order_all[is_batch] - m
     initial_sorted = initial_all[is_batch]
     f = frame[order]
@@ -217,42 +222,42 @@ def apply_memory_both(  # noqa: PLR0917  (structure-of-arrays engine step)
     has_initial = runs.initial >= 0
     init_row = np.where(has_initial, runs.initial, 0)
 
+    had = prev >= 0
+    prev_row = np.maximum(prev, 0)
+
     def remembered(now: np.ndarray, initial: np.ndarray, fill: Any) -> np.ndarray:
-        from_initial = initial[init_row] if memory.size else np.full(now.shape, fill)
-        return np.where(
-            prev >= 0, now[np.maximum(prev, 0)], np.where(has_initial, from_initial, fill)
-        )
+        before = np.where(has_initial, initial[init_row], fill) if memory.size else fill
+        return np.where(had, now.take(prev_row), before)
 
     stored_lon = np.where(synthetic, np.True_, lon_safe_now)
     stored_lat = np.where(synthetic, ~overlap_assumption, lat_safe_now)
-    stored_int = np.where(intersection & base, raw.intersection_state[o], IntersectionState.NONE)
-    known = (prev >= 0) | has_initial
+    known = had | has_initial
     prev_lon = remembered(stored_lon, memory.lon_safe, np.False_)
     prev_lat = remembered(stored_lat, memory.lat_safe, np.False_)
-    prev_int = remembered(stored_int, memory.intersection_state, IntersectionState.NONE)
+    # intersection states: all NONE (and no response of them cleared) when neither the
+    # batch nor the memory holds one
+    no_state = np.zeros(o.size, dtype=np.int64)
+    stored_int, prev_int, int_none, other_none = no_state, no_state, None, None
+    if intersection.any() or memory.intersection_state.any():
+        stored_int = np.where(intersection & base, raw.intersection_state[o], _NO_STATE)
+        prev_int = remembered(stored_int, memory.intersection_state, _NO_STATE)
+        int_none, other_none = _intersection_cleared(
+            ctype, rel.lon_position[o], ok & intersection & ~lon_safe_now & known, prev_int
+        )
 
     structured = dangerous & ~intersection
     clear_lon = structured & known & prev_lat & ~prev_lon
     clear_lat = structured & ((known & prev_lon & ~prev_lat) | (synthetic & overlap_assumption))
-    unsafe_int = ok & intersection & ~lon_safe_now & known
-    ego_prio = ctype == ConstellationType.IntersectionEgoHasPriority
-    ego_front = rel.lon_position[o] == LongitudinalPosition.InFront
-    ego_back = rel.lon_position[o] == LongitudinalPosition.AtBack
-    int_none = unsafe_int & (
-        ((prev_int == IntersectionState.NON_PRIO_ABLE_TO_BREAK) & ego_prio)
-        | ((prev_int == IntersectionState.SAFE_LONGITUDINAL_DISTANCE) & ego_front)
-    )
     calm = ~intersection & ~dangerous
     clear_lat_rows = np.zeros(batch.size, dtype=np.bool_)
     clear_lat_rows[o] = clear_lat | calm
-    states = _cleared(raw, o, clear_lon | int_none | calm, clear_lat_rows)
+    clear_lon |= calm
+    ego_clear = clear_lon if int_none is None else clear_lon | int_none
+    states = _cleared(raw, o, ego_clear, clear_lat_rows)
     other_states = None
     if other_raw is not None:
-        other_none = unsafe_int & (
-            ((prev_int == IntersectionState.NON_PRIO_ABLE_TO_BREAK) & (ctype == _OBJECT_PRIO))
-            | ((prev_int == IntersectionState.SAFE_LONGITUDINAL_DISTANCE) & ego_back)
-        )
-        other_states = _cleared(other_raw, o, clear_lon | other_none | calm, clear_lat_rows)
+        object_clear = clear_lon if other_none is None else clear_lon | other_none
+        other_states = _cleared(other_raw, o, object_clear, clear_lat_rows)
     return (
         states,
         other_states,
@@ -270,6 +275,27 @@ def apply_memory_both(  # noqa: PLR0917  (structure-of-arrays engine step)
             prev_int,
         ),
     )
+
+
+def _intersection_cleared(
+    ctype: IntArray, lon_position: IntArray, unsafe_int: BoolArray, prev_int: IntArray
+) -> tuple[BoolArray, BoolArray]:
+    """Unsafe intersection rows whose remembered state clears the ego's / the object's response.
+
+    Able to stop -> None for the side with priority; safe longitudinal distance -> None for
+    the side in front (all arrays in sorted order).
+    """
+    able = prev_int == IntersectionState.NON_PRIO_ABLE_TO_BREAK
+    distance = prev_int == IntersectionState.SAFE_LONGITUDINAL_DISTANCE
+    ego_none = unsafe_int & (
+        (able & (ctype == ConstellationType.IntersectionEgoHasPriority))
+        | (distance & (lon_position == LongitudinalPosition.InFront))
+    )
+    other_none = unsafe_int & (
+        (able & (ctype == _OBJECT_PRIO))
+        | (distance & (lon_position == LongitudinalPosition.AtBack))
+    )
+    return ego_none, other_none
 
 
 def _cleared(

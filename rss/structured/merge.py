@@ -77,6 +77,34 @@ def _dynamics_keys(dyn: DynamicsArrays, rows: IntArray) -> IntArray:
     return out
 
 
+#: Odd 64-bit multipliers mixing the parts of a row's key into one word (any odd
+#: constants do: a collision only costs the exact comparison that follows).
+_MIX = (0x9E3779B97F4A7C15, 0xC2B2AE3D27D4EB4F, 0x165667B19E3779F9, 0xD6E8FEB86659FD93)
+
+
+def _may_share(frame: IntArray, batch: ConstellationBatch, rows: IntArray) -> bool:
+    """Whether two of ``rows`` may share (frame, ego id, object id, type).
+
+    One sort of a 64-bit mix of the four: equal keys give equal mixes, so False is exact;
+    True only asks for the exact comparison.
+    """
+    columns: tuple[IntArray, ...] = (
+        batch.ego.object_id,
+        batch.other.object_id,
+        batch.constellation_type,
+    )
+    if rows.size < batch.size:
+        columns = tuple(column[rows] for column in columns)
+    parts = (frame, columns[0], columns[1])
+    mixed = columns[2].astype(np.uint64) * np.uint64(_MIX[3])
+    for part, factor in zip(parts, _MIX, strict=False):
+        term = part.astype(np.uint64)
+        term *= np.uint64(factor)
+        mixed ^= term
+    mixed.sort()
+    return bool((mixed[1:] == mixed[:-1]).any())
+
+
 @dataclasses.dataclass(frozen=True)
 class _Layout:
     """Groups as one row list: ``rows`` concatenated group by group, ``starts`` per group.
@@ -101,6 +129,8 @@ def _groups(batch: ConstellationBatch, rel: Relative, frame: IntArray) -> _Layou
     if valid.size < 2:  # noqa: PLR2004 - a group needs two rows
         return None
     kinds = batch.constellation_type
+    if not _may_share(frame[valid], batch, valid):
+        return None
     # (4, C): comparisons reduce over the leading axis (numpy reduces a short last axis
     # row by row)
     ids = np.stack([frame, batch.ego.object_id, batch.other.object_id, kinds])
