@@ -23,8 +23,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from reachsets.bound_scalar import continue_curve
 from reachsets.reach_turn import arc_profile
-from reachsets.walls import track_walls, wall_frame, wall_frame_reference
+from reachsets.walls import track_walls, wall_frame, wall_frame_reference, wall_lists
 
 if TYPE_CHECKING:
     from numpy.typing import NDArray
@@ -34,7 +35,11 @@ if TYPE_CHECKING:
     from reachsets.track import TrackGeometry
     from reachsets.walls import Walls
 
-__all__ = ["wall_aware_arcs", "wall_aware_arcs_reference"]
+__all__ = ["SCALAR_CURVES_MAX", "wall_aware_arcs", "wall_aware_arcs_reference"]
+
+#: Up to this many curves (two per object), they are built one by one with the scalar twin
+#: (``bound_scalar``); above it, together in numpy. Measured crossover (docs/benchmarks.md).
+SCALAR_CURVES_MAX = 16
 
 
 @dataclass(frozen=True, slots=True)
@@ -113,8 +118,28 @@ def _advance(
     return xi + c * np.cos(chord), eta + side * c * np.sin(chord), psi + dpsi
 
 
+def _curves_scalar(
+    curves: _Curves, walls: Walls, arcs: tuple[NDArray[np.float64], ...], params: ReachParams
+) -> None:
+    """Every curve with the scalar twin, one by one (``xi``, ``eta`` of ``arcs`` in place)."""
+    lists = wall_lists(walls)
+    limits = (float(params.arc_step_m), float(params.arc_max_turn_rad))
+    xi, eta, psi, dmax = arcs
+    pose = np.concatenate(
+        [curves.x, curves.y, curves.yaw, curves.cos, curves.sin, curves.side], axis=1
+    )
+    for r, (p, which) in enumerate(zip(pose.tolist(), curves.which.tolist(), strict=True)):
+        arc = (xi[r].tolist(), eta[r].tolist(), psi[r].tolist(), dmax[r].tolist())
+        continue_curve(lists, (p[0], p[1], p[2], p[3], p[4], p[5]), which, arc, limits)
+        xi[r], eta[r] = arc[0], arc[1]
+
+
 def wall_aware_arcs(
-    objects: ObjectStates, params: ReachParams, track: TrackGeometry
+    objects: ObjectStates,
+    params: ReachParams,
+    track: TrackGeometry,
+    *,
+    scalar: bool | None = None,
 ) -> tuple[tuple[NDArray[np.float64], NDArray[np.float64]], ...]:
     """Body-frame wall-aware edge curves of every object, both sides at once.
 
@@ -128,6 +153,8 @@ def wall_aware_arcs(
         objects: The objects (N).
         params: Arc parameters as for ``steering_arcs``.
         track: Track geometry; the left wall bounds the left curve, the right wall the right.
+        scalar: Build the curves one by one with the scalar twin (``None``: when there are
+            at most ``SCALAR_CURVES_MAX``); the curves agree within 1e-9 m either way.
 
     Returns:
         ``((xi, eta) left, (xi, eta) right)``, each array ``(N, P)``.
@@ -138,6 +165,9 @@ def wall_aware_arcs(
         return (xi, eta), (xi, -eta)
     curves, (xi, eta, psi, dmax) = _start(objects, params)
     walls = track_walls(track)
+    if scalar if scalar is not None else 2 * n <= SCALAR_CURVES_MAX:
+        _curves_scalar(curves, walls, (xi, eta, psi, dmax), params)
+        return (xi[:n], eta[:n]), (xi[n:], eta[n:])
     back = ~_turn(curves, walls, (xi[:, :-1], eta[:, :-1], psi[:, :-1], dmax), params)[1]
     rows = np.flatnonzero(back.any(axis=1))
     if len(rows):
