@@ -55,7 +55,7 @@ _LOG = logging.getLogger(__name__)
 
 #: The compiled modules (the per-object Python of scene creation, the row-by-row
 #: structured engine of small frames, ``rss.structured.small``, and the reach sets' scalar
-#: ``bound`` curves, ``reachsets.bound_scalar``).
+#: ``bound`` curves and one-frame occupancy, ``reachsets.bound_scalar`` and ``small_scalar``).
 MODULES = (
     "rss.structured.batch",
     "rss.structured.stacking",
@@ -81,6 +81,7 @@ MODULES = (
     "rss.scene.routes",
     "rss.scene.segment_plans",
     "reachsets.bound_scalar",
+    "reachsets.small_scalar",
 )
 #: Name of mypyc's shared library of the group (``<GROUP>__mypyc``).
 GROUP = "rss_workbench_compiled"
