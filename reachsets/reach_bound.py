@@ -122,19 +122,26 @@ def _advance(
 
 
 def _curves_scalar(
-    curves: _Curves, walls: Walls, arcs: tuple[NDArray[np.float64], ...], params: ReachParams
-) -> None:
-    """Every curve with the scalar twin, one by one (``xi``, ``eta`` of ``arcs`` in place)."""
+    objects: ObjectStates, walls: Walls, params: ReachParams
+) -> tuple[tuple[NDArray[np.float64], NDArray[np.float64]], ...]:
+    """``wall_aware_arcs`` with the scalar twin, curve by curve (left, then right, per object).
+
+    Each object's two curves start from its ``turn`` arc profile (the right one mirrored),
+    exactly the rows ``_start`` builds for the numpy path.
+    """
     lists = wall_lists(walls)
     limits = (float(params.arc_step_m), float(params.arc_max_turn_rad))
-    xi, eta, psi, dmax = arcs
-    pose = np.concatenate(
-        [curves.x, curves.y, curves.yaw, curves.cos, curves.sin, curves.side], axis=1
-    )
-    for r, (p, which) in enumerate(zip(pose.tolist(), curves.which.tolist(), strict=True)):
-        arc = (xi[r].tolist(), eta[r].tolist(), psi[r].tolist(), dmax[r].tolist())
-        continue_curve(lists, (p[0], p[1], p[2], p[3], p[4], p[5]), which, arc, limits)
-        xi[r], eta[r] = arc[0], arc[1]
+    xi, eta, psi, dmax = arc_profile(objects, params)
+    yaw = np.asarray(objects.yaw_rad, dtype=np.float64)
+    pose = np.stack([objects.x_m, objects.y_m, yaw, np.cos(yaw), np.sin(yaw)], axis=1).tolist()
+    out = [(xi.copy(), eta.copy()), (xi.copy(), -eta)]
+    for r, p in enumerate(pose):
+        rows = (xi[r].tolist(), eta[r].tolist(), psi[r].tolist(), dmax[r].tolist())
+        for which, (side, (cur_xi, cur_eta)) in enumerate(zip((1.0, -1.0), out, strict=True)):
+            arc = (rows[0][:], [side * v for v in rows[1]], rows[2][:], rows[3])
+            continue_curve(lists, (p[0], p[1], p[2], p[3], p[4], side), which, arc, limits)
+            cur_xi[r], cur_eta[r] = arc[0], arc[1]
+    return out[0], out[1]
 
 
 def wall_aware_arcs(
@@ -166,11 +173,10 @@ def wall_aware_arcs(
     if n == 0:
         xi, eta, _, _ = arc_profile(objects, params)
         return (xi, eta), (xi, -eta)
-    curves, (xi, eta, psi, dmax) = _start(objects, params)
     walls = track_walls(track)
     if scalar if scalar is not None else 2 * n <= SCALAR_CURVES_MAX:
-        _curves_scalar(curves, walls, (xi, eta, psi, dmax), params)
-        return (xi[:n], eta[:n]), (xi[n:], eta[n:])
+        return _curves_scalar(objects, walls, params)
+    curves, (xi, eta, psi, dmax) = _start(objects, params)
     back = ~_turn(curves, walls, (xi[:, :-1], eta[:, :-1], psi[:, :-1], dmax), params)[1]
     rows = np.flatnonzero(back.any(axis=1))
     if len(rows):
