@@ -7,6 +7,8 @@ ego is an ``(F,)`` array. A single frame is the batch ``F = 1``.
 
 from __future__ import annotations
 
+import math
+import sys
 from dataclasses import dataclass, fields
 from functools import cached_property
 from typing import TYPE_CHECKING
@@ -114,6 +116,15 @@ class FrameBatch:
         )
 
 
+def _finite(v: float) -> float:
+    """``np.nan_to_num`` of one value: NaN -> 0, infinities -> the largest finite floats."""
+    if math.isnan(v):
+        return 0.0
+    if math.isinf(v):
+        return math.copysign(sys.float_info.max, v)
+    return v
+
+
 def stack_frames(
     inputs: Sequence[ReachInputs],
     params: ReachParams,
@@ -176,7 +187,8 @@ def stack_frames(
     rows = np.flatnonzero(keep)
     skipped = cols["ids"][~keep]
     cut = np.cumsum(counts) - np.cumsum(np.bincount(frame_all[keep], minlength=len(inputs)))
-    skipped_ids = tuple(tuple(str(i) for i in part) for part in np.split(skipped, cut[:-1]))
+    parts = [skipped] if len(inputs) == 1 else np.split(skipped, cut[:-1])
+    skipped_ids = tuple(tuple(str(i) for i in part) for part in parts)
     frame = frame_all[rows]
     return FrameBatch(
         objects=ObjectStates.rows_of(cols, rows),
@@ -189,7 +201,7 @@ def stack_frames(
         ego_x_m=ego_x,
         ego_y_m=ego_y,
         ego_yaw_rad=ego_yaw,
-        ego_speed_mps=np.array([float(np.nan_to_num(e.speed_mps[0])) for e in egos]),
+        ego_speed_mps=np.array([_finite(float(e.speed_mps[0])) for e in egos]),
         ego_length_m=ego_len,
         ego_width_m=np.array([e.width_m for e in egos]),
         occupancy=occ,

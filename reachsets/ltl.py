@@ -107,6 +107,10 @@ class Since:
 
 Formula = Atom | Not | And | Or | Previously | Once | Historically | Since
 
+#: Up to this many rows of one frame, ``step`` evaluates row by row in plain Python (fewer
+#: calls than the chain scans' numpy); the batched frames' tests check both agree.
+SCALAR_ROWS_MAX = 16
+
 
 @dataclass(frozen=True, slots=True)
 class _Chains:
@@ -173,6 +177,53 @@ def _since(
     return np.where(last >= ch.start, rhs[np.maximum(last, 0)], init)
 
 
+def _step_one_frame(
+    formula: Formula,
+    atoms: Mapping[str, NDArray[np.bool_]],
+    ids: Sequence[str],
+    memory: Mapping[str, Mapping[str, bool]],
+    prefix: str,
+) -> tuple[NDArray[np.bool_], LtlMemory]:
+    """``step`` of one frame, row by row with Python bools (each row is its own chain).
+
+    The recurrences at a chain's first position: ``Y a = remembered``, ``a S b = b or (a and
+    remembered)``, ``O a = a or remembered``, ``H a = a and remembered`` (remembered: the
+    memory's bit of the row's id, else ``False``, ``True`` for ``H``); a later row of the same
+    id overwrites the memory, as in ``step``.
+    """
+    new: LtlMemory = {}
+    cols = {k: np.asarray(v, dtype=bool).tolist() for k, v in atoms.items()}
+
+    def ev(f: Formula, path: str, r: int) -> bool:
+        key = f"{prefix}{path}"
+        if isinstance(f, Atom):
+            return bool(cols[f.name][r])
+        if isinstance(f, Not):
+            return not ev(f.arg, path + ".n", r)
+        if isinstance(f, And):
+            return all([ev(a, f"{path}.{i}", r) for i, a in enumerate(f.args)])  # noqa: C419
+        if isinstance(f, Or):
+            return any([ev(a, f"{path}.{i}", r) for i, a in enumerate(f.args)])  # noqa: C419
+        bits = memory.get(key, {})
+        if isinstance(f, Previously):
+            inner = ev(f.arg, path + ".y", r)
+            new.setdefault(key, {})[str(ids[r])] = inner
+            return bool(bits.get(ids[r], False))
+        if isinstance(f, Once):
+            value = ev(f.arg, path + ".o", r) or bool(bits.get(ids[r], False))
+        elif isinstance(f, Historically):
+            value = ev(f.arg, path + ".h", r) and bool(bits.get(ids[r], True))
+        else:
+            lhs = ev(f.lhs, path + ".l", r)
+            rhs = ev(f.rhs, path + ".r", r)
+            value = rhs or (lhs and bool(bits.get(ids[r], False)))
+        new.setdefault(key, {})[str(ids[r])] = value
+        return value
+
+    out = np.array([ev(formula, "@", r) for r in range(len(ids))], dtype=bool)
+    return out, new
+
+
 def step(
     formula: Formula,
     atoms: Mapping[str, NDArray[np.bool_]],
@@ -199,6 +250,8 @@ def step(
         the ids of the last frame). An object missing from a frame is forgotten: it starts
         afresh when it returns, exactly as when the frames are stepped one by one.
     """
+    if n_frames == 1 and 0 < len(ids) <= SCALAR_ROWS_MAX:
+        return _step_one_frame(formula, atoms, ids, memory, prefix)
     rows = np.zeros(len(ids), dtype=np.intp) if frame is None else np.asarray(frame)
     ch = _chains(ids, rows, n_frames)
     scan = {k: np.asarray(v, dtype=bool)[ch.order] for k, v in atoms.items()}

@@ -11,6 +11,7 @@ import numpy as np
 import shapely
 
 from reachsets.footprints import rectangle_corners
+from reachsets.small_scalar import interp_poses, unwrapped, waypoint_times
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -149,13 +150,32 @@ def ego_occupancy_many(
         The occupancy with ``(F, T)`` poses, one rectangle ``ego.length_m x ego.width_m``
         per frame and stamp.
     """
-    p = _padded(trajs)
     t = np.asarray(times_s, dtype=np.float64)
-    x, y, yaw = _interp_rows(t, _waypoint_times(p), p["x"], p["y"], _unwrap_rows(p["yaw"]))
+    if len(trajs) == 1 and len(trajs[0].x_m) >= 2:  # noqa: PLR2004 - one frame: scalar twins
+        x, y, yaw = _poses_scalar(trajs[0], t)
+    else:
+        p = _padded(trajs)
+        x, y, yaw = _interp_rows(t, _waypoint_times(p), p["x"], p["y"], _unwrap_rows(p["yaw"]))
     length = np.array([tr.length_m for tr in trajs])[:, None]
     width = np.array([tr.width_m for tr in trajs])[:, None]
     corners = rectangle_corners(x, y, yaw, length, width)
     return EgoOccupancy(t, x, y, yaw, corners)
+
+
+def _poses_scalar(
+    traj: EgoTrajectory, t: NDArray[np.float64]
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """``(1, T)`` poses of one trajectory of at least 2 points (``small_scalar``, same bits)."""
+    xs, ys = np.asarray(traj.x_m, dtype=np.float64), np.asarray(traj.y_m, dtype=np.float64)
+    ds = np.hypot(np.diff(xs), np.diff(ys)).tolist()
+    wt = waypoint_times(
+        ds,
+        np.asarray(traj.speed_mps, dtype=np.float64).tolist(),
+        np.asarray(traj.t_s, dtype=np.float64).tolist(),
+    )
+    yaw = unwrapped(np.asarray(traj.yaw_rad, dtype=np.float64).tolist())
+    out = np.array(interp_poses(t.tolist(), wt, [xs.tolist(), ys.tolist(), yaw]))
+    return out[0:1], out[1:2], out[2:3]
 
 
 def _interp_scalar(t: float, ts: list[float], vs: list[float]) -> float:

@@ -35,7 +35,7 @@ def deletion_polygons(
         left, right = wall_aware_arcs(objects, params, track)
     else:
         left = steering_arcs(objects, params, 1.0)
-        right = steering_arcs(objects, params, -1.0)
+        right = (left[0], -left[1])  # steering_arcs(..., -1.0), bit for bit
     return funnel_polygons(objects, left, right, keep_body=params.keep_object_body)
 
 

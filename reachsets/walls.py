@@ -24,12 +24,21 @@ from typing import TYPE_CHECKING
 import numpy as np
 import shapely
 
+from reachsets.bound_scalar import WallLists
+
 if TYPE_CHECKING:
     from numpy.typing import NDArray
 
     from reachsets.track import TrackGeometry
 
-__all__ = ["BLOCK_SEGMENTS", "Walls", "track_walls", "wall_frame", "wall_frame_reference"]
+__all__ = [
+    "BLOCK_SEGMENTS",
+    "Walls",
+    "track_walls",
+    "wall_frame",
+    "wall_frame_reference",
+    "wall_lists",
+]
 
 #: Consecutive wall segments per block of the candidate search.
 BLOCK_SEGMENTS = 4
@@ -43,6 +52,7 @@ _SLACK = 1e-9
 #: Tracks whose walls are kept (the object is held, so its id is never reused meanwhile).
 _CACHE_SIZE = 4
 _CACHE: dict[int, tuple[TrackGeometry, Walls]] = {}
+_LISTS: dict[int, tuple[Walls, WallLists]] = {}
 
 
 @dataclass(frozen=True, slots=True)
@@ -102,6 +112,38 @@ def track_walls(track: TrackGeometry) -> Walls:
         del _CACHE[next(iter(_CACHE))]
     _CACHE[id(track)] = (track, walls)
     return walls
+
+
+def wall_lists(walls: Walls) -> WallLists:
+    """``walls`` as Python lists for the scalar kernel, built once per walls (last few kept)."""
+    hit = _LISTS.get(id(walls))
+    if hit is not None and hit[0] is walls:
+        return hit[1]
+    real = walls.blk_wall >= 0
+    n_blk = int(real.sum())
+    out = WallLists(
+        cum=walls.cum.tolist(),
+        px=walls.pts[:, 0].tolist(),
+        py=walls.pts[:, 1].tolist(),
+        start_x=walls.start[0].tolist(),
+        start_y=walls.start[1].tolist(),
+        seg_x=walls.seg[0].tolist(),
+        seg_y=walls.seg[1].tolist(),
+        seg_len=walls.seg_len.tolist(),
+        seg_len2=walls.seg_len2.tolist(),
+        seg_s=walls.seg_s.tolist(),
+        lo=walls.lo.tolist(),
+        hi=walls.hi.tolist(),
+        blk_seg=walls.blk_seg[:n_blk].tolist(),
+        blk_x=walls.blk_x[:n_blk].tolist(),
+        blk_y=walls.blk_y[:n_blk].tolist(),
+        blk_radius=walls.blk_radius[:n_blk].tolist(),
+        wall_blk=[[int(b) for b in row if b < n_blk] for row in walls.wall_blk],
+    )
+    if len(_LISTS) >= _CACHE_SIZE:
+        del _LISTS[next(iter(_LISTS))]
+    _LISTS[id(walls)] = (walls, out)
+    return out
 
 
 def _build(track: TrackGeometry) -> Walls:

@@ -53,8 +53,9 @@ __all__ = [
 
 _LOG = logging.getLogger(__name__)
 
-#: The compiled modules (the per-object Python of scene creation and the row-by-row
-#: structured engine of small frames, ``rss.structured.small``).
+#: The compiled modules (the per-object Python of scene creation, the row-by-row
+#: structured engine of small frames, ``rss.structured.small``, and the reach sets' scalar
+#: ``bound`` curves and one-frame occupancy, ``reachsets.bound_scalar`` and ``small_scalar``).
 MODULES = (
     "rss.structured.batch",
     "rss.structured.stacking",
@@ -79,6 +80,8 @@ MODULES = (
     "rss.scene.roadarea",
     "rss.scene.routes",
     "rss.scene.segment_plans",
+    "reachsets.bound_scalar",
+    "reachsets.small_scalar",
 )
 #: Name of mypyc's shared library of the group (``<GROUP>__mypyc``).
 GROUP = "rss_workbench_compiled"

@@ -202,3 +202,35 @@ def test_occupancy_of_many_plans_of_different_lengths_matches_scalar():
     for f, plan in enumerate([short, turning, single]):
         want = np.asarray(ego_occupancy_scalar(plan, list(TIMES)))
         np.testing.assert_allclose(occ.corners_m[f], want, atol=1e-9)
+
+
+@settings(max_examples=80, deadline=None)
+@given(
+    seed=st.integers(0, 2**32 - 1),
+    points=st.integers(2, 40),
+    timed=st.booleans(),
+    stop=st.booleans(),
+)
+def test_one_frame_occupancy_equals_the_stacked_one(seed, points, timed, stop):
+    """The one-frame scalar twin gives the many-frame numpy path's poses and corners bit for bit
+    (random plans: wrapping headings, stamps given or derived, ending at standstill or not)."""
+    rng = np.random.default_rng(seed)
+    speed = rng.uniform(0.0, 60.0, points)
+    if stop:
+        speed[-1] = 0.0
+    t_s = np.cumsum(rng.uniform(0.0, 0.4, points)) if timed else np.full(points, np.nan)
+    plan = type(straight_ego())(
+        np.cumsum(rng.normal(0.0, 5.0, points)),
+        np.cumsum(rng.normal(0.0, 5.0, points)),
+        rng.uniform(-4.0, 4.0, points),  # beyond +-pi: unwrapped
+        speed,
+        t_s,
+        float(rng.uniform(3.0, 6.0)),
+        float(rng.uniform(1.5, 2.5)),
+    )
+    one = ego_occupancy_many([plan], TIMES)
+    stacked = ego_occupancy_many([plan, straight_ego()], TIMES)
+    for name in ("x_m", "y_m", "yaw_rad", "corners_m"):
+        np.testing.assert_array_equal(getattr(one, name)[0], getattr(stacked, name)[0])
+    want = np.asarray(ego_occupancy_scalar(plan, list(TIMES)))
+    np.testing.assert_allclose(one.corners_m[0], want, atol=1e-6)

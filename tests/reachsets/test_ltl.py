@@ -6,6 +6,7 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from reachsets import ltl
 from reachsets.ltl import (
     And,
     Atom,
@@ -120,3 +121,31 @@ def test_batched_frames_equal_frame_by_frame(formula, frames, split):
     assert got == expected[split:]
     if rest:
         assert batch_memory == memory
+
+
+@settings(max_examples=150, deadline=None)
+@given(
+    formulas(),
+    st.lists(
+        st.tuples(st.sampled_from(["a", "b", "c"]), st.booleans(), st.booleans()),
+        min_size=1,
+        max_size=6,
+    ),
+    traces,
+)
+def test_one_frame_rows_equal_the_chain_scans(formula, rows, history):
+    """One frame of a few rows (ids may repeat) in plain Python equals the numpy scans."""
+    memory: LtlMemory = {}
+    for state in history:  # a memory built over earlier frames of object "a"
+        _, memory = step(formula, {k: np.array([v]) for k, v in state.items()}, ["a"], memory)
+    ids = [r[0] for r in rows]
+    atoms = {"p": np.array([r[1] for r in rows]), "q": np.array([r[2] for r in rows])}
+    fast = step(formula, atoms, ids, memory)
+    saved = ltl.SCALAR_ROWS_MAX
+    ltl.SCALAR_ROWS_MAX = 0
+    try:
+        scans = step(formula, atoms, ids, memory)
+    finally:
+        ltl.SCALAR_ROWS_MAX = saved
+    assert fast[0].tolist() == scans[0].tolist()
+    assert fast[1] == scans[1]

@@ -3,6 +3,8 @@ bit with their slow references."""
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -15,6 +17,10 @@ from reachsets.reach_turn import steering_arcs
 from reachsets.track import build_track
 from reachsets.walls import BLOCK_SEGMENTS, track_walls, wall_frame, wall_frame_reference
 from tests.reachsets.helpers import objects
+
+if TYPE_CHECKING:
+    from reachsets.inputs import ObjectStates
+    from reachsets.track import TrackGeometry
 
 
 def _loop_track() -> TrackBounds:
@@ -85,11 +91,7 @@ def test_non_finite_positions_fall_back_to_the_reference():
     assert np.isfinite(wall_frame(_WALLS, x, y, 1)[0][1:]).all()
 
 
-def test_wall_aware_arcs_equal_the_curve_by_curve_reference():
-    """Objects across and beside the loop's walls, slow to fast: every curve bit for bit."""
-    track = build_track(_loop_track())
-    rng = np.random.default_rng(11)
-    n = 40
+def _objects_on_loop(track: TrackGeometry, rng: np.random.Generator, n: int) -> ObjectStates:
     pick = rng.integers(0, len(track.centre_m), n)
     lat = rng.uniform(-7.0, 7.0, n)
     tangent = np.gradient(track.centre_m, axis=0)[pick]
@@ -100,7 +102,16 @@ def test_wall_aware_arcs_equal_the_curve_by_curve_reference():
         rng.uniform(0.0, 60.0, n),
         strict=True,
     )
-    objs = objects(*rows)
+    return objects(*rows)
+
+
+_LOOP = build_track(_loop_track())
+
+
+def test_wall_aware_arcs_equal_the_curve_by_curve_reference():
+    """Objects across and beside the loop's walls, slow to fast: every curve bit for bit."""
+    track = _LOOP
+    objs = _objects_on_loop(track, np.random.default_rng(11), 40)
     params = ReachParams(method=ReachMethod.BOUND)
     got = wall_aware_arcs(objs, params, track)
     want = wall_aware_arcs_reference(objs, params, track)
@@ -111,3 +122,31 @@ def test_wall_aware_arcs_equal_the_curve_by_curve_reference():
     left_turn = steering_arcs(objs, params, 1.0)
     left_eta = got[0][1]
     assert np.any(np.abs(left_eta - left_turn[1]) > 0.1, axis=1).sum() >= 5
+
+
+@settings(max_examples=80, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1), n=st.integers(1, 8))
+def test_scalar_curves_equal_the_vectorised_ones(seed, n):
+    """The scalar twin (few objects, one frame) against the numpy path and the reference."""
+    objs = _objects_on_loop(_LOOP, np.random.default_rng(seed), n)
+    params = ReachParams(method=ReachMethod.BOUND)
+    scalar = wall_aware_arcs(objs, params, _LOOP, scalar=True)
+    vector = wall_aware_arcs(objs, params, _LOOP, scalar=False)
+    reference = wall_aware_arcs_reference(objs, params, _LOOP)
+    for s_side, v_side, r_side in zip(scalar, vector, reference, strict=True):
+        for s, v, r in zip(s_side, v_side, r_side, strict=True):
+            np.testing.assert_allclose(s, v, rtol=0.0, atol=1e-9)
+            np.testing.assert_allclose(s, r, rtol=0.0, atol=1e-9)
+
+
+def test_scalar_curves_turn_back_like_the_vectorised_ones():
+    """Many seeds at once: the scalar curves leave their turn arc where the numpy ones do."""
+    objs = _objects_on_loop(_LOOP, np.random.default_rng(5), 6)
+    params = ReachParams(method=ReachMethod.BOUND)
+    left_turn = steering_arcs(objs, params, 1.0)
+    scalar = wall_aware_arcs(objs, params, _LOOP, scalar=True)
+    vector = wall_aware_arcs(objs, params, _LOOP, scalar=False)
+    moved_s = np.any(np.abs(scalar[0][1] - left_turn[1]) > 0.1, axis=1)
+    moved_v = np.any(np.abs(vector[0][1] - left_turn[1]) > 0.1, axis=1)
+    assert moved_s.any()
+    assert np.array_equal(moved_s, moved_v)
