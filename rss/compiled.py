@@ -53,8 +53,9 @@ __all__ = [
 
 _LOG = logging.getLogger(__name__)
 
-#: The compiled modules (the per-object Python of scene creation and the row-by-row
-#: structured engine of small frames, ``rss.structured.small``).
+#: The compiled modules (the per-object Python of scene creation, the row-by-row
+#: structured engine of small frames, ``rss.structured.small``, and the point-by-point
+#: trajectory sets of small unstructured frames, ``rss.unstructured.*_small``).
 MODULES = (
     "rss.structured.batch",
     "rss.structured.stacking",
@@ -63,6 +64,9 @@ MODULES = (
     "rss.structured.scalar_checks",
     "rss.structured.small",
     "rss.structured.small_output",
+    "rss.unstructured.scalar_motion",
+    "rss.unstructured.pedestrian_small",
+    "rss.unstructured.vehicle_small",
     "rss.scene.align",
     "rss.scene.border_stations",
     "rss.scene.connecting",

@@ -1,0 +1,174 @@
+"""The point-by-point set builders of small batches equal the batched builders to the bit.
+
+:mod:`rss.unstructured.vehicle_small` and :mod:`rss.unstructured.pedestrian_small` (compiled
+with mypyc when the build is fresh, else run from their sources: both must agree) against
+:func:`rss.unstructured.vehicle_batch.vehicle_sets_batch` and the batched moving-pedestrian
+builder, on Hypothesis batches of up to :data:`SMALL_SETS_MAX` agents with their own
+dynamics values; then whole frames with the small path on and off.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from rss.dynamics import UnstructuredSettings
+from rss.model import ObjectType
+from rss.params import DEFAULT_EGO_DYNAMICS, DEFAULT_PEDESTRIAN_DYNAMICS, DEFAULT_VEHICLE_DYNAMICS
+from rss.unstructured import UnstructuredAgents, check_unstructured, engine
+from rss.unstructured.batch import AgentDynamics
+from rss.unstructured.pedestrian_batch import pedestrian_sets_batch
+from rss.unstructured.pedestrian_small import pedestrian_moving_small
+from rss.unstructured.vehicle_batch import vehicle_sets_batch
+from rss.unstructured.vehicle_small import SMALL_SETS_MAX, vehicle_sets_small
+from tests.rss.unstructured.generators import random_ego, random_frame, random_sequence
+
+if TYPE_CHECKING:
+    from rss.dynamics import RssDynamics
+    from rss.unstructured.sets import TrajectorySets
+
+SETTINGS = settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+
+#: Settings variants: the defaults, more intermediate steps, collapsed steps.
+VARIANTS = (
+    UnstructuredSettings(),
+    UnstructuredSettings(
+        vehicle_front_intermediate_yaw_rate_change_ratio_steps=1,
+        vehicle_back_intermediate_yaw_rate_change_ratio_steps=2,
+        vehicle_brake_intermediate_acceleration_steps=3,
+        vehicle_continue_forward_intermediate_acceleration_steps=2,
+        vehicle_continue_forward_intermediate_yaw_rate_change_ratio_steps=1,
+        pedestrian_front_intermediate_heading_change_ratio_steps=2,
+        pedestrian_brake_intermediate_acceleration_steps=1,
+        pedestrian_continue_forward_intermediate_acceleration_steps=2,
+        vehicle_trajectory_calculation_step=0.3,
+    ),
+    UnstructuredSettings(
+        vehicle_front_intermediate_yaw_rate_change_ratio_steps=0,
+        vehicle_brake_intermediate_acceleration_steps=0,
+        vehicle_continue_forward_intermediate_yaw_rate_change_ratio_steps=0,
+        pedestrian_front_intermediate_heading_change_ratio_steps=0,
+        pedestrian_continue_forward_intermediate_heading_change_ratio_steps=0,
+        pedestrian_brake_intermediate_acceleration_steps=0,
+        vehicle_min_radius=0.5,
+    ),
+)
+
+
+@st.composite
+def _dynamics(draw: st.DrawFn, base: RssDynamics) -> RssDynamics:
+    brake_max = draw(st.floats(-10.0, -1.0))
+    return dataclasses.replace(
+        base,
+        response_time_s=draw(st.sampled_from([0.2, 0.5, 1.0, 2.0, draw(st.floats(0.05, 3.0))])),
+        accel_max_mps2=draw(st.sampled_from([0.0, 1e-5, 2.0, draw(st.floats(0.0, 6.0))])),
+        brake_max_mps2=brake_max,
+        brake_min_mps2=draw(st.sampled_from([brake_max, draw(st.floats(brake_max, -0.5))])),
+        brake_min_correct_mps2=-0.4,
+        max_speed_on_acceleration_mps=draw(st.sampled_from([0.0, 5.0, 100.0])),
+    )
+
+
+@st.composite
+def _batch(draw: st.DrawFn, kind: ObjectType) -> tuple[UnstructuredAgents, AgentDynamics]:
+    n = draw(st.integers(1, SMALL_SETS_MAX))
+    pedestrian = kind == ObjectType.Pedestrian
+    top = 3.0 if pedestrian else 25.0
+    speed = st.sampled_from([0.0, 5e-4, 0.05, draw(st.floats(0.0, top)), draw(st.floats(0.0, top))])
+    rows, dynamics = [], []
+    for i in range(n):
+        low, high = sorted((draw(speed), draw(speed)))
+        moving_high = high if not pedestrian or high > 1e-3 else 1.0  # moving: the twin's part
+        rows.append(
+            {
+                "object_id": i,
+                "object_type": int(kind),
+                "x_m": draw(st.floats(-500.0, 500.0)),
+                "y_m": draw(st.floats(-500.0, 500.0)),
+                "yaw_rad": draw(st.floats(-2.0 * np.pi, 2.0 * np.pi)),
+                "speed_min_mps": low,
+                "speed_max_mps": moving_high,
+                "yaw_rate_radps": draw(st.sampled_from([0.0, 5e-4, draw(st.floats(-1.0, 1.0))])),
+                "length_m": draw(st.floats(0.3, 8.0)),
+                "width_m": draw(st.floats(0.3, 3.0)),
+            }
+        )
+        base = DEFAULT_PEDESTRIAN_DYNAMICS if pedestrian else DEFAULT_VEHICLE_DYNAMICS
+        dynamics.append(draw(_dynamics(base)))
+    u = draw(st.sampled_from(VARIANTS))
+    dynamics = [dataclasses.replace(d, unstructured=u) for d in dynamics]
+    extra = np.array([draw(st.sampled_from([0.0, 0.0, 1.5])) for _ in range(n)])
+    return UnstructuredAgents.from_rows(rows), AgentDynamics.of(dynamics, extra)
+
+
+def _same_bits(fast: TrajectorySets, ref: TrajectorySets) -> None:
+    assert fast.coords.shape == ref.coords.shape
+    assert np.array_equal(fast.coords.view(np.int64), ref.coords.view(np.int64))
+    for name in ("size", "owner", "brake"):
+        assert np.array_equal(getattr(fast, name), getattr(ref, name))
+    assert fast.count == ref.count
+
+
+@SETTINGS
+@given(_batch(ObjectType.OtherVehicle))
+def test_vehicle_sets_point_by_point_equal_the_batched_sets(batch) -> None:
+    agents, dyn = batch
+    small = vehicle_sets_small(agents, dyn)
+    assert small is not None
+    _same_bits(small, vehicle_sets_batch(agents, dyn))
+
+
+@SETTINGS
+@given(_batch(ObjectType.Pedestrian))
+def test_moving_pedestrian_sets_point_by_point_equal_the_batched_sets(batch) -> None:
+    agents, dyn = batch
+    _same_bits(
+        pedestrian_sets_batch(agents, dyn, pedestrian_moving_small),
+        pedestrian_sets_batch(agents, dyn),
+    )
+
+
+def test_a_negative_zero_speed_goes_to_the_batched_builder() -> None:
+    agents, dynamics = random_frame(np.random.default_rng(3), 1, pedestrian_share=0.0)
+    zero = dataclasses.replace(agents, speed_min_mps=np.array([-0.0]))
+    assert vehicle_sets_small(zero, AgentDynamics.of(dynamics, np.zeros(1))) is None
+
+
+def _frames(seed: int) -> list[tuple[UnstructuredAgents, UnstructuredAgents, list[RssDynamics]]]:
+    rng = np.random.default_rng(seed)
+    frames = [(random_ego(rng), *random_frame(rng, int(rng.integers(0, 6)))) for _ in range(20)]
+    return frames + random_sequence(rng, 12, 3)
+
+
+def _run(frames, *, small: bool, monkeypatch: pytest.MonkeyPatch) -> list[tuple[Any, Any]]:
+    monkeypatch.setattr(engine, "small_batch", lambda agents: small and agents <= SMALL_SETS_MAX)
+    out, memory = [], None
+    for ego, agents, dynamics in frames:
+        result, memory = check_unstructured(
+            ego, agents, DEFAULT_EGO_DYNAMICS, dynamics, DEFAULT_EGO_DYNAMICS, memory
+        )
+        out.append((result, memory))
+    return out
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_frames_with_the_small_path_equal_the_batched_frames(seed, monkeypatch) -> None:
+    """Random frames and a drive-away sequence: results and memories field by field."""
+    frames = _frames(seed)
+    fast = _run(frames, small=True, monkeypatch=monkeypatch)
+    slow = _run(frames, small=False, monkeypatch=monkeypatch)
+    for (a, mem_a), (b, mem_b) in zip(fast, slow, strict=True):
+        for sets in ("ego_sets", "agent_sets"):
+            _same_bits(getattr(a, sets), getattr(b, sets))
+        assert a.proper_response == b.proper_response
+        for name in a.decisions.__dataclass_fields__:
+            assert np.array_equal(
+                getattr(a.decisions, name), getattr(b.decisions, name), equal_nan=True
+            )
+        for name in mem_a.__dataclass_fields__:
+            assert np.array_equal(getattr(mem_a, name), getattr(mem_b, name))
