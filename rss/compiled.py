@@ -64,6 +64,7 @@ MODULES = (
     "rss.structured.scalar_checks",
     "rss.structured.small",
     "rss.structured.small_output",
+    "rss.unstructured.convex",
     "rss.unstructured.scalar_motion",
     "rss.unstructured.pedestrian_small",
     "rss.unstructured.vehicle_small",

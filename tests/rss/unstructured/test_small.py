@@ -14,13 +14,14 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import pytest
+import shapely
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from rss.dynamics import UnstructuredSettings
 from rss.model import ObjectType
 from rss.params import DEFAULT_EGO_DYNAMICS, DEFAULT_PEDESTRIAN_DYNAMICS, DEFAULT_VEHICLE_DYNAMICS
-from rss.unstructured import UnstructuredAgents, check_unstructured, engine
+from rss.unstructured import UnstructuredAgents, check_unstructured, convex, engine, intersect
 from rss.unstructured.batch import AgentDynamics
 from rss.unstructured.pedestrian_batch import pedestrian_sets_batch
 from rss.unstructured.pedestrian_small import pedestrian_moving_small
@@ -147,6 +148,7 @@ def _frames(seed: int) -> list[tuple[UnstructuredAgents, UnstructuredAgents, lis
 
 def _run(frames, *, small: bool, monkeypatch: pytest.MonkeyPatch) -> list[tuple[Any, Any]]:
     monkeypatch.setattr(engine, "small_batch", lambda agents: small and agents <= SMALL_SETS_MAX)
+    monkeypatch.setattr(intersect, "closed_form", lambda pairs: small and pairs <= 10_000)
     out, memory = [], None
     for ego, agents, dynamics in frames:
         result, memory = check_unstructured(
@@ -172,3 +174,76 @@ def test_frames_with_the_small_path_equal_the_batched_frames(seed, monkeypatch) 
             )
         for name in mem_a.__dataclass_fields__:
             assert np.array_equal(getattr(mem_a, name), getattr(mem_b, name))
+
+
+def _square(x: float, y: float, side: float = 1.0, turn: float = 0.0) -> list[list[float]]:
+    c, s = np.cos(turn), np.sin(turn)
+    corners = [(0.0, 0.0), (side, 0.0), (side, side), (0.0, side)]
+    return [[x + c * u - s * v, y + s * u + c * v] for u, v in corners]
+
+
+def _shapely_says(a: list[list[float]], b: list[list[float]]) -> bool:
+    return bool(
+        shapely.intersects(shapely.MultiPoint(a).convex_hull, shapely.MultiPoint(b).convex_hull)
+    )
+
+
+@SETTINGS
+@given(
+    st.floats(-3.0, 3.0),
+    st.floats(-3.0, 3.0),
+    st.floats(-np.pi, np.pi),
+    st.floats(0.1, 2.0),
+    st.sampled_from([0.0, 1e3, -4e5]),
+)
+def test_closed_form_verdicts_are_shapely_verdicts(dx, dy, turn, side, offset) -> None:
+    """Where the closed form decides, shapely agrees (near-touching pairs stay unsure)."""
+    a = _square(offset, offset)
+    b = _square(offset + dx, offset + dy, side, turn)
+    verdict = convex.verdict(convex.hull(a, 4), convex.hull(b, 4))
+    if verdict != convex.UNSURE:
+        assert (verdict == convex.OVERLAP) == _shapely_says(a, b)
+
+
+@pytest.mark.parametrize(
+    "b",
+    [
+        _square(1.0, 0.0),  # a shared edge
+        _square(1.0, 1.0),  # a shared corner
+        _square(1.0 + 1e-12, 0.0),  # apart by less than the margin
+        _square(0.5, 0.5, 1.0, np.pi / 4),  # a corner inside
+    ],
+)
+def test_touching_pairs_are_left_to_shapely_or_agree(b) -> None:
+    a = _square(0.0, 0.0)
+    verdict = convex.verdict(convex.hull(a, 4), convex.hull(b, 4))
+    assert verdict in {convex.UNSURE, convex.OVERLAP}
+    assert verdict == convex.UNSURE or _shapely_says(a, b)
+
+
+@pytest.mark.parametrize("seed", [4, 5])
+def test_closed_form_verdicts_of_real_pieces_are_shapely_verdicts(seed) -> None:
+    """Every ego piece against every agent piece of random frames."""
+    rng = np.random.default_rng(seed)
+    decided = 0
+    for _ in range(6):
+        ego, (agents, dynamics) = random_ego(rng), random_frame(rng, 3)
+        result, _ = check_unstructured(
+            ego, agents, DEFAULT_EGO_DYNAMICS, dynamics, DEFAULT_EGO_DYNAMICS
+        )
+        own, other = result.ego_sets, result.agent_sets
+        e, a = (
+            x.ravel() for x in np.meshgrid(np.arange(own.size.size), np.arange(other.size.size))
+        )
+        points = [np.swapaxes(s.coords, 0, 1).tolist() for s in (own, other)]
+        found = convex.verdicts(
+            (points[0], own.size.tolist()),
+            (points[1], other.size.tolist()),
+            (e.tolist(), a.tolist()),
+        )
+        truth = shapely.intersects(own.hulls[e], other.hulls[a])
+        for verdict, expected in zip(found, truth, strict=True):
+            if verdict != convex.UNSURE:
+                decided += 1
+                assert (verdict == convex.OVERLAP) == expected
+    assert decided > 0
