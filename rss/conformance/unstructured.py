@@ -57,6 +57,13 @@ def _row(case_id: str, obj: object, object_id: int, default_type: str) -> dict[s
     }
 
 
+def _overridden(dynamics: RssDynamics, case: Mapping[str, Any], key: str) -> RssDynamics:
+    """``dynamics`` with the case's ``key`` overrides (the same dynamics without the key)."""
+    if key not in case:
+        return dynamics
+    return dynamics.with_overrides(case[key], f"{key}.")
+
+
 def parse_unstructured_case(
     case: Mapping[str, Any], defaults: CaseDefaults, case_id: str
 ) -> tuple[UnstructuredAgents, UnstructuredAgents, RssDynamics, RssDynamics]:
@@ -70,10 +77,9 @@ def parse_unstructured_case(
         [_row(case_id, case.get("other"), OTHER_ID, "OtherVehicle")]
     )
     try:
-        ego_dyn = defaults.ego.with_overrides(case.get("ego_dynamics", {}), "ego_dynamics.")
-        other_dyn = other_dynamics_for(
-            defaults, ObjectType(int(other.object_type[0]))
-        ).with_overrides(case.get("other_dynamics", {}), "other_dynamics.")
+        ego_dyn = _overridden(defaults.ego, case, "ego_dynamics")
+        other_type = ObjectType(int(other.object_type[0]))
+        other_dyn = _overridden(other_dynamics_for(defaults, other_type), case, "other_dynamics")
     except RssError as err:
         raise RssCaseError(case_id, str(err)) from err
     return ego, other, ego_dyn, other_dyn

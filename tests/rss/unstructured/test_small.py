@@ -247,3 +247,30 @@ def test_closed_form_verdicts_of_real_pieces_are_shapely_verdicts(seed) -> None:
                 decided += 1
                 assert (verdict == convex.OVERLAP) == expected
     assert decided > 0
+
+
+_ODD = st.sampled_from([0.0, -0.0, 1.0, -1.0, 7.0, 1e-9, np.nan, np.inf, -np.inf, 6.3, -6.3])
+
+
+@SETTINGS
+@given(
+    st.lists(
+        st.tuples(st.sampled_from([0, 2, 3, 4, 8, -1]), st.lists(_ODD, min_size=9, max_size=9)),
+        min_size=1,
+        max_size=8,
+    )
+)
+def test_row_by_row_validity_equals_the_array_test(rows) -> None:
+    """Few agents are checked row by row; a table of more rows takes the array test."""
+    fields = [f for f in UnstructuredAgents.__dataclass_fields__ if not f.startswith("object")]
+    table = UnstructuredAgents.from_rows(
+        [
+            {"object_id": i, "object_type": kind, **dict(zip(fields, values, strict=True))}
+            for i, (kind, values) in enumerate(rows)
+        ]
+    )
+    padded = UnstructuredAgents.concat([table] * 9)  # beyond the row-by-row size
+    assert np.array_equal(table.valid(), padded.valid()[: len(table)])
+    unknown = dataclasses.replace(table, object_type=np.full(len(table), 99))
+    with pytest.raises(IndexError):
+        unknown.valid()
