@@ -19,7 +19,7 @@ from rss.conformance.cases import (
     parse_defaults,
 )
 from rss.conformance.records import frame_record, json_number
-from rss.conformance.unstructured import unstructured_record
+from rss.conformance.unstructured import unstructured_record, unstructured_records
 from rss.errors import RssCaseError, RssError
 from rss.model import ObjectType
 from rss.physics import stated_braking_longitudinal, stopping_distance
@@ -261,6 +261,25 @@ def _batched(parsed: Sequence[ParsedCase]) -> dict[int, dict[str, Any]]:
     return {id(case): structured_record(case, result, batch, k) for k, case in enumerate(parsed)}
 
 
+def _batched_unstructured(
+    parsed: Sequence[ParsedCase], defaults: CaseDefaults
+) -> dict[int, dict[str, Any]]:
+    """Records of independent unstructured cases from one batched engine call (``id(case)``).
+
+    :func:`rss.conformance.unstructured.unstructured_records` (fresh memory per case);
+    malformed cases, and fewer than :data:`BATCH_MIN_CASES`, are left to the per-case path.
+    """
+    if len(parsed) < BATCH_MIN_CASES:
+        return {}
+    values = unstructured_records([(p.raw, p.case_id) for p in parsed], defaults, json_number)
+    out = {}
+    for case, keys in zip(parsed, values, strict=True):
+        if keys is not None:
+            record: dict[str, Any] = {"id": case.case_id, "kind": case.kind}
+            out[id(case)] = _with_check(record | keys, case)
+    return out
+
+
 def _sequence(
     case: Mapping[str, Any], case_id: str, defaults: CaseDefaults
 ) -> Iterator[dict[str, Any]]:
@@ -301,6 +320,10 @@ def _chunk(cases: Sequence[Any], first: int, defaults: CaseDefaults) -> Iterator
     batched = _batched(
         [p for _, _, p in items if isinstance(p, ParsedCase) and p.kind == "structured"]
     )
+    batched |= _batched_unstructured(
+        [p for _, _, p in items if isinstance(p, ParsedCase) and p.kind == "unstructured"],
+        defaults,
+    )
     for case_id, case, item in items:
         if item is None:
             yield from _sequence(case, case_id, defaults)
@@ -321,9 +344,9 @@ def evaluate_document(document: Mapping[str, Any]) -> Iterator[dict[str, Any]]:
 
     A malformed case yields ``ok: false`` with its error and the run continues. Cases are
     read :data:`BATCH_CASES` at a time; the independent structured cases of each chunk are
-    evaluated in one batched engine call (each with a fresh memory, as the drive pipeline
-    batches frames), sequences step by step with their memory; the records are the same
-    and come in document order.
+    evaluated in one batched engine call, its independent unstructured cases in another
+    (each case with a fresh memory, as the drive pipeline batches frames), sequences step
+    by step with their memory; the records are the same and come in document order.
 
     Raises:
         RssCaseError: The document itself is malformed (no ``cases`` list).

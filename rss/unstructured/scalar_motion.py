@@ -26,7 +26,8 @@ from rss.structured.scalar_physics import accelerated_limited_movement
 __all__ = [
     "ANGULAR_VELOCITY_PRECISION",
     "arc",
-    "integrate",
+    "drive",
+    "finish",
     "is_negative_zero",
     "pedestrian_move",
     "phase_grid",
@@ -136,66 +137,69 @@ def pedestrian_move(
     return ox + math.cos(start + dpsi) * radius, oy + math.sin(start + dpsi) * radius, yaw + dpsi
 
 
-#: One phase of :func:`integrate`: (step ends of the call, accel [m/s²], duration [s], ratio).
+#: One phase of :func:`drive`: (step ends of the call, accel [m/s²], duration [s], ratio).
 Phase = tuple[list[float], float, float, float]
 
 
-def integrate(
-    pose: tuple[float, float, float],
-    speed_mps: float,
-    rate_radps: float,
-    phases: list[Phase],
-    limits: tuple[float, float, float, float],
+#: A row between phases of :func:`drive`: ``(Σ chord x, Σ chord y, yaw, speed, yaw rate, steps)``.
+State = tuple[float, float, float, float, float, int]
+
+
+def finish(
+    pose: tuple[float, float, float], state: State
 ) -> tuple[float, float, float, float, float]:
-    """One row of :func:`rss.unstructured.kinematics.vehicle_integrate`: ``(x, y, yaw, v, rate)``.
+    """``(x, y, yaw, speed, rate)`` at the end of the row's phases."""
+    sum_x, sum_y, yaw, speed, rate_end, k = state
+    if k == 0:
+        return pose[0], pose[1], yaw, speed, rate_end
+    return pose[0] + sum_x, pose[1] + sum_y, yaw, speed, rate_end
+
+
+def drive(state: State, phase: Phase, limits: tuple[float, float, float, float]) -> State:
+    """One phase of a row of :func:`rss.unstructured.kinematics.vehicle_integrate`.
 
     Args:
-        pose: Start ``(x [m], y [m], yaw [rad])``.
-        speed_mps: Start speed.
-        rate_radps: Start yaw rate.
-        phases: The phases; each grid is the one the whole batched call shares (its
-            longest row), so a row idles through the steps after its own duration.
+        state: The row before the phase (start: ``(0, 0, yaw, speed, yaw rate, 0)``).
+        phase: Its grid is the one the whole batched call shares (its longest row), so a
+            row idles through the steps after its own duration.
         limits: ``(step [s], yaw-rate change [rad/s²], speed cap [m/s], min radius [m])``.
 
+    Steps that neither move nor turn add signed zeros in the twin; they are skipped where
+    no sum or heading is zero (where adding a zero cannot change a value) and computed
+    otherwise.
+
     Returns:
-        The end pose, speed and yaw rate. Steps that neither move nor turn add signed
-        zeros in the twin; they are skipped where no sum or heading is zero (where adding
-        a zero cannot change a value) and computed otherwise.
+        The state after the phase (:func:`finish` gives the end pose).
     """
     step_s, change, vcap, min_r = limits
-    x0, y0, yaw = pose
-    speed, rate_end = speed_mps, rate_radps
-    sum_x = sum_y = 0.0
-    k = 0
-    for grid, accel, duration, ratio in phases:
-        start = rate_end
-        for i in range(len(grid) - 1):
-            t0, t1 = grid[i], grid[i + 1]
-            active = duration - t0 >= DURATION_PRECISION
-            if not active and k > 0 and sum_x != 0.0 and sum_y != 0.0 and yaw != 0.0:
-                k += len(grid) - 1 - i
-                break
-            full = t1 - duration < DURATION_PRECISION
-            dt = step_s if full else duration - t0
-            rate = start + change * (t1 if full else duration) * ratio
-            if active:
-                rate_end = rate
-            dist, v1 = 0.0, speed
-            if active and not abs(dt - 0.0) < DURATION_PRECISION:
-                v1, dist = accelerated_limited_movement(speed, vcap, accel, dt)
-            radius, circle = _radius(speed, rate, min_r)
-            dpsi = dist / radius if circle else 0.0
-            half = dpsi / 2.0
-            chord = 2.0 * radius * math.sin(half) if circle else dist
-            term_x = chord * math.cos(yaw + half)
-            term_y = chord * math.sin(yaw + half)
-            if k == 0:
-                sum_x, sum_y = term_x, term_y
-            else:
-                sum_x, sum_y = sum_x + term_x, sum_y + term_y
-            yaw += dpsi
-            speed = v1
-            k += 1
-    if k == 0:
-        return x0, y0, yaw, speed, rate_end
-    return x0 + sum_x, y0 + sum_y, yaw, speed, rate_end
+    sum_x, sum_y, yaw, speed, rate_end, k = state
+    grid, accel, duration, ratio = phase
+    start = rate_end
+    for i in range(len(grid) - 1):
+        t0, t1 = grid[i], grid[i + 1]
+        active = duration - t0 >= DURATION_PRECISION
+        if not active and k > 0 and sum_x != 0.0 and sum_y != 0.0 and yaw != 0.0:
+            k += len(grid) - 1 - i
+            break
+        full = t1 - duration < DURATION_PRECISION
+        dt = step_s if full else duration - t0
+        rate = start + change * (t1 if full else duration) * ratio
+        if active:
+            rate_end = rate
+        dist, v1 = 0.0, speed
+        if active and not abs(dt - 0.0) < DURATION_PRECISION:
+            v1, dist = accelerated_limited_movement(speed, vcap, accel, dt)
+        radius, circle = _radius(speed, rate, min_r)
+        dpsi = dist / radius if circle else 0.0
+        half = dpsi / 2.0
+        chord = 2.0 * radius * math.sin(half) if circle else dist
+        term_x = chord * math.cos(yaw + half)
+        term_y = chord * math.sin(yaw + half)
+        if k == 0:
+            sum_x, sum_y = term_x, term_y
+        else:
+            sum_x, sum_y = sum_x + term_x, sum_y + term_y
+        yaw += dpsi
+        speed = v1
+        k += 1
+    return sum_x, sum_y, yaw, speed, rate_end, k

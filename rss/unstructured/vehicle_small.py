@@ -13,14 +13,17 @@ equal to the bit. :func:`rss.unstructured.engine.trajectory_sets` chooses it by 
 from __future__ import annotations
 
 import functools
+import math
 from typing import TYPE_CHECKING
 
 import numpy as np
 
 from rss.physics import SPEED_PRECISION
 from rss.unstructured.scalar_motion import (
+    State,
     arc,
-    integrate,
+    drive,
+    finish,
     is_negative_zero,
     phase_grid,
     step_accelerations,
@@ -103,13 +106,18 @@ class _Agent:
         )
         limits = (step, change, self.vcap, min_r)
         ends = []  # (x, y, yaw, speed, rate) of every integrated row
+        first: dict[tuple[bool, float, float], State] = {}  # rows sharing their first phase
         for r, (speed, accel, duration) in enumerate(self.start):
+            ratio = rows.ratio1[r]
+            key = (rows.front[r], ratio, math.copysign(1.0, ratio))
+            state = first.get(key)
+            if state is None:
+                state = (0.0, 0.0, self.pose[2], speed, self.rate, 0)
+                state = drive(state, (grids[0], accel, duration, ratio), limits)
+                first[key] = state
             accel2, duration2 = self.second[r]
-            phases = [
-                (grids[0], accel, duration, rows.ratio1[r]),
-                (grids[1], accel2, duration2, rows.ratio2[r]),
-            ]
-            ends.append(integrate(self.pose, speed, self.rate, phases, limits))
+            state = drive(state, (grids[1], accel2, duration2, rows.ratio2[r]), limits)
+            ends.append(finish(self.pose, state))
         response = ends[: rows.response]
         v_centre = response[rows.centre][3]
         v_back = response[-1][3]

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -140,7 +140,7 @@ def random_sequence(
     return out
 
 
-def random_case(rng: np.random.Generator, case_id: str) -> dict[str, object]:
+def random_case(rng: np.random.Generator, case_id: str) -> dict[str, Any]:
     """A random ``kind: unstructured`` conformance case: ego and one agent of :func:`random_frame`.
 
     The format's keys (``conformance/rss-cases-format.md``), the default dynamics of the
