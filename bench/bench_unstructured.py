@@ -31,7 +31,7 @@ from rss.unstructured import FrameInputs, check_unstructured, evaluate_frames
 if TYPE_CHECKING:
     from rss.unstructured import UnstructuredAgents
 
-__all__ = ["run", "run_calls", "run_frames"]
+__all__ = ["run", "run_calls", "run_conformance", "run_frames"]
 
 #: (label, pedestrian share) of the frame kinds.
 KINDS = (("mixed", 0.5), ("vehicles", 0.0), ("pedestrians", 1.0))
@@ -90,8 +90,51 @@ def _section(title: str, rows: list[str], note: str) -> str:
 
 
 def run(quick: bool) -> str:  # noqa: FBT001  (bench/run.py interface)
-    """Markdown sections: per call (:func:`run_calls`), batched frames (:func:`run_frames`)."""
-    return run_calls(quick) + "\n" + run_frames(quick)
+    """Markdown sections: per call, batched frames, conformance cases (the ``run_*`` below)."""
+    return run_calls(quick) + "\n" + run_frames(quick) + "\n" + run_conformance(quick)
+
+
+def run_conformance(quick: bool) -> str:  # noqa: FBT001  (bench/run.py interface)
+    """Markdown section: ms per random unstructured case through the conformance code.
+
+    Ours: :func:`rss.conformance.evaluate_document` on a document of random ``kind:
+    unstructured`` cases (what ``workbench conformance rss`` runs after reading the file;
+    start-up excluded), per case. ad-rss: the binding's check of the same ego, agent and
+    dynamics, one fresh check per case.
+    """
+    from rss.conformance import evaluate_document  # noqa: PLC0415
+    from rss.conformance.cases import parse_defaults  # noqa: PLC0415
+    from rss.conformance.unstructured import parse_unstructured_case  # noqa: PLC0415
+    from tests.rss.oracle_unstructured import UnstructuredOracle  # noqa: PLC0415
+    from tests.rss.unstructured.generators import random_case  # noqa: PLC0415
+
+    count, rounds = (50, 3) if quick else (200, 5)
+    rng = np.random.default_rng(31)
+    document = {"cases": [random_case(rng, f"u{i}") for i in range(count)]}
+    defaults = parse_defaults(document)
+    inputs = [parse_unstructured_case(c, defaults, str(c["id"])) for c in document["cases"]]
+
+    def ours() -> None:
+        for _ in evaluate_document(document):
+            pass
+
+    def theirs() -> None:
+        for ego, other, ego_dyn, other_dyn in inputs:
+            UnstructuredOracle().evaluate(ego, other, ego_dyn, [other_dyn], defaults.ego)
+
+    t_ours, t_ref = (t / count * 1e3 for t in _best((ours, theirs), rounds, calls=1))
+    rows = [
+        "| cases | ours ms/case | ad-rss ms/case | speed-up |",
+        "|---|---|---|---|",
+        f"| {count} | {t_ours:.3f} | {t_ref:.2f} | {t_ref / t_ours:.0f}x |",
+    ]
+    return _section(
+        "Unstructured conformance cases (`workbench conformance rss`)",
+        rows,
+        f"{count} random unstructured cases (ego + one vehicle or pedestrian, half"
+        " pedestrians); ours through `evaluate_document` (parsing, engine, records), ad-rss"
+        f" one binding check per case; best of {rounds} rounds (CPU time, taking turns)",
+    )
 
 
 def run_calls(quick: bool) -> str:  # noqa: FBT001

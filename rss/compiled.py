@@ -54,8 +54,10 @@ __all__ = [
 _LOG = logging.getLogger(__name__)
 
 #: The compiled modules (the per-object Python of scene creation, the row-by-row
-#: structured engine of small frames, ``rss.structured.small``, and the reach sets' scalar
-#: ``bound`` curves and one-frame occupancy, ``reachsets.bound_scalar`` and ``small_scalar``).
+#: structured engine of small frames, ``rss.structured.small``, the point-by-point
+#: trajectory sets of small unstructured frames, ``rss.unstructured.*_small``, and the reach
+#: sets' scalar ``bound`` curves and one-frame occupancy, ``reachsets.bound_scalar`` and
+#: ``small_scalar``).
 MODULES = (
     "rss.structured.batch",
     "rss.structured.stacking",
@@ -64,6 +66,10 @@ MODULES = (
     "rss.structured.scalar_checks",
     "rss.structured.small",
     "rss.structured.small_output",
+    "rss.unstructured.convex",
+    "rss.unstructured.scalar_motion",
+    "rss.unstructured.pedestrian_small",
+    "rss.unstructured.vehicle_small",
     "rss.scene.align",
     "rss.scene.border_stations",
     "rss.scene.connecting",

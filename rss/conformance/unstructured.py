@@ -8,18 +8,22 @@ or pedestrian defaults by type, plus ``ego_dynamics`` / ``other_dynamics`` overr
 
 from __future__ import annotations
 
+import dataclasses
 from typing import TYPE_CHECKING, Any
+
+import numpy as np
 
 from rss.conformance.cases import EGO_ID, OTHER_ID, case_number, other_dynamics_for
 from rss.errors import RssCaseError, RssError
 from rss.model import ObjectType
+from rss.params import RssParams
 from rss.physics import ACCELERATION_LOWEST_MPS2
 from rss.unstructured.agents import UnstructuredAgents
 from rss.unstructured.decision import UnstructuredResponse
-from rss.unstructured.engine import check_unstructured
+from rss.unstructured.engine import FrameInputs, check_unstructured, evaluate_frames
 
 if TYPE_CHECKING:
-    from collections.abc import Callable, Mapping
+    from collections.abc import Callable, Mapping, Sequence
 
     from rss.conformance.cases import CaseDefaults
     from rss.dynamics import RssDynamics
@@ -28,7 +32,15 @@ if TYPE_CHECKING:
 
     Number = Callable[[float], float | None]
 
-__all__ = ["parse_unstructured_case", "unstructured_record"]
+__all__ = [
+    "FIRST_BATCHED_ID",
+    "parse_unstructured_case",
+    "unstructured_record",
+    "unstructured_records",
+]
+
+#: Renumbered object ids of batched cases (never the ego's :data:`EGO_ID`).
+FIRST_BATCHED_ID = OTHER_ID + 1
 
 
 def _row(case_id: str, obj: object, object_id: int, default_type: str) -> dict[str, float]:
@@ -57,6 +69,13 @@ def _row(case_id: str, obj: object, object_id: int, default_type: str) -> dict[s
     }
 
 
+def _overridden(dynamics: RssDynamics, case: Mapping[str, Any], key: str) -> RssDynamics:
+    """``dynamics`` with the case's ``key`` overrides (the same dynamics without the key)."""
+    if key not in case:
+        return dynamics
+    return dynamics.with_overrides(case[key], f"{key}.")
+
+
 def parse_unstructured_case(
     case: Mapping[str, Any], defaults: CaseDefaults, case_id: str
 ) -> tuple[UnstructuredAgents, UnstructuredAgents, RssDynamics, RssDynamics]:
@@ -70,16 +89,17 @@ def parse_unstructured_case(
         [_row(case_id, case.get("other"), OTHER_ID, "OtherVehicle")]
     )
     try:
-        ego_dyn = defaults.ego.with_overrides(case.get("ego_dynamics", {}), "ego_dynamics.")
-        other_dyn = other_dynamics_for(
-            defaults, ObjectType(int(other.object_type[0]))
-        ).with_overrides(case.get("other_dynamics", {}), "other_dynamics.")
+        ego_dyn = _overridden(defaults.ego, case, "ego_dynamics")
+        other_type = ObjectType(int(other.object_type[0]))
+        other_dyn = _overridden(other_dynamics_for(defaults, other_type), case, "other_dynamics")
     except RssError as err:
         raise RssCaseError(case_id, str(err)) from err
     return ego, other, ego_dyn, other_dyn
 
 
-def _states(result: UnstructuredResult, number: Number) -> list[dict[str, Any]]:
+def _states(
+    result: UnstructuredResult, number: Number, ids: Mapping[int, int]
+) -> list[dict[str, Any]]:
     dec, states = result.decisions, []
     for i, object_id in enumerate(result.object_id):
         drive = dec.response[i] == UnstructuredResponse.DriveAway
@@ -88,7 +108,7 @@ def _states(result: UnstructuredResult, number: Number) -> list[dict[str, Any]]:
         )
         states.append(
             {
-                "object_id": int(object_id),
+                "object_id": ids.get(int(object_id), int(object_id)),
                 "constellation_type": "Unstructured",
                 "is_dangerous": not bool(dec.is_safe[i]),
                 "invalid": None if result.valid[i] else "InvalidInput",
@@ -126,14 +146,53 @@ def unstructured_record(
     """
     ego, other, ego_dyn, other_dyn = parse_unstructured_case(case, defaults, case_id)
     result, memory_out = check_unstructured(ego, other, ego_dyn, [other_dyn], defaults.ego, memory)
+    return _record(result, number, {}), memory_out
+
+
+def unstructured_records(
+    cases: Sequence[tuple[Mapping[str, Any], str]], defaults: CaseDefaults, number: Number
+) -> list[dict[str, Any] | None]:
+    """Record keys of independent cases from one batched engine call (``evaluate_frames``).
+
+    Each case is one frame, its other object renumbered (:data:`FIRST_BATCHED_ID` on, the
+    records keep :data:`OTHER_ID`) so that no memory entry meets another case's: every
+    case is evaluated as with a fresh memory, as :func:`unstructured_record` does alone.
+
+    Args:
+        cases: ``(case, case id)`` of each case.
+        defaults: File-level defaults.
+        number: JSON number formatter.
+
+    Returns:
+        Per case its record keys, or ``None`` for a malformed case (the per-case path
+        reports its error).
+    """
+    frames, where = [], []
+    for k, (case, case_id) in enumerate(cases):
+        try:
+            ego, other, ego_dyn, other_dyn = parse_unstructured_case(case, defaults, case_id)
+        except RssError:
+            continue
+        other = dataclasses.replace(other, object_id=np.array([FIRST_BATCHED_ID + k]))
+        frames.append(FrameInputs(ego, other, [other_dyn], ego_dyn, defaults.ego))
+        where.append(k)
+    results, _ = evaluate_frames(frames, RssParams()) if frames else ([], None)
+    out: list[dict[str, Any] | None] = [None] * len(cases)
+    for k, result in zip(where, results, strict=True):
+        out[k] = _record(result, number, {FIRST_BATCHED_ID + k: OTHER_ID})
+    return out
+
+
+def _record(result: UnstructuredResult, number: Number, ids: Mapping[int, int]) -> dict[str, Any]:
+    """The record keys of one result (``ids``: renumbered object ids -> the case's ids)."""
     pr = result.proper_response
     record: dict[str, Any] = {
         "ok": result.ok,
         "constellation_type": "Unstructured",
-        "states": _states(result, number),
+        "states": _states(result, number, ids),
         "proper_response": {
             "is_safe": pr.is_safe,
-            "dangerous_objects": list(pr.dangerous_objects),
+            "dangerous_objects": [ids.get(i, i) for i in pr.dangerous_objects],
             "longitudinal_response": "None",
             "lateral_response_left": "None",
             "lateral_response_right": "None",
@@ -150,4 +209,4 @@ def unstructured_record(
         record["error"] = (
             "invalid input: an unstructured object is out of range or has no trajectory model"
         )
-    return record, memory_out
+    return record

@@ -15,6 +15,7 @@ motion model: pedestrians (``Pedestrian``, ``ArtificialPedestrian``) or vehicles
 from __future__ import annotations
 
 import enum
+import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -132,8 +133,18 @@ class UnstructuredAgents:
         """The agents at ``index``."""
         return UnstructuredAgents(**{n: _frozen(getattr(self, n)[index]) for n in _FIELDS})
 
+    def _rows(self) -> list[tuple[float, ...]]:
+        """Per agent: the object type, then the float fields (:data:`_FLOAT_FIELDS` order)."""
+        columns = [self.object_type.tolist()] + [getattr(self, n).tolist() for n in _FLOAT_FIELDS]
+        return list(zip(*columns, strict=True))
+
     def valid(self) -> np.ndarray:
-        """``(N,)`` agents ad-rss accepts (finite, angles within ±2π, speeds ordered, a model)."""
+        """``(N,)`` agents ad-rss accepts (finite, angles within ±2π, speeds ordered, a model).
+
+        A few rows are checked one by one (the same tests; no dozen of numpy calls).
+        """
+        if len(self) <= _ROW_CHECK_MAX:
+            return np.array([_valid_row(row) for row in self._rows()], dtype=bool)
         values = np.stack([getattr(self, n) for n in _FLOAT_FIELDS])
         angles = values[_ANGLE_ROWS]
         return np.asarray(
@@ -147,6 +158,24 @@ class UnstructuredAgents:
         )
 
 
+def _valid_row(row: tuple[float, ...]) -> bool:
+    """:meth:`UnstructuredAgents.valid` of one row (``_rows`` order: type, then the floats)."""
+    kind, *floats = row
+    model = _MODEL_CODES[int(kind)]  # an unknown code raises as in the array test
+    if not all(math.isfinite(v) for v in floats):
+        return False
+    values = dict(zip(_FLOAT_FIELDS, floats, strict=True))
+    return (
+        abs(values["yaw_rad"]) <= _ANGLE_LIMIT_RAD
+        and abs(values["steering_angle_rad"]) <= _ANGLE_LIMIT_RAD
+        and values["speed_min_mps"] >= 0.0
+        and values["speed_min_mps"] <= values["speed_max_mps"]
+        and values["length_m"] > 0.0
+        and values["width_m"] > 0.0
+        and model != _INVALID_MODEL
+    )
+
+
 def _frozen(values: np.ndarray) -> np.ndarray:
     values.setflags(write=False)
     return values
@@ -154,4 +183,7 @@ def _frozen(values: np.ndarray) -> np.ndarray:
 
 _FIELDS = tuple(UnstructuredAgents.__dataclass_fields__)
 _FLOAT_FIELDS = tuple(n for n in _FIELDS if not n.startswith("object"))
+_MODEL_CODES = _MODEL.tolist()
+#: Agents up to which :meth:`UnstructuredAgents.valid` checks row by row.
+_ROW_CHECK_MAX = 8
 _ANGLE_ROWS = [_FLOAT_FIELDS.index("yaw_rad"), _FLOAT_FIELDS.index("steering_angle_rad")]

@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from rss import compiled
 from rss.params import ObjectClass
 from rss.unstructured.agents import MotionModel, UnstructuredAgents, motion_model
 from rss.unstructured.batch import AgentDynamics
@@ -25,9 +26,11 @@ from rss.unstructured.errors import UnstructuredInputError
 from rss.unstructured.intersect import FIRST_ROUND_MIN_PAIRS, intersections
 from rss.unstructured.memory import UnstructuredMemory
 from rss.unstructured.pedestrian_batch import pedestrian_sets_batch
+from rss.unstructured.pedestrian_small import pedestrian_moving_small
 from rss.unstructured.response import UnstructuredProperResponse, resolve_unstructured
 from rss.unstructured.sets import TrajectorySets
 from rss.unstructured.vehicle_batch import vehicle_sets_batch
+from rss.unstructured.vehicle_small import SMALL_SETS_MAX, vehicle_sets_small
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -114,11 +117,25 @@ def trajectory_sets(
         rows = sorted(unordered)
         idx = np.array(rows, dtype=np.int64)
         sub = agents if len(rows) == n else agents.take(idx)
-        build = pedestrian_sets_batch if model == MotionModel.PEDESTRIAN else vehicle_sets_batch
-        parts.append((build(sub, AgentDynamics.of([dynamics[i] for i in rows], extra[idx])), idx))
+        stacked = AgentDynamics.of([dynamics[i] for i in rows], extra[idx])
+        parts.append((_sets(model, sub, stacked), idx))
     if len(parts) == 1 and parts[0][1].size == n:
         return parts[0][0]  # one batch of every agent, in order
     return TrajectorySets.concat(parts, n)
+
+
+def small_batch(agents: int) -> bool:
+    """Build a batch of ``agents`` point by point (the same sets; faster compiled and small)."""
+    return agents <= SMALL_SETS_MAX and compiled.status()[0]
+
+
+def _sets(model: int, agents: UnstructuredAgents, dyn: AgentDynamics) -> TrajectorySets:
+    """The sets of one batch: point by point when :func:`small_batch`, else batched."""
+    small = small_batch(len(agents))
+    if model == MotionModel.PEDESTRIAN:
+        return pedestrian_sets_batch(agents, dyn, pedestrian_moving_small if small else None)
+    sets = vehicle_sets_small(agents, dyn) if small else None
+    return vehicle_sets_batch(agents, dyn) if sets is None else sets
 
 
 @dataclass(frozen=True)

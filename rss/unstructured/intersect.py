@@ -19,16 +19,27 @@ from typing import TYPE_CHECKING
 import numpy as np
 import shapely
 
+from rss import compiled
+from rss.unstructured.convex import Pieces, mark
 from rss.unstructured.sets import hulls_of
 
 if TYPE_CHECKING:
     from rss.arrays import BoolArray, FloatArray, IntArray
     from rss.unstructured.sets import TrajectorySets
 
-__all__ = ["FIRST_ROUND_MIN_PAIRS", "SECOND_ROUND_PAIRS", "intersections"]
+__all__ = [
+    "CLOSED_FORM_MAX_PAIRS",
+    "FIRST_ROUND_MIN_PAIRS",
+    "SECOND_ROUND_PAIRS",
+    "closed_form",
+    "intersections",
+]
 
 #: Candidate pairs above which the brake-brake pairs are tested in a first round.
 FIRST_ROUND_MIN_PAIRS = 64
+#: Pairs of one test round up to which the compiled closed-form tests
+#: (:mod:`rss.unstructured.convex`) go before shapely (beyond: shapely's vectorised calls).
+CLOSED_FORM_MAX_PAIRS = 256
 #: Pairs per (agent, condition) tested in the second round (the others only if it missed).
 SECOND_ROUND_PAIRS = 2
 
@@ -157,6 +168,11 @@ def _overlap(lo1: FloatArray, hi1: FloatArray, lo2: FloatArray, hi2: FloatArray)
     )
 
 
+def closed_form(pairs: int) -> bool:
+    """Test ``pairs`` piece pairs with :mod:`rss.unstructured.convex` first (compiled, few)."""
+    return pairs <= CLOSED_FORM_MAX_PAIRS and compiled.status()[0]
+
+
 def _mark(
     flags: BoolArray,
     ego_sets: TrajectorySets,
@@ -164,9 +180,30 @@ def _mark(
     e: IntArray,
     a: IntArray,
 ) -> None:
-    """Test the piece pairs ``(e[k], a[k])`` and set the three conditions ``(3, N)`` they meet."""
+    """Test the piece pairs ``(e[k], a[k])`` and set the three conditions ``(3, N)`` they meet.
+
+    Few pairs (:func:`closed_form`) go to the closed-form tests of
+    :mod:`rss.unstructured.convex` first, which skip pairs that cannot set a new flag and
+    leave only the near-touching ones to shapely: the same flags.
+    """
     if e.size == 0:
         return
+    if closed_form(e.size):
+        e_brake, a_brake = ego_sets.brake[e], agent_sets.brake[a]
+        rows = e_brake * 1 + a_brake * 2 + (e_brake & a_brake) * 4
+        found = flags.tolist()
+        unsure = mark(
+            Pieces(ego_sets.coords, ego_sets.size.tolist()),
+            Pieces(agent_sets.coords, agent_sets.size.tolist()),
+            (e.tolist(), a.tolist()),
+            rows.tolist(),
+            agent_sets.owner[a].tolist(),
+            found,
+        )
+        flags[:] = found
+        if not unsure:
+            return
+        e, a = e[unsure], a[unsure]
     ego_hulls, agent_hulls = hulls_of([(ego_sets, e), (agent_sets, a)])
     shapely.prepare(ego_hulls)
     hit = shapely.intersects(ego_hulls, agent_hulls)

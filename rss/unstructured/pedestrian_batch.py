@@ -43,12 +43,21 @@ from rss.unstructured.kinematics import (
 from rss.unstructured.sets import TrajectorySets, front_and_sides
 
 if TYPE_CHECKING:
+    from collections.abc import Callable
+
     from rss.arrays import FloatArray, IntArray
     from rss.dynamics import UnstructuredSettings
     from rss.unstructured.agents import UnstructuredAgents
     from rss.unstructured.batch import AgentDynamics
 
-__all__ = ["pedestrian_plan", "pedestrian_sets_batch"]
+__all__ = [
+    "PedestrianLayout",
+    "pedestrian_counts",
+    "pedestrian_layout",
+    "pedestrian_plan",
+    "pedestrian_sets_batch",
+    "pedestrian_sets_of_points",
+]
 
 #: A standing pedestrian: the brake circle, then the continue-forward circle.
 _CIRCLES = PiecePlan(
@@ -58,7 +67,7 @@ _CIRCLES = PiecePlan(
 )
 
 
-def _counts(u: UnstructuredSettings) -> tuple[int, int, int, int, int]:
+def pedestrian_counts(u: UnstructuredSettings) -> tuple[int, int, int, int, int]:
     """``(nf, nb, Sb, Kc, Ncf)``: ratios per side front / back, side steps, cf extremes."""
     return (
         u.pedestrian_front_intermediate_heading_change_ratio_steps + 1,
@@ -72,7 +81,7 @@ def _counts(u: UnstructuredSettings) -> tuple[int, int, int, int, int]:
 @functools.lru_cache(maxsize=16)
 def pedestrian_plan(u: UnstructuredSettings) -> PiecePlan:
     """The pieces of one moving pedestrian over the rows of the footprint table."""
-    nf, nb, sb, kc, ncf = _counts(u)
+    nf, nb, sb, kc, ncf = pedestrian_counts(u)
     rf, rb = 2 * nf + 1, 2 * nb + 1
     o_sides = rf
     o_back = o_sides + 3 * sb
@@ -106,24 +115,32 @@ def pedestrian_plan(u: UnstructuredSettings) -> PiecePlan:
     return pieces.plan()
 
 
-def pedestrian_sets_batch(agents: UnstructuredAgents, dyn: AgentDynamics) -> TrajectorySets:
+def pedestrian_sets_batch(
+    agents: UnstructuredAgents,
+    dyn: AgentDynamics,
+    moving: Callable[[UnstructuredAgents, AgentDynamics], TrajectorySets] | None = None,
+) -> TrajectorySets:
     """Brake and continue-forward sets of ``N`` pedestrians (per-agent dynamics values).
 
     Args:
         agents: The pedestrians ``(N,)``.
         dyn: Their dynamics ``(N,)`` (one settings).
+        moving: Builder of the moving pedestrians' sets (``None``: the batched one; the
+            point-by-point twin :func:`rss.unstructured.pedestrian_small.pedestrian_moving_small`
+            gives the same sets).
 
     Returns:
         The pieces (owner = index into ``agents``).
     """
     n = len(agents)
+    moving = moving or _moving
     standing = eq(agents.speed_max_mps, 0.0, SPEED_PRECISION)
     if not standing.any():
-        return _moving(agents, dyn)
+        return moving(agents, dyn)
     if standing.all():
         return _standing(agents, dyn)
     parts = []
-    for mask, build in ((standing, _standing), (~standing, _moving)):
+    for mask, build in ((standing, _standing), (~standing, moving)):
         idx = np.flatnonzero(mask)
         parts.append((build(agents.take(idx), dyn.take(idx)), idx))
     return TrajectorySets.concat(parts, n)
@@ -163,7 +180,7 @@ def _standing(agents: UnstructuredAgents, dyn: AgentDynamics) -> TrajectorySets:
 
 
 @dataclass(frozen=True)
-class _Layout:
+class PedestrianLayout:
     """Constant row arrays of one settings (see :func:`_moving`)."""
 
     phase: IntArray  # (rf + rb,) 0 = front (speed_max, accel_max), 1 = back
@@ -174,8 +191,9 @@ class _Layout:
 
 
 @functools.lru_cache(maxsize=16)
-def _layout(u: UnstructuredSettings) -> _Layout:
-    nf, nb, sb, kc, ncf = _counts(u)
+def pedestrian_layout(u: UnstructuredSettings) -> PedestrianLayout:
+    """The row layout of :func:`_moving` for one settings (cached)."""
+    nf, nb, sb, kc, ncf = pedestrian_counts(u)
     rf, rb = 2 * nf + 1, 2 * nb + 1
     f_right, f_left = change_ratios(nf - 1)
     b_right, b_left = change_ratios(nb - 1)
@@ -185,7 +203,7 @@ def _layout(u: UnstructuredSettings) -> _Layout:
     front = list(range(rf))
     lr = [1.0, 0.0, -1.0]
 
-    return _Layout(
+    return PedestrianLayout(
         phase=constant([0] * rf + [1] * rb),
         ratio_rt=constant([*f_right, *f_left, 0.0, *b_right, *b_left, 0.0], np.float64)[:, None],
         starts=constant(
@@ -218,8 +236,8 @@ def _layout(u: UnstructuredSettings) -> _Layout:
 def _moving(agents: UnstructuredAgents, dyn: AgentDynamics) -> TrajectorySets:
     """Moving pedestrians (:func:`rss.unstructured.reference_pedestrian._moving`)."""
     u, a = dyn.settings, agents
-    nf, _, sb, kc, _ = _counts(u)
-    lay = _layout(u)
+    nf, _, sb, kc, _ = pedestrian_counts(u)
+    lay = pedestrian_layout(u)
     rho, vcap, radius = dyn.response_time_s, dyn.max_speed_mps, u.pedestrian_turning_radius
     amax, bmax, bmin = dyn.accel_max_mps2, dyn.brake_max_mps2, dyn.brake_min_mps2
     zeros = np.zeros(len(a))
@@ -265,6 +283,18 @@ def _moving(agents: UnstructuredAgents, dyn: AgentDynamics) -> TrajectorySets:
     moved = pedestrian_move(
         Points(x, y, yaw, speed, zeros), palette[lay.dist_pick], lay.ratio, radius
     )
-    corners = footprints(moved, a.length_m, a.width_m, dyn.front_extra_m)
-    table = np.moveaxis(corners, 2, 1).reshape(-1, len(a), 2)
-    return plan_sets(table, pedestrian_plan(u))
+    return pedestrian_sets_of_points(moved.x_m, moved.y_m, moved.yaw_rad, agents, dyn)
+
+
+def pedestrian_sets_of_points(
+    x_m: FloatArray,
+    y_m: FloatArray,
+    yaw_rad: FloatArray,
+    agents: UnstructuredAgents,
+    dyn: AgentDynamics,
+) -> TrajectorySets:
+    """The pieces of moving pedestrians from the poses ``(R, N)`` of the footprint table's rows."""
+    points = Points(x_m, y_m, yaw_rad, x_m, yaw_rad)  # speeds and yaw rates are not used
+    corners = footprints(points, agents.length_m, agents.width_m, dyn.front_extra_m)
+    table = np.moveaxis(corners, 2, 1).reshape(-1, len(agents), 2)
+    return plan_sets(table, pedestrian_plan(dyn.settings))

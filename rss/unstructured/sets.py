@@ -115,11 +115,17 @@ class TrajectorySets:
         The part is a view: it shares this set's points and its hull cache (a hull built
         through either is built for both).
         """
-        part = TrajectorySets(
-            self.coords[:, lo:hi], self.size[lo:hi], owner, self.brake[lo:hi], count
-        )
-        object.__setattr__(part, "_hulls", self._hulls[lo:hi])
-        object.__setattr__(part, "_built", self._built[lo:hi])
+        part = object.__new__(TrajectorySets)  # no fresh hull cache: it gets views
+        for name, value in (
+            ("coords", self.coords[:, lo:hi]),
+            ("size", self.size[lo:hi]),
+            ("owner", owner),
+            ("brake", self.brake[lo:hi]),
+            ("count", count),
+            ("_hulls", self._hulls[lo:hi]),
+            ("_built", self._built[lo:hi]),
+        ):
+            object.__setattr__(part, name, value)
         return part
 
     def bounds(self) -> tuple[FloatArray, FloatArray]:

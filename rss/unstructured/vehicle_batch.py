@@ -57,9 +57,13 @@ if TYPE_CHECKING:
 
 __all__ = [
     "SPLIT_MIN_AGENTS",
+    "VehicleLayout",
     "step_accelerations_batch",
+    "vehicle_counts",
+    "vehicle_layout",
     "vehicle_plan",
     "vehicle_sets_batch",
+    "vehicle_sets_of_points",
 ]
 
 
@@ -75,7 +79,7 @@ def step_accelerations_batch(low: FloatArray, high: FloatArray, steps: int) -> F
     return np.concatenate((values, high[None]))
 
 
-def _counts(u: UnstructuredSettings) -> tuple[int, int, int, int, int]:
+def vehicle_counts(u: UnstructuredSettings) -> tuple[int, int, int, int, int]:
     """``(nf, nb, Kb, Kc, Ncf)``: ratios per side front / back, side steps, cf extremes."""
     return (
         u.vehicle_front_intermediate_yaw_rate_change_ratio_steps + 1,
@@ -89,7 +93,7 @@ def _counts(u: UnstructuredSettings) -> tuple[int, int, int, int, int]:
 @functools.lru_cache(maxsize=16)
 def vehicle_plan(u: UnstructuredSettings) -> PiecePlan:
     """The pieces of one vehicle over the rows of the footprint table (module docstring)."""
-    nf, nb, kb, kc, ncf = _counts(u)
+    nf, nb, kb, kc, ncf = vehicle_counts(u)
     rf, rb = 2 * nf + 1, 2 * nb + 1
     o_fb = rb
     o_sides = o_fb + rf
@@ -121,7 +125,7 @@ def vehicle_plan(u: UnstructuredSettings) -> PiecePlan:
 
 
 @dataclass(frozen=True)
-class _Layout:
+class VehicleLayout:
     """Constant row arrays of one settings (see :func:`vehicle_sets_batch`).
 
     ``*_pick`` arrays index a per-agent palette of values (rows of a ``(V, N)`` stack).
@@ -140,8 +144,9 @@ class _Layout:
 
 
 @functools.lru_cache(maxsize=16)
-def _layout(u: UnstructuredSettings) -> _Layout:
-    nf, nb, kb, kc, ncf = _counts(u)
+def vehicle_layout(u: UnstructuredSettings) -> VehicleLayout:
+    """The row layout of :func:`vehicle_sets_batch` for one settings (cached)."""
+    nf, nb, kb, kc, ncf = vehicle_counts(u)
     rf, rb = 2 * nf + 1, 2 * nb + 1
     n_extra = 2 * ncf + 2 * kc
     f_right, f_left = change_ratios(nf - 1)
@@ -151,7 +156,7 @@ def _layout(u: UnstructuredSettings) -> _Layout:
     left, centre, right = 2 * nf - 1, rf - 1, 0
     front = list(range(rf))
 
-    return _Layout(
+    return VehicleLayout(
         rows1=constant([0] * rf + [1] * rb + [0] * n_extra),
         ratio1=constant(
             [*f_right, *f_left, 0.0, *b_right, *b_left, 0.0, *np.repeat(outer, ncf), *outer * kc],
@@ -258,8 +263,8 @@ def vehicle_sets_batch(agents: UnstructuredAgents, dyn: AgentDynamics) -> Trajec
         The pieces (owner = index into ``agents``).
     """
     u, a = dyn.settings, agents
-    nf, _, kb, kc, _ = _counts(u)
-    lay = _layout(u)
+    nf, _, kb, kc, _ = vehicle_counts(u)
+    lay = vehicle_layout(u)
     rho, vcap = dyn.response_time_s, dyn.max_speed_mps
     amax, bmax, bmin = dyn.accel_max_mps2, dyn.brake_max_mps2, dyn.brake_min_mps2
     t_after = np.maximum(0.0, time_to_stop(a.speed_max_mps, rho, vcap, amax, bmin) - rho)
@@ -296,13 +301,22 @@ def vehicle_sets_batch(agents: UnstructuredAgents, dyn: AgentDynamics) -> Trajec
         u.vehicle_min_radius,
     )
     extra_points = _take(out, lay.extras)
-    current = Points(a.x_m, a.y_m, a.yaw_rad, a.speed_min_mps, a.yaw_rate_radps)
-    points = Points(
-        *(
-            np.concatenate((getattr(arcs, f), getattr(extra_points, f), getattr(current, f)[None]))
-            for f in ("x_m", "y_m", "yaw_rad", "speed_mps", "yaw_rate_radps")
-        )
+    x, y, yaw = (
+        np.concatenate((getattr(arcs, f), getattr(extra_points, f), getattr(a, f)[None]))
+        for f in ("x_m", "y_m", "yaw_rad")
     )
-    corners = footprints(points, a.length_m, a.width_m, dyn.front_extra_m)
-    table = np.moveaxis(corners, 2, 1).reshape(-1, len(a), 2)
-    return plan_sets(table, vehicle_plan(u))
+    return vehicle_sets_of_points(x, y, yaw, agents, dyn)
+
+
+def vehicle_sets_of_points(
+    x_m: FloatArray,
+    y_m: FloatArray,
+    yaw_rad: FloatArray,
+    agents: UnstructuredAgents,
+    dyn: AgentDynamics,
+) -> TrajectorySets:
+    """The pieces from the poses ``(R, N)`` of the table's rows (arcs, extras, current)."""
+    points = Points(x_m, y_m, yaw_rad, x_m, yaw_rad)  # speeds and yaw rates are not used
+    corners = footprints(points, agents.length_m, agents.width_m, dyn.front_extra_m)
+    table = np.moveaxis(corners, 2, 1).reshape(-1, len(agents), 2)
+    return plan_sets(table, vehicle_plan(dyn.settings))

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -13,7 +13,7 @@ from rss.unstructured import UnstructuredAgents
 if TYPE_CHECKING:
     from rss.dynamics import RssDynamics
 
-__all__ = ["random_ego", "random_frame", "random_sequence"]
+__all__ = ["random_case", "random_ego", "random_frame", "random_sequence"]
 
 
 def random_ego(rng: np.random.Generator) -> UnstructuredAgents:
@@ -138,3 +138,29 @@ def random_sequence(
             ego_pose[1] += (ego_speed * 0.5 + 0.2) * np.sin(ego_pose[2])
             ego_pose[2] = _wrap(ego_pose[2] + float(rng.uniform(-0.3, 0.3)))
     return out
+
+
+def random_case(rng: np.random.Generator, case_id: str) -> dict[str, Any]:
+    """A random ``kind: unstructured`` conformance case: ego and one agent of :func:`random_frame`.
+
+    The format's keys (``conformance/rss-cases-format.md``), the default dynamics of the
+    agent's type (ego: ``defaults.ego``).
+    """
+    ego = random_ego(rng)
+    agents, _ = random_frame(rng, 1)
+
+    def obj(table: UnstructuredAgents) -> dict[str, object]:
+        return {
+            "object_type": ObjectType(int(table.object_type[0])).name,
+            "x": float(table.x_m[0]),
+            "y": float(table.y_m[0]),
+            "yaw": float(table.yaw_rad[0]),
+            "speed_min": float(table.speed_min_mps[0]),
+            "speed_max": float(table.speed_max_mps[0]),
+            "yaw_rate": float(table.yaw_rate_radps[0]),
+            "steering_angle": float(table.steering_angle_rad[0]),
+            "length": float(table.length_m[0]),
+            "width": float(table.width_m[0]),
+        }
+
+    return {"id": case_id, "kind": "unstructured", "ego": obj(ego), "other": obj(agents)}
