@@ -61,6 +61,7 @@ MODULES = (
     "rss.structured.scalar_physics",
     "rss.structured.scalar_extract",
     "rss.structured.scalar_checks",
+    "rss.structured.small_input",
     "rss.structured.small",
     "rss.structured.small_output",
     "rss.scene.align",
