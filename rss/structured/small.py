@@ -19,7 +19,7 @@ both paths agree by construction; ``tests/rss/structured/test_small.py`` checks 
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Final
 
 from rss.physics import ACCELERATION_LOWEST_MPS2
 from rss.structured.scalar_checks import check_row
@@ -40,8 +40,13 @@ if TYPE_CHECKING:
 
 __all__ = ["SMALL_FRAME_MAX", "check_frame_small"]
 
-_EGO_VEHICLE, _INVALID_OBJECT = 1, 0
-_OPPOSITE, _EGO_PRIO, _UNSTRUCTURED = 2, 3, 6
+_LOWEST_MPS2: Final = ACCELERATION_LOWEST_MPS2
+
+_EGO_VEHICLE: Final = 1
+_INVALID_OBJECT: Final = 0
+_OPPOSITE: Final = 2
+_EGO_PRIO: Final = 3
+_UNSTRUCTURED: Final = 6
 
 
 class _Places:
@@ -149,7 +154,7 @@ def _resolve(out: Columns, rows: Packed, default_ego: RssDynamics) -> None:
     out.response = (
         not any(out.dangerous),
         (lon_resp, left_resp, right_resp),
-        (lon_min, lon_max, ACCELERATION_LOWEST_MPS2, left_max, ACCELERATION_LOWEST_MPS2, right_max),
+        (lon_min, lon_max, _LOWEST_MPS2, left_max, _LOWEST_MPS2, right_max),
     )
 
 
@@ -185,7 +190,8 @@ def check_frame_small(
         if (
             not 0 <= ctype < _UNSTRUCTURED
             or kinds[ego] != _EGO_VEHICLE
-            or kinds[other] in {_INVALID_OBJECT, _EGO_VEHICLE}
+            or kinds[other] == _INVALID_OBJECT
+            or kinds[other] == _EGO_VEHICLE
             or ego_id == other_id
             or not _valid(rows, other, checked)
             or not _valid(rows, ego, checked)

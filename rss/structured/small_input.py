@@ -18,7 +18,7 @@ engine).
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Protocol
+from typing import TYPE_CHECKING, Final, Protocol
 
 import numpy as np
 
@@ -34,10 +34,10 @@ __all__ = ["SMALL_FRAME_MAX", "Packed", "pack", "packed", "remember"]
 
 #: Largest frame (constellations) :func:`rss.structured.engine.check_frame` evaluates row
 #: by row; measured crossover with the batched engine (docs/benchmarks.md).
-SMALL_FRAME_MAX = 128
+SMALL_FRAME_MAX: Final = 128
 
-_FIELDS = tuple(DYNAMICS_KEYS.values())
-_KEPT = 8  # batches whose packing is kept (by identity)
+_FIELDS: Final = tuple(DYNAMICS_KEYS.values())
+_KEPT: Final = 8  # batches whose packing is kept (by identity)
 _KEEP: list[tuple[ConstellationBatch, Packed]] = []
 
 

@@ -9,7 +9,7 @@ turns the lists into the engine's records with a few array constructions.
 from __future__ import annotations
 
 import array
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Final
 
 import numpy as np
 
@@ -34,8 +34,10 @@ __all__ = [
 ]
 
 
-_EGO_PRIO, _SAME_DIRECTION = 3, 1
-_ABLE_TO_BRAKE, _SAFE_DISTANCE = 1, 2
+_EGO_PRIO: Final = 3
+_SAME_DIRECTION: Final = 1
+_ABLE_TO_BRAKE: Final = 1
+_SAFE_DISTANCE: Final = 2
 
 
 class Columns:
