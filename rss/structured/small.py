@@ -55,7 +55,8 @@ class _Places:
     def __init__(self, rows: Packed) -> None:
         self.rows = rows
         self.tables: list[Road | None] = [None] * len(rows.road_ints)
-        self.placed: dict[tuple[int, int], Placed] = {}
+        self.n_roads = len(rows.road_ints)
+        self.placed: dict[int, Placed] = {}  # by object * n_roads + road
 
     def table(self, road: int) -> Road | None:
         """Lane table of road area ``road`` (``None``: empty road area)."""
@@ -71,7 +72,7 @@ class _Places:
 
     def place(self, obj: int, road: int, table: Road) -> Placed:
         """Extents of object ``obj`` in road area ``road`` (its lane table ``table``)."""
-        key = (obj, road)
+        key = obj * self.n_roads + road
         placed = self.placed.get(key)
         if placed is None:
             placed = place(self.rows.lanes[obj], self.rows.params[obj], table)
