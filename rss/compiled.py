@@ -62,6 +62,7 @@ MODULES = (
     "rss.structured.scalar_extract",
     "rss.structured.scalar_checks",
     "rss.structured.small_input",
+    "rss.structured.small_merge",
     "rss.structured.small",
     "rss.structured.small_output",
     "rss.scene.align",

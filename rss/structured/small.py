@@ -10,10 +10,12 @@ response and the memory are computed eagerly, the result arrays are built when f
 (:mod:`rss.structured.small_result`). :func:`rss.structured.engine.check_frame`
 chooses it by size (:data:`SMALL_FRAME_MAX`).
 
-It covers the common frame: every constellation valid, one per (ego, object, type) key.
-Anything else — an invalid row, two rows of one key (merged by ad-rss, and remembered as
-one), an empty road area — returns ``None`` and the batched engine takes the frame, so
-both paths agree by construction; ``tests/rss/structured/test_small.py`` checks it.
+It covers the common frame: every constellation valid; rows of one (ego, object, type) key
+(merged by ad-rss, and remembered as one) of a non-intersection type with shared dynamics
+(:mod:`rss.structured.small_merge`). Anything else — an invalid row, an intersection type
+twice for one object, an empty road area — returns ``None`` and the batched engine takes
+the frame, so both paths agree by construction; ``tests/rss/structured/test_small.py``
+checks it.
 """
 
 from __future__ import annotations
@@ -32,6 +34,7 @@ from rss.structured.scalar_extract import (
     relative_position,
 )
 from rss.structured.small_input import SMALL_FRAME_MAX, Packed, packed
+from rss.structured.small_merge import merge_rows
 from rss.structured.small_output import Columns
 
 if TYPE_CHECKING:
@@ -182,7 +185,7 @@ def check_frame_small(
     ctypes = rows.ctypes
     ids, kinds = rows.object_id, rows.object_type
     checked = [False] * len(ids)
-    keys: set[tuple[int, int, int]] = set()
+    keys: list[tuple[int, int, int]] = []
     ego_ids: list[int] = []
     other_ids: list[int] = []
     for c, ctype in enumerate(ctypes):
@@ -198,18 +201,19 @@ def check_frame_small(
             or not _valid(rows, ego, checked)
         ):
             return None
-        keys.add((ego_id, other_id, ctype))
+        keys.append((ego_id, other_id, ctype))
         ego_ids.append(ego_id)
         other_ids.append(other_id)
-    if len(keys) != len(ctypes):
-        return None
     places = _Places(rows)
     out = Columns(len(ctypes))
     for c, ctype in enumerate(ctypes):
         if not _row(c, ctype, places, out):
             return None
+    speeds = merge_rows(out, rows, keys)
+    if speeds is None:
+        return None
+    ego_speeds, other_speeds = speeds
     for c, ctype in enumerate(ctypes):
-        ego, other = rows.ego[c], rows.other[c]
         out.add_states(
             check_row(
                 ctype,
@@ -221,8 +225,8 @@ def check_frame_small(
                     out.ego_correct[c],
                 ),
                 out.enter_leave[c],
-                rows.speeds[ego],
-                rows.speeds[other],
+                ego_speeds[c],
+                other_speeds[c],
                 rows.dynamics[rows.ego_dynamics[c]],
                 rows.dynamics[rows.other_dynamics[c]],
             )

@@ -105,12 +105,34 @@ def packed(batch: ConstellationBatch) -> Packed:
     rows.other = list(range(size, 2 * size))
     rows.ego_road = _roads(rows, batch.ego_road)
     rows.cross_road = _roads(rows, batch.intersecting_road)
-    for dyn in (batch.ego_dynamics, batch.other_dynamics):
-        columns = np.array([getattr(dyn, name) for name in _FIELDS], dtype=np.float64)
-        rows.dynamics.extend(columns.T.tolist())
-    rows.ego_dynamics = list(range(size))
-    rows.other_dynamics = list(range(size, 2 * size))
+    columns = [
+        np.array([getattr(dyn, name) for name in _FIELDS], dtype=np.float64)
+        for dyn in (batch.ego_dynamics, batch.other_dynamics)
+    ]
+    uses = _dynamics(rows, np.concatenate(columns, axis=1).T)
+    rows.ego_dynamics, rows.other_dynamics = uses[:size], uses[size:]
     return rows
+
+
+def _dynamics(rows: Packed, table: np.ndarray) -> list[int]:
+    """Append the distinct rows of ``table`` (``(n, 10)``) to ``rows.dynamics``.
+
+    Rows of equal bit patterns are one record, as ``merge`` compares them.
+
+    Returns:
+        The record of each row.
+    """
+    bits = np.ascontiguousarray(table).view(np.int64).tolist()
+    values = table.tolist()
+    known: dict[tuple[int, ...], int] = {}
+    out: list[int] = []
+    for k, key in enumerate(bits):
+        record = known.get(tuple(key))
+        if record is None:
+            record = known[tuple(key)] = len(rows.dynamics)
+            rows.dynamics.append(values[k])
+        out.append(record)
+    return out
 
 
 def _objects(rows: Packed, obj: ObjectArrays) -> None:
@@ -186,15 +208,18 @@ def pack(
     rows.cross_road = _pack_roads(rows, roads[1])
     known: dict[int, int] = {}
     values: list[RssDynamics] = []
-    for per_row, uses in zip(dynamics, (rows.ego_dynamics, rows.other_dynamics), strict=True):
-        for d in per_row:
-            k = known.get(id(d))
-            if k is None:
-                k = known[id(d)] = len(values)
-                values.append(d)
-            uses.append(k)
-    table = [[getattr(d, name) for name in _FIELDS] for d in values]
-    rows.dynamics = np.array(table, dtype=np.float64).tolist()
+    uses: list[int] = []
+    for d in (*dynamics[0], *dynamics[1]):
+        k = known.get(id(d))
+        if k is None:
+            k = known[id(d)] = len(values)
+            values.append(d)
+        uses.append(k)
+    table = np.array([[getattr(d, name) for name in _FIELDS] for d in values], dtype=np.float64)
+    distinct = _dynamics(rows, table)
+    size = len(ctypes)
+    rows.ego_dynamics = [distinct[k] for k in uses[:size]]
+    rows.other_dynamics = [distinct[k] for k in uses[size:]]
     return rows
 
 

@@ -118,30 +118,44 @@ class Columns:
             other_ids: Other object id per row.
             before: The memory before the frame by key (:func:`recall`).
         """
+        stored: dict[tuple[int, int, int], tuple[bool, bool, int]] = {}
+        events: set[tuple[int, int, int]] = set()
         for c, ctype in enumerate(ctypes):
-            self._remember(c, ctype, (ego_ids[c], other_ids[c], ctype), before)
-        self.memory.sort()
+            key = (ego_ids[c], other_ids[c], ctype)
+            self._remember(c, ctype, key, before.get(key), stored, events)
+        for key in sorted({(ego_ids[c], other_ids[c], ctype) for c, ctype in enumerate(ctypes)}):
+            entry = stored.get(key, before.get(key))
+            if entry is not None:
+                self.memory.append((key[0], key[1], key[2], entry[0], entry[1], entry[2]))
 
-    def _remember(
+    def _remember(  # noqa: PLR0917 - one row of the memory scan
         self,
         c: int,
         ctype: int,
         key: tuple[int, int, int],
-        before: dict[tuple[int, int, int], tuple[bool, bool, int]],
+        initial: tuple[bool, bool, int] | None,
+        stored: dict[tuple[int, int, int], tuple[bool, bool, int]],
+        events: set[tuple[int, int, int]],
     ) -> None:
+        """Row ``c`` of the scan: rows of one key in row order, one run of frame 0.
+
+        ``stored``: what earlier rows of the frame stored per key (else ``initial``, the
+        memory before the frame, is remembered); ``events``: keys whose earlier rows were
+        safe or dangerous non-intersection (no synthetic memory after them).
+        """
         intersection = ctype >= _EGO_PRIO
         dangerous, lon_safe = self.dangerous[c], self.lon_safe[c]
         lat_safe = self.left[c][0] and self.right[c][0]
         base = lon_safe if intersection else not dangerous
         overlap_assumption = ctype == _SAME_DIRECTION and 1 <= self.lat_position[c] <= 3  # noqa: PLR2004
-        entry = before.get(key)
+        entry = stored.get(key, initial)
         known = entry is not None
         prev_lon, prev_lat, prev_int = entry if entry is not None else (False, False, 0)
-        synthetic = dangerous and not intersection and not known
+        candidate = dangerous and not intersection
+        synthetic = candidate and initial is None and key not in events
         store = base or synthetic
-        structured = dangerous and not intersection
-        clear_lon = structured and known and prev_lat and not prev_lon
-        clear_lat = structured and (
+        clear_lon = candidate and known and prev_lat and not prev_lon
+        clear_lat = candidate and (
             (known and prev_lon and not prev_lat) or (synthetic and overlap_assumption)
         )
         int_none = (
@@ -161,9 +175,9 @@ class Columns:
         if store:
             stored_int = self.intersection_state[c] if intersection and base else 0
             stored_lat = not overlap_assumption if synthetic else lat_safe
-            self.memory.append((*key, True if synthetic else lon_safe, stored_lat, stored_int))
-        elif known:
-            self.memory.append((*key, prev_lon, prev_lat, prev_int))
+            stored[key] = (True if synthetic else lon_safe, stored_lat, stored_int)
+        if base or candidate:
+            events.add(key)
 
 
 def _matrix(values: list[Any], typecode: str, dtype: type, rows: int) -> Any:

@@ -22,6 +22,7 @@ from rss.structured.batch import take_rows
 from rss.structured.engine import FrameResult, check_frame, check_frames
 from rss.structured.memory import RssMemory
 from rss.structured.small import SMALL_FRAME_MAX, check_frame_small
+from rss.structured.small_output import recall
 from rss.structured.stacking import stack_constellations
 from tests.rss.structured.generators import random_case, random_sequence, renumber
 
@@ -145,14 +146,58 @@ def test_valid_frames_take_the_small_path(seed: int, n_objects: int) -> None:
     assert n_objects <= SMALL_FRAME_MAX
 
 
+@settings(max_examples=40, deadline=None)
+@given(
+    st.integers(0, 2**32 - 1),
+    st.integers(1, 12),
+    st.integers(1, 4),
+    st.integers(0, 11),
+    st.sampled_from(["same", "wider"]),
+)
+def test_similar_rows_merged_as_batched(
+    seed: int, n_objects: int, steps: int, which: int, how: str
+) -> None:
+    """Two rows of one key (the same, or speeds widened): merged as the batched engine does.
+
+    Rows of a non-intersection type take the row path (``rss.structured.small_merge``).
+    """
+    ours_memory: RssMemory | None = None
+    batched_memory: RssMemory | None = None
+    for frame in _drive(seed, n_objects, steps):
+        twin = frame[which % len(frame)]
+        if how == "wider":
+            s = twin.other.speed
+            speed = SpeedInterval(
+                max(0.0, s.lon_min_mps - 1.0),
+                min(100.0, s.lon_max_mps + 1.0),
+                max(-100.0, s.lat_min_mps - 0.1),
+                min(100.0, s.lat_max_mps + 0.1),
+            )
+            twin = dataclasses.replace(twin, other=dataclasses.replace(twin.other, speed=speed))
+        frame_twice = [*frame, twin]
+        before_ours = ours_memory
+        ours, ours_memory = check_frame(
+            stack_constellations(frame_twice), _DEFAULTS.ego, ours_memory
+        )
+        batched, batched_memory = _batched(frame_twice, batched_memory)
+        _assert_same(ours, batched)
+        _assert_same(ours_memory, batched_memory)
+        covered = (batched.invalid == 0).all() and max(c.constellation_type for c in frame) < 3
+        if covered:
+            before = {} if before_ours is None else recall(before_ours)
+            assert check_frame_small(stack_constellations(frame_twice), _DEFAULTS.ego, before)
+
+
 @settings(max_examples=30, deadline=None)
 @given(st.integers(0, 2**32 - 1), st.integers(2, 10), st.sampled_from(["twice", "nan", "same_id"]))
 def test_uncovered_frames_go_to_the_batched_engine(seed: int, n_objects: int, how: str) -> None:
-    """Two rows of one key, a non-finite speed or an object with the ego's id: batched."""
+    """Two rows of one key with different dynamics, a non-finite speed, the ego's id: batched."""
     frames = _drive(seed, n_objects, 2)
     first = frames[0]
     if how == "twice":
-        frame = [*first, first[0]]
+        d = first[0].other_dynamics
+        own = dataclasses.replace(d, response_time_s=d.response_time_s + 0.5)
+        frame = [*first, dataclasses.replace(first[0], other_dynamics=own)]
     elif how == "nan":
         other = dataclasses.replace(first[0].other, speed=SpeedInterval(np.nan, 1.0, 0.0, 0.0))
         frame = [dataclasses.replace(first[0], other=other), *first[1:]]
