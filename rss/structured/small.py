@@ -186,8 +186,6 @@ def check_frame_small(
     ids, kinds = rows.object_id, rows.object_type
     checked = [False] * len(ids)
     keys: list[tuple[int, int, int]] = []
-    ego_ids: list[int] = []
-    other_ids: list[int] = []
     for c, ctype in enumerate(ctypes):
         ego, other = rows.ego[c], rows.other[c]
         ego_id, other_id = ids[ego], ids[other]
@@ -202,8 +200,6 @@ def check_frame_small(
         ):
             return None
         keys.append((ego_id, other_id, ctype))
-        ego_ids.append(ego_id)
-        other_ids.append(other_id)
     places = _Places(rows)
     out = Columns(len(ctypes))
     for c, ctype in enumerate(ctypes):
@@ -231,7 +227,7 @@ def check_frame_small(
                 rows.dynamics[rows.other_dynamics[c]],
             )
         )
-    out.apply_memory(ctypes, ego_ids, other_ids, before)
+    out.apply_memory(ctypes, keys, before)
     _resolve(out, rows, default_ego)
     return out
 

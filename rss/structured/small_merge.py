@@ -39,6 +39,8 @@ def merge_rows(
     """
     ego_speeds = [rows.speeds[e] for e in rows.ego]
     other_speeds = [rows.speeds[o] for o in rows.other]
+    if len(set(keys)) == len(keys):
+        return ego_speeds, other_speeds
     groups: dict[tuple[int, int, int], list[int]] = {}
     for c, key in enumerate(keys):
         members = groups.get(key)
@@ -46,8 +48,6 @@ def merge_rows(
             groups[key] = [c]
         else:
             members.append(c)
-    if len(groups) == len(keys):
-        return ego_speeds, other_speeds
     for key, members in groups.items():
         if len(members) == 1:
             continue

@@ -106,53 +106,74 @@ class Columns:
     def apply_memory(
         self,
         ctypes: list[int],
-        ego_ids: list[int],
-        other_ids: list[int],
+        keys: list[tuple[int, int, int]],
         before: dict[tuple[int, int, int], tuple[bool, bool, int]],
     ) -> None:
         """Clear responses by the remembered safe states; gather the memory after the frame.
 
         Args:
             ctypes: Constellation type per row.
-            ego_ids: Ego id per row.
-            other_ids: Other object id per row.
+            keys: ``(ego id, object id, type)`` per row.
             before: The memory before the frame by key (:func:`recall`).
         """
+        if len(set(keys)) == len(keys):  # one row per key: no scan within the frame
+            for c, ctype in enumerate(ctypes):
+                key = keys[c]
+                initial = before.get(key)
+                entry = self._remember(c, ctype, initial, initial, seen=False)[0] or initial
+                if entry is not None:
+                    self.memory.append((key[0], key[1], key[2], entry[0], entry[1], entry[2]))
+            self.memory.sort()
+            return
         stored: dict[tuple[int, int, int], tuple[bool, bool, int]] = {}
         events: set[tuple[int, int, int]] = set()
         for c, ctype in enumerate(ctypes):
-            key = (ego_ids[c], other_ids[c], ctype)
-            self._remember(c, ctype, key, before.get(key), stored, events)
-        for key in sorted({(ego_ids[c], other_ids[c], ctype) for c, ctype in enumerate(ctypes)}):
-            entry = stored.get(key, before.get(key))
+            key = keys[c]
+            initial = before.get(key)
+            entry, event = self._remember(
+                c, ctype, stored.get(key, initial), initial, seen=key in events
+            )
             if entry is not None:
-                self.memory.append((key[0], key[1], key[2], entry[0], entry[1], entry[2]))
+                stored[key] = entry
+            if event:
+                events.add(key)
+        for key in sorted(set(keys)):
+            last = stored.get(key, before.get(key))
+            if last is not None:
+                self.memory.append((key[0], key[1], key[2], last[0], last[1], last[2]))
 
-    def _remember(  # noqa: PLR0917 - one row of the memory scan
+    def _remember(
         self,
         c: int,
         ctype: int,
-        key: tuple[int, int, int],
+        entry: tuple[bool, bool, int] | None,
         initial: tuple[bool, bool, int] | None,
-        stored: dict[tuple[int, int, int], tuple[bool, bool, int]],
-        events: set[tuple[int, int, int]],
-    ) -> None:
-        """Row ``c`` of the scan: rows of one key in row order, one run of frame 0.
+        *,
+        seen: bool,
+    ) -> tuple[tuple[bool, bool, int] | None, bool]:
+        """Row ``c`` of the scan (rows of one key in row order, one run of frame 0).
 
-        ``stored``: what earlier rows of the frame stored per key (else ``initial``, the
-        memory before the frame, is remembered); ``events``: keys whose earlier rows were
-        safe or dangerous non-intersection (no synthetic memory after them).
+        Args:
+            c: The row.
+            ctype: Its constellation type.
+            entry: What an earlier row of its key stored, else ``initial``.
+            initial: The memory of its key before the frame.
+            seen: An earlier row of its key was safe or dangerous non-intersection (no
+                synthetic memory after it).
+
+        Returns:
+            ``(what the row stores or None, whether it is safe or dangerous
+            non-intersection)``.
         """
         intersection = ctype >= _EGO_PRIO
         dangerous, lon_safe = self.dangerous[c], self.lon_safe[c]
         lat_safe = self.left[c][0] and self.right[c][0]
         base = lon_safe if intersection else not dangerous
         overlap_assumption = ctype == _SAME_DIRECTION and 1 <= self.lat_position[c] <= 3  # noqa: PLR2004
-        entry = stored.get(key, initial)
         known = entry is not None
         prev_lon, prev_lat, prev_int = entry if entry is not None else (False, False, 0)
         candidate = dangerous and not intersection
-        synthetic = candidate and initial is None and key not in events
+        synthetic = candidate and initial is None and not seen
         store = base or synthetic
         clear_lon = candidate and known and prev_lat and not prev_lon
         clear_lat = candidate and (
@@ -172,12 +193,11 @@ class Columns:
             self.lon_response[c] = 0
         if clear_lat or calm:
             self.left_response[c] = self.right_response[c] = 0
-        if store:
-            stored_int = self.intersection_state[c] if intersection and base else 0
-            stored_lat = not overlap_assumption if synthetic else lat_safe
-            stored[key] = (True if synthetic else lon_safe, stored_lat, stored_int)
-        if base or candidate:
-            events.add(key)
+        if not store:
+            return None, base or candidate
+        stored_int = self.intersection_state[c] if intersection and base else 0
+        stored_lat = not overlap_assumption if synthetic else lat_safe
+        return (True if synthetic else lon_safe, stored_lat, stored_int), base or candidate
 
 
 def _matrix(values: list[Any], typecode: str, dtype: type, rows: int) -> Any:
