@@ -6,10 +6,10 @@ path wants one Python list per distinct object, road area and dynamics record in
 its dynamics are shared by all its constellations), and per constellation the index of
 its items.
 
-:func:`rss.structured.stacking.stack_constellations` builds it from the rows it collects
-anyway (:func:`pack`) for frames of at most :data:`SMALL_FRAME_MAX` constellations and
-keeps it with the batch (:func:`remember`, the last :data:`_KEPT` batches by identity);
-:func:`packed` returns it, or reads it from the arrays of a batch built otherwise (every
+:func:`rss.structured.stacking.stack_constellations` keeps the rows it collects anyway
+with the batch for frames of at most :data:`SMALL_FRAME_MAX` constellations
+(:func:`remember`, the last :data:`_KEPT` batches by identity); :func:`packed` packs them
+on first use (:func:`pack`), or reads it from the arrays of a batch built otherwise (every
 row then has items of its own). Both give the same values: the arrays are filled from
 the same rows, and padding (lanes -1, zero bounds) does not change a lane table or a
 placement (``tests/rss/structured/test_small.py`` checks both ways against the batched
@@ -25,7 +25,7 @@ import numpy as np
 from rss.dynamics import DYNAMICS_KEYS
 
 if TYPE_CHECKING:
-    from collections.abc import Sequence
+    from collections.abc import Callable, Sequence
 
     from rss.dynamics import RssDynamics
     from rss.structured.batch import ConstellationBatch, ObjectArrays, RoadAreaArrays
@@ -38,7 +38,7 @@ SMALL_FRAME_MAX: Final = 128
 
 _FIELDS: Final = tuple(DYNAMICS_KEYS.values())
 _KEPT: Final = 8  # batches whose packing is kept (by identity)
-_KEEP: list[tuple[ConstellationBatch, Packed]] = []
+_KEEP: list[tuple[ConstellationBatch, Packed | Callable[[], Packed]]] = []
 
 
 class Packed:
@@ -85,8 +85,12 @@ class Packed:
         self.dynamics: list[list[float]] = []
 
 
-def remember(batch: ConstellationBatch, rows: Packed) -> None:
-    """Keep ``rows`` as the packing of ``batch`` (the last :data:`_KEPT` batches)."""
+def remember(batch: ConstellationBatch, rows: Callable[[], Packed]) -> None:
+    """Keep ``rows`` (called on first use) as the packing of ``batch``.
+
+    The last :data:`_KEPT` batches are kept; a batch only given to the batched engine
+    never packs its rows.
+    """
     _KEEP.append((batch, rows))
     if len(_KEEP) > _KEPT:
         del _KEEP[0]
@@ -94,8 +98,13 @@ def remember(batch: ConstellationBatch, rows: Packed) -> None:
 
 def packed(batch: ConstellationBatch) -> Packed:
     """The packing of ``batch``: the one stacking kept, else read from its arrays."""
-    for kept, rows in reversed(_KEEP):
+    for k in range(len(_KEEP) - 1, -1, -1):
+        kept, made = _KEEP[k]
         if kept is batch:
+            if isinstance(made, Packed):
+                return made
+            rows = made()
+            _KEEP[k] = (batch, rows)
             return rows
     rows = Packed(batch.constellation_type.tolist())
     size = len(rows.ctypes)

@@ -2,12 +2,14 @@
 
 One validating pass over the constellations collects flat rows (each distinct object and
 road segment read once), then the padded arrays of :mod:`rss.structured.batch` are filled
-with one indexed assignment per field. For a small frame the same rows also give the
-record-oriented input of the row path (:mod:`rss.structured.small_input`).
+with one indexed assignment per field. For a small frame the same rows are kept for the
+record-oriented input of the row path (:mod:`rss.structured.small_input`, packed on
+first use).
 """
 
 from __future__ import annotations
 
+import functools
 import math
 import operator
 from typing import TYPE_CHECKING, Any
@@ -95,7 +97,8 @@ def stack_constellations(constellations: Sequence[Constellation]) -> Constellati
         intersecting_road=roads[1],
     )
     if 0 < len(types) <= SMALL_FRAME_MAX:  # the row path's input, from the same rows
-        remember(batch, pack(types, (ego, other), (ego_road, intersecting_road), dynamics))
+        rows = (ego, other), (ego_road, intersecting_road)
+        remember(batch, functools.partial(pack, types, *rows, dynamics))
     return batch
 
 
