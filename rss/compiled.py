@@ -64,6 +64,8 @@ MODULES = (
     "rss.structured.scalar_physics",
     "rss.structured.scalar_extract",
     "rss.structured.scalar_checks",
+    "rss.structured.small_input",
+    "rss.structured.small_merge",
     "rss.structured.small",
     "rss.structured.small_output",
     "rss.unstructured.convex",

@@ -9,7 +9,7 @@ skipped instead of failing the whole frame as ad-rss does.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -22,12 +22,17 @@ from rss.structured.response import ProperResponses, resolve
 from rss.structured.responsibility import Responsibility, responsibility, swap_roles
 from rss.structured.severity import Severity, severity
 from rss.structured.small import SMALL_FRAME_MAX, check_frame_small
+from rss.structured.small_output import dangerous, raw_states, recall, relative, responses
+from rss.structured.small_result import SmallMemory
 from rss.structured.states import InvalidReason
 
 if TYPE_CHECKING:
+    from collections.abc import Callable
+
     from rss.arrays import BoolArray, IntArray
     from rss.dynamics import RssDynamics
     from rss.structured.batch import ConstellationBatch
+    from rss.structured.small_output import Columns
 
 __all__ = ["FrameResult", "check_frame", "check_frames", "select_frame"]
 
@@ -105,14 +110,58 @@ def check_frame(
 
     A frame of at most :data:`rss.structured.small.SMALL_FRAME_MAX` constellations is
     evaluated row by row (:mod:`rss.structured.small`) when it can be; the result is the
-    same.
+    same, its arrays built on first read (:class:`SmallFrameResult`).
     """
     if 0 < batch.size <= SMALL_FRAME_MAX:
-        parts = check_frame_small(batch, default_ego, memory)
-        if parts is not None:
-            rel, states, dangerous, invalid, frame, responses, new_memory = parts
-            return FrameResult(rel, states, dangerous, invalid, frame, responses), new_memory
+        if isinstance(memory, SmallMemory):
+            before = memory.before
+        else:
+            before = recall(memory) if memory is not None and memory.size else {}
+        out = check_frame_small(batch, default_ego, before)
+        if out is not None:
+            after = SmallMemory(out.memory) if out.memory else RssMemory.empty()
+            return SmallFrameResult(out), after
     return check_frames(batch, np.zeros(batch.size, dtype=np.int64), 1, default_ego, memory)
+
+
+def _zeros(out: Columns) -> IntArray:
+    """``(C,)`` zeros (invalid reasons, frame numbers of one frame)."""
+    return np.zeros(out.size, dtype=np.int64)
+
+
+_BUILDERS: dict[str, Callable[[Columns], Any]] = {
+    "relative": relative,
+    "states": raw_states,
+    "dangerous": dangerous,
+    "responses": responses,
+    "invalid": _zeros,
+    "frame": _zeros,
+}
+
+
+class SmallFrameResult(FrameResult):
+    """The :class:`FrameResult` of a small frame; each field built on its first read.
+
+    The row path (:mod:`rss.structured.small`) has computed every value; the arrays are
+    built from its rows when read (:mod:`rss.structured.small_result` says why) and are
+    then those :func:`check_frames` returns.
+    """
+
+    _out: Columns
+
+    def __init__(self, out: Columns) -> None:
+        object.__setattr__(self, "_out", out)
+        object.__setattr__(self, "responsibility", None)
+        object.__setattr__(self, "severity", None)
+
+    def __getattr__(self, name: str) -> Any:
+        """Build field ``name`` on its first read."""
+        build = _BUILDERS.get(name)
+        if build is None:
+            raise AttributeError(name)
+        value = build(self._out)
+        object.__setattr__(self, name, value)
+        return value
 
 
 def select_frame(result: FrameResult, index: int) -> FrameResult:

@@ -8,6 +8,8 @@ in their order; speeds are ``[lon min, lon max, lat min, lat max]`` [m/s].
 
 from __future__ import annotations
 
+from typing import Final
+
 from rss.physics import DISTANCE_MAX_M, DISTANCE_PRECISION, DURATION_MAX_S, DURATION_PRECISION
 from rss.structured.scalar_physics import (
     gt,
@@ -21,17 +23,35 @@ from rss.structured.scalar_physics import (
 
 __all__ = ["LateralRow", "check_row"]
 
-_P = DISTANCE_PRECISION
-_DP = DURATION_PRECISION
+_DISTANCE_MAX_M: Final = DISTANCE_MAX_M
+_DURATION_MAX_S: Final = DURATION_MAX_S
+
+_P: Final = DISTANCE_PRECISION
+_DP: Final = DURATION_PRECISION
 # ConstellationType codes
-_NOT_RELEVANT, _OPPOSITE, _EGO_PRIO, _OTHER_PRIO = 0, 2, 3, 4
+_NOT_RELEVANT: Final = 0
+_OPPOSITE: Final = 2
+_EGO_PRIO: Final = 3
+_OTHER_PRIO: Final = 4
 # RssStateEvaluator codes
-_E_OD_CORRECT, _E_OD, _E_SD_EGO_FRONT, _E_SD_OTHER_FRONT, _E_LAT = 1, 2, 3, 4, 5
-_E_I_EGO_STOPS, _E_I_OTHER_STOPS, _E_I_EGO_FRONT, _E_I_OTHER_FRONT, _E_I_OVERLAP = 6, 7, 8, 9, 10
+_E_OD_CORRECT: Final = 1
+_E_OD: Final = 2
+_E_SD_EGO_FRONT: Final = 3
+_E_SD_OTHER_FRONT: Final = 4
+_E_LAT: Final = 5
+_E_I_EGO_STOPS: Final = 6
+_E_I_OTHER_STOPS: Final = 7
+_E_I_EGO_FRONT: Final = 8
+_E_I_OTHER_FRONT: Final = 9
+_E_I_OVERLAP: Final = 10
 # LateralPosition codes
-_AT_LEFT, _OVERLAP_LEFT, _OVERLAP_RIGHT, _AT_RIGHT = 0, 1, 3, 4
+_AT_LEFT: Final = 0
+_OVERLAP_LEFT: Final = 1
+_OVERLAP_RIGHT: Final = 3
+_AT_RIGHT: Final = 4
 # LongitudinalResponse codes
-_BRAKE_MIN_CORRECT, _BRAKE_MIN = 1, 2
+_BRAKE_MIN_CORRECT: Final = 1
+_BRAKE_MIN: Final = 2
 
 #: One lateral side: ``(is_safe, response, evaluator, current distance, safe distance)``.
 LateralRow = tuple[bool, int, int, float, float]
@@ -49,7 +69,7 @@ def _lateral_side(  # noqa: PLR0917 - ``checks._lateral.side`` of one row
         return gap_safe, 0 if gap_safe else 1, _E_LAT, lat_distance_m, safe_m
     if overlap:
         return overlap_safe, 0 if overlap_safe else 1, _E_LAT, 0.0, 0.0
-    return True, 0, 0, DISTANCE_MAX_M, DISTANCE_MAX_M
+    return True, 0, 0, _DISTANCE_MAX_M, _DISTANCE_MAX_M
 
 
 def _intersection(  # noqa: PLR0917 - ``intersection_checks._intersection_rows``, one row
@@ -86,7 +106,7 @@ def _intersection(  # noqa: PLR0917 - ``intersection_checks._intersection_rows``
     leave_ego = time_to_cover_distance(ego[0], cap, ego_d[7], ego_d[1], ego_d[1], ego_leave)
     reach_oth = time_to_cover_distance(other[1], cap, oth_d[7], oth_d[0], oth_d[2], other_enter)
     leave_oth = time_to_cover_distance(other[0], cap, oth_d[7], oth_d[1], oth_d[1], other_leave)
-    never = abs(reach_ego - DURATION_MAX_S) < _DP and abs(reach_oth - DURATION_MAX_S) < _DP
+    never = abs(reach_ego - _DURATION_MAX_S) < _DP and abs(reach_oth - _DURATION_MAX_S) < _DP
     if gt(reach_ego, leave_oth, _DP) or gt(reach_oth, leave_ego, _DP) or never:
         return True, _E_I_OVERLAP, 0.0, 0.0, 3
     return False, _E_I_OVERLAP, 0.0, 0.0, 0
@@ -137,7 +157,7 @@ def check_row(  # noqa: PLR0917 - one row of the batch's and the extraction's co
         right, intersection state)``.
     """
     lon_position, lon_distance_m, lat_position, lat_distance_m, ego_correct = relative
-    far = DISTANCE_MAX_M
+    far = _DISTANCE_MAX_M
     if ctype == _NOT_RELEVANT:
         calm: LateralRow = (True, 0, 0, far, far)
         return True, 0, 0, far, far, calm, calm, 0

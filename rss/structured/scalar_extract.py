@@ -13,18 +13,19 @@ Inputs are flat lists of one row of a :class:`rss.structured.batch.Constellation
 from __future__ import annotations
 
 import math
+from typing import Final
 
 from rss.physics import DISTANCE_PRECISION
 
 __all__ = ["Placed", "Road", "lane_table", "object_valid", "place", "relative_position"]
 
-_P = DISTANCE_PRECISION
-_PARAM_EPS = 1e-9
-_SPEED_LIMIT_MPS = 100.0
-_FLOAT_MAX = 1.7976931348623157e308
-_INTERSECTION = 1
-_POSITIVE = 1
-_NEGATIVE = 2
+_P: Final = DISTANCE_PRECISION
+_PARAM_EPS: Final = 1e-9
+_SPEED_LIMIT_MPS: Final = 100.0
+_FLOAT_MAX: Final = 1.7976931348623157e308
+_INTERSECTION: Final = 1
+_POSITIVE: Final = 1
+_NEGATIVE: Final = 2
 
 
 class Road:
@@ -41,6 +42,7 @@ class Road:
         scale_m: ``(4 W,)`` length min, length max, width min, width max of every slot.
         intersection_min_m: Entry of the intersecting area (NaN if none).
         intersection_max_m: Exit (NaN if none).
+        slot_of: Slot of each lane id.
     """
 
     def __init__(  # noqa: PLR0917 - a record of the table's fields
@@ -61,6 +63,10 @@ class Road:
         self.col_min_m, self.col_max_m = col_m
         self.scale_m = scale_m
         self.intersection_min_m, self.intersection_max_m = intersection_m
+        self.slot_of: dict[int, int] = {}  # first slot of each lane id
+        for slot, lane in enumerate(lane_id):
+            if lane >= 0 and lane not in self.slot_of:
+                self.slot_of[lane] = slot
 
 
 class Placed:
@@ -157,7 +163,7 @@ def lane_table(ints: list[int], floats: list[float], n_segments: int, n_lanes: i
     )
 
 
-_SIGNS = (-1.0, 1.0, -1.0, 1.0)
+_SIGNS: Final = (-1.0, 1.0, -1.0, 1.0)
 
 
 def place(lanes: list[int], params: list[float], road: Road) -> Placed:
@@ -169,15 +175,17 @@ def place(lanes: list[int], params: list[float], road: Road) -> Placed:
         road: The road area's lane table.
     """
     width, n_regions = len(road.lane_id), len(lanes)
+    if n_regions == 1:
+        return _place_one(lanes[0], params, road)
     slots: list[tuple[int, int]] = []  # (sort key, region)
     hits: list[bool] = []
     idx: list[int] = []
     for k, lane in enumerate(lanes):
-        slot = road.lane_id.index(lane) if lane >= 0 and lane in road.lane_id else -1
+        slot = road.slot_of.get(lane, -1)
         hits.append(slot >= 0)
         idx.append(max(slot, 0))
         slots.append((slot if slot >= 0 else width, k))
-    order = [k for _, k in sorted(slots)] if n_regions > 1 else [0]
+    order = [k for _, k in sorted(slots)]
     current = [math.nan, math.nan, math.nan, math.nan]
     positive = negative = found = False
     for k in order:
@@ -191,15 +199,34 @@ def place(lanes: list[int], params: list[float], road: Road) -> Placed:
         hit = hits[k]
         for q in range(4):
             value = starts[q] + params[q * n_regions + k] * road.scale_m[q * width + idx[k]]
-            if n_regions == 1:
-                current[q] = value + (0.0 if hit else math.nan)
-            elif hit and (current[q] != current[q] or (value - current[q]) * _SIGNS[q] >= _P):
+            if hit and (current[q] != current[q] or (value - current[q]) * _SIGNS[q] >= _P):
                 current[q] = value
         if hit:
             found = True
             positive |= road.direction[idx[k]] == _POSITIVE
             negative |= road.direction[idx[k]] == _NEGATIVE
     return Placed(current[0], current[1], current[2], current[3], positive, negative, found)
+
+
+def _place_one(lane: int, params: list[float], road: Road) -> Placed:
+    """:func:`place` of an object in one region (no running min / max)."""
+    slot = road.slot_of.get(lane, -1)
+    if slot < 0:
+        nan = math.nan
+        return Placed(nan, nan, nan, nan, False, False, False)  # noqa: FBT003
+    width = len(road.lane_id)
+    segment, column = divmod(slot, road.n_lanes)
+    scale = road.scale_m
+    direction = road.direction[slot]
+    return Placed(
+        road.seg_min_m[segment] + params[0] * scale[slot] + 0.0,
+        road.seg_max_m[segment] + params[1] * scale[width + slot] + 0.0,
+        road.col_min_m[column] + params[2] * scale[2 * width + slot] + 0.0,
+        road.col_max_m[column] + params[3] * scale[3 * width + slot] + 0.0,
+        direction == _POSITIVE,
+        direction == _NEGATIVE,
+        True,  # noqa: FBT003
+    )
 
 
 def object_valid(lanes: list[int], params: list[float], speeds: list[float]) -> bool:

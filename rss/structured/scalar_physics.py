@@ -11,6 +11,7 @@ discards is not computed here (no division by zero is ever evaluated).
 from __future__ import annotations
 
 import math
+from typing import Final
 
 from rss.physics import (
     ACCELERATION_PRECISION,
@@ -34,7 +35,12 @@ __all__ = [
     "tmax",
 ]
 
-_P = DISTANCE_PRECISION
+_AP: Final = ACCELERATION_PRECISION
+_DURATION_MAX_S: Final = DURATION_MAX_S
+_DP: Final = DURATION_PRECISION
+_SP: Final = SPEED_PRECISION
+
+_P: Final = DISTANCE_PRECISION
 
 
 def gt(a: float, b: float, precision: float) -> bool:
@@ -77,13 +83,13 @@ def accelerated_limited_movement(
 ) -> tuple[float, float]:
     """``(v1 [m/s], distance [m])`` (:func:`rss.physics.accelerated_limited_movement`)."""
     v1 = speed_mps + accel_mps2 * duration_s
-    if v1 - 0.0 < SPEED_PRECISION:
+    if v1 - 0.0 < _SP:
         v1 = 0.0
-    cap = speed_mps if speed_mps - max_speed_mps >= SPEED_PRECISION else max_speed_mps
-    if cap - v1 >= SPEED_PRECISION:
+    cap = speed_mps if speed_mps - max_speed_mps >= _SP else max_speed_mps
+    if cap - v1 >= _SP:
         cap = v1
     v1 = cap
-    t_acc = 0.0 if abs(accel_mps2 - 0.0) < ACCELERATION_PRECISION else (v1 - speed_mps) / accel_mps2
+    t_acc = 0.0 if abs(accel_mps2 - 0.0) < _AP else (v1 - speed_mps) / accel_mps2
     distance = (
         speed_mps * duration_s
         + 0.5 * accel_mps2 * t_acc * t_acc
@@ -154,7 +160,7 @@ def _quadratic_time(speed_mps: float, accel_mps2: float, distance_m: float) -> f
     root = math.sqrt(max(speed_mps * speed_mps + 2.0 * accel_mps2 * distance_m, 0.0))
     r1 = (-speed_mps + root) / safe_a
     r2 = (-speed_mps - root) / safe_a
-    if r1 - 0.0 >= DURATION_PRECISION and r2 - 0.0 >= DURATION_PRECISION:
+    if r1 - 0.0 >= _DP and r2 - 0.0 >= _DP:
         return min(r1, r2)
     return max(r1, r2)
 
@@ -163,16 +169,16 @@ def _time_for_distance(
     speed_mps: float, max_speed_mps: float, accel_mps2: float, distance_m: float
 ) -> float:
     v, cap, a, s = speed_mps, max_speed_mps, accel_mps2, distance_m
-    no_accel = abs(a - 0.0) < ACCELERATION_PRECISION
-    if no_accel or (a >= 0.0 and cap - v < SPEED_PRECISION):
-        if abs(v - 0.0) < SPEED_PRECISION:
-            return DURATION_MAX_S
+    no_accel = abs(a - 0.0) < _AP
+    if no_accel or (a >= 0.0 and cap - v < _SP):
+        if abs(v - 0.0) < _SP:
+            return _DURATION_MAX_S
         return s / (v if v > 0.0 else 1.0)
     if a < 0.0:
         return _quadratic_time(v, a, s)
     t_cap = max((cap - v) / (a if a > 0.0 else 1.0), 0.0)
     d_cap = v * t_cap + 0.5 * a * t_cap * t_cap
-    if s - d_cap < DISTANCE_PRECISION:
+    if s - d_cap < _P:
         return _quadratic_time(v, a, s)
     return t_cap + (s - d_cap) / (cap if cap > 0.0 else 1.0)
 
@@ -189,13 +195,13 @@ def time_to_cover_distance(  # noqa: PLR0917 - the kernel's six scalars
     v_rho, d_rho = accelerated_limited_movement(
         speed_mps, max_speed_mps, accel_during_mps2, response_time_s
     )
-    if distance_m - d_rho < DISTANCE_PRECISION:
+    if distance_m - d_rho < _P:
         return _time_for_distance(speed_mps, max_speed_mps, accel_during_mps2, distance_m)
     remaining = distance_m - d_rho
     t_after = _time_for_distance(v_rho, max_speed_mps, accel_after_mps2, remaining)
     stops_first = accel_after_mps2 < 0.0 and (
-        stopping_distance(v_rho, accel_after_mps2) - remaining < DISTANCE_PRECISION
+        stopping_distance(v_rho, accel_after_mps2) - remaining < _P
     )
-    if stops_first or t_after >= DURATION_MAX_S:
-        return DURATION_MAX_S
+    if stops_first or t_after >= _DURATION_MAX_S:
+        return _DURATION_MAX_S
     return t_after + response_time_s

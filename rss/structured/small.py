@@ -4,154 +4,83 @@ Called one frame at a time (an on-line monitor, the conformance command, a what-
 short clip), the batched engine spends its time in a few hundred numpy calls on arrays of
 a handful of rows: the cost is per call, not per constellation. This path evaluates the
 rows of one frame with the scalar twins (:mod:`rss.structured.scalar_extract`,
-:mod:`rss.structured.scalar_checks`, compiled with mypyc like the scene modules) and
-builds the same result arrays at the end. :func:`rss.structured.engine.check_frame`
+:mod:`rss.structured.scalar_checks`, compiled with mypyc like the scene modules) from the
+record-oriented rows of :mod:`rss.structured.small_input`; the verdicts, the proper
+response and the memory are computed eagerly, the result arrays are built when first read
+(:mod:`rss.structured.small_result`). :func:`rss.structured.engine.check_frame`
 chooses it by size (:data:`SMALL_FRAME_MAX`).
 
-It covers the common frame: every constellation valid, one per (ego, object, type) key.
-Anything else — an invalid row, two rows of one key (merged by ad-rss, and remembered as
-one), an empty road area — returns ``None`` and the batched engine takes the frame, so
-both paths agree by construction; ``tests/rss/structured/test_small.py`` checks it.
+It covers the common frame: every constellation valid; rows of one (ego, object, type) key
+(merged by ad-rss, and remembered as one) of a non-intersection type with shared dynamics
+(:mod:`rss.structured.small_merge`). Anything else — an invalid row, an intersection type
+twice for one object, an empty road area — returns ``None`` and the batched engine takes
+the frame, so both paths agree by construction; ``tests/rss/structured/test_small.py``
+checks it.
 """
 
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
-
-import numpy as np
+from typing import TYPE_CHECKING, Final
 
 from rss.physics import ACCELERATION_LOWEST_MPS2
-from rss.structured.formulas import dynamics_rows
 from rss.structured.scalar_checks import check_row
 from rss.structured.scalar_extract import (
+    Placed,
     Road,
     lane_table,
     object_valid,
     place,
     relative_position,
 )
-from rss.structured.small_output import Columns, assemble
+from rss.structured.small_input import SMALL_FRAME_MAX, Packed, packed
+from rss.structured.small_merge import merge_rows
+from rss.structured.small_output import Columns
 
 if TYPE_CHECKING:
     from rss.dynamics import RssDynamics
-    from rss.structured.batch import (
-        ConstellationBatch,
-        DynamicsArrays,
-        ObjectArrays,
-        RoadAreaArrays,
-    )
-    from rss.structured.memory import RssMemory
-    from rss.structured.small_output import Parts
+    from rss.structured.batch import ConstellationBatch
 
 __all__ = ["SMALL_FRAME_MAX", "check_frame_small"]
 
-#: Largest frame (constellations) :func:`rss.structured.engine.check_frame` evaluates row
-#: by row; measured crossover with the batched engine (docs/benchmarks.md).
-SMALL_FRAME_MAX = 128
+_LOWEST_MPS2: Final = ACCELERATION_LOWEST_MPS2
 
-_EGO_VEHICLE, _INVALID_OBJECT = 1, 0
-_OPPOSITE, _EGO_PRIO, _UNSTRUCTURED = 2, 3, 6
-
-
-def _dynamics(dyn: DynamicsArrays) -> list[list[float]]:
-    """``(C, 10)`` dynamics rows as lists (fields in :class:`DynamicsArrays` order)."""
-    rows: list[list[float]] = dynamics_rows(dyn).T.tolist()
-    return rows
+_EGO_VEHICLE: Final = 1
+_INVALID_OBJECT: Final = 0
+_OPPOSITE: Final = 2
+_EGO_PRIO: Final = 3
+_UNSTRUCTURED: Final = 6
 
 
-class _Objects:
-    """The columns of :class:`ObjectArrays` as one int and one float list per row.
+class _Places:
+    """Lane tables and placements of one frame, each computed once (the ego's is shared)."""
 
-    Ints: object id, object type, the ``K`` region lane ids. Floats: region lon min, lon
-    max, lat min, lat max (``K`` each), then the speeds lon min, lon max, lat min, lat max.
-    """
+    def __init__(self, rows: Packed) -> None:
+        self.rows = rows
+        self.tables: list[Road | None] = [None] * len(rows.road_ints)
+        self.n_roads = len(rows.road_ints)
+        self.placed: dict[int, Placed] = {}  # by object * n_roads + road
 
-    def __init__(self, obj: ObjectArrays) -> None:
-        self.n_regions: int = obj.region_lane_id.shape[1]
-        ids = np.array([obj.object_id, obj.object_type]).T
-        self.ints: list[list[int]] = np.concatenate([ids, obj.region_lane_id], axis=1).tolist()
-        speeds = np.array(
-            [
-                obj.speed_lon_min_mps,
-                obj.speed_lon_max_mps,
-                obj.speed_lat_min_mps,
-                obj.speed_lat_max_mps,
-            ]
-        ).T
-        self.floats: list[list[float]] = np.concatenate(
-            [
-                obj.region_lon_min,
-                obj.region_lon_max,
-                obj.region_lat_min,
-                obj.region_lat_max,
-                speeds,
-            ],
-            axis=1,
-        ).tolist()
-        bounds = 4 * self.n_regions
-        self.lane_rows: list[list[int]] = [row[2:] for row in self.ints]
-        self.param_rows: list[list[float]] = [row[:bounds] for row in self.floats]
-        self.speed_rows: list[list[float]] = [row[bounds:] for row in self.floats]
-
-    def lanes(self, row: int) -> list[int]:
-        """``(K,)`` region lane ids of ``row``."""
-        return self.lane_rows[row]
-
-    def params(self, row: int) -> list[float]:
-        """Region bounds of ``row`` (lon min, lon max, lat min, lat max; ``K`` each)."""
-        return self.param_rows[row]
-
-    def speeds(self, row: int) -> list[float]:
-        """Speeds of ``row`` [m/s]: lon min, lon max, lat min, lat max."""
-        return self.speed_rows[row]
-
-
-class _Roads:
-    """The road areas of a batch as flat rows; one lane table per run of equal rows."""
-
-    def __init__(self, road: RoadAreaArrays) -> None:
-        c, self.n_segments, self.n_lanes = road.lane_id.shape
-        ints = np.concatenate(
-            [
-                road.lane_id.reshape(c, -1),
-                road.driving_direction.reshape(c, -1),
-                road.segment_type,
-            ],
-            axis=1,
-        )
-        floats = np.concatenate(
-            [
-                road.length_min_m.reshape(c, -1),
-                road.length_max_m.reshape(c, -1),
-                road.width_min_m.reshape(c, -1),
-                road.width_max_m.reshape(c, -1),
-                road.before_intersection_m,
-                road.after_intersection_m,
-            ],
-            axis=1,
-        )
-        self.owner: list[int] = [0]
-        if c > 1:  # a frame's rows mostly share their road area: convert each run once
-            new = np.ones(c, dtype=np.bool_)
-            new[1:] = (ints[1:] != ints[:-1]).any(axis=1) | (floats[1:] != floats[:-1]).any(axis=1)
-            self.owner = (np.cumsum(new) - 1).tolist()
-            distinct = np.flatnonzero(new)
-            ints, floats = ints[distinct], floats[distinct]
-        self.ints: list[list[int]] = ints.tolist()
-        self.floats: list[list[float]] = floats.tolist()
-        self.tables: list[Road | None] = [None] * len(self.ints)
-
-    def table(self, row: int) -> Road | None:
-        """Lane table of ``row`` (``None``: empty road area)."""
-        if self.n_segments == 0 or self.n_lanes == 0:
+    def table(self, road: int) -> Road | None:
+        """Lane table of road area ``road`` (``None``: empty road area)."""
+        if road < 0:
             return None
-        k = self.owner[row]
-        table = self.tables[k]
+        table = self.tables[road]
         if table is None:
-            table = lane_table(self.ints[k], self.floats[k], self.n_segments, self.n_lanes)
-            self.tables[k] = table
+            rows = self.rows
+            n_segments, n_lanes = rows.road_shape[road]
+            table = lane_table(rows.road_ints[road], rows.road_floats[road], n_segments, n_lanes)
+            self.tables[road] = table
         return table
+
+    def place(self, obj: int, road: int, table: Road) -> Placed:
+        """Extents of object ``obj`` in road area ``road`` (its lane table ``table``)."""
+        key = obj * self.n_roads + road
+        placed = self.placed.get(key)
+        if placed is None:
+            placed = place(self.rows.lanes[obj], self.rows.params[obj], table)
+            self.placed[key] = placed
+        return placed
 
 
 def _enter_leave(lon_min_m: float, lon_max_m: float, road: Road) -> tuple[float, float]:
@@ -162,25 +91,20 @@ def _enter_leave(lon_min_m: float, lon_max_m: float, road: Road) -> tuple[float,
     return enter, leave
 
 
-def _row(  # noqa: PLR0917 - one row of the frame's columns
-    c: int,
-    ctype: int,
-    ego: _Objects,
-    other: _Objects,
-    ego_roads: _Roads,
-    cross_roads: _Roads,
-    out: Columns,
-) -> bool:
+def _row(c: int, ctype: int, places: _Places, out: Columns) -> bool:
     """Extract one valid row into ``out``; False if the batched engine must take the frame."""
-    ego_table = ego_roads.table(c)
+    rows = places.rows
+    ego_road = rows.ego_road[c]
+    ego_table = places.table(ego_road)
     if ego_table is None:
         return False
-    ego_p = place(ego.lanes(c), ego.params(c), ego_table)
+    ego_p = places.place(rows.ego[c], ego_road, ego_table)
     intersection = ctype >= _EGO_PRIO
-    other_table = cross_roads.table(c) if intersection else ego_table
+    other_road = rows.cross_road[c] if intersection else ego_road
+    other_table = places.table(other_road)
     if other_table is None:
         return False
-    other_p = place(other.lanes(c), other.params(c), other_table)
+    other_p = places.place(rows.other[c], other_road, other_table)
     if not (ego_p.found and other_p.found):
         return False
     lon_pos, lon_dist = relative_position(
@@ -214,7 +138,7 @@ def _row(  # noqa: PLR0917 - one row of the frame's columns
     return True
 
 
-def _resolve(out: Columns, ego_d: list[list[float]], default_ego: RssDynamics) -> None:
+def _resolve(out: Columns, rows: Packed, default_ego: RssDynamics) -> None:
     """The frame's proper response (``response.resolve`` for ``F = 1``) into ``out``."""
     lon_resp = left_resp = right_resp = 0
     lon_max, lon_min = default_ego.accel_max_mps2, default_ego.brake_max_mps2
@@ -222,7 +146,7 @@ def _resolve(out: Columns, ego_d: list[list[float]], default_ego: RssDynamics) -
     for c, dangerous in enumerate(out.dangerous):
         if not dangerous:
             continue
-        d = ego_d[c]
+        d = rows.dynamics[rows.ego_dynamics[c]]
         lon = out.lon_response[c]
         lon_resp = max(lon_resp, lon)
         lon_max = min(lon_max, d[2] if lon == 2 else d[3] if lon == 1 else d[0])  # noqa: PLR2004
@@ -234,50 +158,57 @@ def _resolve(out: Columns, ego_d: list[list[float]], default_ego: RssDynamics) -
     out.response = (
         not any(out.dangerous),
         (lon_resp, left_resp, right_resp),
-        (lon_min, lon_max, ACCELERATION_LOWEST_MPS2, left_max, ACCELERATION_LOWEST_MPS2, right_max),
+        (lon_min, lon_max, _LOWEST_MPS2, left_max, _LOWEST_MPS2, right_max),
     )
 
 
 def check_frame_small(
-    batch: ConstellationBatch, default_ego: RssDynamics, memory: RssMemory | None
-) -> Parts | None:
+    batch: ConstellationBatch,
+    default_ego: RssDynamics,
+    before: dict[tuple[int, int, int], tuple[bool, bool, int]],
+) -> Columns | None:
     """One frame row by row (see the module docstring), or ``None`` for the batched engine.
 
     Args:
         batch: ``C`` constellations of one frame (``C >= 1``).
         default_ego: Default ego dynamics (seed of the acceleration restrictions).
-        memory: Memory before the frame; ``None`` = fresh start.
+        before: The memory before the frame by key (``small_output.recall``; empty = fresh
+            start).
 
     Returns:
-        The result's parts and the memory after the frame (see
-        :func:`rss.structured.small_output.assemble`), equal to what
-        :func:`rss.structured.engine.check_frames` computes for ``F = 1``.
+        The frame's rows, memory after the frame (``memory``, sorted entries) and proper
+        response (``response``), equal to what :func:`rss.structured.engine.check_frames`
+        computes for ``F = 1``; the arrays are built from them on demand
+        (:mod:`rss.structured.small_output`).
     """
-    ctypes: list[int] = batch.constellation_type.tolist()
-    ego, other = _Objects(batch.ego), _Objects(batch.other)
-    ego_ids = [row[0] for row in ego.ints]
-    other_ids = [row[0] for row in other.ints]
-    keys: set[tuple[int, int, int]] = set()
+    rows = packed(batch)
+    ctypes = rows.ctypes
+    ids, kinds = rows.object_id, rows.object_type
+    checked = [False] * len(ids)
+    keys: list[tuple[int, int, int]] = []
     for c, ctype in enumerate(ctypes):
+        ego, other = rows.ego[c], rows.other[c]
+        ego_id, other_id = ids[ego], ids[other]
         if (
             not 0 <= ctype < _UNSTRUCTURED
-            or ego.ints[c][1] != _EGO_VEHICLE
-            or other.ints[c][1] in {_INVALID_OBJECT, _EGO_VEHICLE}
-            or ego_ids[c] == other_ids[c]
-            or not object_valid(other.lanes(c), other.params(c), other.speeds(c))
-            or not object_valid(ego.lanes(c), ego.params(c), ego.speeds(c))
+            or kinds[ego] != _EGO_VEHICLE
+            or kinds[other] == _INVALID_OBJECT
+            or kinds[other] == _EGO_VEHICLE
+            or ego_id == other_id
+            or not _valid(rows, other, checked)
+            or not _valid(rows, ego, checked)
         ):
             return None
-        keys.add((ego_ids[c], other_ids[c], ctype))
-    if len(keys) != len(ctypes):
-        return None
-    ego_roads = _Roads(batch.ego_road)
-    cross_roads = _Roads(batch.intersecting_road) if max(ctypes) >= _EGO_PRIO else ego_roads
+        keys.append((ego_id, other_id, ctype))
+    places = _Places(rows)
     out = Columns(len(ctypes))
     for c, ctype in enumerate(ctypes):
-        if not _row(c, ctype, ego, other, ego_roads, cross_roads, out):
+        if not _row(c, ctype, places, out):
             return None
-    ego_d, oth_d = _dynamics(batch.ego_dynamics), _dynamics(batch.other_dynamics)
+    speeds = merge_rows(out, rows, keys)
+    if speeds is None:
+        return None
+    ego_speeds, other_speeds = speeds
     for c, ctype in enumerate(ctypes):
         out.add_states(
             check_row(
@@ -290,12 +221,22 @@ def check_frame_small(
                     out.ego_correct[c],
                 ),
                 out.enter_leave[c],
-                ego.speeds(c),
-                other.speeds(c),
-                ego_d[c],
-                oth_d[c],
+                ego_speeds[c],
+                other_speeds[c],
+                rows.dynamics[rows.ego_dynamics[c]],
+                rows.dynamics[rows.other_dynamics[c]],
             )
         )
-    out.apply_memory(ctypes, ego_ids, other_ids, memory)
-    _resolve(out, ego_d, default_ego)
-    return assemble(out)
+    out.apply_memory(ctypes, keys, before)
+    _resolve(out, rows, default_ego)
+    return out
+
+
+def _valid(rows: Packed, obj: int, checked: list[bool]) -> bool:
+    """Whether object ``obj`` is valid (``scalar_extract.object_valid``, once per object)."""
+    if checked[obj]:
+        return True
+    if not object_valid(rows.lanes[obj], rows.params[obj], rows.speeds[obj]):
+        return False
+    checked[obj] = True
+    return True

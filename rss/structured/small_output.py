@@ -8,26 +8,36 @@ turns the lists into the engine's records with a few array constructions.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+import array
+from typing import TYPE_CHECKING, Any, Final
 
 import numpy as np
 
 from rss.structured.checks import LateralSide, RawStates
 from rss.structured.extraction import Relative
-from rss.structured.memory import RssMemory
 from rss.structured.response import ProperResponses
 
 if TYPE_CHECKING:
-    from rss.arrays import BoolArray, IntArray
+    from rss.arrays import BoolArray
+    from rss.structured.memory import RssMemory
     from rss.structured.scalar_checks import LateralRow
 
-__all__ = ["Columns", "Parts", "assemble"]
+__all__ = [
+    "Columns",
+    "by_key",
+    "dangerous",
+    "memory_columns",
+    "raw_states",
+    "recall",
+    "relative",
+    "responses",
+]
 
-#: ``(relative, states, dangerous, invalid, frame, responses, memory)`` of one frame.
-Parts = tuple[Relative, RawStates, "BoolArray", "IntArray", "IntArray", ProperResponses, RssMemory]
 
-_EGO_PRIO, _SAME_DIRECTION = 3, 1
-_ABLE_TO_BRAKE, _SAFE_DISTANCE = 1, 2
+_EGO_PRIO: Final = 3
+_SAME_DIRECTION: Final = 1
+_ABLE_TO_BRAKE: Final = 1
+_SAFE_DISTANCE: Final = 2
 
 
 class Columns:
@@ -96,47 +106,77 @@ class Columns:
     def apply_memory(
         self,
         ctypes: list[int],
-        ego_ids: list[int],
-        other_ids: list[int],
-        memory: RssMemory | None,
+        keys: list[tuple[int, int, int]],
+        before: dict[tuple[int, int, int], tuple[bool, bool, int]],
     ) -> None:
-        """Clear responses by the remembered safe states; gather the memory after the frame."""
-        before: dict[tuple[int, int, int], tuple[bool, bool, int]] = {}
-        if memory is not None and memory.size:
-            for key_e, key_o, key_t, lon, lat, state in zip(
-                memory.ego_id.tolist(),
-                memory.object_id.tolist(),
-                memory.constellation_type.tolist(),
-                memory.lon_safe.tolist(),
-                memory.lat_safe.tolist(),
-                memory.intersection_state.tolist(),
-                strict=True,
-            ):
-                before[key_e, key_o, key_t] = (lon, lat, state)  # the last entry of a key
+        """Clear responses by the remembered safe states; gather the memory after the frame.
+
+        Args:
+            ctypes: Constellation type per row.
+            keys: ``(ego id, object id, type)`` per row.
+            before: The memory before the frame by key (:func:`recall`).
+        """
+        if len(set(keys)) == len(keys):  # one row per key: no scan within the frame
+            for c, ctype in enumerate(ctypes):
+                key = keys[c]
+                initial = before.get(key)
+                entry = self._remember(c, ctype, initial, initial, seen=False)[0] or initial
+                if entry is not None:
+                    self.memory.append((key[0], key[1], key[2], entry[0], entry[1], entry[2]))
+            self.memory.sort()
+            return
+        stored: dict[tuple[int, int, int], tuple[bool, bool, int]] = {}
+        events: set[tuple[int, int, int]] = set()
         for c, ctype in enumerate(ctypes):
-            self._remember(c, ctype, (ego_ids[c], other_ids[c], ctype), before)
-        self.memory.sort()
+            key = keys[c]
+            initial = before.get(key)
+            entry, event = self._remember(
+                c, ctype, stored.get(key, initial), initial, seen=key in events
+            )
+            if entry is not None:
+                stored[key] = entry
+            if event:
+                events.add(key)
+        for key in sorted(set(keys)):
+            last = stored.get(key, before.get(key))
+            if last is not None:
+                self.memory.append((key[0], key[1], key[2], last[0], last[1], last[2]))
 
     def _remember(
         self,
         c: int,
         ctype: int,
-        key: tuple[int, int, int],
-        before: dict[tuple[int, int, int], tuple[bool, bool, int]],
-    ) -> None:
+        entry: tuple[bool, bool, int] | None,
+        initial: tuple[bool, bool, int] | None,
+        *,
+        seen: bool,
+    ) -> tuple[tuple[bool, bool, int] | None, bool]:
+        """Row ``c`` of the scan (rows of one key in row order, one run of frame 0).
+
+        Args:
+            c: The row.
+            ctype: Its constellation type.
+            entry: What an earlier row of its key stored, else ``initial``.
+            initial: The memory of its key before the frame.
+            seen: An earlier row of its key was safe or dangerous non-intersection (no
+                synthetic memory after it).
+
+        Returns:
+            ``(what the row stores or None, whether it is safe or dangerous
+            non-intersection)``.
+        """
         intersection = ctype >= _EGO_PRIO
         dangerous, lon_safe = self.dangerous[c], self.lon_safe[c]
         lat_safe = self.left[c][0] and self.right[c][0]
         base = lon_safe if intersection else not dangerous
         overlap_assumption = ctype == _SAME_DIRECTION and 1 <= self.lat_position[c] <= 3  # noqa: PLR2004
-        entry = before.get(key)
         known = entry is not None
         prev_lon, prev_lat, prev_int = entry if entry is not None else (False, False, 0)
-        synthetic = dangerous and not intersection and not known
+        candidate = dangerous and not intersection
+        synthetic = candidate and initial is None and not seen
         store = base or synthetic
-        structured = dangerous and not intersection
-        clear_lon = structured and known and prev_lat and not prev_lon
-        clear_lat = structured and (
+        clear_lon = candidate and known and prev_lat and not prev_lon
+        clear_lat = candidate and (
             (known and prev_lon and not prev_lat) or (synthetic and overlap_assumption)
         )
         int_none = (
@@ -153,49 +193,81 @@ class Columns:
             self.lon_response[c] = 0
         if clear_lat or calm:
             self.left_response[c] = self.right_response[c] = 0
-        if store:
-            stored_int = self.intersection_state[c] if intersection and base else 0
-            stored_lat = not overlap_assumption if synthetic else lat_safe
-            self.memory.append((*key, True if synthetic else lon_safe, stored_lat, stored_int))
-        elif known:
-            self.memory.append((*key, prev_lon, prev_lat, prev_int))
+        if not store:
+            return None, base or candidate
+        stored_int = self.intersection_state[c] if intersection and base else 0
+        stored_lat = not overlap_assumption if synthetic else lat_safe
+        return (True if synthetic else lon_safe, stored_lat, stored_int), base or candidate
 
 
-def assemble(out: Columns) -> Parts:
-    """The engine's records of one frame from its columns (``(C,)`` / ``(1,)`` arrays)."""
-    floats = np.array(
+def _matrix(values: list[Any], typecode: str, dtype: type, rows: int) -> Any:
+    """``values`` (``rows`` columns one after the other) as a ``(rows, n)`` array.
+
+    ``array.array`` converts a flat list in one C loop; numpy wraps its buffer.
+    """
+    return np.frombuffer(array.array(typecode, values), dtype=dtype).reshape(rows, -1)
+
+
+def _matrices(out: Columns) -> tuple[Any, Any, Any]:
+    """``(12, C)`` floats, ``(10, C)`` ints and ``(6, C)`` flags: every row field of ``out``."""
+    left, right = out.left, out.right
+    lanes = list(zip(*out.enter_leave, strict=True))
+    floats = _matrix(
         [
-            out.lon_distance_m,
-            out.lat_distance_m,
-            *zip(*out.enter_leave, strict=True),
-            out.lon_current_m,
-            out.lon_safe_m,
-            [row[3] for row in out.left],
-            [row[4] for row in out.left],
-            [row[3] for row in out.right],
-            [row[4] for row in out.right],
+            *out.lon_distance_m,
+            *out.lat_distance_m,
+            *lanes[0],
+            *lanes[1],
+            *lanes[2],
+            *lanes[3],
+            *out.lon_current_m,
+            *out.lon_safe_m,
+            *[row[3] for row in left],
+            *[row[4] for row in left],
+            *[row[3] for row in right],
+            *[row[4] for row in right],
         ],
-        dtype=np.float64,
+        "d",
+        np.float64,
+        12,
     )
-    ints = np.array(
+    ints = _matrix(
         [
-            out.lon_position,
-            out.lat_position,
-            out.lon_response,
-            out.lon_evaluator,
-            out.intersection_state,
-            out.left_response,
-            [row[2] for row in out.left],
-            out.right_response,
-            [row[2] for row in out.right],
+            *out.lon_position,
+            *out.lat_position,
+            *out.lon_response,
+            *out.lon_evaluator,
+            *out.intersection_state,
+            *out.left_response,
+            *[row[2] for row in left],
+            *out.right_response,
+            *[row[2] for row in right],
+            *[0] * out.size,
         ],
-        dtype=np.int64,
+        "q",
+        np.int64,
+        10,
     )
-    flag_columns = (out.ego_correct, out.other_correct, out.lon_safe, out.dangerous)
-    lateral_safe = ([row[0] for row in out.left], [row[0] for row in out.right])
-    flags = np.array([*flag_columns, *lateral_safe], dtype=np.bool_)
-    zeros = np.zeros((2, out.size), dtype=np.int64)
-    relative = Relative(
+    flags = _matrix(
+        [
+            *out.ego_correct,
+            *out.other_correct,
+            *out.lon_safe,
+            *out.dangerous,
+            *[row[0] for row in left],
+            *[row[0] for row in right],
+        ],
+        "b",
+        np.bool_,
+        6,
+    )
+    return floats, ints, flags
+
+
+def relative(out: Columns) -> Relative:
+    """The frame's :class:`Relative` (``(C,)`` arrays)."""
+    floats, ints, flags = _matrices(out)
+    return Relative(
         lon_position=ints[0],
         lon_distance_m=floats[0],
         lat_position=ints[1],
@@ -206,9 +278,14 @@ def assemble(out: Columns) -> Parts:
         ego_dist_to_leave_m=floats[3],
         other_dist_to_enter_m=floats[4],
         other_dist_to_leave_m=floats[5],
-        invalid=zeros[0],
+        invalid=ints[9],
     )
-    states = RawStates(
+
+
+def raw_states(out: Columns) -> RawStates:
+    """The frame's memory-adjusted :class:`RawStates` (``(C,)`` arrays)."""
+    floats, ints, flags = _matrices(out)
+    return RawStates(
         lon_is_safe=flags[2],
         lon_response=ints[2],
         lon_evaluator=ints[3],
@@ -218,10 +295,20 @@ def assemble(out: Columns) -> Parts:
         right=LateralSide(flags[5], ints[7], ints[8], floats[10], floats[11]),
         intersection_state=ints[4],
     )
+
+
+def dangerous(out: Columns) -> BoolArray:
+    """``(C,)`` dangerous constellations."""
+    flags: BoolArray = _matrix(out.dangerous, "b", np.bool_, 1)[0]
+    return flags
+
+
+def responses(out: Columns) -> ProperResponses:
+    """The frame's proper response as ``(1,)`` arrays."""
     is_safe, codes, limits = out.response
-    code_rows = np.array(codes, dtype=np.int64).reshape(3, 1)
-    limit_rows = np.array(limits, dtype=np.float64).reshape(6, 1)
-    responses = ProperResponses(
+    code_rows = _matrix(list(codes), "q", np.int64, 3)
+    limit_rows = _matrix(list(limits), "d", np.float64, 6)
+    return ProperResponses(
         np.array([is_safe]),
         code_rows[0],
         code_rows[1],
@@ -233,11 +320,34 @@ def assemble(out: Columns) -> Parts:
         limit_rows[4],
         limit_rows[5],
     )
-    if out.memory:
-        keys = np.array([entry[:3] for entry in out.memory], dtype=np.int64).T
-        verdicts = np.array([entry[3:5] for entry in out.memory], dtype=np.bool_).T
-        states_after = np.array([entry[5] for entry in out.memory], dtype=np.int64)
-        memory = RssMemory(keys[0], keys[1], keys[2], verdicts[0], verdicts[1], states_after)
-    else:
-        memory = RssMemory.empty()
-    return relative, states, flags[3], zeros[0], zeros[1], responses, memory
+
+
+def memory_columns(entries: list[tuple[int, int, int, bool, bool, int]]) -> list[Any]:
+    """The six :class:`RssMemory` arrays of ``entries`` (sorted by key, ``M >= 1``)."""
+    columns = list(zip(*entries, strict=True))
+    keys = _matrix([*columns[0], *columns[1], *columns[2], *columns[5]], "q", np.int64, 4)
+    verdicts = _matrix([*columns[3], *columns[4]], "b", np.bool_, 2)
+    return [keys[0], keys[1], keys[2], verdicts[0], verdicts[1], keys[3]]
+
+
+def by_key(
+    entries: list[tuple[int, int, int, bool, bool, int]],
+) -> dict[tuple[int, int, int], tuple[bool, bool, int]]:
+    """``entries`` as the memory before the next frame (key -> lon, lat, state)."""
+    return {(e[0], e[1], e[2]): (e[3], e[4], e[5]) for e in entries}
+
+
+def recall(memory: RssMemory) -> dict[tuple[int, int, int], tuple[bool, bool, int]]:
+    """The entries of ``memory`` by key (the last entry of a key wins)."""
+    before: dict[tuple[int, int, int], tuple[bool, bool, int]] = {}
+    for key_e, key_o, key_t, lon, lat, state in zip(
+        memory.ego_id.tolist(),
+        memory.object_id.tolist(),
+        memory.constellation_type.tolist(),
+        memory.lon_safe.tolist(),
+        memory.lat_safe.tolist(),
+        memory.intersection_state.tolist(),
+        strict=True,
+    ):
+        before[key_e, key_o, key_t] = (lon, lat, state)
+    return before

@@ -2,11 +2,14 @@
 
 One validating pass over the constellations collects flat rows (each distinct object and
 road segment read once), then the padded arrays of :mod:`rss.structured.batch` are filled
-with one indexed assignment per field.
+with one indexed assignment per field. For a small frame the same rows are kept for the
+record-oriented input of the row path (:mod:`rss.structured.small_input`, packed on
+first use).
 """
 
 from __future__ import annotations
 
+import functools
 import math
 import operator
 from typing import TYPE_CHECKING, Any
@@ -24,6 +27,7 @@ from rss.structured.batch import (
     readonly_ints,
     stack_dynamics,
 )
+from rss.structured.small_input import SMALL_FRAME_MAX, pack, remember
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -82,15 +86,20 @@ def stack_constellations(constellations: Sequence[Constellation]) -> Constellati
     roads = ego_road.arrays(), intersecting_road.arrays()
     if any(_repeats_lane(road.lane_id) for road in roads):
         _check_in_order(constellations)
-    return ConstellationBatch(
+    dynamics = [c.ego_dynamics for c in constellations], [c.other_dynamics for c in constellations]
+    batch = ConstellationBatch(
         constellation_type=readonly_ints(types),
         ego=ego.arrays(),
         other=other.arrays(),
-        ego_dynamics=stack_dynamics([c.ego_dynamics for c in constellations]),
-        other_dynamics=stack_dynamics([c.other_dynamics for c in constellations]),
+        ego_dynamics=stack_dynamics(dynamics[0]),
+        other_dynamics=stack_dynamics(dynamics[1]),
         ego_road=roads[0],
         intersecting_road=roads[1],
     )
+    if 0 < len(types) <= SMALL_FRAME_MAX:  # the row path's input, from the same rows
+        rows = (ego, other), (ego_road, intersecting_road)
+        remember(batch, functools.partial(pack, types, *rows, dynamics))
+    return batch
 
 
 def _check_kind(kind: object) -> None:
@@ -153,12 +162,12 @@ class _ObjectRows:
         self.uses: list[int] = []  # distinct object per row
         self._known: dict[int, int] = {}
         self._distinct: list[LaneObject] = []
-        self._ids: list[int] = []
-        self._types: list[int] = []
-        self._speeds: list[float] = []  # 4 per distinct object
-        self._counts: list[int] = []  # regions per distinct object
-        self._lanes: list[int] = []  # 1 per region
-        self._params: list[float] = []  # 4 per region
+        self.ids: list[int] = []
+        self.types: list[int] = []
+        self.speeds: list[float] = []  # 4 per distinct object
+        self.counts: list[int] = []  # regions per distinct object
+        self.lanes: list[int] = []  # 1 per region
+        self.params: list[float] = []  # 4 per region
 
     def add(self, obj: LaneObject) -> None:
         """Add the object of the next row.
@@ -176,29 +185,29 @@ class _ObjectRows:
         kind = obj.object_type
         k = self._known[id(obj)] = len(self._distinct)
         self._distinct.append(obj)
-        self._ids.append(obj.object_id)
-        self._types.append(int(kind))
-        self._speeds.extend(_SPEED(obj.speed))
+        self.ids.append(obj.object_id)
+        self.types.append(int(kind))
+        self.speeds.extend(_SPEED(obj.speed))
         regions = obj.regions
-        self._counts.append(len(regions))
+        self.counts.append(len(regions))
         for r in regions:
-            self._lanes.append(r.lane_id)
-            self._params.extend(_REGION(r))
+            self.lanes.append(r.lane_id)
+            self.params.extend(_REGION(r))
         return k
 
     def arrays(self) -> ObjectArrays:
         use = int_array(self.uses)
-        width = max(1, max(self._counts, default=0))
+        width = max(1, max(self.counts, default=0))
         lane = np.full((len(use), width), -1, dtype=np.int64)
         params = np.zeros((len(use), width, 4))
-        if self._lanes:
-            rows, k, src = _spread(int_array(self._counts), use)
-            lane[rows, k] = np.array(self._lanes, dtype=np.int64)[src]
-            params[rows, k] = np.array(self._params, dtype=np.float64).reshape(-1, 4)[src]
-        speeds = np.array(self._speeds, dtype=np.float64).reshape(-1, 4)[use]
+        if self.lanes:
+            rows, k, src = _spread(int_array(self.counts), use)
+            lane[rows, k] = np.array(self.lanes, dtype=np.int64)[src]
+            params[rows, k] = np.array(self.params, dtype=np.float64).reshape(-1, 4)[src]
+        speeds = np.array(self.speeds, dtype=np.float64).reshape(-1, 4)[use]
         return ObjectArrays(
-            object_id=readonly_ints(np.array(self._ids, dtype=np.int64)[use]),
-            object_type=readonly_ints(np.array(self._types, dtype=np.int64)[use]),
+            object_id=readonly_ints(np.array(self.ids, dtype=np.int64)[use]),
+            object_type=readonly_ints(np.array(self.types, dtype=np.int64)[use]),
             region_lane_id=readonly_ints(lane),
             region_lon_min=readonly_floats(params[:, :, 0]),
             region_lon_max=readonly_floats(params[:, :, 1]),
@@ -246,11 +255,11 @@ class _RoadRows:
         self.lanes = 1  # L
         self._known: dict[int, int] = {}
         self._distinct: list[RoadSegment] = []
-        self._kinds: list[int] = []
-        self._lengths: list[float] = []  # before, after per distinct segment
-        self._counts: list[int] = []  # lanes per distinct segment
-        self._codes: list[int] = []  # lane id, driving direction per lane
-        self._values: list[float] = []  # length min, max, width min, max per lane
+        self.kinds: list[int] = []
+        self.lengths: list[float] = []  # before, after per distinct segment
+        self.counts: list[int] = []  # lanes per distinct segment
+        self.codes: list[int] = []  # lane id, driving direction per lane
+        self.values: list[float] = []  # length min, max, width min, max per lane
 
     def add(self, road: tuple[RoadSegment, ...]) -> None:
         """Add the road area of the next row.
@@ -271,7 +280,7 @@ class _RoadRows:
         lanes = segment.lanes
         kind = segment.segment_type
         ok = _known(kind, _SEGMENT_CODES) and bool(lanes)
-        codes, values = self._codes, self._values
+        codes, values = self.codes, self.values
         for lane in lanes if ok else ():
             row = _lane_row(lane)
             if row is None:
@@ -282,9 +291,9 @@ class _RoadRows:
         if not ok:
             _check_road(road)
         self.lanes = max(self.lanes, len(lanes))
-        self._kinds.append(int(kind))
-        self._lengths.extend(_LENGTHS(segment))
-        self._counts.append(len(lanes))
+        self.kinds.append(int(kind))
+        self.lengths.extend(_LENGTHS(segment))
+        self.counts.append(len(lanes))
         k = self._known[id(segment)] = len(self._distinct)
         self._distinct.append(segment)
         return k
@@ -300,16 +309,14 @@ class _RoadRows:
         if self.uses:
             use = int_array(self.uses)
             row, position, _ = _spread(sizes, np.arange(len(sizes)))
-            segment_type[row, position] = int_array(self._kinds)[use]
-            lengths[row, position] = np.array(self._lengths, dtype=np.float64).reshape(-1, 2)[use]
-            lanes, m, src = _spread(int_array(self._counts), use)
+            segment_type[row, position] = int_array(self.kinds)[use]
+            lengths[row, position] = np.array(self.lengths, dtype=np.float64).reshape(-1, 2)[use]
+            lanes, m, src = _spread(int_array(self.counts), use)
             at = (row[lanes], position[lanes], m)
-            codes = int_array(self._codes).reshape(-1, 2)
+            codes = int_array(self.codes).reshape(-1, 2)
             lane_id[at] = codes[src, 0]
             direction[at] = codes[src, 1]
-            metric[at] = np.fromiter(self._values, np.float64, len(self._values)).reshape(-1, 4)[
-                src
-            ]
+            metric[at] = np.fromiter(self.values, np.float64, len(self.values)).reshape(-1, 4)[src]
         return RoadAreaArrays(
             lane_id=readonly_ints(lane_id),
             driving_direction=readonly_ints(direction),

@@ -10,7 +10,7 @@ two rows of one key) must be handed to the batched engine.
 from __future__ import annotations
 
 import dataclasses
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 from hypothesis import given, settings
@@ -18,13 +18,13 @@ from hypothesis import strategies as st
 
 from rss.conformance.cases import ParsedCase, parse_case, parse_defaults
 from rss.model import Constellation, SpeedInterval
+from rss.structured.batch import take_rows
 from rss.structured.engine import FrameResult, check_frame, check_frames
+from rss.structured.memory import RssMemory
 from rss.structured.small import SMALL_FRAME_MAX, check_frame_small
+from rss.structured.small_output import recall
 from rss.structured.stacking import stack_constellations
 from tests.rss.structured.generators import random_case, random_sequence, renumber
-
-if TYPE_CHECKING:
-    from rss.structured.memory import RssMemory
 
 _DEFAULTS = parse_defaults({})
 
@@ -77,16 +77,57 @@ def _drive(seed: int, n_objects: int, steps: int) -> list[list[Constellation]]:
     ]
 
 
+def _plain(memory: RssMemory) -> RssMemory:
+    """The same memory as a plain :class:`RssMemory` (as the batched engine returns one)."""
+    return RssMemory(**{f.name: getattr(memory, f.name) for f in dataclasses.fields(RssMemory)})
+
+
 @settings(max_examples=60, deadline=None)
-@given(st.integers(0, 2**32 - 1), st.integers(1, 24), st.integers(1, 5))
-def test_drive_frame_by_frame_equals_batched(seed: int, n_objects: int, steps: int) -> None:
-    """Random drives (all constellation types), memory carried frame by frame on both paths."""
-    ours_memory = batched_memory = None
+@given(
+    st.integers(0, 2**32 - 1),
+    st.integers(1, 24),
+    st.integers(1, 5),
+    st.sampled_from(["stacking", "arrays"]),
+    st.booleans(),
+)
+def test_drive_frame_by_frame_equals_batched(
+    seed: int, n_objects: int, steps: int, via: str, plain_memory: bool
+) -> None:
+    """Random drives (all constellation types), memory carried frame by frame on both paths.
+
+    The row path reads the rows the stacking step packed, or (a batch it did not stack)
+    the batch's arrays; the memory goes back as returned or as a plain ``RssMemory``.
+    """
+    ours_memory: RssMemory | None = None
+    batched_memory: RssMemory | None = None
     for frame in _drive(seed, n_objects, steps):
-        ours, ours_memory = check_frame(stack_constellations(frame), _DEFAULTS.ego, ours_memory)
+        batch = stack_constellations(frame)
+        if via == "arrays":  # a new batch object: no packed rows kept for it
+            batch = take_rows(batch, np.arange(batch.size))
+        if plain_memory and ours_memory is not None:
+            ours_memory = _plain(ours_memory)
+        ours, ours_memory = check_frame(batch, _DEFAULTS.ego, ours_memory)
         batched, batched_memory = _batched(frame, batched_memory)
         _assert_same(ours, batched)
         _assert_same(ours_memory, batched_memory)
+
+
+@settings(max_examples=20, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.integers(1, 12), st.permutations(range(6)))
+def test_fields_read_in_any_order(seed: int, n_objects: int, order: list[int]) -> None:
+    """Each field of a small frame's result, read first or last, equals the batched one."""
+    frame = _drive(seed, n_objects, 1)[0]
+    ours, _ = check_frame(stack_constellations(frame), _DEFAULTS.ego)
+    batched, _ = _batched(frame, None)
+    names = [f.name for f in dataclasses.fields(FrameResult)][:6]
+    for k in order:
+        a, b = getattr(ours, names[k]), getattr(batched, names[k])
+        if isinstance(a, np.ndarray):
+            np.testing.assert_array_equal(a, b, err_msg=names[k])
+        else:
+            _assert_same(a, b)
+    assert ours.responsibility is None
+    assert ours.severity is None
 
 
 @settings(max_examples=40, deadline=None)
@@ -101,18 +142,62 @@ def test_valid_frames_take_the_small_path(seed: int, n_objects: int) -> None:
     batch = stack_constellations(frame)
     batched, _ = _batched(frame, None)
     if (batched.invalid == 0).all():
-        assert check_frame_small(batch, _DEFAULTS.ego, None) is not None
+        assert check_frame_small(batch, _DEFAULTS.ego, {}) is not None
     assert n_objects <= SMALL_FRAME_MAX
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    st.integers(0, 2**32 - 1),
+    st.integers(1, 12),
+    st.integers(1, 4),
+    st.integers(0, 11),
+    st.sampled_from(["same", "wider"]),
+)
+def test_similar_rows_merged_as_batched(
+    seed: int, n_objects: int, steps: int, which: int, how: str
+) -> None:
+    """Two rows of one key (the same, or speeds widened): merged as the batched engine does.
+
+    Rows of a non-intersection type take the row path (``rss.structured.small_merge``).
+    """
+    ours_memory: RssMemory | None = None
+    batched_memory: RssMemory | None = None
+    for frame in _drive(seed, n_objects, steps):
+        twin = frame[which % len(frame)]
+        if how == "wider":
+            s = twin.other.speed
+            speed = SpeedInterval(
+                max(0.0, s.lon_min_mps - 1.0),
+                min(100.0, s.lon_max_mps + 1.0),
+                max(-100.0, s.lat_min_mps - 0.1),
+                min(100.0, s.lat_max_mps + 0.1),
+            )
+            twin = dataclasses.replace(twin, other=dataclasses.replace(twin.other, speed=speed))
+        frame_twice = [*frame, twin]
+        before_ours = ours_memory
+        ours, ours_memory = check_frame(
+            stack_constellations(frame_twice), _DEFAULTS.ego, ours_memory
+        )
+        batched, batched_memory = _batched(frame_twice, batched_memory)
+        _assert_same(ours, batched)
+        _assert_same(ours_memory, batched_memory)
+        covered = (batched.invalid == 0).all() and max(c.constellation_type for c in frame) < 3
+        if covered:
+            before = {} if before_ours is None else recall(before_ours)
+            assert check_frame_small(stack_constellations(frame_twice), _DEFAULTS.ego, before)
 
 
 @settings(max_examples=30, deadline=None)
 @given(st.integers(0, 2**32 - 1), st.integers(2, 10), st.sampled_from(["twice", "nan", "same_id"]))
 def test_uncovered_frames_go_to_the_batched_engine(seed: int, n_objects: int, how: str) -> None:
-    """Two rows of one key, a non-finite speed or an object with the ego's id: batched."""
+    """Two rows of one key with different dynamics, a non-finite speed, the ego's id: batched."""
     frames = _drive(seed, n_objects, 2)
     first = frames[0]
     if how == "twice":
-        frame = [*first, first[0]]
+        d = first[0].other_dynamics
+        own = dataclasses.replace(d, response_time_s=d.response_time_s + 0.5)
+        frame = [*first, dataclasses.replace(first[0], other_dynamics=own)]
     elif how == "nan":
         other = dataclasses.replace(first[0].other, speed=SpeedInterval(np.nan, 1.0, 0.0, 0.0))
         frame = [dataclasses.replace(first[0], other=other), *first[1:]]
@@ -120,7 +205,7 @@ def test_uncovered_frames_go_to_the_batched_engine(seed: int, n_objects: int, ho
         other = dataclasses.replace(first[0].other, object_id=first[0].ego.object_id)
         frame = [dataclasses.replace(first[0], other=other), *first[1:]]
     batch = stack_constellations(frame)
-    assert check_frame_small(batch, _DEFAULTS.ego, None) is None
+    assert check_frame_small(batch, _DEFAULTS.ego, {}) is None
     _, memory = check_frame(stack_constellations(frames[1]), _DEFAULTS.ego)
     ours, ours_memory = check_frame(batch, _DEFAULTS.ego, memory)
     batched, batched_memory = _batched(frame, memory)

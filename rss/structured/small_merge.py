@@ -1,0 +1,114 @@
+"""Worst-case merging of similar constellations in the small-frame path, one frame.
+
+The row twin of :func:`rss.structured.merge.merge_similar` for the groups it covers:
+rows of one ``(ego, object, type)`` key of a non-intersection type whose ego and object
+share their dynamics records. Every row of such a group gets the group's worst case
+(positions and distances as :func:`rss.structured.merge.merge_position_groups`, ego in
+correct lane: all, other: any, distances to enter: min, to leave: max, speed intervals:
+union) and is checked as that. Any other group (an intersection type, which ad-rss merges
+only for equal intersection lanes, or differing dynamics) is left to the batched engine.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Final
+
+if TYPE_CHECKING:
+    from rss.structured.small_input import Packed
+    from rss.structured.small_output import Columns
+
+__all__ = ["merge_rows"]
+
+_OVERLAP: Final = 2
+_EGO_PRIO: Final = 3
+
+
+def merge_rows(
+    out: Columns, rows: Packed, keys: list[tuple[int, int, int]]
+) -> tuple[list[list[float]], list[list[float]]] | None:
+    """Merge the groups of similar rows of ``out`` in place; speeds per row to check with.
+
+    Args:
+        out: The frame's extracted rows (relative positions, distances, lanes).
+        rows: The frame's packed input.
+        keys: ``(ego id, object id, type)`` per row.
+
+    Returns:
+        ``(ego speeds, other speeds)`` per row (lon min, lon max, lat min, lat max [m/s],
+        merged within groups), or ``None`` if a group must go to the batched engine.
+    """
+    ego_speeds = [rows.speeds[e] for e in rows.ego]
+    other_speeds = [rows.speeds[o] for o in rows.other]
+    if len(set(keys)) == len(keys):
+        return ego_speeds, other_speeds
+    groups: dict[tuple[int, int, int], list[int]] = {}
+    for c, key in enumerate(keys):
+        members = groups.get(key)
+        if members is None:
+            groups[key] = [c]
+        else:
+            members.append(c)
+    for key, members in groups.items():
+        if len(members) == 1:
+            continue
+        if key[2] >= _EGO_PRIO:
+            return None
+        first = members[0]
+        for c in members:
+            if (
+                rows.ego_dynamics[c] != rows.ego_dynamics[first]
+                or rows.other_dynamics[c] != rows.other_dynamics[first]
+            ):
+                return None
+        _merge_group(out, members, ego_speeds, other_speeds)
+    return ego_speeds, other_speeds
+
+
+def _position(codes: list[int], distances: list[float]) -> tuple[int, float]:
+    """Worst case of positions and distances (``merge.merge_position_groups``, one group)."""
+    high, low = max(codes), min(codes)
+    if high >= _OVERLAP >= low:
+        return _OVERLAP, 0.0
+    return (high if high < _OVERLAP else low), min(distances)
+
+
+def _union(speeds: list[list[float]], members: list[int]) -> list[float]:
+    """Union of the speed intervals of ``members``."""
+    return [
+        min(speeds[c][0] for c in members),
+        max(speeds[c][1] for c in members),
+        min(speeds[c][2] for c in members),
+        max(speeds[c][3] for c in members),
+    ]
+
+
+def _merge_group(
+    out: Columns,
+    members: list[int],
+    ego_speeds: list[list[float]],
+    other_speeds: list[list[float]],
+) -> None:
+    """Give every row of one group the group's worst case."""
+    lon = _position(
+        [out.lon_position[c] for c in members], [out.lon_distance_m[c] for c in members]
+    )
+    lat = _position(
+        [out.lat_position[c] for c in members], [out.lat_distance_m[c] for c in members]
+    )
+    ego_correct = all(out.ego_correct[c] for c in members)
+    other_correct = any(out.other_correct[c] for c in members)
+    enter_leave = (
+        min(out.enter_leave[c][0] for c in members),
+        max(out.enter_leave[c][1] for c in members),
+        min(out.enter_leave[c][2] for c in members),
+        max(out.enter_leave[c][3] for c in members),
+    )
+    ego, other = _union(ego_speeds, members), _union(other_speeds, members)
+    for c in members:
+        out.lon_position[c], out.lon_distance_m[c] = lon
+        out.lat_position[c], out.lat_distance_m[c] = lat
+        out.ego_correct[c] = ego_correct
+        out.other_correct[c] = other_correct
+        out.enter_leave[c] = enter_leave
+        ego_speeds[c] = ego
+        other_speeds[c] = other
