@@ -36,6 +36,8 @@ if TYPE_CHECKING:
 
 __all__ = ["ImportOutcome", "ImportReport", "Prefer", "import_openlabel"]
 
+#: One past the largest time an SQLite INTEGER holds, in ns.
+_MAX_NS = 2**63
 _TEXT_FIELDS = ("engine", "cause", "verdict", "note", "reviewer", "labelled_ns")
 
 
@@ -177,6 +179,10 @@ def _label(where: str, drive_hash: str, incident_id: str, text: dict[str, str], 
         at_ns = int(text["labelled_ns"])
     except ValueError as err:
         raise OpenLabelError(f"{where}: labelled_ns {text['labelled_ns']!r}") from err
+    if not 0 <= at_ns < _MAX_NS:  # the store keeps it as an SQLite INTEGER (64 bits, signed)
+        raise OpenLabelError(
+            f"{where}: labelled_ns {text['labelled_ns']!r} is not within 0 .. 2^63-1 ns"
+        )
     tags = _field(data.get("vec", []), "tags", where)
     if not isinstance(tags, list):
         raise OpenLabelError(f"{where}: tags {tags!r} is not a list")

@@ -148,11 +148,11 @@ def test_cli_export_import_round_trip(tmp_path, capsys):
     assert "1 label(s) written" in capsys.readouterr().out
 
 
-def _reviewed(verdict: str, tags: list[str]) -> str:
+def _reviewed(verdict: str, tags: list[str], labelled_ns: str = "1") -> str:
     """A one-incident OpenLABEL file as the workbench writes it, with this label."""
     text = {"engine": "rss", "cause": "c", "verdict": verdict, "note": "", "reviewer": "r"}
     data = {
-        "text": [{"name": k, "val": v} for k, v in {**text, "labelled_ns": "1"}.items()],
+        "text": [{"name": k, "val": v} for k, v in {**text, "labelled_ns": labelled_ns}.items()],
         "vec": [{"name": "tags", "val": tags}],
     }
     meta = {"schema_version": "1.0.0", "drive_sha256": "d"}
@@ -177,6 +177,11 @@ def _reviewed(verdict: str, tags: list[str]) -> str:
         ),
         (_reviewed("maybe", []), "actions.0.action_data: verdict 'maybe', expected one of"),
         (_reviewed("confirmed", ["two\nlines"]), "actions.0.action_data: tag 'two\\\\nlines'"),
+        (  # found by the fuzzer: past what an SQLite INTEGER holds
+            _reviewed("confirmed", [], labelled_ns="10700000000000000000"),
+            "actions.0.action_data: labelled_ns '10700000000000000000' is not within 0",
+        ),
+        (_reviewed("confirmed", [], labelled_ns="-5"), "actions.0.action_data: labelled_ns '-5'"),
     ],
 )
 def test_bad_files_are_one_line_errors(tmp_path, text, message, capsys):
