@@ -121,8 +121,9 @@ fuzz: $(FUZZ_STAMP)
 
 test: lint typecheck layers pytest oracle-commonroad oracle-crime acceptance oracle-adrss-map
 
+# `make bench BENCH="bench_rss bench_unstructured"` re-measures those sections only (bench.run --update).
 bench: $(STAMP) $(COMPILED) $(MAP_ORACLE_STAMP)
-	$(BIN)/python -m bench.run --out docs/benchmarks.md
+	$(BIN)/python -m bench.run --out docs/benchmarks.md $(if $(BENCH),--update $(BENCH))
 
 samples: $(STAMP) $(COMPILED)
 	$(BIN)/workbench samples sample_logs

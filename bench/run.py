@@ -3,6 +3,11 @@
 Each ``bench/bench_*.py`` module exposes ``run(quick: bool) -> str`` returning a Markdown
 section (heading level 2) with its measured table. Modules run in name order, one at a time,
 so they do not compete for the two cores.
+
+``--update`` re-measures some sections only: each section the named modules return replaces
+the section of the same heading in the existing report (new headings are appended at the
+end), the rest is kept, and the header names the sections,
+date and commit of this run beside the date of the full run.
 """
 
 from __future__ import annotations
@@ -12,6 +17,7 @@ import datetime as dt
 import importlib
 import os
 import platform
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -46,11 +52,40 @@ def _commit() -> str:
     return out.stdout.strip() or "unknown"
 
 
+def _split(text: str) -> tuple[str, list[tuple[str, str]]]:
+    """The text before the first level-2 heading, and (heading, section) pairs."""
+    parts = re.split(r"(?m)^(?=## )", text)
+    return parts[0], [(part.splitlines()[0], part) for part in parts[1:]]
+
+
+def _updated(report: str, new_text: str, today: str) -> str:
+    """``report`` with the sections of ``new_text`` replaced by heading (see the docstring)."""
+    header, old = _split(report)
+    _, new = _split(new_text)
+    fresh = dict(new)
+    placed = [(h, fresh.pop(h, s)) for h, s in old]
+    placed += list(fresh.items())
+    names = ", ".join(f'"{h.removeprefix("## ")}"' for h, _ in new)
+    note = (
+        f"Re-measured on {today}, commit `{_commit()}`, these modules alone "
+        f"(`bench.run --update`): {names}.\n\n"
+    )
+    header = re.sub(r"(?m)^Re-measured on .*\n\n", "", header)
+    first, _, rest = header.partition("\n\n")
+    header = f"{first}\n\n{note}{rest}"
+    return header + "".join(s.rstrip() + "\n\n" for _, s in placed).rstrip() + "\n"
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run the benchmarks named on the command line (all by default) and write the report."""
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--out", type=Path, default=Path("docs/benchmarks.md"))
     parser.add_argument("--quick", action="store_true", help="smaller workloads (smoke run)")
+    parser.add_argument(
+        "--update",
+        action="store_true",
+        help="replace only the sections these modules write in the existing report",
+    )
     parser.add_argument("only", nargs="*", help="bench module names, e.g. bench_replay")
     args = parser.parse_args(argv)
     here = Path(__file__).parent
@@ -61,6 +96,10 @@ def main(argv: list[str] | None = None) -> int:
         module = importlib.import_module(f"bench.{name}")
         sections.append(module.run(quick=args.quick).rstrip() + "\n")
     today = dt.datetime.now(tz=dt.UTC).date().isoformat()
+    if args.update:
+        args.out.write_text(_updated(args.out.read_text(), "\n".join(sections), today))
+        print(f"updated {args.out}", file=sys.stderr)
+        return 0
     header = (
         "# Benchmarks\n\n"
         f"Measured by `make bench` on {today}, commit `{_commit()}`.\n\n"
