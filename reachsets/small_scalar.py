@@ -13,7 +13,13 @@ from __future__ import annotations
 
 import math
 
-__all__ = ["convex_touch_rows", "interp_poses", "unwrapped", "waypoint_times"]
+__all__ = [
+    "convex_touch_rows",
+    "interp_poses",
+    "simple_vertices_rows",
+    "unwrapped",
+    "waypoint_times",
+]
 
 
 def waypoint_times(ds: list[float], v: list[float], t: list[float]) -> list[float]:
@@ -104,3 +110,50 @@ def _touch(a: list[float], b: list[float]) -> bool:
 def convex_touch_rows(a: list[list[float]], b: list[list[float]]) -> list[bool]:
     """``convex.convex_touch`` of pairs: ``a[i]``, ``b[i]`` are flat ``x0, y0, x1, ...``."""
     return [_touch(pa, pb) for pa, pb in zip(a, b, strict=True)]
+
+
+def _profile(v0: float, a: float, t_b: float, t: float) -> tuple[float, float, float]:
+    """``reach_simple._profiles`` at one stamp: centre shift, radius and side bulge."""
+    t_eff = min(t, t_b)
+    b = v0 * t_eff - a * a * (t_eff * t_eff * t_eff) / (2 * v0) if v0 > 0 else 0.0
+    return v0 * t, 0.5 * a * (t * t), b
+
+
+def simple_vertices_rows(
+    poses: list[list[float]], times_s: list[float], a_max_mps2: float
+) -> list[float]:
+    """``reach_simple.simple_reach_vertices``, flat ``(N, T, 6, 2)``.
+
+    Args:
+        poses: Per object ``[x, y, yaw, speed, length, width]``.
+        times_s: Grid stamps.
+        a_max_mps2: Acceleration bound.
+
+    Returns:
+        The vertices, flat. The same operations in the same order except ``t ** 3``
+        (``t * t * t`` here; numpy's power may differ in the last bit), so within 1e-9 m.
+    """
+    a = a_max_mps2
+    out: list[float] = []
+    for x, y, yaw, v0, length, width in poses:
+        t_b = math.sqrt(2.0 / 3.0) * v0 / a
+        co, si = math.cos(yaw), math.sin(yaw)
+        hl, hw = length / 2, width / 2
+        c_p, r_p, b_p = _profile(v0, a, t_b, 0.0)
+        rear = c_p - r_p
+        for t in times_s:
+            c, r, b = _profile(v0, a, t_b, t)
+            rear = max(rear, c_p - r_p)
+            front = c + r
+            for xi, eta in (
+                (rear - hl, r_p + hw),
+                (b_p - hl, r + hw),
+                (front + hl, r + hw),
+                (front + hl, -r - hw),
+                (b_p - hl, -r - hw),
+                (rear - hl, -r_p - hw),
+            ):
+                out.append(x + co * xi - si * eta)
+                out.append(y + si * xi + co * eta)
+            c_p, r_p, b_p = c, r, b
+    return out

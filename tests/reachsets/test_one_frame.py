@@ -11,8 +11,9 @@ from hypothesis import strategies as st
 from reachsets.batch import stack_frames
 from reachsets.convex import convex_touch
 from reachsets.footprints import rectangle_corners
-from reachsets.params import ReachParams
+from reachsets.params import ReachMethod, ReachParams
 from reachsets.reach_simple import simple_reach_vertices
+from reachsets.reachable import simple_vertices
 from reachsets.track import build_track
 from tests.reachsets.helpers import inputs, objects, straight_ego, straight_track
 
@@ -83,3 +84,23 @@ def test_one_frame_stack_equals_batched(rows, ego_y, on_track, invalid):
     for name in ("s_ego_m", "ego_x_m", "ego_y_m", "ego_yaw_rad", "ego_speed_mps", "ego_length_m"):
         np.testing.assert_array_equal(getattr(one, name), getattr(two, name)[:1])
     np.testing.assert_array_equal(one.occupancy.corners_m, two.occupancy.corners_m[:1])
+
+
+@settings(max_examples=80, deadline=None)
+@given(
+    st.lists(
+        st.tuples(
+            st.floats(-500, 500), st.floats(-500, 500), st.floats(-4.0, 4.0), st.floats(0, 90)
+        ),
+        max_size=4,
+    ),
+    st.sampled_from(list(ReachMethod)),
+)
+def test_scalar_simple_sets_match_numpy(rows, method):
+    """The scalar twin's ``simple`` vertices agree with numpy's within 1e-9 m."""
+    objs = objects(*rows) if rows else objects()
+    params = ReachParams(method=method)
+    got = simple_vertices(objs, TIMES, params, scalar=True)
+    want = simple_vertices(objs, TIMES, params, scalar=False)
+    assert got.shape == want.shape == (len(rows), len(TIMES), 6, 2)
+    np.testing.assert_allclose(got, want, rtol=0.0, atol=1e-9)
