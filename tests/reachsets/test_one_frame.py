@@ -5,6 +5,7 @@ from __future__ import annotations
 import dataclasses
 
 import numpy as np
+import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -15,6 +16,7 @@ from reachsets.params import ReachMethod, ReachParams
 from reachsets.reach_simple import simple_reach_vertices
 from reachsets.reachable import simple_vertices
 from reachsets.track import build_track
+from reachsets.verdict import first_hits
 from tests.reachsets.helpers import inputs, objects, straight_ego, straight_track
 
 TIMES = np.asarray(ReachParams().times_s)
@@ -104,3 +106,33 @@ def test_scalar_simple_sets_match_numpy(rows, method):
     want = simple_vertices(objs, TIMES, params, scalar=False)
     assert got.shape == want.shape == (len(rows), len(TIMES), 6, 2)
     np.testing.assert_allclose(got, want, rtol=0.0, atol=1e-9)
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    st.lists(
+        st.tuples(st.floats(-40, 60), st.floats(-6, 6), st.floats(-4.0, 4.0), st.floats(0, 40)),
+        min_size=1,
+        max_size=6,
+    ),
+    st.floats(-10.0, 30.0),
+    st.floats(2.0, 12.0),
+)
+def test_first_hits_rounds_equal_cell_by_cell(rows, cut_x, area_half_width):
+    """Rounds of 1, 2, 4, ... cells give each object's first reduced hit, cell by cell."""
+    objs = objects(*rows)
+    verts = simple_reach_vertices(objs, TIMES, 13.0)
+    ego = rectangle_corners(np.linspace(0.0, 50.0, len(TIMES)), 0.0, 0.0, 4.7, 2.0)
+    ego_m = np.broadcast_to(ego, (len(rows), *ego.shape))
+    area = shapely.box(-100.0, -area_half_width, 200.0, area_half_width)
+    cuts = np.array([shapely.box(cut_x, -3.0, cut_x + 8.0, 3.0)] * len(rows), dtype=object)
+    got = first_hits(verts, ego_m, area=area, deletion=lambda r: cuts[r])
+    for n in range(len(rows)):
+        want = np.zeros(len(TIMES), dtype=bool)
+        for k in range(len(TIMES)):
+            part = shapely.difference(shapely.Polygon(verts[n, k]), cuts[n])
+            cell = shapely.intersection(part, shapely.Polygon(ego[k]))
+            if shapely.intersects(cell, area):
+                want[k] = True
+                break
+        np.testing.assert_array_equal(got[n], want)
