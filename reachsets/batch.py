@@ -147,6 +147,8 @@ def stack_frames(
     Returns:
         The batch.
     """
+    if len(inputs) == 1:
+        return _stack_one(inputs[0], params, track, road_geometry)
     egos = [i.ego for i in inputs]
     occ = ego_occupancy_many(egos, params.times_array_s)
     counts = np.array([len(i.objects) for i in inputs])
@@ -209,5 +211,67 @@ def stack_frames(
         track=track,
         road=inputs[0].road,
         zones=inputs[0].zones,
+        road_geometry=road_geometry,
+    )
+
+
+def _stack_one(
+    inp: ReachInputs,
+    params: ReachParams,
+    track: TrackGeometry | None,
+    road_geometry: RoadGeometry | None,
+) -> FrameBatch:
+    """``stack_frames`` of one frame: the same selection and values without the stacking.
+
+    An on-line monitor's call; the per-row arithmetic is the batched path's, elementwise,
+    on arrays of the frame's rows (so the batch is bit-identical to the stacked one).
+    """
+    ego, objs = inp.ego, inp.objects
+    occ = ego_occupancy_many([ego], params.times_array_s)
+    x, y, length, width = objs.x_m, objs.y_m, objs.length_m, objs.width_m
+    valid = (
+        np.isfinite(x + y + objs.yaw_rad + objs.speed_mps + length + width)
+        & (length > 0)
+        & (width > 0)
+    )
+    n = len(x)
+    ego_len = float(ego.length_m)
+    if track is None:
+        yaw = np.full(n, ego.yaw_rad[0], dtype=np.float64)
+        xi = (x - ego.x_m[0]) * np.cos(yaw) + (y - ego.y_m[0]) * np.sin(yaw)
+        keep = valid & (xi >= -(ego_len + length) / 2)
+        s_obj = lat = np.zeros(n)
+        s_ego = np.zeros(1)
+    else:
+        px = np.where(valid, x, 0.0)
+        py = np.where(valid, y, 0.0)
+        ends_x = np.array([ego.x_m[0], ego.x_m[-1]], dtype=np.float64)
+        ends_y = np.array([ego.y_m[0], ego.y_m[-1]], dtype=np.float64)
+        s_all = track.project(np.concatenate([px, ends_x]), np.concatenate([py, ends_y]))
+        s_obj, s_ego = s_all[:n], s_all[n : n + 1]
+        span = np.maximum(track.ahead_m(s_ego, s_all[n + 1 :]), 0.0)
+        d = track.ahead_m(np.full(n, s_ego[0]), s_obj)
+        keep = valid & (d >= 0) & (d <= span[0] + ego_len)
+        lat = track.lateral_m(px, py, s_obj)
+    rows = np.flatnonzero(keep)
+    return FrameBatch(
+        objects=objs.take(rows),
+        frame=np.zeros(len(rows), dtype=np.intp),
+        offsets=np.array([0, len(rows)], dtype=np.intp),
+        skipped_ids=(tuple(str(i) for i in objs.ids[~keep]),),
+        s_obj_m=s_obj[rows],
+        lat_obj_m=lat[rows],
+        s_ego_m=s_ego,
+        ego_x_m=np.array([ego.x_m[0]], dtype=np.float64),
+        ego_y_m=np.array([ego.y_m[0]], dtype=np.float64),
+        ego_yaw_rad=np.array([ego.yaw_rad[0]], dtype=np.float64),
+        ego_speed_mps=np.array([_finite(float(ego.speed_mps[0]))]),
+        ego_length_m=np.array([ego_len]),
+        ego_width_m=np.array([float(ego.width_m)]),
+        occupancy=occ,
+        params=params,
+        track=track,
+        road=inp.road,
+        zones=inp.zones,
         road_geometry=road_geometry,
     )

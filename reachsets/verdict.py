@@ -58,46 +58,51 @@ def first_hits(
     """
     touch = convex_touch(sets_m, ego_m) if sets_m.size else np.zeros(sets_m.shape[:2], bool)
     hits = np.zeros(touch.shape, dtype=bool)
-    if not touch.any():
+    rows, steps = np.nonzero(touch)  # row-major: each row's touching steps in order
+    if not len(rows):
         return hits
     cut = None
     if deletion is not None:
-        rows = np.flatnonzero(touch.any(axis=1))
-        found = deletion(rows)
+        touched = np.unique(rows)
+        found = deletion(touched)
         if found is not None:
             cut = np.full(len(touch), None, dtype=object)
-            cut[rows] = found
+            cut[touched] = found
     grid = patches(touch) if patches is not None else None
-    todo = touch.copy()
-    size = 1
-    while True:
-        todo &= ~hits.any(axis=1, keepdims=True)
-        cells = todo & (np.cumsum(todo, axis=1) <= size)
-        if not cells.any():
+    rank = np.arange(len(rows)) - np.searchsorted(rows, rows)  # place within its row
+    done = np.zeros(len(touch), dtype=bool)
+    lo, size = 0, 1
+    while True:  # rounds of each unresolved row's next 1, 2, 4, ... touching cells
+        sel = np.flatnonzero((rank >= lo) & (rank < lo + size) & ~done[rows])
+        if not len(sel):
             break
-        hits |= _reduced_touch(sets_m, ego_m, cells, area=area, cut=cut, grid=grid)
-        todo &= ~cells
+        i, k = rows[sel], steps[sel]
+        ok = _reduced_touch(sets_m, ego_m, i, k, area=area, cut=cut, grid=grid)
+        # a row's first hit of the round: its smallest step (cells are in order)
+        hit_rows, first = np.unique(i[ok], return_index=True)
+        hits[hit_rows, k[ok][first]] = True
+        done[hit_rows] = True
+        lo += size
         size *= 2
-    # keep only the first hit per row
-    return np.asarray(hits & (np.cumsum(hits, axis=1) == 1), dtype=bool)
+    return hits
 
 
 def _reduced_touch(
     sets_m: NDArray[np.float64],
     ego_m: NDArray[np.float64],
-    cells: NDArray[np.bool_],
+    i: NDArray[np.intp],
+    k: NDArray[np.intp],
     *,
     area: Any,
     cut: NDArray[np.object_] | None,
     grid: PatchGrid | None,
 ) -> NDArray[np.bool_]:
-    """``((S - D - P) & E)`` touches ``area`` on the ``cells`` mask, ``(N, T)``.
+    """``((S - D - P) & E)`` touches ``area`` at the cells ``(i, k)``, ``(M,)``.
 
     The differences come first: they are regularised (a polygon minus a polygon is a
     polygon), whereas the intersection keeps lower-dimensional contact, so a set that only
     touches the footprint along an edge still counts, as in the full-geometry test.
     """
-    i, k = np.nonzero(cells)
     # one creation call for both: the rectangles padded to V vertices by repeating a corner
     n_v = sets_m.shape[2]
     ego = ego_m[i, k]
@@ -110,6 +115,4 @@ def _reduced_touch(
         part = subtract_patches(part, grid, np.stack([i, k]))
     part = shapely.intersection(part, polys[len(i) :])
     ok = shapely.intersects(part, area) if area is not None else ~shapely.is_empty(part)
-    out = np.zeros(cells.shape, dtype=bool)
-    out[i, k] = np.asarray(ok, dtype=bool)
-    return out
+    return np.asarray(ok, dtype=bool)
