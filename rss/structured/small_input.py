@@ -9,11 +9,12 @@ its items.
 :func:`rss.structured.stacking.stack_constellations` keeps the rows it collects anyway
 with the batch for frames of at most :data:`SMALL_FRAME_MAX` constellations
 (:func:`remember`, the last :data:`_KEPT` batches by identity); :func:`packed` packs them
-on first use (:func:`pack`), or reads it from the arrays of a batch built otherwise (every
-row then has items of its own). Both give the same values: the arrays are filled from
-the same rows, and padding (lanes -1, zero bounds) does not change a lane table or a
-placement (``tests/rss/structured/test_small.py`` checks both ways against the batched
-engine).
+on first use (:func:`pack`); a batch the standstill rule rewrote shares the objects and
+road areas of a kept one and reads only its types and dynamics; a batch built otherwise
+is read from its arrays (every row then has items of its own). All give the same values:
+the arrays are filled from the same rows, and padding (lanes -1, zero bounds) does not
+change a lane table or a placement (``tests/rss/structured/test_small.py`` checks each
+way against the batched engine).
 """
 
 from __future__ import annotations
@@ -85,8 +86,8 @@ class Packed:
         self.dynamics: list[list[float]] = []
 
 
-def remember(batch: ConstellationBatch, rows: Callable[[], Packed]) -> None:
-    """Keep ``rows`` (called on first use) as the packing of ``batch``.
+def remember(batch: ConstellationBatch, rows: Packed | Callable[[], Packed]) -> None:
+    """Keep ``rows`` (or a callable making them on first use) as the packing of ``batch``.
 
     The last :data:`_KEPT` batches are kept; a batch only given to the batched engine
     never packs its rows.
@@ -106,6 +107,11 @@ def packed(batch: ConstellationBatch) -> Packed:
             rows = made()
             _KEEP[k] = (batch, rows)
             return rows
+    base = _same_places(batch)
+    if base is not None:  # the standstill rule's copy: new types and dynamics only
+        rows = _with_dynamics(base, batch)
+        remember(batch, rows)
+        return rows
     rows = Packed(batch.constellation_type.tolist())
     size = len(rows.ctypes)
     _objects(rows, batch.ego)
@@ -114,13 +120,55 @@ def packed(batch: ConstellationBatch) -> Packed:
     rows.other = list(range(size, 2 * size))
     rows.ego_road = _roads(rows, batch.ego_road)
     rows.cross_road = _roads(rows, batch.intersecting_road)
+    _read_dynamics(rows, batch)
+    return rows
+
+
+def _same_places(batch: ConstellationBatch) -> Packed | None:
+    """The packing of a kept batch with the very objects and road areas of ``batch``.
+
+    :func:`rss.structured.standstill.apply_standstill` replaces only the types and the
+    dynamics of a batch (``dataclasses.replace``): its objects and road areas are the same
+    arrays, so their packed rows are too.
+    """
+    for k in range(len(_KEEP) - 1, -1, -1):
+        kept, made = _KEEP[k]
+        if (
+            kept.ego is batch.ego
+            and kept.other is batch.other
+            and kept.ego_road is batch.ego_road
+            and kept.intersecting_road is batch.intersecting_road
+        ):
+            if isinstance(made, Packed):
+                return made
+            rows = made()
+            _KEEP[k] = (kept, rows)
+            return rows
+    return None
+
+
+def _with_dynamics(base: Packed, batch: ConstellationBatch) -> Packed:
+    """``base``'s objects and road areas (shared, never changed), ``batch``'s types and dynamics."""
+    rows = Packed(batch.constellation_type.tolist())
+    rows.ego, rows.other = base.ego, base.other
+    rows.object_id, rows.object_type = base.object_id, base.object_type
+    rows.lanes, rows.params, rows.speeds = base.lanes, base.params, base.speeds
+    rows.ego_road, rows.cross_road = base.ego_road, base.cross_road
+    rows.road_ints, rows.road_floats = base.road_ints, base.road_floats
+    rows.road_shape = base.road_shape
+    _read_dynamics(rows, batch)
+    return rows
+
+
+def _read_dynamics(rows: Packed, batch: ConstellationBatch) -> None:
+    """``batch``'s dynamics columns as distinct records and their index per row."""
+    size = len(rows.ctypes)
     columns = [
         np.array([getattr(dyn, name) for name in _FIELDS], dtype=np.float64)
         for dyn in (batch.ego_dynamics, batch.other_dynamics)
     ]
     uses = _dynamics(rows, np.concatenate(columns, axis=1).T)
     rows.ego_dynamics, rows.other_dynamics = uses[:size], uses[size:]
-    return rows
 
 
 def _dynamics(rows: Packed, table: np.ndarray) -> list[int]:

@@ -22,11 +22,14 @@ from rss.structured.batch import take_rows
 from rss.structured.engine import FrameResult, check_frame, check_frames
 from rss.structured.memory import RssMemory
 from rss.structured.small import SMALL_FRAME_MAX, check_frame_small
+from rss.structured.small_input import packed
 from rss.structured.small_output import recall
 from rss.structured.stacking import stack_constellations
+from rss.structured.standstill import apply_standstill
 from tests.rss.structured.generators import random_case, random_sequence, renumber
 
 _DEFAULTS = parse_defaults({})
+_STILL_MPS = 3.0  # standstill threshold of the random drives: some objects stand, some move
 
 
 def _fields(record: Any, prefix: str = "") -> dict[str, np.ndarray]:
@@ -87,7 +90,7 @@ def _plain(memory: RssMemory) -> RssMemory:
     st.integers(0, 2**32 - 1),
     st.integers(1, 24),
     st.integers(1, 5),
-    st.sampled_from(["stacking", "arrays"]),
+    st.sampled_from(["stacking", "arrays", "standstill"]),
     st.booleans(),
 )
 def test_drive_frame_by_frame_equals_batched(
@@ -96,18 +99,27 @@ def test_drive_frame_by_frame_equals_batched(
     """Random drives (all constellation types), memory carried frame by frame on both paths.
 
     The row path reads the rows the stacking step packed, or (a batch it did not stack)
-    the batch's arrays; the memory goes back as returned or as a plain ``RssMemory``.
+    the batch's arrays, or (the standstill rule's copy of a stacked batch) the stacked
+    rows with the copy's types and dynamics; the memory goes back as returned or as a
+    plain ``RssMemory``.
     """
     ours_memory: RssMemory | None = None
     batched_memory: RssMemory | None = None
     for frame in _drive(seed, n_objects, steps):
-        batch = stack_constellations(frame)
+        stacked = stack_constellations(frame)
+        batch = stacked
         if via == "arrays":  # a new batch object: no packed rows kept for it
             batch = take_rows(batch, np.arange(batch.size))
+        if via == "standstill":
+            batch = apply_standstill(stacked, _STILL_MPS)
+            if batch is not stacked:  # objects and road areas packed once, shared
+                assert packed(batch).lanes is packed(stacked).lanes
         if plain_memory and ours_memory is not None:
             ours_memory = _plain(ours_memory)
         ours, ours_memory = check_frame(batch, _DEFAULTS.ego, ours_memory)
-        batched, batched_memory = _batched(frame, batched_memory)
+        batched, batched_memory = check_frames(
+            batch, np.zeros(batch.size, dtype=np.int64), 1, _DEFAULTS.ego, batched_memory
+        )
         _assert_same(ours, batched)
         _assert_same(ours_memory, batched_memory)
 
