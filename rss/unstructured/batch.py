@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from rss.unstructured.kinematics import Points, footprints
 from rss.unstructured.sets import TrajectorySets
 
 if TYPE_CHECKING:
@@ -23,8 +24,18 @@ if TYPE_CHECKING:
 
     from rss.arrays import BoolArray, FloatArray, IntArray
     from rss.dynamics import RssDynamics, UnstructuredSettings
+    from rss.unstructured.agents import UnstructuredAgents
 
-__all__ = ["CORNERS", "AgentDynamics", "PiecePlan", "RowPieces", "constant", "plan_sets", "span"]
+__all__ = [
+    "CORNERS",
+    "AgentDynamics",
+    "PiecePlan",
+    "RowPieces",
+    "constant",
+    "plan_sets",
+    "sets_of_points",
+    "span",
+]
 
 #: Corners per footprint (FR, FL, BL, BR).
 CORNERS = 4
@@ -168,3 +179,19 @@ def constant(values: object, dtype: type = np.int64) -> np.ndarray:
 def span(start: int, stop: int) -> list[int]:
     """Rows ``start .. stop - 1``."""
     return list(range(start, stop))
+
+
+def sets_of_points(
+    x_m: FloatArray,
+    y_m: FloatArray,
+    yaw_rad: FloatArray,
+    agents: UnstructuredAgents,
+    dyn: AgentDynamics,
+    *,
+    plan: PiecePlan,
+) -> TrajectorySets:
+    """The pieces of ``plan`` from the poses ``(R, N)`` of its footprint table's rows."""
+    points = Points(x_m, y_m, yaw_rad, x_m, yaw_rad)  # speeds and yaw rates are not used
+    corners = footprints(points, agents.length_m, agents.width_m, dyn.front_extra_m)
+    table = np.moveaxis(corners, 2, 1).reshape(-1, len(agents), 2)
+    return plan_sets(table, plan)

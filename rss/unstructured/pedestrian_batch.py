@@ -30,12 +30,19 @@ from rss.physics import (
     gt,
     le,
 )
-from rss.unstructured.batch import CORNERS, PiecePlan, RowPieces, constant, plan_sets, span
+from rss.unstructured.batch import (
+    CORNERS,
+    PiecePlan,
+    RowPieces,
+    constant,
+    plan_sets,
+    sets_of_points,
+    span,
+)
 from rss.unstructured.kinematics import (
     CIRCLE_VERTICES,
     Points,
     change_ratios,
-    footprints,
     pedestrian_move,
     pedestrian_move_timed,
     time_to_stop,
@@ -294,7 +301,4 @@ def pedestrian_sets_of_points(
     dyn: AgentDynamics,
 ) -> TrajectorySets:
     """The pieces of moving pedestrians from the poses ``(R, N)`` of the footprint table's rows."""
-    points = Points(x_m, y_m, yaw_rad, x_m, yaw_rad)  # speeds and yaw rates are not used
-    corners = footprints(points, agents.length_m, agents.width_m, dyn.front_extra_m)
-    table = np.moveaxis(corners, 2, 1).reshape(-1, len(agents), 2)
-    return plan_sets(table, pedestrian_plan(dyn.settings))
+    return sets_of_points(x_m, y_m, yaw_rad, agents, dyn, plan=pedestrian_plan(dyn.settings))

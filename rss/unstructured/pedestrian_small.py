@@ -20,7 +20,7 @@ from rss.unstructured.pedestrian_batch import (
     pedestrian_layout,
     pedestrian_sets_of_points,
 )
-from rss.unstructured.scalar_motion import pedestrian_move, time_to_stop
+from rss.unstructured.scalar_motion import DYNAMICS_COLUMNS, pedestrian_move, time_to_stop
 
 if TYPE_CHECKING:
     from rss.dynamics import UnstructuredSettings
@@ -86,20 +86,13 @@ def _poses(values: list[float], rows: _Rows, radius_m: float) -> list[tuple[floa
 
 
 _FIELDS = ("x_m", "y_m", "yaw_rad", "speed_min_mps", "speed_max_mps")
-_DYNAMICS = (
-    "response_time_s",
-    "max_speed_mps",
-    "accel_max_mps2",
-    "brake_max_mps2",
-    "brake_min_mps2",
-)
 
 
 def pedestrian_moving_small(agents: UnstructuredAgents, dyn: AgentDynamics) -> TrajectorySets:
     """Sets of moving pedestrians ``(N,)`` (``rss.unstructured.pedestrian_batch._moving``)."""
     rows = _rows(dyn.settings)
     columns = [getattr(agents, f).tolist() for f in _FIELDS]
-    columns += [getattr(dyn, f).tolist() for f in _DYNAMICS]
+    columns += [getattr(dyn, f).tolist() for f in DYNAMICS_COLUMNS]
     radius = dyn.settings.pedestrian_turning_radius
     poses = [_poses([float(c[j]) for c in columns], rows, radius) for j in range(len(agents))]
     table = np.array(poses, dtype=np.float64)  # (N, R, 3)

@@ -25,6 +25,7 @@ from rss.structured.scalar_physics import accelerated_limited_movement
 
 __all__ = [
     "ANGULAR_VELOCITY_PRECISION",
+    "DYNAMICS_COLUMNS",
     "arc",
     "drive",
     "finish",
@@ -35,6 +36,15 @@ __all__ = [
     "time_in_movement",
     "time_to_stop",
 ]
+
+#: The ``AgentDynamics`` fields the point-by-point set builders read, in their column order.
+DYNAMICS_COLUMNS = (
+    "response_time_s",
+    "max_speed_mps",
+    "accel_max_mps2",
+    "brake_max_mps2",
+    "brake_min_mps2",
+)
 
 #: ad-physics ``AngularVelocity`` precision [rad/s] (:mod:`rss.unstructured.kinematics`).
 ANGULAR_VELOCITY_PRECISION = 1e-3

@@ -35,12 +35,11 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from rss.physics import ACCELERATION_PRECISION, SPEED_PRECISION, gt, lt
-from rss.unstructured.batch import PiecePlan, RowPieces, constant, plan_sets, span
+from rss.unstructured.batch import PiecePlan, RowPieces, constant, sets_of_points, span
 from rss.unstructured.kinematics import (
     Phase,
     Points,
     change_ratios,
-    footprints,
     time_in_movement,
     time_to_stop,
     vehicle_arc,
@@ -316,7 +315,4 @@ def vehicle_sets_of_points(
     dyn: AgentDynamics,
 ) -> TrajectorySets:
     """The pieces from the poses ``(R, N)`` of the table's rows (arcs, extras, current)."""
-    points = Points(x_m, y_m, yaw_rad, x_m, yaw_rad)  # speeds and yaw rates are not used
-    corners = footprints(points, agents.length_m, agents.width_m, dyn.front_extra_m)
-    table = np.moveaxis(corners, 2, 1).reshape(-1, len(agents), 2)
-    return plan_sets(table, vehicle_plan(dyn.settings))
+    return sets_of_points(x_m, y_m, yaw_rad, agents, dyn, plan=vehicle_plan(dyn.settings))

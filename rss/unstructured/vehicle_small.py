@@ -20,6 +20,7 @@ import numpy as np
 
 from rss.physics import SPEED_PRECISION
 from rss.unstructured.scalar_motion import (
+    DYNAMICS_COLUMNS,
     State,
     arc,
     drive,
@@ -143,13 +144,6 @@ _FIELDS = (
     "speed_max_mps",
     "yaw_rate_radps",
 )
-_DYNAMICS = (
-    "response_time_s",
-    "max_speed_mps",
-    "accel_max_mps2",
-    "brake_max_mps2",
-    "brake_min_mps2",
-)
 
 
 def vehicle_sets_small(agents: UnstructuredAgents, dyn: AgentDynamics) -> TrajectorySets | None:
@@ -166,7 +160,7 @@ def vehicle_sets_small(agents: UnstructuredAgents, dyn: AgentDynamics) -> Trajec
     u = dyn.settings
     rows = _rows(u)
     columns = [getattr(agents, f).tolist() for f in _FIELDS]
-    columns += [getattr(dyn, f).tolist() for f in _DYNAMICS]
+    columns += [getattr(dyn, f).tolist() for f in DYNAMICS_COLUMNS]
     n = len(agents)
     values = [[float(c[j]) for c in columns] for j in range(n)]
     for v in values:

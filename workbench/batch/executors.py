@@ -20,6 +20,7 @@ import contextlib
 import logging
 import multiprocessing
 import os
+import time
 from concurrent.futures import BrokenExecutor, Future, ProcessPoolExecutor
 from typing import TYPE_CHECKING, Any, Protocol
 
@@ -190,6 +191,29 @@ def _ray_token_available() -> bool:
     return Path(saved).is_file()
 
 
+#: Ray Client connections tried before a batch gives up, and the pause between them [s].
+RAY_CLIENT_ATTEMPTS, RAY_CLIENT_PAUSE_S = 3, 2.0
+
+
+def _ray_client_connect(ray: Any, address: str) -> None:
+    """``ray.init(address)`` through Ray Client, tried again when the server side fails.
+
+    The head's client proxy starts one server process per client; on a busy head that
+    start can fail ("Starting Ray client server failed", a ``ConnectionError``) and succeed
+    a moment later. Other errors, and the last attempt's, go to the caller.
+    """
+    for attempt in range(1, RAY_CLIENT_ATTEMPTS + 1):
+        try:
+            ray.init(address=address, log_to_driver=False, logging_level=logging.WARNING)
+        except ConnectionError:
+            if attempt == RAY_CLIENT_ATTEMPTS:
+                raise
+            ray.shutdown()
+            time.sleep(RAY_CLIENT_PAUSE_S)
+        else:
+            return
+
+
 @contextlib.contextmanager
 def _ray(kind: str, where: str, cluster: str) -> Iterator[Pool]:
     os.environ.setdefault("RAY_USAGE_STATS_ENABLED", "0")
@@ -212,7 +236,7 @@ def _ray(kind: str, where: str, cluster: str) -> Iterator[Pool]:
                 logging_level=logging.WARNING,
             )
         else:
-            ray.init(address=where, log_to_driver=False, logging_level=logging.WARNING)
+            _ray_client_connect(ray, where)
     except (ConnectionError, RuntimeError, ValueError) as err:
         detail = " ".join(str(err).split())
         raise BatchError(f"--cluster {cluster}: cannot start or reach Ray ({detail})") from err

@@ -155,6 +155,20 @@ def test_ray_local_gives_the_same_tables(logs: list[str], full: Path, tmp_path: 
     }
 
 
+def _wait_for_ray_to_end() -> None:
+    """Wait (up to the start time-out) until no Ray instance of an earlier test still runs:
+    one shutting down while a head starts is a known source of failed Ray Client starts."""
+    deadline = time.monotonic() + START_TIMEOUT_S
+    while time.monotonic() < deadline:
+        names = set()
+        for comm in Path("/proc").glob("[0-9]*/comm"):
+            with contextlib.suppress(OSError):
+                names.add(comm.read_text().strip())
+        if not names & {"raylet", "gcs_server"}:
+            return
+        time.sleep(0.5)
+
+
 @pytest.fixture(scope="module")
 def ray_head(tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
     """``ray://127.0.0.1:PORT`` of a Ray head (``ray start --head --block``) on 127.0.0.1."""
@@ -163,6 +177,7 @@ def ray_head(tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
     args = ["start", "--head", "--block", "--node-ip-address", "127.0.0.1"]
     args += ["--port", str(free_port()), "--ray-client-server-port", str(client_port)]
     args += ["--num-cpus", "2", "--include-dashboard", "false", "--disable-usage-stats"]
+    _wait_for_ray_to_end()
     # Ray's single-machine mode: its servers listen on 127.0.0.1, not the network address.
     head = _spawn(args, folder / "head.log", "ray", RAY_ENABLE_WINDOWS_OR_OSX_CLUSTER="0")
     try:
