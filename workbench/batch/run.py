@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING, Any
 from urllib.parse import urlsplit
 from urllib.request import url2pathname
 
+from loaders.open import is_rosbag2_dir
 from workbench.batch.executors import BatchError
 from workbench.batch.remote import expand_url, is_url
 from workbench.batch.reports import request_record
@@ -45,14 +46,10 @@ LOG_SUFFIXES = (".mcap", ".bag", ".db3", ".xml", ".saa", ".scn")
 MAX_ATTEMPTS = 3
 
 
-def _is_rosbag2(path: Path) -> bool:
-    return path.is_dir() and (path / "metadata.yaml").is_file()
-
-
 def _walk(folder: Path) -> list[Path]:
     found: list[Path] = []
     for entry in sorted(folder.iterdir()):
-        if _is_rosbag2(entry):
+        if is_rosbag2_dir(entry):
             found.append(entry)
         elif entry.is_dir():
             found.extend(_walk(entry))
@@ -84,13 +81,13 @@ def _expand_path(argument: str) -> list[Path]:
     found = sorted(glob.glob(argument))  # noqa: PTH207 - a user's pattern, maybe absolute
     logs: list[Path] = []
     for path in [Path(m).resolve() for m in found] or [Path(argument).resolve()]:
-        if path.is_dir() and not _is_rosbag2(path):
+        if path.is_dir() and not is_rosbag2_dir(path):
             logs.extend(_walk(path))
         elif path.exists():
             logs.append(path)
         else:
             raise BatchError(f"{argument}: no such file, directory or match")
-    inside_bags = {p for p in logs if p.suffix == ".db3" and _is_rosbag2(p.parent)}
+    inside_bags = {p for p in logs if p.suffix == ".db3" and is_rosbag2_dir(p.parent)}
     return [p for p in logs if p not in inside_bags]
 
 
