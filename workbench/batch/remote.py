@@ -23,15 +23,12 @@ import re
 import shutil
 from dataclasses import dataclass
 from pathlib import Path, PurePosixPath
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from loaders.message_logs.mapsource import sidecar_candidates
 from loaders.open import LOG_SUFFIXES, SCENARIO_SUFFIXES
 from workbench.batch.executors import BatchError
 from workbench.incidents.content import CHUNK_BYTES
-
-if TYPE_CHECKING:
-    from collections.abc import Sequence
 
 __all__ = [
     "MAX_FETCH_BYTES",
@@ -131,7 +128,7 @@ def _suffix(path: str) -> str:
     return PurePosixPath(path.rstrip("/")).suffix.lower()
 
 
-def _logs_under(fs: Any, folder: str, suffixes: Sequence[str]) -> list[str]:
+def _logs_under(fs: Any, folder: str) -> list[str]:
     """Logs in ``folder`` and below: rosbag2 directories whole, files by suffix."""
     files = sorted(fs.find(folder))
     bags = sorted({f.rsplit("/", 1)[0] for f in files if f.endswith("/metadata.yaml")})
@@ -139,24 +136,27 @@ def _logs_under(fs: Any, folder: str, suffixes: Sequence[str]) -> list[str]:
     names = [
         f
         for f in files
-        if f not in in_bag and _suffix(f) in suffixes and not PurePosixPath(f).name.startswith(".")
+        if f not in in_bag
+        and _suffix(f) in LOG_SUFFIXES
+        and not PurePosixPath(f).name.startswith(".")
     ]
     return sorted([*bags, *names])
 
 
-def _matches(fs: Any, path: str, suffixes: Sequence[str]) -> list[str]:
+def _matches(fs: Any, path: str) -> list[str]:
     if fs.isdir(path):
         if fs.isfile(path.rstrip("/") + "/metadata.yaml"):
             return [path.rstrip("/")]
-        return _logs_under(fs, path, suffixes)
+        return _logs_under(fs, path)
     return [path] if fs.exists(path) else []
 
 
-def expand_url(url: str, suffixes: Sequence[str]) -> list[str]:
+def expand_url(url: str) -> list[str]:
     """The drives a URL names, as URLs, where the batch starts (no drive is read).
 
-    A URL whose name ends in a log suffix is one drive, not checked here (the task reports a
-    missing one as ``failed``: the workers may see what the starting machine does not). A
+    A URL whose name ends in a log suffix (:data:`loaders.open.LOG_SUFFIXES`) is one drive,
+    not checked here (the task reports a missing one as ``failed``: the workers may see what
+    the starting machine does not). A
     pattern (``s3://bucket/drives/*.mcap``) is globbed and a directory searched (a rosbag2
     directory is one drive) with fsspec.
 
@@ -172,11 +172,11 @@ def expand_url(url: str, suffixes: Sequence[str]) -> list[str]:
         return f"{head}::" * bool(head) + str(inner.unstrip_protocol(found))
 
     magic = _HTTP_MAGIC if last.startswith(("http:", "https:")) else _MAGIC
-    if not magic.search(path) and _suffix(path) in suffixes:
+    if not magic.search(path) and _suffix(path) in LOG_SUFFIXES:
         return [named(path)]
     try:
         found = sorted(fs.glob(path)) if magic.search(path) else [path]
-        paths = [m for p in found for m in _matches(fs, p, suffixes)]
+        paths = [m for p in found for m in _matches(fs, p)]
     except (OSError, ValueError) as err:
         raise FetchError(f"{url}: cannot list ({one_line(err)})") from err
     if not paths:

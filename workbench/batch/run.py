@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING, Any
 from urllib.parse import urlsplit
 from urllib.request import url2pathname
 
-from loaders.open import is_rosbag2_dir
+from loaders.open import LOG_SUFFIXES, is_rosbag2_dir
 from workbench.batch.executors import BatchError
 from workbench.batch.remote import expand_url, is_url
 from workbench.batch.reports import request_record
@@ -31,7 +31,6 @@ if TYPE_CHECKING:
     from workbench.incidents import IncidentRequest
 
 __all__ = [
-    "LOG_SUFFIXES",
     "MAX_ATTEMPTS",
     "BatchSummary",
     "expand_logs",
@@ -40,8 +39,6 @@ __all__ = [
     "run_batch",
 ]
 
-#: Files a directory argument contributes (rosbag2 directories are taken whole).
-LOG_SUFFIXES = (".mcap", ".bag", ".db3", ".xml", ".saa", ".scn")
 #: Times a log is submitted before a lost worker counts as its failure.
 MAX_ATTEMPTS = 3
 
@@ -53,7 +50,7 @@ def _walk(folder: Path) -> list[Path]:
             found.append(entry)
         elif entry.is_dir():
             found.extend(_walk(entry))
-        elif entry.suffix in LOG_SUFFIXES and not entry.name.startswith("."):
+        elif entry.suffix.lower() in LOG_SUFFIXES and not entry.name.startswith("."):
             found.append(entry)
     return found
 
@@ -87,12 +84,16 @@ def _expand_path(argument: str) -> list[Path]:
             logs.append(path)
         else:
             raise BatchError(f"{argument}: no such file, directory or match")
-    inside_bags = {p for p in logs if p.suffix == ".db3" and is_rosbag2_dir(p.parent)}
+    inside_bags = {p for p in logs if p.suffix.lower() == ".db3" and is_rosbag2_dir(p.parent)}
     return [p for p in logs if p not in inside_bags]
 
 
 def expand_logs(arguments: Sequence[str]) -> list[Path | str]:
     """The logs named by files, directories (searched for logs), globs and URLs.
+
+    A directory contributes every file with a suffix the loaders open
+    (:data:`loaders.open.LOG_SUFFIXES`, any case; hidden files skipped), so no log a
+    single-drive command reads is left out of a batch of its folder.
 
     Paths absolute; a ``file://`` URL on this host is the path it names; any other URL
     (fsspec: ``s3://``, ``http://``, ``gcs://``, chains) stays a URL, globbed or searched
@@ -107,7 +108,7 @@ def expand_logs(arguments: Sequence[str]) -> list[Path | str]:
     out: dict[Path | str, None] = {}
     for given in arguments:
         local = _local(given)
-        found = expand_url(given, LOG_SUFFIXES) if local is None else _expand_path(local)
+        found = expand_url(given) if local is None else _expand_path(local)
         out.update(dict.fromkeys(found))
     return sorted(out, key=str)
 
