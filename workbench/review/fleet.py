@@ -16,6 +16,7 @@ from collections import ChainMap
 from typing import TYPE_CHECKING
 
 from workbench.incidents.order import severity_key
+from workbench.review.session import resume_row
 
 if TYPE_CHECKING:
     from collections.abc import Callable, Sequence
@@ -103,10 +104,8 @@ class FleetSession:
 
     def resume_index(self) -> int:
         """The first row (worst first) not fully labelled; the last one if all are."""
-        for k, (incident, owner) in enumerate(zip(self.incidents, self._owners, strict=True)):
-            if not owner.done(incident):
-                return k
-        return max(len(self.incidents) - 1, 0)
+        pairs = zip(self.incidents, self._owners, strict=True)
+        return resume_row(owner.done(incident) for incident, owner in pairs)
 
     @property
     def current(self) -> Incident | None:

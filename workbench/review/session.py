@@ -20,13 +20,30 @@ from workbench.incidents.events import group_events
 from workbench.replay.incidents import short_labels
 
 if TYPE_CHECKING:
-    from collections.abc import Sequence
+    from collections.abc import Iterable, Sequence
 
     from workbench.annotations import Label, LabelStore
     from workbench.incidents import Incident, IncidentReport
     from workbench.replay.short_labels import ShortLabels
 
-__all__ = ["Pending", "ReviewSession"]
+__all__ = ["Pending", "ReviewSession", "resume_row"]
+
+
+def resume_row(done: Iterable[bool]) -> int:
+    """Where a queue resumes: its first row not fully labelled; the last row if all are.
+
+    Args:
+        done: Per row, worst first, whether it is fully labelled.
+
+    Returns:
+        The row's index (0 for an empty queue).
+    """
+    last = 0
+    for k, labelled in enumerate(done):
+        if not labelled:
+            return k
+        last = k
+    return last
 
 
 @dataclass(slots=True)
@@ -119,10 +136,7 @@ class ReviewSession:
 
     def resume_index(self) -> int:
         """The first row (worst first) not fully labelled; the last one if all are."""
-        for k, incident in enumerate(self.incidents):
-            if not self.done(incident):
-                return k
-        return max(len(self.incidents) - 1, 0)
+        return resume_row(self.done(incident) for incident in self.incidents)
 
     @property
     def current(self) -> Incident | None:
