@@ -107,13 +107,19 @@ class _Where:
     def number(self, field: str, value: object) -> float:
         if isinstance(value, bool) or not isinstance(value, int | float):
             raise self.error(field, value, "expected a number")
-        if not math.isfinite(value):
+        try:
+            number = float(value)
+        except OverflowError:
+            number = math.inf
+        if not math.isfinite(number):
             raise self.error(field, value, "expected a finite number")
-        return float(value)
+        return number
 
     def numbers(self, field: str, value: object) -> list[float]:
         if not isinstance(value, list) or not value:
             raise self.error(field, value, "expected a non-empty list of numbers")
+        if all(type(v) is float for v in value) and math.isfinite(sum(value)):
+            return value  # the common case at once: a finite sum of floats has finite terms
         return [self.number(f"{field}.{k}", v) for k, v in enumerate(value)]
 
     def mapping(self, field: str, value: object) -> dict[str, Any]:

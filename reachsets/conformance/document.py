@@ -6,10 +6,10 @@ the per-case work (:func:`evaluate_cases`: parse, evaluate, records), so a bench
 time the cases alone.
 
 Independent cases of one method are evaluated together, as the drive pipeline batches
-frames: one ``evaluate_frames`` call over a chunk of them, each case a frame whose object
-ids are made unique (``<k>/<id>``), so no rule memory passes from one case to another and
-each case is rated as if alone (tested against one call per case). A sequence is one
-``evaluate_frames`` call over its steps, the memory carried from step to step.
+frames: one ``evaluate_frames`` call over up to :data:`BATCH_CASES` of them, each case a
+frame whose object ids are made unique (``<k>/<id>``), so no rule memory passes from one
+case to another and each case is rated as if alone (tested against one call per case). A
+sequence is one ``evaluate_frames`` call over its steps, the memory carried from step to step.
 """
 
 from __future__ import annotations
@@ -42,7 +42,7 @@ __all__ = [
 ]
 
 #: Independent cases evaluated in one engine call.
-BATCH_CASES = 32
+BATCH_CASES = 64
 
 
 @dataclass(frozen=True)

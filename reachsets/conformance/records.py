@@ -29,7 +29,8 @@ def set_outlines(result: ReachResult, name: Callable[[str], str]) -> dict[str, A
     """The reduced sets as outlines, the reference's ``rrese_<object>_<t>`` equivalent.
 
     Each checked object gets one entry per grid stamp: the exterior rings of the parts of
-    its reduced set (``[]`` where nothing is left), each ring ``[[x, y], ...]`` closed.
+    its reduced set (``[]`` where nothing is left), each ring closed and written as the
+    reference writes an outline, ``[[x0, x1, ...], [y0, y1, ...]]``.
 
     Args:
         result: A full-geometry result (``ReachParams.full_geometry``).
@@ -43,14 +44,13 @@ def set_outlines(result: ReachResult, name: Callable[[str], str]) -> dict[str, A
     flat = sets.reshape(-1)
     parts, owner = shapely.get_parts(flat, return_index=True)
     rings = shapely.get_exterior_ring(parts)
-    coords, ring_of = shapely.get_coordinates(rings, return_index=True)
-    values = np.round(coords, DECIMALS).tolist()
-    per_ring: list[list[list[float]]] = [[] for _ in range(len(parts))]
-    for k, point in zip(ring_of.tolist(), values, strict=True):
-        per_ring[k].append(point)
-    cells: list[list[list[list[float]]]] = [[] for _ in range(flat.size)]
-    for k, cell in enumerate(owner.tolist()):
-        cells[cell].append(per_ring[k])
+    coords = np.round(shapely.get_coordinates(rings), DECIMALS)
+    xs, ys = coords[:, 0].tolist(), coords[:, 1].tolist()
+    ends = np.cumsum(shapely.get_num_coordinates(rings)).tolist()
+    per_ring = [[xs[a:b], ys[a:b]] for a, b in zip([0, *ends], ends, strict=False)]
+    # parts come cell by cell, in cell order: each cell's rings are one slice
+    last = np.cumsum(np.bincount(owner, minlength=flat.size)).tolist()
+    cells = [per_ring[a:b] for a, b in zip([0, *last], last, strict=False)]
     objects = [
         {
             "object_id": name(str(result.object_ids[i])),
