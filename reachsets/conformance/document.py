@@ -39,6 +39,7 @@ __all__ = [
     "evaluate_cases",
     "evaluate_document",
     "prepare_document",
+    "unique_ids",
 ]
 
 #: Independent cases evaluated in one engine call.
@@ -82,8 +83,13 @@ def prepare_document(
     return PreparedDocument(defaults, cases, full_sets)
 
 
-def _renamed(inputs: ReachInputs, prefix: str) -> ReachInputs:
-    """``inputs`` with every object id prefixed (no memory is shared with another case)."""
+def unique_ids(inputs: ReachInputs, prefix: str) -> ReachInputs:
+    """``inputs`` with every object id prefixed (no memory is shared with another case).
+
+    Args:
+        inputs: One case's frame.
+        prefix: Its prefix within the engine call, e.g. ``"3/"``.
+    """
     objects = inputs.objects
     ids = np.array([f"{prefix}{i}" for i in objects.ids.tolist()], dtype=np.str_)
     return dataclasses.replace(inputs, objects=dataclasses.replace(objects, ids=ids))
@@ -135,7 +141,7 @@ def _together(cases: Sequence[ParsedCase], prepared: PreparedDocument) -> dict[i
         return {}
     params = prepared.defaults.params[cases[0].method]
     prefixes = [f"{k}/" for k in range(len(cases))]
-    inputs = [_renamed(c.steps[0].inputs, p) for c, p in zip(cases, prefixes, strict=True)]
+    inputs = [unique_ids(c.steps[0].inputs, p) for c, p in zip(cases, prefixes, strict=True)]
     try:
         results, _ = evaluate_frames(inputs, params, prepared.defaults.start)
     except ReachSetError:
