@@ -8,6 +8,7 @@ document, the case, the field and the value.
 from __future__ import annotations
 
 import dataclasses
+import itertools
 import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
@@ -115,6 +116,12 @@ class _Where:
             raise self.error(field, value, "expected a finite number")
         return number
 
+    def size(self, field: str, value: object) -> float:
+        size = self.number(field, value)
+        if size <= 0:
+            raise self.error(field, value, "expected a positive size")
+        return size
+
     def numbers(self, field: str, value: object) -> list[float]:
         if not isinstance(value, list) or not value:
             raise self.error(field, value, "expected a non-empty list of numbers")
@@ -212,8 +219,8 @@ def parse_defaults(
     )
     params = {m: dataclasses.replace(base, method=m, full_geometry=full_sets) for m in ReachMethod}
     ego = where.mapping("ego", raw.get("ego", {}))
-    length = where.number("ego.length", ego.get("length", REFERENCE_EGO_LENGTH_M))
-    width = where.number("ego.width", ego.get("width", REFERENCE_EGO_WIDTH_M))
+    length = where.size("ego.length", ego.get("length", REFERENCE_EGO_LENGTH_M))
+    width = where.size("ego.width", ego.get("width", REFERENCE_EGO_WIDTH_M))
     track = None
     start = RuleState()
     if "track" in raw:
@@ -224,7 +231,7 @@ def parse_defaults(
             track = TrackBounds(left, right)  # type: ignore[arg-type]
             geometry = build_track(track, base.closed_track_gap_m)
         except (ReachSetError, ValueError) as err:
-            raise where.error("track", "...", str(err)) from err
+            raise where.error("track", getattr(err, "value", None), str(err)) from err
         start = RuleState(track_bounds=track, track=geometry)
     return CaseDefaults(source, method, params, length, width, track, start)
 
@@ -254,6 +261,8 @@ def _step(where: _Where, raw: object, field: str, defaults: CaseDefaults) -> Par
     arrays = {k: where.numbers(f"{dot}ego.{k}", ego.get(k)) for k in _EGO_ARRAYS}
     count = len(arrays["x"])
     times = where.numbers(f"{dot}ego.t_s", ego["t_s"]) if "t_s" in ego else None
+    if times is not None and any(b < a for a, b in itertools.pairwise(times)):
+        raise where.error(f"{dot}ego.t_s", times, "expected non-decreasing times")
     for key, values in [*arrays.items(), ("t_s", times or arrays["x"])]:
         if len(values) != count:
             raise where.error(f"{dot}ego.{key}", values, f"expected {count} values (as ego.x)")
@@ -273,8 +282,10 @@ def _step(where: _Where, raw: object, field: str, defaults: CaseDefaults) -> Par
         for key, short, default in (("length", "l", math.nan), ("width", "w", math.nan)):
             size = obj.get(key)
             columns[short].append(
-                default if size is None else where.number(f"{dot}objects.{k}.{key}", size)
+                default if size is None else where.size(f"{dot}objects.{k}.{key}", size)
             )
+    length = where.size(f"{dot}ego.length", ego.get("length", defaults.ego_length_m))
+    width = where.size(f"{dot}ego.width", ego.get("width", defaults.ego_width_m))
     try:
         inputs = reach_inputs_from_arrays(
             ego_x_m=arrays["x"],
@@ -282,8 +293,8 @@ def _step(where: _Where, raw: object, field: str, defaults: CaseDefaults) -> Par
             ego_yaw_rad=arrays["heading"],
             ego_speed_mps=arrays["speed"],
             ego_t_s=times,
-            ego_length_m=where.number(f"{dot}ego.length", ego.get("length", defaults.ego_length_m)),
-            ego_width_m=where.number(f"{dot}ego.width", ego.get("width", defaults.ego_width_m)),
+            ego_length_m=length,
+            ego_width_m=width,
             object_ids=columns["id"],
             object_x_m=columns["x"],
             object_y_m=columns["y"],
@@ -294,7 +305,7 @@ def _step(where: _Where, raw: object, field: str, defaults: CaseDefaults) -> Par
             track=defaults.track,
         )
     except ReachSetError as err:
-        raise where.error(f"{dot}ego", "...", str(err)) from err
+        raise where.error(f"{dot}ego", getattr(err, "value", None), str(err)) from err
     expected = step.get("expected")
     return ParsedStep(
         inputs, None if expected is None else _expected(where, f"{dot}expected", expected)

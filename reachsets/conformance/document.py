@@ -75,7 +75,8 @@ def prepare_document(
         ReachCaseError: No ``cases`` list, or malformed ``defaults``.
     """
     if not isinstance(document, dict):
-        raise ReachCaseError(source, "<document>", "document", "...", "expected a JSON object")
+        kind = type(document).__name__
+        raise ReachCaseError(source, "<document>", "document", kind, "expected a JSON object")
     cases = document.get("cases")
     if not isinstance(cases, list):
         raise ReachCaseError(source, "<document>", "cases", cases, "expected a list of cases")

@@ -152,6 +152,9 @@ def test_params_overrides_reach_the_engine() -> None:
         (lambda c: c.update(method="fast"), "method", "simple, turn, bound"),
         (lambda c: c.update(expected={"safe": "no"}), "expected.safe", "true or false"),
         (lambda c: c.update(sequence=[]), "sequence", "non-empty list"),
+        (lambda c: c["ego"].update(t_s=[0.0, 1.0, 0.5, 3.0, 4.0]), "ego.t_s", "non-decreasing"),
+        (lambda c: c["ego"].update(width=0), "ego.width", "positive size"),
+        (lambda c: c["objects"][0].update(length=-4.0), "objects.0.length", "positive size"),
         (lambda c: c["ego"].update(heading=[math.nan] * 5), "ego.heading.0", "finite"),
     ],
 )
@@ -179,6 +182,7 @@ def test_malformed_case_gives_a_one_line_record(mutate: Any, field: str, reason:
         ({"cases": [], "defaults": {"params": {"road": {"nope": 1}}}}, "params.road.nope"),
         ({"cases": [], "defaults": {"track": {"left": [[0, 0]]}}}, "track.left"),
         ({"cases": [], "defaults": {"colour": 1}}, "colour"),
+        ({"cases": [], "defaults": {"ego": {"length": 0}}}, "ego.length"),
     ],
 )
 def test_malformed_document_raises_a_typed_error(document: Any, field: str) -> None:
