@@ -128,7 +128,7 @@ def make_reach_cases(
 
         drive = open_log(log, map_path=None, profile=None, ego_id=None)
         try:
-            document = drive_case_document(drive, name=log.stem, method=names[0])
+            document = drive_case_document(drive, name=log.stem, method=names[0], source=str(log))
         finally:
             drive.close()
     else:

@@ -200,3 +200,14 @@ def test_without_a_track_every_object_not_behind_is_checked() -> None:
     direct = _direct("simple", [AHEAD, BEHIND], track=False)
     assert record["checked_ids"] == [str(i) for i in direct.object_ids]
     assert record["safe"] is direct.is_safe
+
+
+@pytest.mark.parametrize("full_sets", [False, True])
+def test_a_case_without_objects_is_safe(full_sets: bool) -> None:
+    document = _document(objects=[])
+    document["cases"].append(document["cases"][0] | {"id": "d", "objects": [BEHIND]})
+    records = list(evaluate_document(document, full_sets=full_sets))
+    assert [(r["ok"], r["safe"], r["checked_objects"]) for r in records] == [(True, True, 0)] * 2
+    assert records[1]["skipped_ids"] == ["7"]
+    if full_sets:
+        assert records[0]["sets"]["objects"] == []

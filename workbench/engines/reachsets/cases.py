@@ -64,7 +64,12 @@ def _step(inputs: ReachInputs, frame: Frame) -> dict[str, Any]:
 
 
 def drive_case_document(
-    drive: Drive, *, name: str, method: str = "turn", trajectory: str = "planned"
+    drive: Drive,
+    *,
+    name: str,
+    method: str = "turn",
+    trajectory: str = "planned",
+    source: str | None = None,
 ) -> dict[str, Any]:
     """The drive as a case document: one sequence, every frame a step.
 
@@ -76,6 +81,7 @@ def drive_case_document(
         drive: The opened drive (a track map: the case format holds track bounds only).
         name: The sequence's ``id``.
         method: The reach-set method the document names.
+        source: The drive's file, for messages (default: ``name``).
         trajectory: The ego trajectory rated (``adapter.TRAJECTORY_MODES``; ``planned`` is the
             library's default and rates a ScenarioArchitect log's emergency trajectory).
 
@@ -87,7 +93,10 @@ def drive_case_document(
     """
     reach_map = prepare_map(drive.lane_map)
     if reach_map.road is not None:
-        msg = f"{name}: the drive has a road map; reach-set case files hold track bounds only"
+        msg = (
+            f"{source or name}: the drive has a road map; reach-set case files hold track"
+            " bounds only"
+        )
         raise WorkbenchError(msg)
     steps = [
         _step(reach_inputs_and_kind(frame, reach_map, trajectory)[0], frame)

@@ -15,7 +15,7 @@ from typer.testing import CliRunner
 from loaders import open_drive
 from reachsets import ReachMethod, ReachParams, evaluate_frames
 from reachsets.conformance import evaluate_document
-from workbench.cli.main import app
+from workbench.cli.main import app, main
 from workbench.engines.reachsets.adapter import frame_to_reach_inputs
 from workbench.engines.reachsets.cases import drive_case_document
 
@@ -96,3 +96,18 @@ def test_log_option_writes_the_document(tmp_path: Path) -> None:
     assert rated.exit_code == 0, rated.output
     safe = [json.loads(line)["safe"] for line in rated.stdout.splitlines()]
     assert safe == [r.is_safe for r in _pipeline(SAMPLE, ReachMethod.TURN)]
+
+
+def test_a_road_drive_is_a_one_line_error(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    log = SAMPLE.with_name("highway_cut_in.mcap")
+    with pytest.raises(SystemExit) as info:
+        main(["conformance", "reachsets-cases", str(tmp_path / "x.json"), "--log", str(log)])
+    err = capsys.readouterr().err
+    assert info.value.code == 2
+    assert (
+        err
+        == f"error: {log}: the drive has a road map; reach-set case files hold track bounds only\n"
+    )
+    assert not (tmp_path / "x.json").exists()
