@@ -61,6 +61,7 @@ _LOG = logging.getLogger(__name__)
 MODULES = (
     "rss.structured.batch",
     "rss.structured.stacking",
+    "rss.structured.codes",
     "rss.structured.scalar_physics",
     "rss.structured.scalar_extract",
     "rss.structured.scalar_checks",

@@ -150,17 +150,15 @@ class SmallFrameResult(FrameResult):
     _out: Columns
 
     def __init__(self, out: Columns) -> None:
-        object.__setattr__(self, "_out", out)
-        object.__setattr__(self, "responsibility", None)
-        object.__setattr__(self, "severity", None)
+        # frozen: fill ``__dict__`` at once rather than one ``object.__setattr__`` per field
+        self.__dict__.update(_out=out, responsibility=None, severity=None)
 
     def __getattr__(self, name: str) -> Any:
         """Build field ``name`` on its first read."""
         build = _BUILDERS.get(name)
         if build is None:
             raise AttributeError(name)
-        value = build(self._out)
-        object.__setattr__(self, name, value)
+        value = self.__dict__[name] = build(self._out)
         return value
 
 

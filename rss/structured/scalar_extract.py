@@ -16,6 +16,16 @@ import math
 from typing import Final
 
 from rss.physics import DISTANCE_PRECISION
+from rss.structured.codes import (
+    AT_BACK,
+    IN_FRONT,
+    INTERSECTION_SEGMENT,
+    NEGATIVE,
+    OVERLAP,
+    OVERLAP_BACK,
+    OVERLAP_FRONT,
+    POSITIVE,
+)
 
 __all__ = ["Placed", "Road", "lane_table", "object_valid", "place", "relative_position"]
 
@@ -23,9 +33,6 @@ _P: Final = DISTANCE_PRECISION
 _PARAM_EPS: Final = 1e-9
 _SPEED_LIMIT_MPS: Final = 100.0
 _FLOAT_MAX: Final = 1.7976931348623157e308
-_INTERSECTION: Final = 1
-_POSITIVE: Final = 1
-_NEGATIVE: Final = 2
 
 
 class Road:
@@ -92,22 +99,24 @@ class Placed:
         self.found = found
 
 
-def _tolerant(  # noqa: PLR0917 - a strided walk over one scale column
-    values: list[float], base: int, slot: int, step: int, valid: list[bool], sign: float
+def _tolerant(
+    values: list[float], base: int, span: tuple[int, int, int], valid: list[bool], sign: float
 ) -> float:
-    """Tolerant running min (``sign`` -1) or max (+1) of the valid slots ``slot::step``.
+    """Tolerant running min (``sign`` -1) or max (+1) of the valid slots of ``span``.
 
-    ``values[base + s]`` is the value of slot ``s``; NaN maps to 0 and +-inf to +-max as
-    in ``footprint._reduce``.
+    ``span`` is ``(first slot, end slot, step)``; ``values[base + s]`` is the value of slot
+    ``s``; NaN maps to 0 and +-inf to +-max as in ``footprint._reduce``.
     """
+    s, end, step = span
     current = math.nan
-    for s in range(slot, len(valid), step):
+    while s < end:  # a while loop: mypyc compiles ``range`` with a variable step as a call
         value = values[base + s]
         if valid[s] and (
             current != current  # noqa: PLR0124 - NaN test, native when compiled
             or (value - current) * sign >= _P
         ):
             current = value
+        s += step
     if current != current:  # noqa: PLR0124
         return 0.0
     if math.isinf(current):
@@ -136,19 +145,24 @@ def lane_table(ints: list[int], floats: list[float], n_segments: int, n_lanes: i
         n_lanes: ``L``.
     """
     width = n_segments * n_lanes
-    ok = [lane >= 0 for lane in ints[:width]]
+    ok = [ints[s] >= 0 for s in range(width)]
     # lengths lane by lane within a segment, column widths segment by segment
-    seg_ok = [ok[r * n_lanes : (r + 1) * n_lanes] for r in range(n_segments)]
-    seg_len_min = [_tolerant(floats, r * n_lanes, 0, 1, seg_ok[r], -1.0) for r in range(n_segments)]
-    seg_len_max = [
-        _tolerant(floats, width + r * n_lanes, 0, 1, seg_ok[r], 1.0) for r in range(n_segments)
+    seg_len_min = [
+        _tolerant(floats, 0, (r * n_lanes, (r + 1) * n_lanes, 1), ok, -1.0)
+        for r in range(n_segments)
     ]
-    col_w_min = [_tolerant(floats, 2 * width, j, n_lanes, ok, -1.0) for j in range(n_lanes)]
-    col_w_max = [_tolerant(floats, 3 * width, j, n_lanes, ok, 1.0) for j in range(n_lanes)]
+    seg_len_max = [
+        _tolerant(floats, width, (r * n_lanes, (r + 1) * n_lanes, 1), ok, 1.0)
+        for r in range(n_segments)
+    ]
+    col_w_min = [
+        _tolerant(floats, 2 * width, (j, width, n_lanes), ok, -1.0) for j in range(n_lanes)
+    ]
+    col_w_max = [_tolerant(floats, 3 * width, (j, width, n_lanes), ok, 1.0) for j in range(n_lanes)]
     seg_min, seg_max = _exclusive_sums(seg_len_min), _exclusive_sums(seg_len_max)
     i_min, i_max = math.nan, math.nan
     for r in range(n_segments):
-        if ints[2 * width + r] == _INTERSECTION:
+        if ints[2 * width + r] == INTERSECTION_SEGMENT:
             i_min = seg_min[r] + floats[4 * width + r]
             i_max = seg_max[r] + seg_len_max[r] - floats[4 * width + n_segments + r]
             break
@@ -203,8 +217,8 @@ def place(lanes: list[int], params: list[float], road: Road) -> Placed:
                 current[q] = value
         if hit:
             found = True
-            positive |= road.direction[idx[k]] == _POSITIVE
-            negative |= road.direction[idx[k]] == _NEGATIVE
+            positive |= road.direction[idx[k]] == POSITIVE
+            negative |= road.direction[idx[k]] == NEGATIVE
     return Placed(current[0], current[1], current[2], current[3], positive, negative, found)
 
 
@@ -223,8 +237,8 @@ def _place_one(lane: int, params: list[float], road: Road) -> Placed:
         road.seg_max_m[segment] + params[1] * scale[width + slot] + 0.0,
         road.col_min_m[column] + params[2] * scale[2 * width + slot] + 0.0,
         road.col_max_m[column] + params[3] * scale[3 * width + slot] + 0.0,
-        direction == _POSITIVE,
-        direction == _NEGATIVE,
+        direction == POSITIVE,
+        direction == NEGATIVE,
         True,  # noqa: FBT003
     )
 
@@ -254,13 +268,18 @@ def object_valid(lanes: list[int], params: list[float], speeds: list[float]) -> 
     for k, lane in enumerate(lanes):
         if lane < 0:
             continue
-        p = [params[k], params[n_regions + k], params[2 * n_regions + k], params[3 * n_regions + k]]
-        for value in p:
-            if value - value != 0.0 or value < -_PARAM_EPS or value > 1.0 + _PARAM_EPS:
-                return False
-        if p[0] > p[1] or p[2] > p[3]:
+        lon_lo, lon_hi = params[k], params[n_regions + k]
+        lat_lo, lat_hi = params[2 * n_regions + k], params[3 * n_regions + k]
+        if not (_unit(lon_lo) and _unit(lon_hi) and _unit(lat_lo) and _unit(lat_hi)) or (
+            lon_lo > lon_hi or lat_lo > lat_hi
+        ):
             return False
     return True
+
+
+def _unit(value: float) -> bool:
+    """Whether a region parameter is finite and within [0, 1] (tolerance 1e-9)."""
+    return value - value == 0.0 and -_PARAM_EPS <= value <= 1.0 + _PARAM_EPS
 
 
 def relative_position(
@@ -268,11 +287,11 @@ def relative_position(
 ) -> tuple[int, float]:
     """``(LongitudinalPosition code, distance)`` (:func:`extraction.relative_position`)."""
     if ego_min - other_max >= _P:
-        return 0, ego_min - other_max
+        return IN_FRONT, ego_min - other_max
     if other_min - ego_max >= _P:
-        return 4, other_min - ego_max
+        return AT_BACK, other_min - ego_max
     if ego_min - other_min >= _P and ego_max - other_max >= _P:
-        return 1, 0.0
+        return OVERLAP_FRONT, 0.0
     if other_min - ego_min >= _P and other_max - ego_max >= _P:
-        return 3, 0.0
-    return 2, 0.0
+        return OVERLAP_BACK, 0.0
+    return OVERLAP, 0.0

@@ -24,6 +24,17 @@ import math
 from typing import TYPE_CHECKING, Final
 
 from rss.physics import ACCELERATION_LOWEST_MPS2
+from rss.structured.codes import (
+    BRAKE_MIN,
+    BRAKE_MIN_CORRECT,
+    EGO_PRIORITY,
+    EGO_VEHICLE,
+    INVALID_OBJECT,
+    LAT_BRAKE_MIN,
+    OPPOSITE_DIRECTION,
+    OVERLAP,
+    UNSTRUCTURED,
+)
 from rss.structured.scalar_checks import check_row
 from rss.structured.scalar_extract import (
     Placed,
@@ -44,12 +55,6 @@ if TYPE_CHECKING:
 __all__ = ["SMALL_FRAME_MAX", "check_frame_small"]
 
 _LOWEST_MPS2: Final = ACCELERATION_LOWEST_MPS2
-
-_EGO_VEHICLE: Final = 1
-_INVALID_OBJECT: Final = 0
-_OPPOSITE: Final = 2
-_EGO_PRIO: Final = 3
-_UNSTRUCTURED: Final = 6
 
 
 class _Places:
@@ -99,7 +104,7 @@ def _row(c: int, ctype: int, places: _Places, out: Columns) -> bool:
     if ego_table is None:
         return False
     ego_p = places.place(rows.ego[c], ego_road, ego_table)
-    intersection = ctype >= _EGO_PRIO
+    intersection = ctype >= EGO_PRIORITY
     other_road = rows.cross_road[c] if intersection else ego_road
     other_table = places.table(other_road)
     if other_table is None:
@@ -125,12 +130,12 @@ def _row(c: int, ctype: int, places: _Places, out: Columns) -> bool:
             other_p.lon_min_m - other_i,
             other_p.lon_max_m - other_i,
         )
-        lat_pos, lat_dist = 2, 0.0
+        lat_pos, lat_dist = OVERLAP, 0.0
         ego_el = _enter_leave(ego_p.lon_min_m, ego_p.lon_max_m, ego_table)
         other_el = _enter_leave(other_p.lon_min_m, other_p.lon_max_m, other_table)
         enter_leave = (ego_el[0], ego_el[1], other_el[0], other_el[1])
     ego_correct = not ego_p.on_negative_lane
-    opposite = ctype == _OPPOSITE
+    opposite = ctype == OPPOSITE_DIRECTION
     other_correct = not (other_p.on_positive_lane if opposite else other_p.on_negative_lane)
     out.add_relative(
         (lon_pos, lon_dist, lat_pos, lat_dist, ego_correct), other_correct, enter_leave
@@ -149,12 +154,14 @@ def _resolve(out: Columns, rows: Packed, default_ego: RssDynamics) -> None:
         d = rows.dynamics[rows.ego_dynamics[c]]
         lon = out.lon_response[c]
         lon_resp = max(lon_resp, lon)
-        lon_max = min(lon_max, d[2] if lon == 2 else d[3] if lon == 1 else d[0])  # noqa: PLR2004
+        lon_max = min(
+            lon_max, d[2] if lon == BRAKE_MIN else d[3] if lon == BRAKE_MIN_CORRECT else d[0]
+        )
         lon_min = max(lon_min, d[1])
         left, right = out.left_response[c], out.right_response[c]
         left_resp, right_resp = max(left_resp, left), max(right_resp, right)
-        left_max = min(left_max, d[5] if left == 1 else d[4])
-        right_max = min(right_max, d[5] if right == 1 else d[4])
+        left_max = min(left_max, d[5] if left == LAT_BRAKE_MIN else d[4])
+        right_max = min(right_max, d[5] if right == LAT_BRAKE_MIN else d[4])
     out.response = (
         not any(out.dangerous),
         (lon_resp, left_resp, right_resp),
@@ -190,10 +197,10 @@ def check_frame_small(
         ego, other = rows.ego[c], rows.other[c]
         ego_id, other_id = ids[ego], ids[other]
         if (
-            not 0 <= ctype < _UNSTRUCTURED
-            or kinds[ego] != _EGO_VEHICLE
-            or kinds[other] == _INVALID_OBJECT
-            or kinds[other] == _EGO_VEHICLE
+            not 0 <= ctype < UNSTRUCTURED
+            or kinds[ego] != EGO_VEHICLE
+            or kinds[other] == INVALID_OBJECT
+            or kinds[other] == EGO_VEHICLE
             or ego_id == other_id
             or not _valid(rows, other, checked)
             or not _valid(rows, ego, checked)
@@ -205,7 +212,8 @@ def check_frame_small(
     for c, ctype in enumerate(ctypes):
         if not _row(c, ctype, places, out):
             return None
-    speeds = merge_rows(out, rows, keys)
+    unique = len(set(keys)) == len(keys)
+    speeds = merge_rows(out, rows, keys, unique=unique)
     if speeds is None:
         return None
     ego_speeds, other_speeds = speeds
@@ -227,7 +235,7 @@ def check_frame_small(
                 rows.dynamics[rows.other_dynamics[c]],
             )
         )
-    out.apply_memory(ctypes, keys, before)
+    out.apply_memory(ctypes, keys, before, unique=unique)
     _resolve(out, rows, default_ego)
     return out
 

@@ -11,7 +11,9 @@ only for equal intersection lanes, or differing dynamics) is left to the batched
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Final
+from typing import TYPE_CHECKING
+
+from rss.structured.codes import EGO_PRIORITY, OVERLAP
 
 if TYPE_CHECKING:
     from rss.structured.small_input import Packed
@@ -19,12 +21,9 @@ if TYPE_CHECKING:
 
 __all__ = ["merge_rows"]
 
-_OVERLAP: Final = 2
-_EGO_PRIO: Final = 3
-
 
 def merge_rows(
-    out: Columns, rows: Packed, keys: list[tuple[int, int, int]]
+    out: Columns, rows: Packed, keys: list[tuple[int, int, int]], *, unique: bool
 ) -> tuple[list[list[float]], list[list[float]]] | None:
     """Merge the groups of similar rows of ``out`` in place; speeds per row to check with.
 
@@ -32,6 +31,7 @@ def merge_rows(
         out: The frame's extracted rows (relative positions, distances, lanes).
         rows: The frame's packed input.
         keys: ``(ego id, object id, type)`` per row.
+        unique: One row per key (nothing to merge).
 
     Returns:
         ``(ego speeds, other speeds)`` per row (lon min, lon max, lat min, lat max [m/s],
@@ -39,7 +39,7 @@ def merge_rows(
     """
     ego_speeds = [rows.speeds[e] for e in rows.ego]
     other_speeds = [rows.speeds[o] for o in rows.other]
-    if len(set(keys)) == len(keys):
+    if unique:
         return ego_speeds, other_speeds
     groups: dict[tuple[int, int, int], list[int]] = {}
     for c, key in enumerate(keys):
@@ -51,7 +51,7 @@ def merge_rows(
     for key, members in groups.items():
         if len(members) == 1:
             continue
-        if key[2] >= _EGO_PRIO:
+        if key[2] >= EGO_PRIORITY:
             return None
         first = members[0]
         for c in members:
@@ -67,9 +67,9 @@ def merge_rows(
 def _position(codes: list[int], distances: list[float]) -> tuple[int, float]:
     """Worst case of positions and distances (``merge.merge_position_groups``, one group)."""
     high, low = max(codes), min(codes)
-    if high >= _OVERLAP >= low:
-        return _OVERLAP, 0.0
-    return (high if high < _OVERLAP else low), min(distances)
+    if high >= OVERLAP >= low:
+        return OVERLAP, 0.0
+    return (high if high < OVERLAP else low), min(distances)
 
 
 def _union(speeds: list[list[float]], members: list[int]) -> list[float]:

@@ -9,11 +9,20 @@ turns the lists into the engine's records with a few array constructions.
 from __future__ import annotations
 
 import array
-from typing import TYPE_CHECKING, Any, Final
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from rss.structured.checks import LateralSide, RawStates
+from rss.structured.codes import (
+    EGO_PRIORITY,
+    I_ABLE_TO_BRAKE,
+    I_SAFE_DISTANCE,
+    IN_FRONT,
+    OVERLAP_LEFT,
+    OVERLAP_RIGHT,
+    SAME_DIRECTION,
+)
 from rss.structured.extraction import Relative
 from rss.structured.response import ProperResponses
 
@@ -24,7 +33,6 @@ if TYPE_CHECKING:
 
 __all__ = [
     "Columns",
-    "by_key",
     "dangerous",
     "memory_columns",
     "raw_states",
@@ -32,12 +40,6 @@ __all__ = [
     "relative",
     "responses",
 ]
-
-
-_EGO_PRIO: Final = 3
-_SAME_DIRECTION: Final = 1
-_ABLE_TO_BRAKE: Final = 1
-_SAFE_DISTANCE: Final = 2
 
 
 class Columns:
@@ -64,7 +66,7 @@ class Columns:
         self.right_response: list[int] = []
         self.intersection_state: list[int] = []
         self.dangerous: list[bool] = []
-        self.memory: list[tuple[int, int, int, bool, bool, int]] = []
+        self.memory: dict[tuple[int, int, int], tuple[bool, bool, int]] = {}
         self.response: tuple[bool, tuple[int, int, int], tuple[float, ...]] = (
             True,
             (0, 0, 0),
@@ -108,6 +110,8 @@ class Columns:
         ctypes: list[int],
         keys: list[tuple[int, int, int]],
         before: dict[tuple[int, int, int], tuple[bool, bool, int]],
+        *,
+        unique: bool,
     ) -> None:
         """Clear responses by the remembered safe states; gather the memory after the frame.
 
@@ -115,15 +119,16 @@ class Columns:
             ctypes: Constellation type per row.
             keys: ``(ego id, object id, type)`` per row.
             before: The memory before the frame by key (:func:`recall`).
+            unique: One row per key (no scan within the frame).
         """
-        if len(set(keys)) == len(keys):  # one row per key: no scan within the frame
+        after = self.memory
+        if unique:
             for c, ctype in enumerate(ctypes):
                 key = keys[c]
                 initial = before.get(key)
                 entry = self._remember(c, ctype, initial, initial, seen=False)[0] or initial
                 if entry is not None:
-                    self.memory.append((key[0], key[1], key[2], entry[0], entry[1], entry[2]))
-            self.memory.sort()
+                    after[key] = entry
             return
         stored: dict[tuple[int, int, int], tuple[bool, bool, int]] = {}
         events: set[tuple[int, int, int]] = set()
@@ -137,10 +142,10 @@ class Columns:
                 stored[key] = entry
             if event:
                 events.add(key)
-        for key in sorted(set(keys)):
+        for key in keys:
             last = stored.get(key, before.get(key))
             if last is not None:
-                self.memory.append((key[0], key[1], key[2], last[0], last[1], last[2]))
+                after[key] = last
 
     def _remember(
         self,
@@ -165,11 +170,13 @@ class Columns:
             ``(what the row stores or None, whether it is safe or dangerous
             non-intersection)``.
         """
-        intersection = ctype >= _EGO_PRIO
+        intersection = ctype >= EGO_PRIORITY
         dangerous, lon_safe = self.dangerous[c], self.lon_safe[c]
         lat_safe = self.left[c][0] and self.right[c][0]
         base = lon_safe if intersection else not dangerous
-        overlap_assumption = ctype == _SAME_DIRECTION and 1 <= self.lat_position[c] <= 3  # noqa: PLR2004
+        overlap_assumption = (
+            ctype == SAME_DIRECTION and OVERLAP_LEFT <= self.lat_position[c] <= OVERLAP_RIGHT
+        )
         known = entry is not None
         prev_lon, prev_lat, prev_int = entry if entry is not None else (False, False, 0)
         candidate = dangerous and not intersection
@@ -184,8 +191,8 @@ class Columns:
             and not lon_safe
             and known
             and (
-                (prev_int == _ABLE_TO_BRAKE and ctype == _EGO_PRIO)
-                or (prev_int == _SAFE_DISTANCE and self.lon_position[c] == 0)
+                (prev_int == I_ABLE_TO_BRAKE and ctype == EGO_PRIORITY)
+                or (prev_int == I_SAFE_DISTANCE and self.lon_position[c] == IN_FRONT)
             )
         )
         calm = not intersection and not dangerous
@@ -299,42 +306,43 @@ def raw_states(out: Columns) -> RawStates:
 
 def dangerous(out: Columns) -> BoolArray:
     """``(C,)`` dangerous constellations."""
-    flags: BoolArray = _matrix(out.dangerous, "b", np.bool_, 1)[0]
+    flags: BoolArray = np.array(out.dangerous, dtype=np.bool_)
     return flags
 
 
 def responses(out: Columns) -> ProperResponses:
-    """The frame's proper response as ``(1,)`` arrays."""
+    """The frame's proper response as ``(1,)`` arrays.
+
+    Two array constructions (codes and limits, rows read as views) and one of the flag;
+    the record is filled without the frozen dataclass's ``__init__`` (ten
+    ``object.__setattr__`` calls, half the cost of the arrays at this size).
+    """
     is_safe, codes, limits = out.response
-    code_rows = _matrix(list(codes), "q", np.int64, 3)
-    limit_rows = _matrix(list(limits), "d", np.float64, 6)
-    return ProperResponses(
-        np.array([is_safe]),
-        code_rows[0],
-        code_rows[1],
-        code_rows[2],
-        limit_rows[0],
-        limit_rows[1],
-        limit_rows[2],
-        limit_rows[3],
-        limit_rows[4],
-        limit_rows[5],
+    code_rows = np.array(codes, dtype=np.int64).reshape(3, 1)
+    limit_rows = np.array(limits, dtype=np.float64).reshape(6, 1)
+    record: ProperResponses = object.__new__(ProperResponses)
+    record.__dict__.update(
+        is_safe=np.array([is_safe]),
+        longitudinal_response=code_rows[0],
+        lateral_response_left=code_rows[1],
+        lateral_response_right=code_rows[2],
+        lon_min_mps2=limit_rows[0],
+        lon_max_mps2=limit_rows[1],
+        lat_left_min_mps2=limit_rows[2],
+        lat_left_max_mps2=limit_rows[3],
+        lat_right_min_mps2=limit_rows[4],
+        lat_right_max_mps2=limit_rows[5],
     )
+    return record
 
 
-def memory_columns(entries: list[tuple[int, int, int, bool, bool, int]]) -> list[Any]:
-    """The six :class:`RssMemory` arrays of ``entries`` (sorted by key, ``M >= 1``)."""
+def memory_columns(after: dict[tuple[int, int, int], tuple[bool, bool, int]]) -> list[Any]:
+    """The six :class:`RssMemory` arrays of the memory ``after`` (by key, sorted, ``M >= 1``)."""
+    entries = sorted((*key, *entry) for key, entry in after.items())
     columns = list(zip(*entries, strict=True))
     keys = _matrix([*columns[0], *columns[1], *columns[2], *columns[5]], "q", np.int64, 4)
     verdicts = _matrix([*columns[3], *columns[4]], "b", np.bool_, 2)
     return [keys[0], keys[1], keys[2], verdicts[0], verdicts[1], keys[3]]
-
-
-def by_key(
-    entries: list[tuple[int, int, int, bool, bool, int]],
-) -> dict[tuple[int, int, int], tuple[bool, bool, int]]:
-    """``entries`` as the memory before the next frame (key -> lon, lat, state)."""
-    return {(e[0], e[1], e[2]): (e[3], e[4], e[5]) for e in entries}
 
 
 def recall(memory: RssMemory) -> dict[tuple[int, int, int], tuple[bool, bool, int]]:
