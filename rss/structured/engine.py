@@ -150,16 +150,32 @@ class SmallFrameResult(FrameResult):
     _out: Columns
 
     def __init__(self, out: Columns) -> None:
-        # frozen: fill ``__dict__`` at once rather than one ``object.__setattr__`` per field
-        self.__dict__.update(_out=out, responsibility=None, severity=None)
+        # frozen: no ``object.__setattr__``; ``responsibility`` and ``severity`` keep the
+        # class defaults (None)
+        self.__dict__["_out"] = out
 
-    def __getattr__(self, name: str) -> Any:
-        """Build field ``name`` on its first read."""
-        build = _BUILDERS.get(name)
-        if build is None:
-            raise AttributeError(name)
-        value = self.__dict__[name] = build(self._out)
+
+class _Built:
+    """A field of :class:`SmallFrameResult` built on its first read and kept.
+
+    A non-data descriptor: the first read calls it, it stores the array in the instance's
+    ``__dict__``, where every later read finds it first (no ``__getattr__`` fallback, which
+    raises and catches an ``AttributeError`` on every first read).
+    """
+
+    def __init__(self, name: str, build: Callable[[Columns], Any]) -> None:
+        self.name = name
+        self.build = build
+
+    def __get__(self, result: SmallFrameResult | None, owner: type | None = None) -> Any:
+        if result is None:
+            return self
+        value = result.__dict__[self.name] = self.build(result.__dict__["_out"])
         return value
+
+
+for _name, _build in _BUILDERS.items():  # the dataclass fields' types stay FrameResult's
+    setattr(SmallFrameResult, _name, _Built(_name, _build))
 
 
 def select_frame(result: FrameResult, index: int) -> FrameResult:
