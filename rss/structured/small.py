@@ -46,7 +46,7 @@ from rss.structured.scalar_extract import (
 )
 from rss.structured.small_input import SMALL_FRAME_MAX, Packed, packed
 from rss.structured.small_merge import merge_rows
-from rss.structured.small_output import Columns
+from rss.structured.small_output import Columns, Row
 
 if TYPE_CHECKING:
     from rss.dynamics import RssDynamics
@@ -137,8 +137,8 @@ def _row(c: int, ctype: int, places: _Places, out: Columns) -> bool:
     ego_correct = not ego_p.on_negative_lane
     opposite = ctype == OPPOSITE_DIRECTION
     other_correct = not (other_p.on_positive_lane if opposite else other_p.on_negative_lane)
-    out.add_relative(
-        (lon_pos, lon_dist, lat_pos, lat_dist, ego_correct), other_correct, enter_leave
+    out.rows.append(
+        Row((lon_pos, lon_dist, lat_pos, lat_dist, ego_correct), other_correct, enter_leave)
     )
     return True
 
@@ -148,22 +148,24 @@ def _resolve(out: Columns, rows: Packed, default_ego: RssDynamics) -> None:
     lon_resp = left_resp = right_resp = 0
     lon_max, lon_min = default_ego.accel_max_mps2, default_ego.brake_max_mps2
     left_max = right_max = default_ego.lat_accel_max_mps2
-    for c, dangerous in enumerate(out.dangerous):
-        if not dangerous:
+    is_safe = True
+    for c, row in enumerate(out.rows):
+        if not row.dangerous:
             continue
+        is_safe = False
         d = rows.dynamics[rows.ego_dynamics[c]]
-        lon = out.lon_response[c]
+        lon = row.lon_response
         lon_resp = max(lon_resp, lon)
         lon_max = min(
             lon_max, d[2] if lon == BRAKE_MIN else d[3] if lon == BRAKE_MIN_CORRECT else d[0]
         )
         lon_min = max(lon_min, d[1])
-        left, right = out.left_response[c], out.right_response[c]
+        left, right = row.left_response, row.right_response
         left_resp, right_resp = max(left_resp, left), max(right_resp, right)
         left_max = min(left_max, d[5] if left == LAT_BRAKE_MIN else d[4])
         right_max = min(right_max, d[5] if right == LAT_BRAKE_MIN else d[4])
     out.response = (
-        not any(out.dangerous),
+        is_safe,
         (lon_resp, left_resp, right_resp),
         (lon_min, lon_max, _LOWEST_MPS2, left_max, _LOWEST_MPS2, right_max),
     )
@@ -218,17 +220,12 @@ def check_frame_small(
         return None
     ego_speeds, other_speeds = speeds
     for c, ctype in enumerate(ctypes):
-        out.add_states(
+        row = out.rows[c]
+        row.add_states(
             check_row(
                 ctype,
-                (
-                    out.lon_position[c],
-                    out.lon_distance_m[c],
-                    out.lat_position[c],
-                    out.lat_distance_m[c],
-                    out.ego_correct[c],
-                ),
-                out.enter_leave[c],
+                row.relative(),
+                row.enter_leave(),
                 ego_speeds[c],
                 other_speeds[c],
                 rows.dynamics[rows.ego_dynamics[c]],

@@ -89,26 +89,23 @@ def _merge_group(
     other_speeds: list[list[float]],
 ) -> None:
     """Give every row of one group the group's worst case."""
-    lon = _position(
-        [out.lon_position[c] for c in members], [out.lon_distance_m[c] for c in members]
-    )
-    lat = _position(
-        [out.lat_position[c] for c in members], [out.lat_distance_m[c] for c in members]
-    )
-    ego_correct = all(out.ego_correct[c] for c in members)
-    other_correct = any(out.other_correct[c] for c in members)
+    rows = [out.rows[c] for c in members]
+    lon = _position([r.lon_position for r in rows], [r.lon_distance_m for r in rows])
+    lat = _position([r.lat_position for r in rows], [r.lat_distance_m for r in rows])
+    ego_correct = all(r.ego_correct for r in rows)
+    other_correct = any(r.other_correct for r in rows)
     enter_leave = (
-        min(out.enter_leave[c][0] for c in members),
-        max(out.enter_leave[c][1] for c in members),
-        min(out.enter_leave[c][2] for c in members),
-        max(out.enter_leave[c][3] for c in members),
+        min(r.ego_enter_m for r in rows),
+        max(r.ego_leave_m for r in rows),
+        min(r.other_enter_m for r in rows),
+        max(r.other_leave_m for r in rows),
     )
     ego, other = _union(ego_speeds, members), _union(other_speeds, members)
-    for c in members:
-        out.lon_position[c], out.lon_distance_m[c] = lon
-        out.lat_position[c], out.lat_distance_m[c] = lat
-        out.ego_correct[c] = ego_correct
-        out.other_correct[c] = other_correct
-        out.enter_leave[c] = enter_leave
+    for c, r in zip(members, rows, strict=True):
+        r.lon_position, r.lon_distance_m = lon
+        r.lat_position, r.lat_distance_m = lat
+        r.ego_correct = ego_correct
+        r.other_correct = other_correct
+        r.ego_enter_m, r.ego_leave_m, r.other_enter_m, r.other_leave_m = enter_leave
         ego_speeds[c] = ego
         other_speeds[c] = other

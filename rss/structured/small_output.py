@@ -1,15 +1,18 @@
 """Row results of the small-frame path (:mod:`rss.structured.small`) and their arrays.
 
-:class:`Columns` gathers one frame's rows as Python lists, applies the memory for one
-frame (``memory.apply_memory_both`` with ``F = 1`` and one row per key: every row is a run
-of its own, its remembered state is the memory's entry of its key) and :func:`assemble`
-turns the lists into the engine's records with a few array constructions.
+:class:`Columns` gathers one frame's rows (:class:`Row`, a compiled record whose fields
+are plain C values, one allocation per row), applies the memory for one frame
+(``memory.apply_memory_both`` with ``F = 1``: a key's rows in order, the memory's entry of
+its key remembered before the first) and keeps the memory after the frame by key; the
+builders (:func:`relative`, :func:`raw_states`, :func:`dangerous`, :func:`responses`,
+:func:`memory_columns`) turn them into the engine's records with a few array
+constructions when a field is first read.
 """
 
 from __future__ import annotations
 
 import array
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Final
 
 import numpy as np
 
@@ -31,6 +34,13 @@ if TYPE_CHECKING:
     from rss.structured.memory import RssMemory
     from rss.structured.scalar_checks import LateralRow
 
+# numpy's callables and types as module constants: native names in mypyc, no attribute
+# look-ups on the module per call (dtypes passed positionally, no keyword tuple per call)
+_ARRAY: Final = np.array
+_INT64: Final = np.int64
+_FLOAT64: Final = np.float64
+_BOOL: Final = np.bool_
+
 __all__ = [
     "Columns",
     "dangerous",
@@ -42,68 +52,79 @@ __all__ = [
 ]
 
 
+class Row:
+    """One row's extracted situation and raw states (a compiled record: unboxed fields).
+
+    The fields of one row of :class:`Relative` (positions, distances, lanes, distances to
+    enter / leave the intersection) and of :class:`RawStates` (longitudinal and per side
+    lateral verdicts, responses, evaluators, distances [m], intersection state); the
+    responses are those after the memory (:meth:`Columns.apply_memory`).
+    """
+
+    def __init__(
+        self,
+        relative: tuple[int, float, int, float, bool],
+        other_correct: bool,  # noqa: FBT001
+        enter_leave: tuple[float, float, float, float],
+    ) -> None:
+        """The row's relative situation; its states are set by :meth:`add_states`."""
+        self.lon_position, self.lon_distance_m = relative[0], relative[1]
+        self.lat_position, self.lat_distance_m = relative[2], relative[3]
+        self.ego_correct = relative[4]
+        self.other_correct = other_correct
+        self.ego_enter_m, self.ego_leave_m = enter_leave[0], enter_leave[1]
+        self.other_enter_m, self.other_leave_m = enter_leave[2], enter_leave[3]
+        self.lon_safe = self.dangerous = False
+        self.lon_response = self.lon_evaluator = self.intersection_state = 0
+        self.lon_current_m = self.lon_safe_m = 0.0
+        self.left_safe = self.right_safe = False
+        self.left_response = self.left_evaluator = 0
+        self.right_response = self.right_evaluator = 0
+        self.left_current_m = self.left_safe_m = self.right_current_m = self.right_safe_m = 0.0
+
+    def relative(self) -> tuple[int, float, int, float, bool]:
+        """``(lon position, lon distance, lat position, lat distance, ego in correct lane)``."""
+        return (
+            self.lon_position,
+            self.lon_distance_m,
+            self.lat_position,
+            self.lat_distance_m,
+            self.ego_correct,
+        )
+
+    def enter_leave(self) -> tuple[float, float, float, float]:
+        """Distances to enter / leave the intersection (ego, then other) [m]."""
+        return self.ego_enter_m, self.ego_leave_m, self.other_enter_m, self.other_leave_m
+
+    def add_states(
+        self, states: tuple[bool, int, int, float, float, LateralRow, LateralRow, int]
+    ) -> None:
+        """The row's raw states (``scalar_checks.check_row``)."""
+        lon_safe, response, evaluator, current, safe, left, right, state = states
+        self.lon_safe, self.lon_response, self.lon_evaluator = lon_safe, response, evaluator
+        self.lon_current_m, self.lon_safe_m = current, safe
+        self.left_safe, self.left_response, self.left_evaluator = left[0], left[1], left[2]
+        self.left_current_m, self.left_safe_m = left[3], left[4]
+        self.right_safe, self.right_response, self.right_evaluator = right[0], right[1], right[2]
+        self.right_current_m, self.right_safe_m = right[3], right[4]
+        self.intersection_state = state
+        self.dangerous = not lon_safe and not (left[0] and right[0])
+
+
 class Columns:
-    """One frame's rows as lists (the fields of :class:`Relative` and :class:`RawStates`)."""
+    """One frame's rows (:class:`Row`), memory after the frame and proper response."""
 
     def __init__(self, size: int) -> None:
-        """Empty columns for ``size`` rows."""
+        """No rows yet of ``size``."""
         self.size = size
-        self.lon_position: list[int] = []
-        self.lon_distance_m: list[float] = []
-        self.lat_position: list[int] = []
-        self.lat_distance_m: list[float] = []
-        self.ego_correct: list[bool] = []
-        self.other_correct: list[bool] = []
-        self.enter_leave: list[tuple[float, float, float, float]] = []
-        self.lon_safe: list[bool] = []
-        self.lon_response: list[int] = []
-        self.lon_evaluator: list[int] = []
-        self.lon_current_m: list[float] = []
-        self.lon_safe_m: list[float] = []
-        self.left: list[LateralRow] = []
-        self.right: list[LateralRow] = []
-        self.left_response: list[int] = []
-        self.right_response: list[int] = []
-        self.intersection_state: list[int] = []
-        self.dangerous: list[bool] = []
+        self.rows: list[Row] = []
         self.memory: dict[tuple[int, int, int], tuple[bool, bool, int]] = {}
         self.response: tuple[bool, tuple[int, int, int], tuple[float, ...]] = (
             True,
             (0, 0, 0),
             (),
         )
-
-    def add_relative(
-        self,
-        relative: tuple[int, float, int, float, bool],
-        other_correct: bool,  # noqa: FBT001
-        enter_leave: tuple[float, float, float, float],
-    ) -> None:
-        """Append one row's relative situation."""
-        self.lon_position.append(relative[0])
-        self.lon_distance_m.append(relative[1])
-        self.lat_position.append(relative[2])
-        self.lat_distance_m.append(relative[3])
-        self.ego_correct.append(relative[4])
-        self.other_correct.append(other_correct)
-        self.enter_leave.append(enter_leave)
-
-    def add_states(
-        self, states: tuple[bool, int, int, float, float, LateralRow, LateralRow, int]
-    ) -> None:
-        """Append one row's raw states (``scalar_checks.check_row``)."""
-        lon_safe, response, evaluator, current, safe, left, right, state = states
-        self.lon_safe.append(lon_safe)
-        self.lon_response.append(response)
-        self.lon_evaluator.append(evaluator)
-        self.lon_current_m.append(current)
-        self.lon_safe_m.append(safe)
-        self.left.append(left)
-        self.right.append(right)
-        self.left_response.append(left[1])
-        self.right_response.append(right[1])
-        self.intersection_state.append(state)
-        self.dangerous.append(not lon_safe and not (left[0] and right[0]))
+        self.matrices: tuple[Any, Any, Any] | None = None
 
     def apply_memory(
         self,
@@ -170,12 +191,13 @@ class Columns:
             ``(what the row stores or None, whether it is safe or dangerous
             non-intersection)``.
         """
+        row = self.rows[c]
         intersection = ctype >= EGO_PRIORITY
-        dangerous, lon_safe = self.dangerous[c], self.lon_safe[c]
-        lat_safe = self.left[c][0] and self.right[c][0]
+        dangerous, lon_safe = row.dangerous, row.lon_safe
+        lat_safe = row.left_safe and row.right_safe
         base = lon_safe if intersection else not dangerous
         overlap_assumption = (
-            ctype == SAME_DIRECTION and OVERLAP_LEFT <= self.lat_position[c] <= OVERLAP_RIGHT
+            ctype == SAME_DIRECTION and OVERLAP_LEFT <= row.lat_position <= OVERLAP_RIGHT
         )
         known = entry is not None
         prev_lon, prev_lat, prev_int = entry if entry is not None else (False, False, 0)
@@ -192,83 +214,81 @@ class Columns:
             and known
             and (
                 (prev_int == I_ABLE_TO_BRAKE and ctype == EGO_PRIORITY)
-                or (prev_int == I_SAFE_DISTANCE and self.lon_position[c] == IN_FRONT)
+                or (prev_int == I_SAFE_DISTANCE and row.lon_position == IN_FRONT)
             )
         )
         calm = not intersection and not dangerous
         if clear_lon or int_none or calm:
-            self.lon_response[c] = 0
+            row.lon_response = 0
         if clear_lat or calm:
-            self.left_response[c] = self.right_response[c] = 0
+            row.left_response = row.right_response = 0
         if not store:
             return None, base or candidate
-        stored_int = self.intersection_state[c] if intersection and base else 0
+        stored_int = row.intersection_state if intersection and base else 0
         stored_lat = not overlap_assumption if synthetic else lat_safe
         return (True if synthetic else lon_safe, stored_lat, stored_int), base or candidate
 
 
-def _matrix(values: list[Any], typecode: str, dtype: type, rows: int) -> Any:
-    """``values`` (``rows`` columns one after the other) as a ``(rows, n)`` array.
+def _matrix(values: list[Any], typecode: str, dtype: type, width: int) -> Any:
+    """``values`` (``C`` rows of ``width`` fields one after the other) as ``(width, C)``.
 
-    ``array.array`` converts a flat list in one C loop; numpy wraps its buffer.
+    ``array.array`` converts a flat list in one C loop; numpy wraps its buffer, and the
+    transposed copy makes every field's row contiguous.
     """
-    return np.frombuffer(array.array(typecode, values), dtype=dtype).reshape(rows, -1)
+    flat: Any = np.frombuffer(array.array(typecode, values), dtype=dtype)
+    return flat.reshape(-1, width).T.copy()
 
 
 def _matrices(out: Columns) -> tuple[Any, Any, Any]:
-    """``(12, C)`` floats, ``(10, C)`` ints and ``(6, C)`` flags: every row field of ``out``."""
-    left, right = out.left, out.right
-    lanes = list(zip(*out.enter_leave, strict=True))
-    floats = _matrix(
-        [
-            *out.lon_distance_m,
-            *out.lat_distance_m,
-            *lanes[0],
-            *lanes[1],
-            *lanes[2],
-            *lanes[3],
-            *out.lon_current_m,
-            *out.lon_safe_m,
-            *[row[3] for row in left],
-            *[row[4] for row in left],
-            *[row[3] for row in right],
-            *[row[4] for row in right],
-        ],
-        "d",
-        np.float64,
-        12,
+    """``(12, C)`` floats, ``(10, C)`` ints and ``(6, C)`` flags: every row field of ``out``.
+
+    Built once per result (:func:`relative` and :func:`raw_states` share them).
+    """
+    if out.matrices is not None:
+        return out.matrices
+    floats: list[float] = []
+    ints: list[int] = []
+    flags: list[bool] = []
+    for r in out.rows:
+        floats.extend(
+            (
+                r.lon_distance_m,
+                r.lat_distance_m,
+                r.ego_enter_m,
+                r.ego_leave_m,
+                r.other_enter_m,
+                r.other_leave_m,
+                r.lon_current_m,
+                r.lon_safe_m,
+                r.left_current_m,
+                r.left_safe_m,
+                r.right_current_m,
+                r.right_safe_m,
+            )
+        )
+        ints.extend(
+            (
+                r.lon_position,
+                r.lat_position,
+                r.lon_response,
+                r.lon_evaluator,
+                r.intersection_state,
+                r.left_response,
+                r.left_evaluator,
+                r.right_response,
+                r.right_evaluator,
+                0,
+            )
+        )
+        flags.extend(
+            (r.ego_correct, r.other_correct, r.lon_safe, r.dangerous, r.left_safe, r.right_safe)
+        )
+    out.matrices = (
+        _matrix(floats, "d", np.float64, 12),
+        _matrix(ints, "q", np.int64, 10),
+        _matrix(flags, "b", np.bool_, 6),
     )
-    ints = _matrix(
-        [
-            *out.lon_position,
-            *out.lat_position,
-            *out.lon_response,
-            *out.lon_evaluator,
-            *out.intersection_state,
-            *out.left_response,
-            *[row[2] for row in left],
-            *out.right_response,
-            *[row[2] for row in right],
-            *[0] * out.size,
-        ],
-        "q",
-        np.int64,
-        10,
-    )
-    flags = _matrix(
-        [
-            *out.ego_correct,
-            *out.other_correct,
-            *out.lon_safe,
-            *out.dangerous,
-            *[row[0] for row in left],
-            *[row[0] for row in right],
-        ],
-        "b",
-        np.bool_,
-        6,
-    )
-    return floats, ints, flags
+    return out.matrices
 
 
 def relative(out: Columns) -> Relative:
@@ -306,7 +326,7 @@ def raw_states(out: Columns) -> RawStates:
 
 def dangerous(out: Columns) -> BoolArray:
     """``(C,)`` dangerous constellations."""
-    flags: BoolArray = np.array(out.dangerous, dtype=np.bool_)
+    flags: BoolArray = _ARRAY([r.dangerous for r in out.rows], _BOOL)
     return flags
 
 
@@ -318,11 +338,11 @@ def responses(out: Columns) -> ProperResponses:
     ``object.__setattr__`` calls, half the cost of the arrays at this size).
     """
     is_safe, codes, limits = out.response
-    code_rows = np.array(codes, dtype=np.int64).reshape(3, 1)
-    limit_rows = np.array(limits, dtype=np.float64).reshape(6, 1)
+    code_rows = _ARRAY(codes, _INT64).reshape(3, 1)
+    limit_rows = _ARRAY(limits, _FLOAT64).reshape(6, 1)
     record: ProperResponses = object.__new__(ProperResponses)
     record.__dict__.update(
-        is_safe=np.array([is_safe]),
+        is_safe=_ARRAY([is_safe]),
         longitudinal_response=code_rows[0],
         lateral_response_left=code_rows[1],
         lateral_response_right=code_rows[2],
@@ -339,9 +359,8 @@ def responses(out: Columns) -> ProperResponses:
 def memory_columns(after: dict[tuple[int, int, int], tuple[bool, bool, int]]) -> list[Any]:
     """The six :class:`RssMemory` arrays of the memory ``after`` (by key, sorted, ``M >= 1``)."""
     entries = sorted((*key, *entry) for key, entry in after.items())
-    columns = list(zip(*entries, strict=True))
-    keys = _matrix([*columns[0], *columns[1], *columns[2], *columns[5]], "q", np.int64, 4)
-    verdicts = _matrix([*columns[3], *columns[4]], "b", np.bool_, 2)
+    keys = _matrix([v for e in entries for v in (e[0], e[1], e[2], e[5])], "q", np.int64, 4)
+    verdicts = _matrix([v for e in entries for v in (e[3], e[4])], "b", np.bool_, 2)
     return [keys[0], keys[1], keys[2], verdicts[0], verdicts[1], keys[3]]
 
 
