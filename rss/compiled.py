@@ -69,6 +69,7 @@ MODULES = (
     "rss.structured.small_merge",
     "rss.structured.small",
     "rss.structured.small_output",
+    "rss.structured.small_arrays",
     "rss.unstructured.convex",
     "rss.unstructured.scalar_motion",
     "rss.unstructured.pedestrian_small",

@@ -22,7 +22,8 @@ from rss.structured.response import ProperResponses, resolve
 from rss.structured.responsibility import Responsibility, responsibility, swap_roles
 from rss.structured.severity import Severity, severity
 from rss.structured.small import SMALL_FRAME_MAX, check_frame_small
-from rss.structured.small_output import dangerous, raw_states, recall, relative, responses
+from rss.structured.small_arrays import dangerous, raw_states, relative, responses
+from rss.structured.small_output import recall
 from rss.structured.small_result import SmallMemory
 from rss.structured.states import InvalidReason
 

@@ -185,10 +185,10 @@ def check_frame_small(
             start).
 
     Returns:
-        The frame's rows, memory after the frame (``memory``, sorted entries) and proper
+        The frame's rows, memory after the frame (``memory``, by key) and proper
         response (``response``), equal to what :func:`rss.structured.engine.check_frames`
         computes for ``F = 1``; the arrays are built from them on demand
-        (:mod:`rss.structured.small_output`).
+        (:mod:`rss.structured.small_arrays`).
     """
     rows = packed(batch)
     ctypes = rows.ctypes

@@ -9,8 +9,8 @@ response and the dangerous flags. :class:`SmallMemory` (here) and
 ``engine.SmallFrameResult`` therefore build each field on its first read (and keep it):
 reading one gives the same array the batched engine returns.
 
-A :class:`SmallMemory` handed back to the next call is read from its entries directly,
-without building its arrays.
+A :class:`SmallMemory` handed back to the next call is read from its entries by key (the
+dict the row path built) without building its arrays.
 """
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ from __future__ import annotations
 from typing import Any
 
 from rss.structured.memory import RssMemory
-from rss.structured.small_output import memory_columns
+from rss.structured.small_arrays import memory_columns
 
 __all__ = ["SmallMemory"]
 
