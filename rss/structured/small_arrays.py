@@ -97,7 +97,7 @@ def _matrices(out: Columns) -> tuple[Any, Any, Any]:
     return out.matrices
 
 
-def _record(cls: type[_R], fields: dict[str, Any]) -> _R:
+def _record(cls: type[_R], **fields: Any) -> _R:
     """A frozen dataclass record of ``fields`` (every field), filled without its ``__init__``.
 
     The generated ``__init__`` of a frozen dataclass sets each field by
@@ -113,19 +113,17 @@ def relative(out: Columns) -> Relative:
     floats, ints, flags = _matrices(out)
     return _record(
         Relative,
-        {
-            "lon_position": ints[0],
-            "lon_distance_m": floats[0],
-            "lat_position": ints[1],
-            "lat_distance_m": floats[1],
-            "ego_in_correct_lane": flags[0],
-            "other_in_correct_lane": flags[1],
-            "ego_dist_to_enter_m": floats[2],
-            "ego_dist_to_leave_m": floats[3],
-            "other_dist_to_enter_m": floats[4],
-            "other_dist_to_leave_m": floats[5],
-            "invalid": ints[9],
-        },
+        lon_position=ints[0],
+        lon_distance_m=floats[0],
+        lat_position=ints[1],
+        lat_distance_m=floats[1],
+        ego_in_correct_lane=flags[0],
+        other_in_correct_lane=flags[1],
+        ego_dist_to_enter_m=floats[2],
+        ego_dist_to_leave_m=floats[3],
+        other_dist_to_enter_m=floats[4],
+        other_dist_to_leave_m=floats[5],
+        invalid=ints[9],
     )
 
 
@@ -133,13 +131,11 @@ def _side(flags: Any, ints: Any, floats: Any, at: tuple[int, int, int, int, int]
     """One :class:`LateralSide` from rows ``at`` of the flag, int, int, float, float matrices."""
     return _record(
         LateralSide,
-        {
-            "is_safe": flags[at[0]],
-            "response": ints[at[1]],
-            "evaluator": ints[at[2]],
-            "current_distance_m": floats[at[3]],
-            "safe_distance_m": floats[at[4]],
-        },
+        is_safe=flags[at[0]],
+        response=ints[at[1]],
+        evaluator=ints[at[2]],
+        current_distance_m=floats[at[3]],
+        safe_distance_m=floats[at[4]],
     )
 
 
@@ -148,16 +144,14 @@ def raw_states(out: Columns) -> RawStates:
     floats, ints, flags = _matrices(out)
     return _record(
         RawStates,
-        {
-            "lon_is_safe": flags[2],
-            "lon_response": ints[2],
-            "lon_evaluator": ints[3],
-            "lon_current_distance_m": floats[6],
-            "lon_safe_distance_m": floats[7],
-            "left": _side(flags, ints, floats, (4, 5, 6, 8, 9)),
-            "right": _side(flags, ints, floats, (5, 7, 8, 10, 11)),
-            "intersection_state": ints[4],
-        },
+        lon_is_safe=flags[2],
+        lon_response=ints[2],
+        lon_evaluator=ints[3],
+        lon_current_distance_m=floats[6],
+        lon_safe_distance_m=floats[7],
+        left=_side(flags, ints, floats, (4, 5, 6, 8, 9)),
+        right=_side(flags, ints, floats, (5, 7, 8, 10, 11)),
+        intersection_state=ints[4],
     )
 
 
@@ -178,18 +172,16 @@ def responses(out: Columns) -> ProperResponses:
     limit_rows = _ARRAY(limits, _FLOAT64).reshape(6, 1)
     return _record(
         ProperResponses,
-        {
-            "is_safe": _ARRAY([is_safe]),
-            "longitudinal_response": code_rows[0],
-            "lateral_response_left": code_rows[1],
-            "lateral_response_right": code_rows[2],
-            "lon_min_mps2": limit_rows[0],
-            "lon_max_mps2": limit_rows[1],
-            "lat_left_min_mps2": limit_rows[2],
-            "lat_left_max_mps2": limit_rows[3],
-            "lat_right_min_mps2": limit_rows[4],
-            "lat_right_max_mps2": limit_rows[5],
-        },
+        is_safe=_ARRAY([is_safe]),
+        longitudinal_response=code_rows[0],
+        lateral_response_left=code_rows[1],
+        lateral_response_right=code_rows[2],
+        lon_min_mps2=limit_rows[0],
+        lon_max_mps2=limit_rows[1],
+        lat_left_min_mps2=limit_rows[2],
+        lat_left_max_mps2=limit_rows[3],
+        lat_right_min_mps2=limit_rows[4],
+        lat_right_max_mps2=limit_rows[5],
     )
 
 
