@@ -61,6 +61,7 @@ _LOG = logging.getLogger(__name__)
 MODULES = (
     "rss.structured.batch",
     "rss.structured.stacking",
+    "rss.structured.codes",
     "rss.structured.scalar_physics",
     "rss.structured.scalar_extract",
     "rss.structured.scalar_checks",
@@ -68,6 +69,7 @@ MODULES = (
     "rss.structured.small_merge",
     "rss.structured.small",
     "rss.structured.small_output",
+    "rss.structured.small_arrays",
     "rss.unstructured.convex",
     "rss.unstructured.scalar_motion",
     "rss.unstructured.pedestrian_small",

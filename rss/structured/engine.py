@@ -22,7 +22,8 @@ from rss.structured.response import ProperResponses, resolve
 from rss.structured.responsibility import Responsibility, responsibility, swap_roles
 from rss.structured.severity import Severity, severity
 from rss.structured.small import SMALL_FRAME_MAX, check_frame_small
-from rss.structured.small_output import dangerous, raw_states, recall, relative, responses
+from rss.structured.small_arrays import dangerous, raw_states, relative, responses
+from rss.structured.small_output import recall
 from rss.structured.small_result import SmallMemory
 from rss.structured.states import InvalidReason
 
@@ -150,18 +151,32 @@ class SmallFrameResult(FrameResult):
     _out: Columns
 
     def __init__(self, out: Columns) -> None:
-        object.__setattr__(self, "_out", out)
-        object.__setattr__(self, "responsibility", None)
-        object.__setattr__(self, "severity", None)
+        # frozen: no ``object.__setattr__``; ``responsibility`` and ``severity`` keep the
+        # class defaults (None)
+        self.__dict__["_out"] = out
 
-    def __getattr__(self, name: str) -> Any:
-        """Build field ``name`` on its first read."""
-        build = _BUILDERS.get(name)
-        if build is None:
-            raise AttributeError(name)
-        value = build(self._out)
-        object.__setattr__(self, name, value)
+
+class _Built:
+    """A field of :class:`SmallFrameResult` built on its first read and kept.
+
+    A non-data descriptor: the first read calls it, it stores the array in the instance's
+    ``__dict__``, where every later read finds it first (no ``__getattr__`` fallback, which
+    raises and catches an ``AttributeError`` on every first read).
+    """
+
+    def __init__(self, name: str, build: Callable[[Columns], Any]) -> None:
+        self.name = name
+        self.build = build
+
+    def __get__(self, result: SmallFrameResult | None, owner: type | None = None) -> Any:
+        if result is None:
+            return self
+        value = result.__dict__[self.name] = self.build(result.__dict__["_out"])
         return value
+
+
+for _name, _build in _BUILDERS.items():  # the dataclass fields' types stay FrameResult's
+    setattr(SmallFrameResult, _name, _Built(_name, _build))
 
 
 def select_frame(result: FrameResult, index: int) -> FrameResult:

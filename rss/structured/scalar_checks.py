@@ -11,6 +11,34 @@ from __future__ import annotations
 from typing import Final
 
 from rss.physics import DISTANCE_MAX_M, DISTANCE_PRECISION, DURATION_MAX_S, DURATION_PRECISION
+from rss.structured.codes import (
+    AT_LEFT,
+    AT_RIGHT,
+    BRAKE_MIN,
+    BRAKE_MIN_CORRECT,
+    E_I_EGO_FRONT,
+    E_I_EGO_STOPS,
+    E_I_OTHER_FRONT,
+    E_I_OTHER_STOPS,
+    E_I_OVERLAP,
+    E_LAT,
+    E_OD,
+    E_OD_CORRECT,
+    E_SD_EGO_FRONT,
+    E_SD_OTHER_FRONT,
+    EGO_PRIORITY,
+    I_ABLE_TO_BRAKE,
+    I_NO_TIME_OVERLAP,
+    I_NONE,
+    I_SAFE_DISTANCE,
+    IN_FRONT,
+    NOT_RELEVANT,
+    OBJECT_PRIORITY,
+    OPPOSITE_DIRECTION,
+    OVERLAP_FRONT,
+    OVERLAP_LEFT,
+    OVERLAP_RIGHT,
+)
 from rss.structured.scalar_physics import (
     gt,
     lt,
@@ -28,30 +56,6 @@ _DURATION_MAX_S: Final = DURATION_MAX_S
 
 _P: Final = DISTANCE_PRECISION
 _DP: Final = DURATION_PRECISION
-# ConstellationType codes
-_NOT_RELEVANT: Final = 0
-_OPPOSITE: Final = 2
-_EGO_PRIO: Final = 3
-_OTHER_PRIO: Final = 4
-# RssStateEvaluator codes
-_E_OD_CORRECT: Final = 1
-_E_OD: Final = 2
-_E_SD_EGO_FRONT: Final = 3
-_E_SD_OTHER_FRONT: Final = 4
-_E_LAT: Final = 5
-_E_I_EGO_STOPS: Final = 6
-_E_I_OTHER_STOPS: Final = 7
-_E_I_EGO_FRONT: Final = 8
-_E_I_OTHER_FRONT: Final = 9
-_E_I_OVERLAP: Final = 10
-# LateralPosition codes
-_AT_LEFT: Final = 0
-_OVERLAP_LEFT: Final = 1
-_OVERLAP_RIGHT: Final = 3
-_AT_RIGHT: Final = 4
-# LongitudinalResponse codes
-_BRAKE_MIN_CORRECT: Final = 1
-_BRAKE_MIN: Final = 2
 
 #: One lateral side: ``(is_safe, response, evaluator, current distance, safe distance)``.
 LateralRow = tuple[bool, int, int, float, float]
@@ -66,9 +70,9 @@ def _lateral_side(  # noqa: PLR0917 - ``checks._lateral.side`` of one row
     safe_m: float,
 ) -> LateralRow:
     if evaluated:
-        return gap_safe, 0 if gap_safe else 1, _E_LAT, lat_distance_m, safe_m
+        return gap_safe, 0 if gap_safe else 1, E_LAT, lat_distance_m, safe_m
     if overlap:
-        return overlap_safe, 0 if overlap_safe else 1, _E_LAT, 0.0, 0.0
+        return overlap_safe, 0 if overlap_safe else 1, E_LAT, 0.0, 0.0
     return True, 0, 0, _DISTANCE_MAX_M, _DISTANCE_MAX_M
 
 
@@ -90,17 +94,17 @@ def _intersection(  # noqa: PLR0917 - ``intersection_checks._intersection_rows``
     other_stop = (
         stated_braking_longitudinal(other[1], oth_d[8], oth_d[7], oth_d[0], oth_d[2]) + oth_d[9]
     )
-    if ctype != _EGO_PRIO and lt(ego_stop, ego_enter, _P):
-        return True, _E_I_EGO_STOPS, ego_enter, ego_stop, 1
-    if ctype != _OTHER_PRIO and lt(other_stop, other_enter, _P):
-        return True, _E_I_OTHER_STOPS, other_enter, other_stop, 1
-    if lon_position == 0:
+    if ctype != EGO_PRIORITY and lt(ego_stop, ego_enter, _P):
+        return True, E_I_EGO_STOPS, ego_enter, ego_stop, I_ABLE_TO_BRAKE
+    if ctype != OBJECT_PRIORITY and lt(other_stop, other_enter, _P):
+        return True, E_I_OTHER_STOPS, other_enter, other_stop, I_ABLE_TO_BRAKE
+    if lon_position == IN_FRONT:
         front_dist = safe_longitudinal_same(oth_d, other[1], ego_d, ego[0])
     else:
         front_dist = safe_longitudinal_same(ego_d, ego[1], oth_d, other[0])
     if gt(lon_distance_m, front_dist, _P):
-        evaluator = _E_I_EGO_FRONT if lon_position == 0 else _E_I_OTHER_FRONT
-        return True, evaluator, lon_distance_m, front_dist, 2
+        evaluator = E_I_EGO_FRONT if lon_position == IN_FRONT else E_I_OTHER_FRONT
+        return True, evaluator, lon_distance_m, front_dist, I_SAFE_DISTANCE
     cap = ego_d[8]  # ad-rss uses the ego's cap for both vehicles
     reach_ego = time_to_cover_distance(ego[1], cap, ego_d[7], ego_d[0], ego_d[2], ego_enter)
     leave_ego = time_to_cover_distance(ego[0], cap, ego_d[7], ego_d[1], ego_d[1], ego_leave)
@@ -108,8 +112,8 @@ def _intersection(  # noqa: PLR0917 - ``intersection_checks._intersection_rows``
     leave_oth = time_to_cover_distance(other[0], cap, oth_d[7], oth_d[1], oth_d[1], other_leave)
     never = abs(reach_ego - _DURATION_MAX_S) < _DP and abs(reach_oth - _DURATION_MAX_S) < _DP
     if gt(reach_ego, leave_oth, _DP) or gt(reach_oth, leave_ego, _DP) or never:
-        return True, _E_I_OVERLAP, 0.0, 0.0, 3
-    return False, _E_I_OVERLAP, 0.0, 0.0, 0
+        return True, E_I_OVERLAP, 0.0, 0.0, I_NO_TIME_OVERLAP
+    return False, E_I_OVERLAP, 0.0, 0.0, I_NONE
 
 
 def _longitudinal(  # noqa: PLR0917 - ``checks._longitudinal``, one row
@@ -122,13 +126,13 @@ def _longitudinal(  # noqa: PLR0917 - ``checks._longitudinal``, one row
     oth_d: list[float],
 ) -> tuple[int, float]:
     """``(evaluator, safe distance)`` of a non-intersection constellation."""
-    if ctype == _OPPOSITE:
+    if ctype == OPPOSITE_DIRECTION:
         if ego_in_correct_lane:
-            return _E_OD_CORRECT, safe_longitudinal_opposite(ego_d, ego[1], oth_d, other[1])
-        return _E_OD, safe_longitudinal_opposite(oth_d, other[1], ego_d, ego[1])
-    if lon_position <= 1:  # the ego leads: InFront, OverlapFront
-        return _E_SD_EGO_FRONT, safe_longitudinal_same(oth_d, other[1], ego_d, ego[0])
-    return _E_SD_OTHER_FRONT, safe_longitudinal_same(ego_d, ego[1], oth_d, other[0])
+            return E_OD_CORRECT, safe_longitudinal_opposite(ego_d, ego[1], oth_d, other[1])
+        return E_OD, safe_longitudinal_opposite(oth_d, other[1], ego_d, ego[1])
+    if lon_position <= OVERLAP_FRONT:  # the ego leads: InFront, OverlapFront
+        return E_SD_EGO_FRONT, safe_longitudinal_same(oth_d, other[1], ego_d, ego[0])
+    return E_SD_OTHER_FRONT, safe_longitudinal_same(ego_d, ego[1], oth_d, other[0])
 
 
 def check_row(  # noqa: PLR0917 - one row of the batch's and the extraction's columns
@@ -158,25 +162,25 @@ def check_row(  # noqa: PLR0917 - one row of the batch's and the extraction's co
     """
     lon_position, lon_distance_m, lat_position, lat_distance_m, ego_correct = relative
     far = _DISTANCE_MAX_M
-    if ctype == _NOT_RELEVANT:
+    if ctype == NOT_RELEVANT:
         calm: LateralRow = (True, 0, 0, far, far)
         return True, 0, 0, far, far, calm, calm, 0
-    if ctype >= _EGO_PRIO:
+    if ctype >= EGO_PRIORITY:
         safe, evaluator, current, safe_dist, state = _intersection(
             ctype, lon_position, lon_distance_m, enter_leave_m, ego, other, ego_d, oth_d
         )
-        blocked: LateralRow = (False, 0, _E_LAT, 0.0, 0.0)
-        response = 0 if safe else _BRAKE_MIN
+        blocked: LateralRow = (False, 0, E_LAT, 0.0, 0.0)
+        response = 0 if safe else BRAKE_MIN
         return safe, response, evaluator, current, safe_dist, blocked, blocked, state if safe else 0
     evaluator, safe_dist = _longitudinal(ctype, lon_position, ego_correct, ego, other, ego_d, oth_d)
     lon_safe = gt(lon_distance_m, safe_dist, _P)
     if lon_safe:
         response = 0
-    elif ctype == _OPPOSITE:
-        response = _BRAKE_MIN_CORRECT if ego_correct else _BRAKE_MIN
+    elif ctype == OPPOSITE_DIRECTION:
+        response = BRAKE_MIN_CORRECT if ego_correct else BRAKE_MIN
     else:
-        response = 0 if lon_position <= 1 else _BRAKE_MIN
-    ego_left, ego_right = lat_position == _AT_LEFT, lat_position == _AT_RIGHT
+        response = 0 if lon_position <= OVERLAP_FRONT else BRAKE_MIN
+    ego_left, ego_right = lat_position == AT_LEFT, lat_position == AT_RIGHT
     if ego_left:
         lat_safe_m = safe_lateral(ego_d, ego[3], oth_d, other[2])
     else:
@@ -184,13 +188,13 @@ def check_row(  # noqa: PLR0917 - one row of the batch's and the extraction's co
     gap_safe = gt(lat_distance_m, lat_safe_m, _P)
     overlap = not (ego_left or ego_right)
     left = _lateral_side(
-        ego_right, overlap, gap_safe, lat_position == _OVERLAP_LEFT, lat_distance_m, lat_safe_m
+        ego_right, overlap, gap_safe, lat_position == OVERLAP_LEFT, lat_distance_m, lat_safe_m
     )
     right = _lateral_side(
         ego_left,
         overlap,
         gap_safe,
-        lat_position == _OVERLAP_RIGHT,
+        lat_position == OVERLAP_RIGHT,
         lat_distance_m,
         lat_safe_m,
     )

@@ -16,6 +16,16 @@ import math
 from typing import Final
 
 from rss.physics import DISTANCE_PRECISION
+from rss.structured.codes import (
+    AT_BACK,
+    IN_FRONT,
+    INTERSECTION_SEGMENT,
+    NEGATIVE,
+    OVERLAP,
+    OVERLAP_BACK,
+    OVERLAP_FRONT,
+    POSITIVE,
+)
 
 __all__ = ["Placed", "Road", "lane_table", "object_valid", "place", "relative_position"]
 
@@ -23,17 +33,15 @@ _P: Final = DISTANCE_PRECISION
 _PARAM_EPS: Final = 1e-9
 _SPEED_LIMIT_MPS: Final = 100.0
 _FLOAT_MAX: Final = 1.7976931348623157e308
-_INTERSECTION: Final = 1
-_POSITIVE: Final = 1
-_NEGATIVE: Final = 2
 
 
 class Road:
     """Lane table of one road area (:class:`rss.structured.footprint.LaneTable`, one row).
 
     Attributes:
-        lane_id: ``(W,)`` lane ids of the flattened ``R x L`` slots (-1 = none).
-        direction: ``(W,)`` :class:`LaneDrivingDirection` codes.
+        codes: Lane ids ``(W,)`` of the flattened ``R x L`` slots (-1 = none), then their
+            :class:`LaneDrivingDirection` codes ``(W,)`` (and the segment types).
+        width: ``W`` (slots).
         n_lanes: ``L`` (slots per segment).
         seg_min_m: ``(R,)`` segment starts, sums of min lengths.
         seg_max_m: ``(R,)`` sums of max lengths.
@@ -42,31 +50,26 @@ class Road:
         scale_m: ``(4 W,)`` length min, length max, width min, width max of every slot.
         intersection_min_m: Entry of the intersecting area (NaN if none).
         intersection_max_m: Exit (NaN if none).
-        slot_of: Slot of each lane id.
+        slot_of: First slot of each lane id.
     """
 
-    def __init__(  # noqa: PLR0917 - a record of the table's fields
-        self,
-        lane_id: list[int],
-        direction: list[int],
-        n_lanes: int,
-        seg_m: tuple[list[float], list[float]],
-        col_m: tuple[list[float], list[float]],
-        scale_m: list[float],
-        intersection_m: tuple[float, float],
-    ) -> None:
-        """Store the fields (see the class docstring)."""
-        self.lane_id = lane_id
-        self.direction = direction
+    def __init__(self, codes: list[int], width: int, n_lanes: int, scale_m: list[float]) -> None:
+        """The road area's codes and scales; starts and slots are filled by ``lane_table``."""
+        self.codes = codes
+        self.width = width
         self.n_lanes = n_lanes
-        self.seg_min_m, self.seg_max_m = seg_m
-        self.col_min_m, self.col_max_m = col_m
         self.scale_m = scale_m
-        self.intersection_min_m, self.intersection_max_m = intersection_m
-        self.slot_of: dict[int, int] = {}  # first slot of each lane id
-        for slot, lane in enumerate(lane_id):
-            if lane >= 0 and lane not in self.slot_of:
-                self.slot_of[lane] = slot
+        self.seg_min_m: list[float] = []
+        self.seg_max_m: list[float] = []
+        self.col_min_m: list[float] = []
+        self.col_max_m: list[float] = []
+        self.intersection_min_m = math.nan
+        self.intersection_max_m = math.nan
+        self.slot_of: dict[int, int] = {}
+
+    def direction(self, slot: int) -> int:
+        """:class:`LaneDrivingDirection` code of ``slot``."""
+        return self.codes[self.width + slot]
 
 
 class Placed:
@@ -92,22 +95,24 @@ class Placed:
         self.found = found
 
 
-def _tolerant(  # noqa: PLR0917 - a strided walk over one scale column
-    values: list[float], base: int, slot: int, step: int, valid: list[bool], sign: float
+def _tolerant(
+    values: list[float], base: int, span: tuple[int, int, int], valid: list[bool], sign: float
 ) -> float:
-    """Tolerant running min (``sign`` -1) or max (+1) of the valid slots ``slot::step``.
+    """Tolerant running min (``sign`` -1) or max (+1) of the valid slots of ``span``.
 
-    ``values[base + s]`` is the value of slot ``s``; NaN maps to 0 and +-inf to +-max as
-    in ``footprint._reduce``.
+    ``span`` is ``(first slot, end slot, step)``; ``values[base + s]`` is the value of slot
+    ``s``; NaN maps to 0 and +-inf to +-max as in ``footprint._reduce``.
     """
+    s, end, step = span
     current = math.nan
-    for s in range(slot, len(valid), step):
+    while s < end:  # a while loop: mypyc compiles ``range`` with a variable step as a call
         value = values[base + s]
         if valid[s] and (
             current != current  # noqa: PLR0124 - NaN test, native when compiled
             or (value - current) * sign >= _P
         ):
             current = value
+        s += step
     if current != current:  # noqa: PLR0124
         return 0.0
     if math.isinf(current):
@@ -115,17 +120,12 @@ def _tolerant(  # noqa: PLR0917 - a strided walk over one scale column
     return current
 
 
-def _exclusive_sums(values: list[float]) -> list[float]:
-    out = [0.0] * len(values)
-    if len(values) > 1:
-        out[1] = values[0]
-    for j in range(2, len(values)):
-        out[j] = out[j - 1] + values[j - 1]
-    return out
-
-
 def lane_table(ints: list[int], floats: list[float], n_segments: int, n_lanes: int) -> Road:
     """Lane table of one road area (:func:`rss.structured.footprint.lane_table`, one row).
+
+    Segment starts are the exclusive running sums of the segments' tolerant min / max
+    lengths (lane by lane within a segment), column starts those of the columns' widths
+    (segment by segment), summed left to right as ``footprint`` does.
 
     Args:
         ints: lane ids ``(R, L)``, driving directions ``(R, L)`` and segment types ``(R,)``,
@@ -136,31 +136,41 @@ def lane_table(ints: list[int], floats: list[float], n_segments: int, n_lanes: i
         n_lanes: ``L``.
     """
     width = n_segments * n_lanes
-    ok = [lane >= 0 for lane in ints[:width]]
-    # lengths lane by lane within a segment, column widths segment by segment
-    seg_ok = [ok[r * n_lanes : (r + 1) * n_lanes] for r in range(n_segments)]
-    seg_len_min = [_tolerant(floats, r * n_lanes, 0, 1, seg_ok[r], -1.0) for r in range(n_segments)]
-    seg_len_max = [
-        _tolerant(floats, width + r * n_lanes, 0, 1, seg_ok[r], 1.0) for r in range(n_segments)
-    ]
-    col_w_min = [_tolerant(floats, 2 * width, j, n_lanes, ok, -1.0) for j in range(n_lanes)]
-    col_w_max = [_tolerant(floats, 3 * width, j, n_lanes, ok, 1.0) for j in range(n_lanes)]
-    seg_min, seg_max = _exclusive_sums(seg_len_min), _exclusive_sums(seg_len_max)
-    i_min, i_max = math.nan, math.nan
+    road = Road(ints, width, n_lanes, floats)
+    ok = [False] * width
+    slot_of = road.slot_of
+    for s in range(width):
+        lane = ints[s]
+        if lane >= 0:
+            ok[s] = True
+            if lane not in slot_of:
+                slot_of[lane] = s
+    road.seg_min_m = seg_min = [0.0] * n_segments
+    road.seg_max_m = seg_max = [0.0] * n_segments
+    sum_min = sum_max = 0.0
+    entered = False  # the first intersection segment gives the intersecting area
     for r in range(n_segments):
-        if ints[2 * width + r] == _INTERSECTION:
-            i_min = seg_min[r] + floats[4 * width + r]
-            i_max = seg_max[r] + seg_len_max[r] - floats[4 * width + n_segments + r]
-            break
-    return Road(
-        ints[:width],
-        ints[width : 2 * width],
-        n_lanes,
-        (seg_min, seg_max),
-        (_exclusive_sums(col_w_min), _exclusive_sums(col_w_max)),
-        floats,
-        (i_min, i_max),
-    )
+        span = (r * n_lanes, (r + 1) * n_lanes, 1)
+        length_min = _tolerant(floats, 0, span, ok, -1.0)
+        length_max = _tolerant(floats, width, span, ok, 1.0)
+        seg_min[r], seg_max[r] = sum_min, sum_max
+        if not entered and ints[2 * width + r] == INTERSECTION_SEGMENT:
+            entered = True
+            road.intersection_min_m = sum_min + floats[4 * width + r]
+            road.intersection_max_m = sum_max + length_max - floats[4 * width + n_segments + r]
+        sum_min = length_min if r == 0 else sum_min + length_min
+        sum_max = length_max if r == 0 else sum_max + length_max
+    road.col_min_m = col_min = [0.0] * n_lanes
+    road.col_max_m = col_max = [0.0] * n_lanes
+    sum_min = sum_max = 0.0
+    for j in range(n_lanes):
+        span = (j, width, n_lanes)
+        width_min = _tolerant(floats, 2 * width, span, ok, -1.0)
+        width_max = _tolerant(floats, 3 * width, span, ok, 1.0)
+        col_min[j], col_max[j] = sum_min, sum_max
+        sum_min = width_min if j == 0 else sum_min + width_min
+        sum_max = width_max if j == 0 else sum_max + width_max
+    return road
 
 
 _SIGNS: Final = (-1.0, 1.0, -1.0, 1.0)
@@ -174,7 +184,7 @@ def place(lanes: list[int], params: list[float], road: Road) -> Placed:
         params: lon min, lon max, lat min, lat max of the regions (``(K,)`` each, flat).
         road: The road area's lane table.
     """
-    width, n_regions = len(road.lane_id), len(lanes)
+    width, n_regions = road.width, len(lanes)
     if n_regions == 1:
         return _place_one(lanes[0], params, road)
     slots: list[tuple[int, int]] = []  # (sort key, region)
@@ -203,8 +213,9 @@ def place(lanes: list[int], params: list[float], road: Road) -> Placed:
                 current[q] = value
         if hit:
             found = True
-            positive |= road.direction[idx[k]] == _POSITIVE
-            negative |= road.direction[idx[k]] == _NEGATIVE
+            direction = road.direction(idx[k])
+            positive |= direction == POSITIVE
+            negative |= direction == NEGATIVE
     return Placed(current[0], current[1], current[2], current[3], positive, negative, found)
 
 
@@ -214,17 +225,17 @@ def _place_one(lane: int, params: list[float], road: Road) -> Placed:
     if slot < 0:
         nan = math.nan
         return Placed(nan, nan, nan, nan, False, False, False)  # noqa: FBT003
-    width = len(road.lane_id)
+    width = road.width
     segment, column = divmod(slot, road.n_lanes)
     scale = road.scale_m
-    direction = road.direction[slot]
+    direction = road.codes[width + slot]
     return Placed(
         road.seg_min_m[segment] + params[0] * scale[slot] + 0.0,
         road.seg_max_m[segment] + params[1] * scale[width + slot] + 0.0,
         road.col_min_m[column] + params[2] * scale[2 * width + slot] + 0.0,
         road.col_max_m[column] + params[3] * scale[3 * width + slot] + 0.0,
-        direction == _POSITIVE,
-        direction == _NEGATIVE,
+        direction == POSITIVE,
+        direction == NEGATIVE,
         True,  # noqa: FBT003
     )
 
@@ -254,13 +265,18 @@ def object_valid(lanes: list[int], params: list[float], speeds: list[float]) -> 
     for k, lane in enumerate(lanes):
         if lane < 0:
             continue
-        p = [params[k], params[n_regions + k], params[2 * n_regions + k], params[3 * n_regions + k]]
-        for value in p:
-            if value - value != 0.0 or value < -_PARAM_EPS or value > 1.0 + _PARAM_EPS:
-                return False
-        if p[0] > p[1] or p[2] > p[3]:
+        lon_lo, lon_hi = params[k], params[n_regions + k]
+        lat_lo, lat_hi = params[2 * n_regions + k], params[3 * n_regions + k]
+        if not (_unit(lon_lo) and _unit(lon_hi) and _unit(lat_lo) and _unit(lat_hi)) or (
+            lon_lo > lon_hi or lat_lo > lat_hi
+        ):
             return False
     return True
+
+
+def _unit(value: float) -> bool:
+    """Whether a region parameter is finite and within [0, 1] (tolerance 1e-9)."""
+    return value - value == 0.0 and -_PARAM_EPS <= value <= 1.0 + _PARAM_EPS
 
 
 def relative_position(
@@ -268,11 +284,11 @@ def relative_position(
 ) -> tuple[int, float]:
     """``(LongitudinalPosition code, distance)`` (:func:`extraction.relative_position`)."""
     if ego_min - other_max >= _P:
-        return 0, ego_min - other_max
+        return IN_FRONT, ego_min - other_max
     if other_min - ego_max >= _P:
-        return 4, other_min - ego_max
+        return AT_BACK, other_min - ego_max
     if ego_min - other_min >= _P and ego_max - other_max >= _P:
-        return 1, 0.0
+        return OVERLAP_FRONT, 0.0
     if other_min - ego_min >= _P and other_max - ego_max >= _P:
-        return 3, 0.0
-    return 2, 0.0
+        return OVERLAP_BACK, 0.0
+    return OVERLAP, 0.0

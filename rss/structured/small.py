@@ -24,6 +24,17 @@ import math
 from typing import TYPE_CHECKING, Final
 
 from rss.physics import ACCELERATION_LOWEST_MPS2
+from rss.structured.codes import (
+    BRAKE_MIN,
+    BRAKE_MIN_CORRECT,
+    EGO_PRIORITY,
+    EGO_VEHICLE,
+    INVALID_OBJECT,
+    LAT_BRAKE_MIN,
+    OPPOSITE_DIRECTION,
+    OVERLAP,
+    UNSTRUCTURED,
+)
 from rss.structured.scalar_checks import check_row
 from rss.structured.scalar_extract import (
     Placed,
@@ -35,7 +46,7 @@ from rss.structured.scalar_extract import (
 )
 from rss.structured.small_input import SMALL_FRAME_MAX, Packed, packed
 from rss.structured.small_merge import merge_rows
-from rss.structured.small_output import Columns
+from rss.structured.small_output import Columns, Row
 
 if TYPE_CHECKING:
     from rss.dynamics import RssDynamics
@@ -44,12 +55,6 @@ if TYPE_CHECKING:
 __all__ = ["SMALL_FRAME_MAX", "check_frame_small"]
 
 _LOWEST_MPS2: Final = ACCELERATION_LOWEST_MPS2
-
-_EGO_VEHICLE: Final = 1
-_INVALID_OBJECT: Final = 0
-_OPPOSITE: Final = 2
-_EGO_PRIO: Final = 3
-_UNSTRUCTURED: Final = 6
 
 
 class _Places:
@@ -99,7 +104,7 @@ def _row(c: int, ctype: int, places: _Places, out: Columns) -> bool:
     if ego_table is None:
         return False
     ego_p = places.place(rows.ego[c], ego_road, ego_table)
-    intersection = ctype >= _EGO_PRIO
+    intersection = ctype >= EGO_PRIORITY
     other_road = rows.cross_road[c] if intersection else ego_road
     other_table = places.table(other_road)
     if other_table is None:
@@ -125,15 +130,15 @@ def _row(c: int, ctype: int, places: _Places, out: Columns) -> bool:
             other_p.lon_min_m - other_i,
             other_p.lon_max_m - other_i,
         )
-        lat_pos, lat_dist = 2, 0.0
+        lat_pos, lat_dist = OVERLAP, 0.0
         ego_el = _enter_leave(ego_p.lon_min_m, ego_p.lon_max_m, ego_table)
         other_el = _enter_leave(other_p.lon_min_m, other_p.lon_max_m, other_table)
         enter_leave = (ego_el[0], ego_el[1], other_el[0], other_el[1])
     ego_correct = not ego_p.on_negative_lane
-    opposite = ctype == _OPPOSITE
+    opposite = ctype == OPPOSITE_DIRECTION
     other_correct = not (other_p.on_positive_lane if opposite else other_p.on_negative_lane)
-    out.add_relative(
-        (lon_pos, lon_dist, lat_pos, lat_dist, ego_correct), other_correct, enter_leave
+    out.rows.append(
+        Row((lon_pos, lon_dist, lat_pos, lat_dist, ego_correct), other_correct, enter_leave)
     )
     return True
 
@@ -143,20 +148,24 @@ def _resolve(out: Columns, rows: Packed, default_ego: RssDynamics) -> None:
     lon_resp = left_resp = right_resp = 0
     lon_max, lon_min = default_ego.accel_max_mps2, default_ego.brake_max_mps2
     left_max = right_max = default_ego.lat_accel_max_mps2
-    for c, dangerous in enumerate(out.dangerous):
-        if not dangerous:
+    is_safe = True
+    for c, row in enumerate(out.rows):
+        if not row.dangerous:
             continue
+        is_safe = False
         d = rows.dynamics[rows.ego_dynamics[c]]
-        lon = out.lon_response[c]
+        lon = row.lon_response
         lon_resp = max(lon_resp, lon)
-        lon_max = min(lon_max, d[2] if lon == 2 else d[3] if lon == 1 else d[0])  # noqa: PLR2004
+        lon_max = min(
+            lon_max, d[2] if lon == BRAKE_MIN else d[3] if lon == BRAKE_MIN_CORRECT else d[0]
+        )
         lon_min = max(lon_min, d[1])
-        left, right = out.left_response[c], out.right_response[c]
+        left, right = row.left_response, row.right_response
         left_resp, right_resp = max(left_resp, left), max(right_resp, right)
-        left_max = min(left_max, d[5] if left == 1 else d[4])
-        right_max = min(right_max, d[5] if right == 1 else d[4])
+        left_max = min(left_max, d[5] if left == LAT_BRAKE_MIN else d[4])
+        right_max = min(right_max, d[5] if right == LAT_BRAKE_MIN else d[4])
     out.response = (
-        not any(out.dangerous),
+        is_safe,
         (lon_resp, left_resp, right_resp),
         (lon_min, lon_max, _LOWEST_MPS2, left_max, _LOWEST_MPS2, right_max),
     )
@@ -176,10 +185,10 @@ def check_frame_small(
             start).
 
     Returns:
-        The frame's rows, memory after the frame (``memory``, sorted entries) and proper
+        The frame's rows, memory after the frame (``memory``, by key) and proper
         response (``response``), equal to what :func:`rss.structured.engine.check_frames`
         computes for ``F = 1``; the arrays are built from them on demand
-        (:mod:`rss.structured.small_output`).
+        (:mod:`rss.structured.small_arrays`).
     """
     rows = packed(batch)
     ctypes = rows.ctypes
@@ -190,10 +199,10 @@ def check_frame_small(
         ego, other = rows.ego[c], rows.other[c]
         ego_id, other_id = ids[ego], ids[other]
         if (
-            not 0 <= ctype < _UNSTRUCTURED
-            or kinds[ego] != _EGO_VEHICLE
-            or kinds[other] == _INVALID_OBJECT
-            or kinds[other] == _EGO_VEHICLE
+            not 0 <= ctype < UNSTRUCTURED
+            or kinds[ego] != EGO_VEHICLE
+            or kinds[other] == INVALID_OBJECT
+            or kinds[other] == EGO_VEHICLE
             or ego_id == other_id
             or not _valid(rows, other, checked)
             or not _valid(rows, ego, checked)
@@ -205,29 +214,25 @@ def check_frame_small(
     for c, ctype in enumerate(ctypes):
         if not _row(c, ctype, places, out):
             return None
-    speeds = merge_rows(out, rows, keys)
+    unique = len(set(keys)) == len(keys)
+    speeds = merge_rows(out, rows, keys, unique=unique)
     if speeds is None:
         return None
     ego_speeds, other_speeds = speeds
     for c, ctype in enumerate(ctypes):
-        out.add_states(
+        row = out.rows[c]
+        row.add_states(
             check_row(
                 ctype,
-                (
-                    out.lon_position[c],
-                    out.lon_distance_m[c],
-                    out.lat_position[c],
-                    out.lat_distance_m[c],
-                    out.ego_correct[c],
-                ),
-                out.enter_leave[c],
+                row.relative(),
+                row.enter_leave(),
                 ego_speeds[c],
                 other_speeds[c],
                 rows.dynamics[rows.ego_dynamics[c]],
                 rows.dynamics[rows.other_dynamics[c]],
             )
         )
-    out.apply_memory(ctypes, keys, before)
+    out.apply_memory(ctypes, keys, before, unique=unique)
     _resolve(out, rows, default_ego)
     return out
 

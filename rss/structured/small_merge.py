@@ -11,7 +11,9 @@ only for equal intersection lanes, or differing dynamics) is left to the batched
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Final
+from typing import TYPE_CHECKING
+
+from rss.structured.codes import EGO_PRIORITY, OVERLAP
 
 if TYPE_CHECKING:
     from rss.structured.small_input import Packed
@@ -19,12 +21,9 @@ if TYPE_CHECKING:
 
 __all__ = ["merge_rows"]
 
-_OVERLAP: Final = 2
-_EGO_PRIO: Final = 3
-
 
 def merge_rows(
-    out: Columns, rows: Packed, keys: list[tuple[int, int, int]]
+    out: Columns, rows: Packed, keys: list[tuple[int, int, int]], *, unique: bool
 ) -> tuple[list[list[float]], list[list[float]]] | None:
     """Merge the groups of similar rows of ``out`` in place; speeds per row to check with.
 
@@ -32,6 +31,7 @@ def merge_rows(
         out: The frame's extracted rows (relative positions, distances, lanes).
         rows: The frame's packed input.
         keys: ``(ego id, object id, type)`` per row.
+        unique: One row per key (nothing to merge).
 
     Returns:
         ``(ego speeds, other speeds)`` per row (lon min, lon max, lat min, lat max [m/s],
@@ -39,7 +39,7 @@ def merge_rows(
     """
     ego_speeds = [rows.speeds[e] for e in rows.ego]
     other_speeds = [rows.speeds[o] for o in rows.other]
-    if len(set(keys)) == len(keys):
+    if unique:
         return ego_speeds, other_speeds
     groups: dict[tuple[int, int, int], list[int]] = {}
     for c, key in enumerate(keys):
@@ -51,7 +51,7 @@ def merge_rows(
     for key, members in groups.items():
         if len(members) == 1:
             continue
-        if key[2] >= _EGO_PRIO:
+        if key[2] >= EGO_PRIORITY:
             return None
         first = members[0]
         for c in members:
@@ -67,9 +67,9 @@ def merge_rows(
 def _position(codes: list[int], distances: list[float]) -> tuple[int, float]:
     """Worst case of positions and distances (``merge.merge_position_groups``, one group)."""
     high, low = max(codes), min(codes)
-    if high >= _OVERLAP >= low:
-        return _OVERLAP, 0.0
-    return (high if high < _OVERLAP else low), min(distances)
+    if high >= OVERLAP >= low:
+        return OVERLAP, 0.0
+    return (high if high < OVERLAP else low), min(distances)
 
 
 def _union(speeds: list[list[float]], members: list[int]) -> list[float]:
@@ -89,26 +89,23 @@ def _merge_group(
     other_speeds: list[list[float]],
 ) -> None:
     """Give every row of one group the group's worst case."""
-    lon = _position(
-        [out.lon_position[c] for c in members], [out.lon_distance_m[c] for c in members]
-    )
-    lat = _position(
-        [out.lat_position[c] for c in members], [out.lat_distance_m[c] for c in members]
-    )
-    ego_correct = all(out.ego_correct[c] for c in members)
-    other_correct = any(out.other_correct[c] for c in members)
+    rows = [out.rows[c] for c in members]
+    lon = _position([r.lon_position for r in rows], [r.lon_distance_m for r in rows])
+    lat = _position([r.lat_position for r in rows], [r.lat_distance_m for r in rows])
+    ego_correct = all(r.ego_correct for r in rows)
+    other_correct = any(r.other_correct for r in rows)
     enter_leave = (
-        min(out.enter_leave[c][0] for c in members),
-        max(out.enter_leave[c][1] for c in members),
-        min(out.enter_leave[c][2] for c in members),
-        max(out.enter_leave[c][3] for c in members),
+        min(r.ego_enter_m for r in rows),
+        max(r.ego_leave_m for r in rows),
+        min(r.other_enter_m for r in rows),
+        max(r.other_leave_m for r in rows),
     )
     ego, other = _union(ego_speeds, members), _union(other_speeds, members)
-    for c in members:
-        out.lon_position[c], out.lon_distance_m[c] = lon
-        out.lat_position[c], out.lat_distance_m[c] = lat
-        out.ego_correct[c] = ego_correct
-        out.other_correct[c] = other_correct
-        out.enter_leave[c] = enter_leave
+    for c, r in zip(members, rows, strict=True):
+        r.lon_position, r.lon_distance_m = lon
+        r.lat_position, r.lat_distance_m = lat
+        r.ego_correct = ego_correct
+        r.other_correct = other_correct
+        r.ego_enter_m, r.ego_leave_m, r.other_enter_m, r.other_leave_m = enter_leave
         ego_speeds[c] = ego
         other_speeds[c] = other

@@ -1,113 +1,115 @@
-"""Row results of the small-frame path (:mod:`rss.structured.small`) and their arrays.
+"""Row results of the small-frame path (:mod:`rss.structured.small`).
 
-:class:`Columns` gathers one frame's rows as Python lists, applies the memory for one
-frame (``memory.apply_memory_both`` with ``F = 1`` and one row per key: every row is a run
-of its own, its remembered state is the memory's entry of its key) and :func:`assemble`
-turns the lists into the engine's records with a few array constructions.
+:class:`Columns` gathers one frame's rows (:class:`Row`, a compiled record whose fields
+are plain C values, one allocation per row), applies the memory for one frame
+(``memory.apply_memory_both`` with ``F = 1``: a key's rows in order, the memory's entry of
+its key remembered before the first) and keeps the memory after the frame by key; the
+builders of :mod:`rss.structured.small_arrays` turn them into the engine's records when a
+field is first read.
 """
 
 from __future__ import annotations
 
-import array
-from typing import TYPE_CHECKING, Any, Final
+from typing import TYPE_CHECKING, Any
 
-import numpy as np
-
-from rss.structured.checks import LateralSide, RawStates
-from rss.structured.extraction import Relative
-from rss.structured.response import ProperResponses
+from rss.structured.codes import (
+    EGO_PRIORITY,
+    I_ABLE_TO_BRAKE,
+    I_SAFE_DISTANCE,
+    IN_FRONT,
+    OVERLAP_LEFT,
+    OVERLAP_RIGHT,
+    SAME_DIRECTION,
+)
 
 if TYPE_CHECKING:
-    from rss.arrays import BoolArray
     from rss.structured.memory import RssMemory
     from rss.structured.scalar_checks import LateralRow
 
-__all__ = [
-    "Columns",
-    "by_key",
-    "dangerous",
-    "memory_columns",
-    "raw_states",
-    "recall",
-    "relative",
-    "responses",
-]
+__all__ = ["Columns", "Row", "recall"]
 
 
-_EGO_PRIO: Final = 3
-_SAME_DIRECTION: Final = 1
-_ABLE_TO_BRAKE: Final = 1
-_SAFE_DISTANCE: Final = 2
+class Row:
+    """One row's extracted situation and raw states (a compiled record: unboxed fields).
 
+    The fields of one row of :class:`Relative` (positions, distances, lanes, distances to
+    enter / leave the intersection) and of :class:`RawStates` (longitudinal and per side
+    lateral verdicts, responses, evaluators, distances [m], intersection state); the
+    responses are those after the memory (:meth:`Columns.apply_memory`).
+    """
 
-class Columns:
-    """One frame's rows as lists (the fields of :class:`Relative` and :class:`RawStates`)."""
-
-    def __init__(self, size: int) -> None:
-        """Empty columns for ``size`` rows."""
-        self.size = size
-        self.lon_position: list[int] = []
-        self.lon_distance_m: list[float] = []
-        self.lat_position: list[int] = []
-        self.lat_distance_m: list[float] = []
-        self.ego_correct: list[bool] = []
-        self.other_correct: list[bool] = []
-        self.enter_leave: list[tuple[float, float, float, float]] = []
-        self.lon_safe: list[bool] = []
-        self.lon_response: list[int] = []
-        self.lon_evaluator: list[int] = []
-        self.lon_current_m: list[float] = []
-        self.lon_safe_m: list[float] = []
-        self.left: list[LateralRow] = []
-        self.right: list[LateralRow] = []
-        self.left_response: list[int] = []
-        self.right_response: list[int] = []
-        self.intersection_state: list[int] = []
-        self.dangerous: list[bool] = []
-        self.memory: list[tuple[int, int, int, bool, bool, int]] = []
-        self.response: tuple[bool, tuple[int, int, int], tuple[float, ...]] = (
-            True,
-            (0, 0, 0),
-            (),
-        )
-
-    def add_relative(
+    def __init__(
         self,
         relative: tuple[int, float, int, float, bool],
         other_correct: bool,  # noqa: FBT001
         enter_leave: tuple[float, float, float, float],
     ) -> None:
-        """Append one row's relative situation."""
-        self.lon_position.append(relative[0])
-        self.lon_distance_m.append(relative[1])
-        self.lat_position.append(relative[2])
-        self.lat_distance_m.append(relative[3])
-        self.ego_correct.append(relative[4])
-        self.other_correct.append(other_correct)
-        self.enter_leave.append(enter_leave)
+        """The row's relative situation; its states are set by :meth:`add_states`."""
+        self.lon_position, self.lon_distance_m = relative[0], relative[1]
+        self.lat_position, self.lat_distance_m = relative[2], relative[3]
+        self.ego_correct = relative[4]
+        self.other_correct = other_correct
+        self.ego_enter_m, self.ego_leave_m = enter_leave[0], enter_leave[1]
+        self.other_enter_m, self.other_leave_m = enter_leave[2], enter_leave[3]
+        self.lon_safe = self.dangerous = False
+        self.lon_response = self.lon_evaluator = self.intersection_state = 0
+        self.lon_current_m = self.lon_safe_m = 0.0
+        self.left_safe = self.right_safe = False
+        self.left_response = self.left_evaluator = 0
+        self.right_response = self.right_evaluator = 0
+        self.left_current_m = self.left_safe_m = self.right_current_m = self.right_safe_m = 0.0
+
+    def relative(self) -> tuple[int, float, int, float, bool]:
+        """``(lon position, lon distance, lat position, lat distance, ego in correct lane)``."""
+        return (
+            self.lon_position,
+            self.lon_distance_m,
+            self.lat_position,
+            self.lat_distance_m,
+            self.ego_correct,
+        )
+
+    def enter_leave(self) -> tuple[float, float, float, float]:
+        """Distances to enter / leave the intersection (ego, then other) [m]."""
+        return self.ego_enter_m, self.ego_leave_m, self.other_enter_m, self.other_leave_m
 
     def add_states(
         self, states: tuple[bool, int, int, float, float, LateralRow, LateralRow, int]
     ) -> None:
-        """Append one row's raw states (``scalar_checks.check_row``)."""
+        """The row's raw states (``scalar_checks.check_row``)."""
         lon_safe, response, evaluator, current, safe, left, right, state = states
-        self.lon_safe.append(lon_safe)
-        self.lon_response.append(response)
-        self.lon_evaluator.append(evaluator)
-        self.lon_current_m.append(current)
-        self.lon_safe_m.append(safe)
-        self.left.append(left)
-        self.right.append(right)
-        self.left_response.append(left[1])
-        self.right_response.append(right[1])
-        self.intersection_state.append(state)
-        self.dangerous.append(not lon_safe and not (left[0] and right[0]))
+        self.lon_safe, self.lon_response, self.lon_evaluator = lon_safe, response, evaluator
+        self.lon_current_m, self.lon_safe_m = current, safe
+        self.left_safe, self.left_response, self.left_evaluator = left[0], left[1], left[2]
+        self.left_current_m, self.left_safe_m = left[3], left[4]
+        self.right_safe, self.right_response, self.right_evaluator = right[0], right[1], right[2]
+        self.right_current_m, self.right_safe_m = right[3], right[4]
+        self.intersection_state = state
+        self.dangerous = not lon_safe and not (left[0] and right[0])
+
+
+class Columns:
+    """One frame's rows (:class:`Row`), memory after the frame and proper response."""
+
+    def __init__(self, size: int) -> None:
+        """No rows yet of ``size``."""
+        self.size = size
+        self.rows: list[Row] = []
+        self.memory: dict[tuple[int, int, int], tuple[bool, bool, int]] = {}
+        self.response: tuple[bool, tuple[int, int, int], tuple[float, ...]] = (
+            True,
+            (0, 0, 0),
+            (),
+        )
+        self.matrices: tuple[Any, Any, Any] | None = None
 
     def apply_memory(
         self,
         ctypes: list[int],
         keys: list[tuple[int, int, int]],
         before: dict[tuple[int, int, int], tuple[bool, bool, int]],
+        *,
+        unique: bool,
     ) -> None:
         """Clear responses by the remembered safe states; gather the memory after the frame.
 
@@ -115,15 +117,16 @@ class Columns:
             ctypes: Constellation type per row.
             keys: ``(ego id, object id, type)`` per row.
             before: The memory before the frame by key (:func:`recall`).
+            unique: One row per key (no scan within the frame).
         """
-        if len(set(keys)) == len(keys):  # one row per key: no scan within the frame
+        after = self.memory
+        if unique:
             for c, ctype in enumerate(ctypes):
                 key = keys[c]
                 initial = before.get(key)
                 entry = self._remember(c, ctype, initial, initial, seen=False)[0] or initial
                 if entry is not None:
-                    self.memory.append((key[0], key[1], key[2], entry[0], entry[1], entry[2]))
-            self.memory.sort()
+                    after[key] = entry
             return
         stored: dict[tuple[int, int, int], tuple[bool, bool, int]] = {}
         events: set[tuple[int, int, int]] = set()
@@ -137,10 +140,10 @@ class Columns:
                 stored[key] = entry
             if event:
                 events.add(key)
-        for key in sorted(set(keys)):
+        for key in keys:
             last = stored.get(key, before.get(key))
             if last is not None:
-                self.memory.append((key[0], key[1], key[2], last[0], last[1], last[2]))
+                after[key] = last
 
     def _remember(
         self,
@@ -165,11 +168,14 @@ class Columns:
             ``(what the row stores or None, whether it is safe or dangerous
             non-intersection)``.
         """
-        intersection = ctype >= _EGO_PRIO
-        dangerous, lon_safe = self.dangerous[c], self.lon_safe[c]
-        lat_safe = self.left[c][0] and self.right[c][0]
+        row = self.rows[c]
+        intersection = ctype >= EGO_PRIORITY
+        dangerous, lon_safe = row.dangerous, row.lon_safe
+        lat_safe = row.left_safe and row.right_safe
         base = lon_safe if intersection else not dangerous
-        overlap_assumption = ctype == _SAME_DIRECTION and 1 <= self.lat_position[c] <= 3  # noqa: PLR2004
+        overlap_assumption = (
+            ctype == SAME_DIRECTION and OVERLAP_LEFT <= row.lat_position <= OVERLAP_RIGHT
+        )
         known = entry is not None
         prev_lon, prev_lat, prev_int = entry if entry is not None else (False, False, 0)
         candidate = dangerous and not intersection
@@ -184,157 +190,20 @@ class Columns:
             and not lon_safe
             and known
             and (
-                (prev_int == _ABLE_TO_BRAKE and ctype == _EGO_PRIO)
-                or (prev_int == _SAFE_DISTANCE and self.lon_position[c] == 0)
+                (prev_int == I_ABLE_TO_BRAKE and ctype == EGO_PRIORITY)
+                or (prev_int == I_SAFE_DISTANCE and row.lon_position == IN_FRONT)
             )
         )
         calm = not intersection and not dangerous
         if clear_lon or int_none or calm:
-            self.lon_response[c] = 0
+            row.lon_response = 0
         if clear_lat or calm:
-            self.left_response[c] = self.right_response[c] = 0
+            row.left_response = row.right_response = 0
         if not store:
             return None, base or candidate
-        stored_int = self.intersection_state[c] if intersection and base else 0
+        stored_int = row.intersection_state if intersection and base else 0
         stored_lat = not overlap_assumption if synthetic else lat_safe
         return (True if synthetic else lon_safe, stored_lat, stored_int), base or candidate
-
-
-def _matrix(values: list[Any], typecode: str, dtype: type, rows: int) -> Any:
-    """``values`` (``rows`` columns one after the other) as a ``(rows, n)`` array.
-
-    ``array.array`` converts a flat list in one C loop; numpy wraps its buffer.
-    """
-    return np.frombuffer(array.array(typecode, values), dtype=dtype).reshape(rows, -1)
-
-
-def _matrices(out: Columns) -> tuple[Any, Any, Any]:
-    """``(12, C)`` floats, ``(10, C)`` ints and ``(6, C)`` flags: every row field of ``out``."""
-    left, right = out.left, out.right
-    lanes = list(zip(*out.enter_leave, strict=True))
-    floats = _matrix(
-        [
-            *out.lon_distance_m,
-            *out.lat_distance_m,
-            *lanes[0],
-            *lanes[1],
-            *lanes[2],
-            *lanes[3],
-            *out.lon_current_m,
-            *out.lon_safe_m,
-            *[row[3] for row in left],
-            *[row[4] for row in left],
-            *[row[3] for row in right],
-            *[row[4] for row in right],
-        ],
-        "d",
-        np.float64,
-        12,
-    )
-    ints = _matrix(
-        [
-            *out.lon_position,
-            *out.lat_position,
-            *out.lon_response,
-            *out.lon_evaluator,
-            *out.intersection_state,
-            *out.left_response,
-            *[row[2] for row in left],
-            *out.right_response,
-            *[row[2] for row in right],
-            *[0] * out.size,
-        ],
-        "q",
-        np.int64,
-        10,
-    )
-    flags = _matrix(
-        [
-            *out.ego_correct,
-            *out.other_correct,
-            *out.lon_safe,
-            *out.dangerous,
-            *[row[0] for row in left],
-            *[row[0] for row in right],
-        ],
-        "b",
-        np.bool_,
-        6,
-    )
-    return floats, ints, flags
-
-
-def relative(out: Columns) -> Relative:
-    """The frame's :class:`Relative` (``(C,)`` arrays)."""
-    floats, ints, flags = _matrices(out)
-    return Relative(
-        lon_position=ints[0],
-        lon_distance_m=floats[0],
-        lat_position=ints[1],
-        lat_distance_m=floats[1],
-        ego_in_correct_lane=flags[0],
-        other_in_correct_lane=flags[1],
-        ego_dist_to_enter_m=floats[2],
-        ego_dist_to_leave_m=floats[3],
-        other_dist_to_enter_m=floats[4],
-        other_dist_to_leave_m=floats[5],
-        invalid=ints[9],
-    )
-
-
-def raw_states(out: Columns) -> RawStates:
-    """The frame's memory-adjusted :class:`RawStates` (``(C,)`` arrays)."""
-    floats, ints, flags = _matrices(out)
-    return RawStates(
-        lon_is_safe=flags[2],
-        lon_response=ints[2],
-        lon_evaluator=ints[3],
-        lon_current_distance_m=floats[6],
-        lon_safe_distance_m=floats[7],
-        left=LateralSide(flags[4], ints[5], ints[6], floats[8], floats[9]),
-        right=LateralSide(flags[5], ints[7], ints[8], floats[10], floats[11]),
-        intersection_state=ints[4],
-    )
-
-
-def dangerous(out: Columns) -> BoolArray:
-    """``(C,)`` dangerous constellations."""
-    flags: BoolArray = _matrix(out.dangerous, "b", np.bool_, 1)[0]
-    return flags
-
-
-def responses(out: Columns) -> ProperResponses:
-    """The frame's proper response as ``(1,)`` arrays."""
-    is_safe, codes, limits = out.response
-    code_rows = _matrix(list(codes), "q", np.int64, 3)
-    limit_rows = _matrix(list(limits), "d", np.float64, 6)
-    return ProperResponses(
-        np.array([is_safe]),
-        code_rows[0],
-        code_rows[1],
-        code_rows[2],
-        limit_rows[0],
-        limit_rows[1],
-        limit_rows[2],
-        limit_rows[3],
-        limit_rows[4],
-        limit_rows[5],
-    )
-
-
-def memory_columns(entries: list[tuple[int, int, int, bool, bool, int]]) -> list[Any]:
-    """The six :class:`RssMemory` arrays of ``entries`` (sorted by key, ``M >= 1``)."""
-    columns = list(zip(*entries, strict=True))
-    keys = _matrix([*columns[0], *columns[1], *columns[2], *columns[5]], "q", np.int64, 4)
-    verdicts = _matrix([*columns[3], *columns[4]], "b", np.bool_, 2)
-    return [keys[0], keys[1], keys[2], verdicts[0], verdicts[1], keys[3]]
-
-
-def by_key(
-    entries: list[tuple[int, int, int, bool, bool, int]],
-) -> dict[tuple[int, int, int], tuple[bool, bool, int]]:
-    """``entries`` as the memory before the next frame (key -> lon, lat, state)."""
-    return {(e[0], e[1], e[2]): (e[3], e[4], e[5]) for e in entries}
 
 
 def recall(memory: RssMemory) -> dict[tuple[int, int, int], tuple[bool, bool, int]]:

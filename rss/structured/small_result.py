@@ -9,8 +9,8 @@ response and the dangerous flags. :class:`SmallMemory` (here) and
 ``engine.SmallFrameResult`` therefore build each field on its first read (and keep it):
 reading one gives the same array the batched engine returns.
 
-A :class:`SmallMemory` handed back to the next call is read from its entries directly,
-without building its arrays.
+A :class:`SmallMemory` handed back to the next call is read from its entries by key (the
+dict the row path built) without building its arrays.
 """
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ from __future__ import annotations
 from typing import Any
 
 from rss.structured.memory import RssMemory
-from rss.structured.small_output import by_key, memory_columns
+from rss.structured.small_arrays import memory_columns
 
 __all__ = ["SmallMemory"]
 
@@ -39,22 +39,20 @@ class SmallMemory(RssMemory):
         before: The entries by key (``small_output.recall`` layout), for the next frame.
     """
 
-    _entries: list[tuple[int, int, int, bool, bool, int]]
     before: dict[tuple[int, int, int], tuple[bool, bool, int]]
 
-    def __init__(self, entries: list[tuple[int, int, int, bool, bool, int]]) -> None:  # noqa: D107
-        object.__setattr__(self, "_entries", entries)
-        object.__setattr__(self, "before", by_key(entries))
+    def __init__(self, after: dict[tuple[int, int, int], tuple[bool, bool, int]]) -> None:  # noqa: D107
+        self.__dict__["before"] = after  # frozen: no generated ``__setattr__`` per field
 
     def __getattr__(self, name: str) -> Any:
         """Build the six arrays on the first read of one of them."""
         if name not in _FIELDS:
             raise AttributeError(name)
-        for field, value in zip(_FIELDS, memory_columns(self._entries), strict=True):
+        for field, value in zip(_FIELDS, memory_columns(self.before), strict=True):
             object.__setattr__(self, field, value)
         return self.__dict__[name]
 
     @property
     def size(self) -> int:
         """Number of remembered constellations ``M``."""
-        return len(self._entries)
+        return len(self.before)

@@ -223,3 +223,26 @@ def test_uncovered_frames_go_to_the_batched_engine(seed: int, n_objects: int, ho
     batched, batched_memory = _batched(frame, memory)
     _assert_same(ours, batched)
     _assert_same(ours_memory, batched_memory)
+
+
+@settings(max_examples=15, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.integers(1, 12))
+def test_each_call_builds_its_own_arrays(seed: int, n_objects: int) -> None:
+    """Two calls on one batch (memory carried): fresh, contiguous arrays, nothing shared.
+
+    Writing into the first result's arrays leaves the second result (and the batched
+    engine's answer for the same frame and memory) untouched.
+    """
+    batch = stack_constellations(_drive(seed, n_objects, 1)[0])
+    first, memory = check_frame(batch, _DEFAULTS.ego)
+    second, _ = check_frame(batch, _DEFAULTS.ego, memory)
+    a = _fields(first)
+    for name, value in a.items():  # before any field of the second result is built
+        assert value.flags.c_contiguous, name
+        value[...] = 0 if value.dtype.kind != "b" else not value.all()
+    batched, _ = check_frames(
+        batch, np.zeros(batch.size, dtype=np.int64), 1, _DEFAULTS.ego, _plain(memory)
+    )
+    _assert_same(second, batched)
+    b = _fields(second)
+    assert all(a[name] is not b[name] for name in a)
