@@ -20,7 +20,7 @@ coordinates). Why not GEOS: ``docs/design-notes.md``, "Full reach sets without G
 
 from __future__ import annotations
 
-__all__ = ["EPS", "clip", "reduce_cells"]
+__all__ = ["EPS", "Edges", "box_of", "clip_prepared", "dedup", "inside"]
 
 #: Crossing parameters this close to an edge's end, and sines of edge angles this small,
 #: are degenerate (GEOS decides them).
@@ -29,7 +29,7 @@ EPS = 1e-9
 _NEAR = 1e-7
 
 
-def _dedup(p: list[float]) -> list[float]:
+def dedup(p: list[float]) -> list[float]:
     """The ring without repeated consecutive vertices (the closing one included).
 
     The ring itself when it has none (the usual case: no copy, no float boxing).
@@ -54,17 +54,28 @@ def _dedup(p: list[float]) -> list[float]:
     return out
 
 
-def _conditioned(p: list[float]) -> bool:
-    """No edge shorter than ``EPS`` of the ring's extent, no vertex folding an edge back."""
-    n = len(p) // 2
+def box_of(p: list[float]) -> list[float]:
+    """Bounding box of ring ``p``: ``[x0, y0, x1, y1]`` (comparisons: compiled to C)."""
     lo_x = hi_x = p[0]
     lo_y = hi_y = p[1]
-    for i in range(1, n):
-        lo_x = min(lo_x, p[2 * i])
-        hi_x = max(hi_x, p[2 * i])
-        lo_y = min(lo_y, p[2 * i + 1])
-        hi_y = max(hi_y, p[2 * i + 1])
-    tiny = EPS * (hi_x - lo_x + hi_y - lo_y)
+    for i in range(1, len(p) // 2):
+        x = p[2 * i]
+        y = p[2 * i + 1]
+        if x < lo_x:  # noqa: PLR1730
+            lo_x = x
+        if x > hi_x:  # noqa: PLR1730
+            hi_x = x
+        if y < lo_y:  # noqa: PLR1730
+            lo_y = y
+        if y > hi_y:  # noqa: PLR1730
+            hi_y = y
+    return [lo_x, lo_y, hi_x, hi_y]
+
+
+def _conditioned(p: list[float], box: list[float]) -> bool:
+    """No edge shorter than ``EPS`` of the ring's extent (``box``), no edge folding back."""
+    n = len(p) // 2
+    tiny = EPS * (box[2] - box[0] + box[3] - box[1])
     px = p[2 * n - 2] - p[2 * n - 4]
     py = p[2 * n - 1] - p[2 * n - 3]
     j = n - 1
@@ -82,7 +93,7 @@ def _conditioned(p: list[float]) -> bool:
     return True
 
 
-def _inside(x: float, y: float, p: list[float]) -> bool:
+def inside(x: float, y: float, p: list[float]) -> bool:
     """Whether ``(x, y)`` lies inside ring ``p`` (crossing number; not on its boundary)."""
     n = len(p) // 2
     inside = False
@@ -98,24 +109,47 @@ def _inside(x: float, y: float, p: list[float]) -> bool:
     return inside
 
 
-class _Edges:
-    """A ring's edges with their bounding boxes, computed once per ring clipped against."""
+class Edges:
+    """A ring's edges with their bounding boxes, computed once per ring clipped against.
 
-    def __init__(self, p: list[float]) -> None:
-        n = len(p) // 2
-        self.xy = p
+    ``idx``: the edges a clip looks at (all, or those near one object: ``clip_cells``).
+    """
+
+    def __init__(self, p: list[float], base: Edges | None = None) -> None:
+        """The edges of ring ``p``, or an empty view of ``base``'s (same arrays, no ``idx``)."""
+        self.xy: list[float] = p
         self.x0: list[float] = []
         self.x1: list[float] = []
         self.y0: list[float] = []
         self.y1: list[float] = []
-        self.ccw = _area2(p) > 0
-        self.ok = _conditioned(p)
+        self.ccw: bool = False
+        self.ok: bool = False
+        self.idx: list[int] = []
+        if base is not None:  # a view of ``base``
+            self.xy = base.xy
+            self.x0 = base.x0
+            self.x1 = base.x1
+            self.y0 = base.y0
+            self.y1 = base.y1
+            self.ccw = base.ccw
+            self.ok = base.ok
+            return
+        n = len(p) // 2
         for j in range(n):
-            k = (j + 1) % n
-            self.x0.append(min(p[2 * j], p[2 * k]))
-            self.x1.append(max(p[2 * j], p[2 * k]))
-            self.y0.append(min(p[2 * j + 1], p[2 * k + 1]))
-            self.y1.append(max(p[2 * j + 1], p[2 * k + 1]))
+            k = j + 1 if j + 1 < n else 0
+            lo, hi = (p[2 * j], p[2 * k]) if p[2 * j] < p[2 * k] else (p[2 * k], p[2 * j])
+            self.x0.append(lo)
+            self.x1.append(hi)
+            lo, hi = (
+                (p[2 * j + 1], p[2 * k + 1])
+                if p[2 * j + 1] < p[2 * k + 1]
+                else (p[2 * k + 1], p[2 * j + 1])
+            )
+            self.y0.append(lo)
+            self.y1.append(hi)
+        self.ccw = _area2(p) > 0
+        self.ok = n >= 3 and _conditioned(p, box_of(p))  # noqa: PLR2004
+        self.idx = list(range(n))
 
 
 class _Hits:
@@ -136,32 +170,32 @@ class _Hits:
         self.d: list[float] = []
 
 
-def _candidates(a: list[float], e: _Edges) -> list[int]:
-    """The edges of ``e`` whose bounding box meets ring ``a``'s."""
-    lo_x = hi_x = a[0]
-    lo_y = hi_y = a[1]
-    for i in range(1, len(a) // 2):
-        lo_x = min(lo_x, a[2 * i])
-        hi_x = max(hi_x, a[2 * i])
-        lo_y = min(lo_y, a[2 * i + 1])
-        hi_y = max(hi_y, a[2 * i + 1])
+def _candidates(box: list[float], e: Edges) -> list[int]:
+    """The edges of ``e`` (among ``e.idx``) whose bounding box meets ``box``."""
+    lo_x = box[0]
+    lo_y = box[1]
+    hi_x = box[2]
+    hi_y = box[3]
     x0 = e.x0
     x1 = e.x1
     y0 = e.y0
     y1 = e.y1
-    return [
-        j
-        for j in range(len(x0))
-        if x0[j] <= hi_x and x1[j] >= lo_x and y0[j] <= hi_y and y1[j] >= lo_y
-    ]
+    return [j for j in e.idx if x0[j] <= hi_x and x1[j] >= lo_x and y0[j] <= hi_y and y1[j] >= lo_y]
 
 
-def _crossings(a: list[float], e: _Edges) -> _Hits | None:
-    """Proper crossings of ring ``a``'s edges with ``e``'s, ``None`` if a contact is degenerate."""
+def _crossings(a: list[float], box: list[float], e: Edges) -> _Hits | None:
+    """Proper crossings of ring ``a``'s edges (``box``: its bounding box) with ``e``'s.
+
+    ``None`` if a contact is degenerate.
+    """
     b = e.xy
     nb = len(b) // 2
     na = len(a) // 2
-    cand = _candidates(a, e)
+    cand = _candidates(box, e)
+    x0 = e.x0
+    x1 = e.x1
+    y0 = e.y0
+    y1 = e.y1
     hits = _Hits()
     for i in range(na):
         i1 = (i + 1) % na
@@ -169,12 +203,10 @@ def _crossings(a: list[float], e: _Edges) -> _Hits | None:
         ay = a[2 * i + 1]
         rx = a[2 * i1] - ax
         ry = a[2 * i1 + 1] - ay
-        ex0 = min(ax, ax + rx)
-        ex1 = max(ax, ax + rx)
-        ey0 = min(ay, ay + ry)
-        ey1 = max(ay, ay + ry)
+        ex0, ex1 = (ax, a[2 * i1]) if rx > 0 else (a[2 * i1], ax)
+        ey0, ey1 = (ay, a[2 * i1 + 1]) if ry > 0 else (a[2 * i1 + 1], ay)
         for j in cand:
-            if e.x0[j] > ex1 or e.x1[j] < ex0 or e.y0[j] > ey1 or e.y1[j] < ey0:
+            if x0[j] > ex1 or x1[j] < ex0 or y0[j] > ey1 or y1[j] < ey0:
                 continue
             k = j + 1 if j + 1 < nb else 0
             if not _cross(
@@ -243,6 +275,17 @@ def _area2(p: list[float]) -> float:
     return total
 
 
+def _argsort(key: list[float]) -> list[int]:
+    """Indices sorting ``key`` (insertion sort: a few crossings, already nearly in order)."""
+    order: list[int] = []
+    for k in range(len(key)):
+        pos = len(order)
+        while pos and key[order[pos - 1]] > key[k]:
+            pos -= 1
+        order.insert(pos, k)
+    return order
+
+
 class _Along:
     """The crossings in their order along one ring, to walk from one to the next.
 
@@ -254,7 +297,7 @@ class _Along:
         self.p = p
         self.edge = edge
         self.key = key
-        self.order = sorted(range(len(key)), key=key.__getitem__)
+        self.order = _argsort(key)
         self.rank = [0] * len(key)
         self.ok = True
         for r, k in enumerate(self.order):
@@ -289,25 +332,20 @@ class _Along:
         return nxt
 
 
-def clip(a: list[float], b: list[float], difference: bool) -> list[list[float]] | None:  # noqa: FBT001
-    """``a & b`` (or ``a - b``) of two simple rings as flat ``[x0, y0, x1, y1, ...]`` (open).
+def clip_prepared(a: list[float], e: Edges, difference: bool) -> list[list[float]] | None:  # noqa: FBT001
+    """``a & e`` (or ``a - e``) of simple rings as flat ``[x0, y0, x1, y1, ...]`` (open).
 
     Returns:
         The result's rings (each the shell of one part, no holes; none if empty), or ``None``
         where the case is degenerate or the result has a hole (GEOS decides).
     """
-    b = _dedup(b)
-    if len(b) < 6:  # noqa: PLR2004
+    a = dedup(a)
+    if len(a) < 6 or not e.ok:  # noqa: PLR2004
         return None
-    return _clip(a, _Edges(b), difference)
-
-
-def _clip(a: list[float], e: _Edges, difference: bool) -> list[list[float]] | None:  # noqa: FBT001
-    """``clip`` against a prepared ring."""
-    a = _dedup(a)
-    if len(a) < 6 or not e.ok or not _conditioned(a):  # noqa: PLR2004
+    box = box_of(a)
+    if not _conditioned(a, box):
         return None
-    hits = _crossings(a, e)
+    hits = _crossings(a, box, e)
     if hits is None:
         return None
     if not hits.d:
@@ -317,14 +355,14 @@ def _clip(a: list[float], e: _Edges, difference: bool) -> list[list[float]] | No
 
 def _apart(a: list[float], b: list[float], difference: bool) -> list[list[float]] | None:  # noqa: FBT001
     """The result for rings that do not cross: one inside the other, or apart."""
-    if _inside(a[0], a[1], b):
+    if inside(a[0], a[1], b):
         return [] if difference else [a]
-    if _inside(b[0], b[1], a):
+    if inside(b[0], b[1], a):
         return None if difference else [b]
     return [a] if difference else []
 
 
-def _traverse(a: list[float], e: _Edges, hits: _Hits, difference: bool) -> list[list[float]] | None:  # noqa: FBT001
+def _traverse(a: list[float], e: Edges, hits: _Hits, difference: bool) -> list[list[float]] | None:  # noqa: FBT001
     """Greiner and Hormann's walk over the crossings: the result's rings.
 
     Each crossing's direction comes from the sign of its edges' cross product and the rings'
@@ -358,42 +396,3 @@ def _traverse(a: list[float], e: _Edges, hits: _Hits, difference: bool) -> list[
             return None
         rings.append(ring)
     return rings
-
-
-def reduce_cells(
-    cells: list[list[float]], deletion: list[float], area: list[float]
-) -> list[list[list[float]] | None]:
-    """``(cell - deletion) & area`` of every cell of one object (rings as in ``clip``).
-
-    Computed as ``(cell & area) - deletion``: the same set, and the hexagon against the track
-    first leaves fewer edges for the difference.
-
-    Args:
-        cells: The object's sets as flat open rings.
-        deletion: Its deletion polygon (flat open ring), empty for none.
-        area: The drivable area near it (flat open ring), empty for no trimming.
-
-    Returns:
-        Per cell its rings, or ``None`` where ``clip`` gave up.
-    """
-    cut = _Edges(_dedup(deletion)) if deletion else None
-    near = _Edges(_dedup(area)) if area else None
-    if (cut is not None and len(cut.xy) < 6) or (near is not None and len(near.xy) < 6):  # noqa: PLR2004
-        return [None for _ in cells]
-    out: list[list[list[float]] | None] = []
-    for cell in cells:
-        parts: list[list[float]] | None = [cell]
-        if near is not None:
-            parts = _clip(cell, near, difference=False)
-        if parts is not None and cut is not None:
-            kept: list[list[float]] = []
-            for part in parts:
-                got = _clip(part, cut, difference=True)
-                if got is None:
-                    parts = None
-                    break
-                kept += got
-            else:
-                parts = kept
-        out.append(parts)
-    return out

@@ -57,7 +57,7 @@ _LOG = logging.getLogger(__name__)
 #: structured engine of small frames, ``rss.structured.small``, the point-by-point
 #: trajectory sets of small unstructured frames, ``rss.unstructured.*_small``, and the reach
 #: sets' scalar ``bound`` curves, one-frame occupancy and polygon clipper,
-#: ``reachsets.bound_scalar``, ``small_scalar`` and ``clip_scalar``).
+#: ``reachsets.bound_scalar``, ``small_scalar``, ``clip_scalar`` and ``clip_cells``).
 MODULES = (
     "rss.structured.batch",
     "rss.structured.stacking",
@@ -91,6 +91,7 @@ MODULES = (
     "reachsets.bound_scalar",
     "reachsets.small_scalar",
     "reachsets.clip_scalar",
+    "reachsets.clip_cells",
 )
 #: Name of mypyc's shared library of the group (``<GROUP>__mypyc``).
 GROUP = "rss_workbench_compiled"

@@ -8,7 +8,7 @@ import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from reachsets.clip_scalar import clip, reduce_cells
+from reachsets.clip_cells import Area, clip, reduce_cells
 from reachsets.inputs import TrackBounds
 from reachsets.params import ReachMethod, ReachParams
 from reachsets.reachable import reachable_sets
@@ -105,7 +105,10 @@ def test_clip_gives_up_on_touching_edges_and_holes():
     assert clip(square, [0.5, 0.5, 1.5, 0.5, 1.0, 1.5], True) is None  # a hole
     assert clip(square, [0.5, 0.5, 1.5, 0.5, 1.0, 1.5], False) == [[0.5, 0.5, 1.5, 0.5, 1.0, 1.5]]
     assert clip(square, [5.0, 5.0, 6.0, 5.0, 6.0, 6.0], True) == [square]
-    assert reduce_cells([square], [], []) == [[square]]
+    assert reduce_cells([square], [], None) == [[square]]
+    assert reduce_cells([square], [], Area([-1.0, -1.0, 3.0, -1.0, 3.0, 3.0, -1.0, 3.0], [])) == [
+        [square]
+    ]
 
 
 def test_clip_splits_into_parts():
@@ -120,6 +123,16 @@ def test_clip_splits_into_parts():
             shapely.Polygon(np.reshape(square, (-1, 2))), shapely.Polygon(np.reshape(bar, (-1, 2)))
         ),
     )
+
+
+def _same_sets(got: np.ndarray, want: np.ndarray) -> None:
+    """Cell by cell the same geometry within ``TOL`` (area in m2, boundary Hausdorff in m)."""
+    for g, w in zip(got.ravel(), want.ravel(), strict=True):
+        assert g.is_valid
+        assert abs(g.area - w.area) <= TOL
+        assert g.is_empty == w.is_empty
+        if not g.is_empty:
+            assert shapely.hausdorff_distance(g.boundary, w.boundary) <= TOL
 
 
 def _bent_track() -> TrackBounds:
@@ -154,9 +167,33 @@ def test_full_sets_equal_geos(method, rows, trim, keep_body):
     got = reachable_sets(objs, TIMES, params, track, scalar=True)
     want = reachable_sets(objs, TIMES, params, track, scalar=False)
     assert got.shape == want.shape == (len(rows), len(TIMES))
-    for g, w in zip(got.ravel(), want.ravel(), strict=True):
-        assert g.is_valid
-        assert abs(g.area - w.area) <= TOL
-        assert g.is_empty == w.is_empty
-        if not g.is_empty:
-            assert shapely.hausdorff_distance(g.boundary, w.boundary) <= TOL
+    _same_sets(got, want)
+
+
+def _ring_track() -> TrackBounds:
+    """A closed circular track (radius 50 m, 12 m wide), driven counter-clockwise."""
+    ang = np.linspace(0.0, 2 * np.pi, 160)
+    unit = np.stack([np.cos(ang), np.sin(ang)], axis=1)
+    return TrackBounds(left_m=44.0 * unit, right_m=56.0 * unit)
+
+
+@pytest.mark.parametrize("method", list(ReachMethod))
+@settings(max_examples=30, deadline=None)
+@given(
+    st.lists(
+        st.tuples(
+            st.floats(-70.0, 70.0), st.floats(-70.0, 70.0), st.floats(-3.2, 3.2), st.floats(0, 50)
+        ),
+        min_size=1,
+        max_size=3,
+    )
+)
+def test_full_sets_on_a_closed_track_equal_geos(method, rows):
+    """A loop's drivable area has a hole (the infield): objects on, in and beyond it."""
+    track = build_track(_ring_track(), ReachParams().closed_track_gap_m)
+    assert track.closed
+    assert len(track.polygon.interiors) == 1
+    params = ReachParams(method=method)
+    got = reachable_sets(objects(*rows), TIMES, params, track, scalar=True)
+    want = reachable_sets(objects(*rows), TIMES, params, track, scalar=False)
+    _same_sets(got, want)

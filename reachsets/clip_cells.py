@@ -1,0 +1,97 @@
+"""Full reduced sets of one object with the clipper: ``(cell & area) - deletion`` (mypyc).
+
+The drivable area is prepared once per track (``Area``); per object only its edges near the
+object's sets are looked at (``_near``). See ``clip_scalar`` for the clipper and when it gives
+up (``None``: the caller runs GEOS for that cell).
+"""
+
+from __future__ import annotations
+
+from reachsets.clip_scalar import Edges, box_of, clip_prepared, dedup, inside
+
+__all__ = ["Area", "clip", "reduce_cells"]
+
+
+def _near(e: Edges, box: list[float]) -> Edges:
+    """A view of ``e`` with only the edges whose bounding box meets ``box`` (x0, y0, x1, y1)."""
+    v = Edges([], e)
+    v.idx = [
+        j
+        for j in e.idx
+        if e.x0[j] <= box[2] and e.x1[j] >= box[0] and e.y0[j] <= box[3] and e.y1[j] >= box[1]
+    ]
+    return v
+
+
+class Area:
+    """A drivable area prepared for ``reduce_cells``: its shell and holes as flat open rings."""
+
+    def __init__(self, shell: list[float], holes: list[list[float]]) -> None:
+        """Prepare the rings (edge bounding boxes, orientation, conditioning)."""
+        self.shell = Edges(dedup(shell))
+        self.holes = [Edges(dedup(h)) for h in holes]
+
+
+def reduce_cells(
+    cells: list[list[float]], deletion: list[float], area: Area | None
+) -> list[list[list[float]] | None]:
+    """``(cell & area) - deletion`` of every cell of one object (rings as in ``clip``).
+
+    Args:
+        cells: The object's sets as flat open rings.
+        deletion: Its deletion polygon (flat open ring), empty for none.
+        area: The drivable area, ``None`` for no trimming.
+
+    Returns:
+        Per cell its rings, or ``None`` where ``clip`` gave up.
+    """
+    cut = Edges(dedup(deletion)) if deletion else None
+    if cut is not None and not cut.ok:
+        return [None for _ in cells]
+    shell: Edges | None = None
+    holes: list[Edges] = []
+    if area is not None:
+        boxes = [box_of(c) for c in cells]
+        near = [
+            min([b[0] for b in boxes]),
+            min([b[1] for b in boxes]),
+            max([b[2] for b in boxes]),
+            max([b[3] for b in boxes]),
+        ]
+        shell = _near(area.shell, near)
+        for hole in area.holes:
+            v = _near(hole, near)
+            if v.idx:
+                holes.append(v)
+            elif inside(cells[0][0], cells[0][1], hole.xy):  # the sets lie in the hole
+                return [[] for _ in cells]
+    out: list[list[list[float]] | None] = []
+    for cell in cells:
+        parts: list[list[float]] | None = [cell]
+        if shell is not None:
+            parts = clip_prepared(cell, shell, difference=False)
+        for e in [*holes, *([cut] if cut is not None else [])]:
+            parts = _minus(parts, e)
+        out.append(parts)
+    return out
+
+
+def _minus(parts: list[list[float]] | None, e: Edges) -> list[list[float]] | None:
+    """Every part minus ring ``e`` (``None`` if any of them gives up)."""
+    if parts is None:
+        return None
+    kept: list[list[float]] = []
+    for part in parts:
+        got = clip_prepared(part, e, difference=True)
+        if got is None:
+            return None
+        kept += got
+    return kept
+
+
+def clip(a: list[float], b: list[float], difference: bool) -> list[list[float]] | None:  # noqa: FBT001
+    """``clip_scalar.clip_prepared`` of two rings (``b`` prepared here)."""
+    b = dedup(b)
+    if len(b) < 6:  # noqa: PLR2004
+        return None
+    return clip_prepared(a, Edges(b), difference)
