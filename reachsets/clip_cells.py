@@ -35,7 +35,7 @@ class Area:
 def reduce_cells(
     cells: list[list[float]], deletion: list[float], area: Area | None
 ) -> list[list[list[float]] | None]:
-    """``(cell & area) - deletion`` of every cell of one object (rings as in ``clip``).
+    """``(cell - deletion) & area`` of every cell of one object (rings as in ``clip``).
 
     Args:
         cells: The object's sets as flat open rings.
@@ -68,12 +68,25 @@ def reduce_cells(
     out: list[list[list[float]] | None] = []
     for cell in cells:
         parts: list[list[float]] | None = [cell]
-        if shell is not None:
-            parts = clip_prepared(cell, shell, difference=False)
-        for e in [*holes, *([cut] if cut is not None else [])]:
-            parts = _minus(parts, e)
+        if cut is not None:
+            parts = clip_prepared(cell, cut, difference=True)
+        if shell is not None and parts is not None:
+            parts = _within(parts, shell)
+        for hole in holes:
+            parts = _minus(parts, hole)
         out.append(parts)
     return out
+
+
+def _within(parts: list[list[float]], e: Edges) -> list[list[float]] | None:
+    """Every part and ring ``e`` (``None`` if any of them gives up)."""
+    kept: list[list[float]] = []
+    for part in parts:
+        got = clip_prepared(part, e, difference=False)
+        if got is None:
+            return None
+        kept += got
+    return kept
 
 
 def _minus(parts: list[list[float]] | None, e: Edges) -> list[list[float]] | None:

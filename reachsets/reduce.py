@@ -23,6 +23,7 @@ if TYPE_CHECKING:
 __all__ = ["prepared_area", "scalar_sets"]
 
 _POLYGON = 3
+_EMPTY = shapely.Polygon()
 #: Drivable areas prepared for the clipper, by ``id`` (with the geometry, to check identity).
 _AREAS: dict[int, tuple[Any, clip_cells.Area | None]] = {}
 _AREAS_MAX = 8
@@ -81,7 +82,8 @@ def scalar_sets(
                 continue
             for ring in parts:
                 xy += ring
-                sizes.append(len(ring) // 2)
+                xy += ring[:2]  # closed
+                sizes.append(len(ring) // 2 + 1)
                 owner.append(i * t + k)
     out = _assemble(xy, sizes, owner, n * t)
     if fallback:
@@ -110,13 +112,21 @@ def _deletion(
 def _assemble(
     xy: list[float], sizes: list[int], owner: list[int], cells: int
 ) -> NDArray[np.object_]:
-    """One geometry per cell from its rings (none: empty polygon; several: multipolygon)."""
-    out = np.full(cells, shapely.Polygon(), dtype=object)
+    """One geometry per cell from its closed rings (none: empty polygon; several: multipolygon).
+
+    ``xy``: all rings' coordinates, flat; ``sizes``: points per ring; ``owner``: cell per ring.
+    """
+    out = np.full(cells, _EMPTY, dtype=object)
     if not sizes:
         return out
-    pts = np.array(xy, dtype=np.float64).reshape(-1, 2)
-    ring_of = np.repeat(np.arange(len(sizes)), sizes)
-    polys = np.asarray(shapely.polygons(shapely.linearrings(pts, indices=ring_of)))
+    pts = np.fromiter(xy, dtype=np.float64, count=len(xy)).reshape(-1, 2)
+    offsets = np.zeros(len(sizes) + 1, dtype=np.int64)
+    np.cumsum(sizes, out=offsets[1:])
+    polys = np.asarray(
+        shapely.from_ragged_array(
+            shapely.GeometryType.POLYGON, pts, (offsets, np.arange(len(sizes) + 1))
+        )
+    )
     own = np.array(owner, dtype=np.int64)
     count = np.bincount(own, minlength=cells)
     one = count[own] == 1
