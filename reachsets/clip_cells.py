@@ -7,7 +7,8 @@ up (``None``: the caller runs GEOS for that cell).
 
 from __future__ import annotations
 
-from reachsets.clip_scalar import Edges, box_of, clip_prepared, dedup, inside
+from reachsets.clip_rings import Edges, box_of, dedup, inside
+from reachsets.clip_scalar import clip_prepared
 
 __all__ = ["Area", "clip", "reduce_cells"]
 

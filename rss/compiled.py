@@ -57,7 +57,8 @@ _LOG = logging.getLogger(__name__)
 #: structured engine of small frames, ``rss.structured.small``, the point-by-point
 #: trajectory sets of small unstructured frames, ``rss.unstructured.*_small``, and the reach
 #: sets' scalar ``bound`` curves, one-frame occupancy and polygon clipper,
-#: ``reachsets.bound_scalar``, ``small_scalar``, ``clip_scalar`` and ``clip_cells``).
+#: ``reachsets.bound_scalar``, ``small_scalar``, ``clip_rings``, ``clip_scalar`` and
+#: ``clip_cells``).
 MODULES = (
     "rss.structured.batch",
     "rss.structured.stacking",
@@ -90,6 +91,7 @@ MODULES = (
     "rss.scene.segment_plans",
     "reachsets.bound_scalar",
     "reachsets.small_scalar",
+    "reachsets.clip_rings",
     "reachsets.clip_scalar",
     "reachsets.clip_cells",
 )

@@ -13,7 +13,7 @@ from reachsets.inputs import TrackBounds
 from reachsets.params import ReachMethod, ReachParams
 from reachsets.reachable import reachable_sets
 from reachsets.track import build_track
-from tests.reachsets.helpers import objects
+from tests.reachsets.helpers import objects, same_sets
 
 TIMES = np.asarray(ReachParams().times_s)
 #: The stated bound: same area within 1e-9 m2, boundaries within 1e-9 m (Hausdorff).
@@ -125,16 +125,6 @@ def test_clip_splits_into_parts():
     )
 
 
-def _same_sets(got: np.ndarray, want: np.ndarray) -> None:
-    """Cell by cell the same geometry within ``TOL`` (area in m2, boundary Hausdorff in m)."""
-    for g, w in zip(got.ravel(), want.ravel(), strict=True):
-        assert g.is_valid
-        assert abs(g.area - w.area) <= TOL
-        assert g.is_empty == w.is_empty
-        if not g.is_empty:
-            assert shapely.hausdorff_distance(g.boundary, w.boundary) <= TOL
-
-
 def _bent_track() -> TrackBounds:
     """A track bending left through 120 degrees, 12 m wide, bounds every ~2 m."""
     ang = np.linspace(-np.pi / 2, np.pi / 6, 80)
@@ -167,7 +157,7 @@ def test_full_sets_equal_geos(method, rows, trim, keep_body):
     got = reachable_sets(objs, TIMES, params, track, scalar=True)
     want = reachable_sets(objs, TIMES, params, track, scalar=False)
     assert got.shape == want.shape == (len(rows), len(TIMES))
-    _same_sets(got, want)
+    same_sets(got, want, TOL)
 
 
 def _ring_track() -> TrackBounds:
@@ -196,4 +186,4 @@ def test_full_sets_on_a_closed_track_equal_geos(method, rows):
     params = ReachParams(method=method)
     got = reachable_sets(objects(*rows), TIMES, params, track, scalar=True)
     want = reachable_sets(objects(*rows), TIMES, params, track, scalar=False)
-    _same_sets(got, want)
+    same_sets(got, want, TOL)
