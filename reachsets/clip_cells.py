@@ -71,32 +71,21 @@ def reduce_cells(
         parts: list[list[float]] | None = [cell]
         if cut is not None:
             parts = clip_prepared(cell, cut, difference=True)
-        if shell is not None and parts is not None:
-            parts = _within(parts, shell)
+        if shell is not None:
+            parts = _each(parts, shell, difference=False)
         for hole in holes:
-            parts = _minus(parts, hole)
+            parts = _each(parts, hole, difference=True)
         out.append(parts)
     return out
 
 
-def _within(parts: list[list[float]], e: Edges) -> list[list[float]] | None:
-    """Every part and ring ``e`` (``None`` if any of them gives up)."""
-    kept: list[list[float]] = []
-    for part in parts:
-        got = clip_prepared(part, e, difference=False)
-        if got is None:
-            return None
-        kept += got
-    return kept
-
-
-def _minus(parts: list[list[float]] | None, e: Edges) -> list[list[float]] | None:
-    """Every part minus ring ``e`` (``None`` if any of them gives up)."""
+def _each(parts: list[list[float]] | None, e: Edges, difference: bool) -> list[list[float]] | None:  # noqa: FBT001
+    """Every part ``& e`` (or ``- e``); ``None`` if any of them gives up."""
     if parts is None:
         return None
     kept: list[list[float]] = []
     for part in parts:
-        got = clip_prepared(part, e, difference=True)
+        got = clip_prepared(part, e, difference)
         if got is None:
             return None
         kept += got

@@ -35,7 +35,6 @@ import math
 from typing import TYPE_CHECKING
 
 import numpy as np
-import shapely
 
 from reachsets.footprints import body_to_map
 
@@ -49,7 +48,6 @@ __all__ = [
     "EXTENSION_M",
     "arc_profile",
     "funnel_coords",
-    "funnel_polygons",
     "steering_arc_scalar",
     "steering_arcs",
 ]
@@ -129,27 +127,6 @@ def steering_arc_scalar(
         psi += dpsi
         v2 = max(v2 - 2 * params.ax_max_mps2 * params.arc_step_m, 0.0)
     return pts
-
-
-def funnel_polygons(
-    objects: ObjectStates,
-    left: tuple[NDArray[np.float64], NDArray[np.float64]],
-    right: tuple[NDArray[np.float64], NDArray[np.float64]],
-    extension_m: float = EXTENSION_M,
-    *,
-    keep_body: bool = False,
-) -> NDArray[np.object_]:
-    """Deletion polygons outside the funnel between two body-frame edge curves.
-
-    The arguments are those of ``funnel_coords``.
-
-    Returns:
-        ``(N,)`` shapely polygons in the map frame (made valid).
-    """
-    coords = funnel_coords(objects, left, right, extension_m, keep_body=keep_body)
-    if coords.shape[0] == 0:
-        return np.empty(0, dtype=object)
-    return np.asarray(shapely.make_valid(shapely.polygons(coords)))
 
 
 def funnel_coords(

@@ -147,5 +147,7 @@ def _geos_cells(
     if cut[0] is not None:
         sets = np.asarray(shapely.difference(sets, cut[idx // t]))
     if area is not None:
-        sets = np.asarray(shapely.intersection(sets, area))
+        left = ~np.asarray(shapely.is_empty(sets), dtype=bool)  # empty & area is empty
+        if left.any():
+            sets[left] = shapely.intersection(sets[left], area)
     return sets

@@ -136,30 +136,6 @@ def _bent_track() -> TrackBounds:
     return TrackBounds(left_m=left, right_m=right)
 
 
-@pytest.mark.parametrize("method", list(ReachMethod))
-@settings(max_examples=40, deadline=None)
-@given(
-    st.lists(
-        st.tuples(
-            st.floats(-80.0, 60.0), st.floats(-5.0, 5.0), st.floats(-0.6, 0.6), st.floats(0, 60)
-        ),
-        min_size=1,
-        max_size=4,
-    ),
-    st.booleans(),
-    st.booleans(),
-)
-def test_full_sets_equal_geos(method, rows, trim, keep_body):
-    """Every reduced set of ``reachable_sets`` is GEOS' geometry within 1e-9 m (and m2)."""
-    track = build_track(_bent_track(), ReachParams().closed_track_gap_m)
-    objs = objects(*rows)
-    params = ReachParams(method=method, trim_to_drivable=trim, keep_object_body=keep_body)
-    got = reachable_sets(objs, TIMES, params, track, scalar=True)
-    want = reachable_sets(objs, TIMES, params, track, scalar=False)
-    assert got.shape == want.shape == (len(rows), len(TIMES))
-    same_sets(got, want, TOL)
-
-
 def _ring_track() -> TrackBounds:
     """A closed circular track (radius 50 m, 12 m wide), driven counter-clockwise."""
     ang = np.linspace(0.0, 2 * np.pi, 160)
@@ -167,23 +143,32 @@ def _ring_track() -> TrackBounds:
     return TrackBounds(left_m=44.0 * unit, right_m=56.0 * unit)
 
 
+TRACKS = {"bent": _bent_track(), "ring": _ring_track()}
+
+
 @pytest.mark.parametrize("method", list(ReachMethod))
-@settings(max_examples=30, deadline=None)
+@pytest.mark.parametrize("kind", sorted(TRACKS))
+@settings(max_examples=40, deadline=None)
 @given(
     st.lists(
         st.tuples(
-            st.floats(-70.0, 70.0), st.floats(-70.0, 70.0), st.floats(-3.2, 3.2), st.floats(0, 50)
+            st.floats(-80.0, 70.0), st.floats(-70.0, 70.0), st.floats(-3.2, 3.2), st.floats(0, 60)
         ),
         min_size=1,
-        max_size=3,
-    )
+        max_size=4,
+    ),
+    st.booleans(),
+    st.booleans(),
 )
-def test_full_sets_on_a_closed_track_equal_geos(method, rows):
-    """A loop's drivable area has a hole (the infield): objects on, in and beyond it."""
-    track = build_track(_ring_track(), ReachParams().closed_track_gap_m)
-    assert track.closed
-    assert len(track.polygon.interiors) == 1
-    params = ReachParams(method=method)
+def test_full_sets_equal_geos(method, kind, rows, trim, keep_body):
+    """Every reduced set of ``reachable_sets`` is GEOS' geometry within 1e-9 m (and m2).
+
+    ``ring`` is a loop whose drivable area has a hole (the infield): objects on, in and beyond.
+    """
+    track = build_track(TRACKS[kind], ReachParams().closed_track_gap_m)
+    assert len(track.polygon.interiors) == (kind == "ring")
+    params = ReachParams(method=method, trim_to_drivable=trim, keep_object_body=keep_body)
     got = reachable_sets(objects(*rows), TIMES, params, track, scalar=True)
     want = reachable_sets(objects(*rows), TIMES, params, track, scalar=False)
+    assert got.shape == want.shape == (len(rows), len(TIMES))
     same_sets(got, want, TOL)
