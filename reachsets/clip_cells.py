@@ -16,11 +16,10 @@ __all__ = ["Area", "clip", "reduce_cells"]
 def _near(e: Edges, box: list[float]) -> Edges:
     """A view of ``e`` with only the edges whose bounding box meets ``box`` (x0, y0, x1, y1)."""
     v = Edges([], e)
-    v.idx = [
-        j
-        for j in e.idx
-        if e.x0[j] <= box[2] and e.x1[j] >= box[0] and e.y0[j] <= box[3] and e.y1[j] >= box[1]
-    ]
+    for j in e.idx:
+        g = e.segs[j]
+        if g.x0 <= box[2] and g.x1 >= box[0] and g.y0 <= box[3] and g.y1 >= box[1]:
+            v.idx.append(j)
     return v
 
 

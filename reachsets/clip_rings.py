@@ -6,7 +6,7 @@ bounding boxes, orientation and whether it is well conditioned for the clipper.
 
 from __future__ import annotations
 
-__all__ = ["EPS", "Edges", "area2", "box_of", "conditioned", "dedup", "inside"]
+__all__ = ["EPS", "Edges", "Seg", "area2", "box_of", "conditioned", "dedup", "inside"]
 
 #: Crossing parameters this close to an edge's end, and sines of edge angles this small,
 #: are degenerate (GEOS decides them).
@@ -93,6 +93,19 @@ def inside(x: float, y: float, p: list[float]) -> bool:
     return inside
 
 
+class Seg:
+    """One edge ``(ax, ay) -> (bx, by)`` and its bounding box, as native floats (mypyc)."""
+
+    def __init__(self, ax: float, ay: float, bx: float, by: float) -> None:
+        """Keep the end points; the box is derived."""
+        self.ax = ax
+        self.ay = ay
+        self.bx = bx
+        self.by = by
+        self.x0, self.x1 = (ax, bx) if ax < bx else (bx, ax)
+        self.y0, self.y1 = (ay, by) if ay < by else (by, ay)
+
+
 class Edges:
     """A ring's edges with their bounding boxes, computed once per ring clipped against.
 
@@ -100,40 +113,33 @@ class Edges:
     """
 
     def __init__(self, p: list[float], base: Edges | None = None) -> None:
-        """The edges of ring ``p``, or an empty view of ``base``'s (same arrays, no ``idx``)."""
+        """The edges of ring ``p``, or an empty view of ``base``'s (same edges, no ``idx``)."""
         self.xy: list[float] = p
-        self.x0: list[float] = []
-        self.x1: list[float] = []
-        self.y0: list[float] = []
-        self.y1: list[float] = []
+        self.segs: list[Seg] = []
         self.ccw: bool = False
         self.ok: bool = False
         self.idx: list[int] = []
         if base is not None:  # a view of ``base``
             self.xy = base.xy
-            self.x0 = base.x0
-            self.x1 = base.x1
-            self.y0 = base.y0
-            self.y1 = base.y1
+            self.segs = base.segs
             self.ccw = base.ccw
             self.ok = base.ok
             return
         n = len(p) // 2
         for j in range(n):
             k = j + 1 if j + 1 < n else 0
-            lo, hi = (p[2 * j], p[2 * k]) if p[2 * j] < p[2 * k] else (p[2 * k], p[2 * j])
-            self.x0.append(lo)
-            self.x1.append(hi)
-            lo, hi = (
-                (p[2 * j + 1], p[2 * k + 1])
-                if p[2 * j + 1] < p[2 * k + 1]
-                else (p[2 * k + 1], p[2 * j + 1])
-            )
-            self.y0.append(lo)
-            self.y1.append(hi)
+            self.segs.append(Seg(p[2 * j], p[2 * j + 1], p[2 * k], p[2 * k + 1]))
         self.ccw = area2(p) > 0
         self.ok = n >= 3 and conditioned(p, box_of(p))  # noqa: PLR2004
         self.idx = list(range(n))
+
+    def contains(self, x: float, y: float) -> bool:
+        """``inside(x, y, self.xy)``, edge by edge (the same test per edge, native floats)."""
+        inside = False
+        for g in self.segs:
+            if (g.by > y) != (g.ay > y) and x < g.bx + (y - g.by) * (g.ax - g.bx) / (g.ay - g.by):
+                inside = not inside
+        return inside
 
 
 def area2(p: list[float]) -> float:

@@ -20,7 +20,7 @@ coordinates). Why not GEOS: ``docs/design-notes.md``, "Full reach sets without G
 
 from __future__ import annotations
 
-from reachsets.clip_rings import EPS, Edges, area2, box_of, conditioned, dedup, inside
+from reachsets.clip_rings import EPS, Edges, Seg, area2, box_of, conditioned, dedup, inside
 
 __all__ = ["clip_prepared"]
 
@@ -46,17 +46,21 @@ class _Hits:
         self.d: list[float] = []
 
 
-def _candidates(box: list[float], e: Edges) -> list[int]:
-    """The edges of ``e`` (among ``e.idx``) whose bounding box meets ``box``."""
+def _candidates(box: list[float], e: Edges) -> tuple[list[int], list[Seg]]:
+    """The edges of ``e`` (among ``e.idx``) whose bounding box meets ``box``: indices, edges."""
     lo_x = box[0]
     lo_y = box[1]
     hi_x = box[2]
     hi_y = box[3]
-    x0 = e.x0
-    x1 = e.x1
-    y0 = e.y0
-    y1 = e.y1
-    return [j for j in e.idx if x0[j] <= hi_x and x1[j] >= lo_x and y0[j] <= hi_y and y1[j] >= lo_y]
+    segs = e.segs
+    idx: list[int] = []
+    near: list[Seg] = []
+    for j in e.idx:
+        g = segs[j]
+        if g.x0 <= hi_x and g.x1 >= lo_x and g.y0 <= hi_y and g.y1 >= lo_y:
+            idx.append(j)
+            near.append(g)
+    return idx, near
 
 
 def _crossings(a: list[float], box: list[float], e: Edges) -> _Hits | None:
@@ -64,14 +68,8 @@ def _crossings(a: list[float], box: list[float], e: Edges) -> _Hits | None:
 
     ``None`` if a contact is degenerate.
     """
-    b = e.xy
-    nb = len(b) // 2
     na = len(a) // 2
-    cand = _candidates(box, e)
-    x0 = e.x0
-    x1 = e.x1
-    y0 = e.y0
-    y1 = e.y1
+    idx, near = _candidates(box, e)
     hits = _Hits()
     for i in range(na):
         i1 = (i + 1) % na
@@ -81,13 +79,11 @@ def _crossings(a: list[float], box: list[float], e: Edges) -> _Hits | None:
         ry = a[2 * i1 + 1] - ay
         ex0, ex1 = (ax, a[2 * i1]) if rx > 0 else (a[2 * i1], ax)
         ey0, ey1 = (ay, a[2 * i1 + 1]) if ry > 0 else (a[2 * i1 + 1], ay)
-        for j in cand:
-            if x0[j] > ex1 or x1[j] < ex0 or y0[j] > ey1 or y1[j] < ey0:
+        for c in range(len(near)):
+            g = near[c]
+            if g.x0 > ex1 or g.x1 < ex0 or g.y0 > ey1 or g.y1 < ey0:
                 continue
-            k = j + 1 if j + 1 < nb else 0
-            if not _cross(
-                hits, i, ax, ay, rx, ry, j, b[2 * j], b[2 * j + 1], b[2 * k], b[2 * k + 1]
-            ):
+            if not _cross(hits, i, ax, ay, rx, ry, idx[c], g.ax, g.ay, g.bx, g.by):
                 return None
     return hits
 
@@ -177,10 +173,11 @@ class _Along:
             count = (self.edge[nxt] - j) % m
             if count == 0 and self.key[nxt] < self.key[k]:
                 count = m
-            for c in range(1, count + 1):
-                v = (j + c) % m
-                ring.append(p[2 * v])
-                ring.append(p[2 * v + 1])
+            # vertices j + 1 .. j + count, wrapping: list slices (no unboxing, no new floats)
+            end = j + 1 + count
+            ring += p[2 * (j + 1) : 2 * min(end, m)]
+            if end > m:
+                ring += p[: 2 * (end - m)]
             return nxt
         nxt = self.order[(self.rank[k] - 1) % n]
         count = (j - self.edge[nxt]) % m
@@ -210,13 +207,14 @@ def clip_prepared(a: list[float], e: Edges, difference: bool) -> list[list[float
     if hits is None:
         return None
     if not hits.d:
-        return _apart(a, e.xy, difference)
+        return _apart(a, e, difference)
     return _traverse(a, e, hits, difference)
 
 
-def _apart(a: list[float], b: list[float], difference: bool) -> list[list[float]] | None:  # noqa: FBT001
+def _apart(a: list[float], e: Edges, difference: bool) -> list[list[float]] | None:  # noqa: FBT001
     """The result for rings that do not cross: one inside the other, or apart."""
-    if inside(a[0], a[1], b):
+    b = e.xy
+    if e.contains(a[0], a[1]):
         return [] if difference else [a]
     if inside(b[0], b[1], a):
         return None if difference else [b]
