@@ -16,10 +16,12 @@ __all__ = ["Area", "clip", "reduce_cells"]
 def _near(e: Edges, box: list[float]) -> Edges:
     """A view of ``e`` with only the edges whose bounding box meets ``box`` (x0, y0, x1, y1)."""
     v = Edges([], e)
-    for j in e.idx:
-        g = e.segs[j]
+    j = -1
+    for g in e.sel:
+        j += 1
         if g.x0 <= box[2] and g.x1 >= box[0] and g.y0 <= box[3] and g.y1 >= box[1]:
-            v.idx.append(j)
+            v.idx.append(e.idx[j])
+            v.sel.append(g)
     return v
 
 

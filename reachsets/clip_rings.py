@@ -109,7 +109,8 @@ class Seg:
 class Edges:
     """A ring's edges with their bounding boxes, computed once per ring clipped against.
 
-    ``idx``: the edges a clip looks at (all, or those near one object: ``clip_cells``).
+    ``idx``/``sel``: the edges a clip looks at, indices and edges (all, or those near one
+    object: ``clip_cells``).
     """
 
     def __init__(self, p: list[float], base: Edges | None = None) -> None:
@@ -119,6 +120,7 @@ class Edges:
         self.ccw: bool = False
         self.ok: bool = False
         self.idx: list[int] = []
+        self.sel: list[Seg] = []  # the edges of ``idx``
         if base is not None:  # a view of ``base``
             self.xy = base.xy
             self.segs = base.segs
@@ -132,6 +134,7 @@ class Edges:
         self.ccw = area2(p) > 0
         self.ok = n >= 3 and conditioned(p, box_of(p))  # noqa: PLR2004
         self.idx = list(range(n))
+        self.sel = self.segs
 
     def contains(self, x: float, y: float) -> bool:
         """``inside(x, y, self.xy)``, edge by edge (the same test per edge, native floats)."""

@@ -52,13 +52,13 @@ def _candidates(box: list[float], e: Edges) -> tuple[list[int], list[Seg]]:
     lo_y = box[1]
     hi_x = box[2]
     hi_y = box[3]
-    segs = e.segs
     idx: list[int] = []
     near: list[Seg] = []
-    for j in e.idx:
-        g = segs[j]
+    c = -1
+    for g in e.sel:
+        c += 1
         if g.x0 <= hi_x and g.x1 >= lo_x and g.y0 <= hi_y and g.y1 >= lo_y:
-            idx.append(j)
+            idx.append(e.idx[c])
             near.append(g)
     return idx, near
 
@@ -79,8 +79,9 @@ def _crossings(a: list[float], box: list[float], e: Edges) -> _Hits | None:
         ry = a[2 * i1 + 1] - ay
         ex0, ex1 = (ax, a[2 * i1]) if rx > 0 else (a[2 * i1], ax)
         ey0, ey1 = (ay, a[2 * i1 + 1]) if ry > 0 else (a[2 * i1 + 1], ay)
-        for c in range(len(near)):
-            g = near[c]
+        c = -1
+        for g in near:  # iterating, not indexing: mypyc's unchecked list reads
+            c += 1
             if g.x0 > ex1 or g.x1 < ex0 or g.y0 > ey1 or g.y1 < ey0:
                 continue
             if not _cross(hits, i, ax, ay, rx, ry, idx[c], g.ax, g.ay, g.bx, g.by):
