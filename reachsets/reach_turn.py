@@ -35,7 +35,6 @@ import math
 from typing import TYPE_CHECKING
 
 import numpy as np
-import shapely
 
 from reachsets.footprints import body_to_map
 
@@ -45,7 +44,13 @@ if TYPE_CHECKING:
     from reachsets.inputs import ObjectStates
     from reachsets.params import ReachParams
 
-__all__ = ["EXTENSION_M", "arc_profile", "funnel_polygons", "steering_arc_scalar", "steering_arcs"]
+__all__ = [
+    "EXTENSION_M",
+    "arc_profile",
+    "funnel_coords",
+    "steering_arc_scalar",
+    "steering_arcs",
+]
 
 #: How far the deletion polygon reaches sideways and behind (reference ``turn``: 50 m).
 EXTENSION_M = 50.0
@@ -124,15 +129,15 @@ def steering_arc_scalar(
     return pts
 
 
-def funnel_polygons(
+def funnel_coords(
     objects: ObjectStates,
     left: tuple[NDArray[np.float64], NDArray[np.float64]],
     right: tuple[NDArray[np.float64], NDArray[np.float64]],
     extension_m: float = EXTENSION_M,
     *,
     keep_body: bool = False,
-) -> NDArray[np.object_]:
-    """Deletion polygons outside the funnel between two body-frame edge curves.
+) -> NDArray[np.float64]:
+    """Rings of the deletion polygons outside the funnel between two body-frame edge curves.
 
     Args:
         objects: The objects (N).
@@ -143,7 +148,7 @@ def funnel_polygons(
             deletes everything behind the front corners, as the reference does.
 
     Returns:
-        ``(N,)`` shapely polygons in the map frame.
+        ``(N, V, 2)`` map-frame vertices of each ring (open; may self-intersect).
     """
     lxi, leta = left
     rxi, reta = right
@@ -169,13 +174,10 @@ def funnel_polygons(
         eta = np.concatenate(
             [leta[:, ::-1], reta, reta[:, -1:] - e, back, -back, leta[:, -1:] + e], axis=1
         )
-    coords = body_to_map(
+    return body_to_map(
         xi,
         eta,
         np.asarray(objects.x_m)[:, None],
         np.asarray(objects.y_m)[:, None],
         np.asarray(objects.yaw_rad)[:, None],
     )
-    if coords.shape[0] == 0:
-        return np.empty(0, dtype=object)
-    return np.asarray(shapely.make_valid(shapely.polygons(coords)))

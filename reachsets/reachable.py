@@ -7,11 +7,12 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import shapely
 
-from reachsets import small_scalar
+from reachsets import clip_scalar, small_scalar
 from reachsets.params import ReachMethod
 from reachsets.reach_bound import wall_aware_arcs
 from reachsets.reach_simple import simple_reach_polygons, simple_reach_vertices
-from reachsets.reach_turn import funnel_polygons, steering_arcs
+from reachsets.reach_turn import funnel_coords, steering_arcs
+from reachsets.reduce import scalar_sets
 
 if TYPE_CHECKING:
     from numpy.typing import NDArray
@@ -21,7 +22,9 @@ if TYPE_CHECKING:
     from reachsets.track import TrackGeometry
 
 __all__ = [
+    "SCALAR_CLIP",
     "SCALAR_SETS_MAX",
+    "deletion_coords",
     "deletion_polygons",
     "reachable_sets",
     "simple_sets",
@@ -31,6 +34,9 @@ __all__ = [
 #: Up to this many objects ``simple_vertices`` builds the sets with the scalar twin
 #: (``small_scalar.simple_vertices_rows``, compiled) instead of numpy (measured crossover).
 SCALAR_SETS_MAX = 3 if not small_scalar.__file__.endswith(".py") else 0
+#: Whether ``reachable_sets`` reduces the sets with the compiled clipper (``clip_scalar``)
+#: by default; from the sources it is slower than GEOS.
+SCALAR_CLIP = not clip_scalar.__file__.endswith(".py")
 
 
 def deletion_polygons(
@@ -40,6 +46,18 @@ def deletion_polygons(
 
     ``bound`` without a track falls back to the ``turn`` arcs.
     """
+    coords = deletion_coords(objects, params, track)
+    if coords is None:
+        return None
+    if coords.shape[0] == 0:
+        return np.empty(0, dtype=object)
+    return np.asarray(shapely.make_valid(shapely.polygons(coords)))
+
+
+def deletion_coords(
+    objects: ObjectStates, params: ReachParams, track: TrackGeometry | None
+) -> NDArray[np.float64] | None:
+    """The rings of ``deletion_polygons`` before they are made valid, ``(N, V, 2)``."""
     if params.method == ReachMethod.SIMPLE:
         return None
     if params.method == ReachMethod.BOUND and track is not None:
@@ -47,7 +65,7 @@ def deletion_polygons(
     else:
         left = steering_arcs(objects, params, 1.0)
         right = (left[0], -left[1])  # steering_arcs(..., -1.0), bit for bit
-    return funnel_polygons(objects, left, right, keep_body=params.keep_object_body)
+    return funnel_coords(objects, left, right, keep_body=params.keep_object_body)
 
 
 def reachable_sets(
@@ -60,6 +78,7 @@ def reachable_sets(
     cells: NDArray[np.bool_] | None = None,
     simple: NDArray[np.object_] | None = None,
     trim: bool = True,
+    scalar: bool | None = None,
 ) -> NDArray[np.object_]:
     """Reachable sets of every object at every stamp, ``(N, T)`` shapely geometries.
 
@@ -77,10 +96,18 @@ def reachable_sets(
             keep the plain ``simple`` polygon. ``None`` reduces every cell.
         simple: The ``simple_sets`` of these objects when already computed.
         trim: ``False`` skips the trimming (the caller clips the ego footprints instead).
+        scalar: Reduce every cell with the compiled clipper (``reduce.scalar_sets``; GEOS where
+            it gives up), the same geometry within 1e-9 m; ``None``: when compiled and
+            ``cells`` and ``simple`` are ``None``.
 
     Returns:
         ``(N, T)`` geometries (possibly multi-part or empty).
     """
+    if (scalar if scalar is not None else SCALAR_CLIP) and cells is None and simple is None:
+        area = drivable if drivable is not None else (track.polygon if track is not None else None)
+        trimmed = area if trim and params.trim_to_drivable else None
+        verts = simple_vertices(objects, times_s, params)
+        return scalar_sets(verts, deletion_coords(objects, params, track), trimmed)
     sets = simple_sets(objects, times_s, params) if simple is None else simple.copy()
     if sets.size == 0:
         return sets

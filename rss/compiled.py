@@ -56,8 +56,9 @@ _LOG = logging.getLogger(__name__)
 #: The compiled modules (the per-object Python of scene creation, the row-by-row
 #: structured engine of small frames, ``rss.structured.small``, the point-by-point
 #: trajectory sets of small unstructured frames, ``rss.unstructured.*_small``, and the reach
-#: sets' scalar ``bound`` curves and one-frame occupancy, ``reachsets.bound_scalar`` and
-#: ``small_scalar``).
+#: sets' scalar ``bound`` curves, one-frame occupancy and polygon clipper,
+#: ``reachsets.bound_scalar``, ``small_scalar``, ``clip_rings``, ``clip_scalar`` and
+#: ``clip_cells``).
 MODULES = (
     "rss.structured.batch",
     "rss.structured.stacking",
@@ -92,6 +93,9 @@ MODULES = (
     "rss.scene.segment_plans",
     "reachsets.bound_scalar",
     "reachsets.small_scalar",
+    "reachsets.clip_rings",
+    "reachsets.clip_scalar",
+    "reachsets.clip_cells",
 )
 #: Name of mypyc's shared library of the group (``<GROUP>__mypyc``).
 GROUP = "rss_workbench_compiled"

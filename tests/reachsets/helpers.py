@@ -5,6 +5,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 import numpy as np
+import shapely
 
 from reachsets import evaluate_frames
 from reachsets.inputs import (
@@ -90,3 +91,21 @@ def two_lane_road() -> RoadLayout:
     )
     solid = (np.stack([x, np.zeros_like(x)], 1),)
     return RoadLayout(lanes=(right_lane, left_lane), solid_lines_m=solid)
+
+
+def same_sets(got: np.ndarray, want: np.ndarray, tol: float) -> None:
+    """Cell by cell the same geometry within ``tol`` (area in m2, boundary Hausdorff in m).
+
+    ``None`` (nothing left, full geometry) or an empty geometry on both sides also agree.
+    """
+    assert got.shape == want.shape
+    for g, w in zip(got.ravel(), want.ravel(), strict=True):
+        if g is None or w is None:
+            assert g is None
+            assert w is None
+            continue
+        assert g.is_valid
+        assert abs(g.area - w.area) <= tol
+        assert g.is_empty == w.is_empty
+        if not g.is_empty:
+            assert shapely.hausdorff_distance(g.boundary, w.boundary) <= tol

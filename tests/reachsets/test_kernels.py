@@ -21,7 +21,7 @@ from reachsets.occupancy import (
 )
 from reachsets.params import ReachParams
 from reachsets.reach_simple import simple_reach_polygons, simple_reach_scalar, simple_reach_vertices
-from reachsets.reach_turn import funnel_polygons, steering_arc_scalar, steering_arcs
+from reachsets.reach_turn import funnel_coords, steering_arc_scalar, steering_arcs
 from reachsets.track import build_track
 from tests.reachsets.helpers import objects, straight_ego
 
@@ -99,7 +99,7 @@ def test_funnel_body_handling_and_validity(keep_body):
     objs = objects((5.0, 1.0, 0.3, 0.0), (0.0, 0.0, -1.0, 45.0))
     left = steering_arcs(objs, params, 1.0)
     right = steering_arcs(objs, params, -1.0)
-    funnel = funnel_polygons(objs, left, right, keep_body=keep_body)
+    funnel = shapely.polygons(funnel_coords(objs, left, right, keep_body=keep_body))
     assert np.all(shapely.is_valid(funnel))
     body = simple_reach_polygons(objs, np.array([0.0]), 13.0)[:, 0]
     overlap = shapely.area(shapely.intersection(funnel, body))

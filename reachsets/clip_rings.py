@@ -1,0 +1,160 @@
+"""Rings for the clipper (``clip_scalar``): flat open vertex lists and prepared edges (mypyc).
+
+A ring is ``[x0, y0, x1, y1, ...]`` without the closing vertex. ``Edges`` keeps a ring's edge
+bounding boxes, orientation and whether it is well conditioned for the clipper.
+"""
+
+from __future__ import annotations
+
+__all__ = ["EPS", "Edges", "Seg", "area2", "box_of", "conditioned", "dedup", "inside"]
+
+#: Crossing parameters this close to an edge's end, and sines of edge angles this small,
+#: are degenerate (GEOS decides them).
+EPS = 1e-9
+
+
+def dedup(p: list[float]) -> list[float]:
+    """The ring without repeated consecutive vertices (the closing one included).
+
+    The ring itself when it has none (the usual case: no copy, no float boxing).
+    """
+    n = len(p) // 2
+    for i in range(n):
+        j = i - 1 if i else n - 1
+        if p[2 * i] == p[2 * j] and p[2 * i + 1] == p[2 * j + 1]:
+            break
+    else:
+        return p
+    out: list[float] = []
+    for i in range(n):
+        x = p[2 * i]
+        y = p[2 * i + 1]
+        if out and out[-2] == x and out[-1] == y:
+            continue
+        out.append(x)
+        out.append(y)
+    while len(out) > 2 and out[0] == out[-2] and out[1] == out[-1]:  # noqa: PLR2004
+        del out[-2:]
+    return out
+
+
+def box_of(p: list[float]) -> list[float]:
+    """Bounding box of ring ``p``: ``[x0, y0, x1, y1]`` (comparisons: compiled to C)."""
+    lo_x = hi_x = p[0]
+    lo_y = hi_y = p[1]
+    for i in range(1, len(p) // 2):
+        x = p[2 * i]
+        y = p[2 * i + 1]
+        if x < lo_x:  # noqa: PLR1730
+            lo_x = x
+        if x > hi_x:  # noqa: PLR1730
+            hi_x = x
+        if y < lo_y:  # noqa: PLR1730
+            lo_y = y
+        if y > hi_y:  # noqa: PLR1730
+            hi_y = y
+    return [lo_x, lo_y, hi_x, hi_y]
+
+
+def conditioned(p: list[float], box: list[float]) -> bool:
+    """No edge shorter than ``EPS`` of the ring's extent (``box``), no edge folding back."""
+    n = len(p) // 2
+    tiny = EPS * (box[2] - box[0] + box[3] - box[1])
+    px = p[2 * n - 2] - p[2 * n - 4]
+    py = p[2 * n - 1] - p[2 * n - 3]
+    j = n - 1
+    for i in range(n):
+        qx = p[2 * i] - p[2 * j]
+        qy = p[2 * i + 1] - p[2 * j + 1]
+        lq = abs(qx) + abs(qy)
+        if lq <= tiny:
+            return False
+        if qx * px + qy * py < 0 and abs(px * qy - py * qx) <= EPS * lq * (abs(px) + abs(py)):
+            return False
+        px = qx
+        py = qy
+        j = i
+    return True
+
+
+def inside(x: float, y: float, p: list[float]) -> bool:
+    """Whether ``(x, y)`` lies inside ring ``p`` (crossing number; not on its boundary)."""
+    n = len(p) // 2
+    inside = False
+    jx = p[2 * n - 2]
+    jy = p[2 * n - 1]
+    for i in range(n):
+        ix = p[2 * i]
+        iy = p[2 * i + 1]
+        if (iy > y) != (jy > y) and x < ix + (y - iy) * (jx - ix) / (jy - iy):
+            inside = not inside
+        jx = ix
+        jy = iy
+    return inside
+
+
+class Seg:
+    """One edge ``(ax, ay) -> (bx, by)`` and its bounding box, as native floats (mypyc)."""
+
+    def __init__(self, ax: float, ay: float, bx: float, by: float) -> None:
+        """Keep the end points; the box is derived."""
+        self.ax = ax
+        self.ay = ay
+        self.bx = bx
+        self.by = by
+        self.x0, self.x1 = (ax, bx) if ax < bx else (bx, ax)
+        self.y0, self.y1 = (ay, by) if ay < by else (by, ay)
+
+
+class Edges:
+    """A ring's edges with their bounding boxes, computed once per ring clipped against.
+
+    ``idx``/``sel``: the edges a clip looks at, indices and edges (all, or those near one
+    object: ``clip_cells``).
+    """
+
+    def __init__(self, p: list[float], base: Edges | None = None) -> None:
+        """The edges of ring ``p``, or an empty view of ``base``'s (same edges, no ``idx``)."""
+        self.xy: list[float] = p
+        self.segs: list[Seg] = []
+        self.ccw: bool = False
+        self.ok: bool = False
+        self.idx: list[int] = []
+        self.sel: list[Seg] = []  # the edges of ``idx``
+        if base is not None:  # a view of ``base``
+            self.xy = base.xy
+            self.segs = base.segs
+            self.ccw = base.ccw
+            self.ok = base.ok
+            return
+        n = len(p) // 2
+        for j in range(n):
+            k = j + 1 if j + 1 < n else 0
+            self.segs.append(Seg(p[2 * j], p[2 * j + 1], p[2 * k], p[2 * k + 1]))
+        self.ccw = area2(p) > 0
+        self.ok = n >= 3 and conditioned(p, box_of(p))  # noqa: PLR2004
+        self.idx = list(range(n))
+        self.sel = self.segs
+
+    def contains(self, x: float, y: float) -> bool:
+        """``inside(x, y, self.xy)``, edge by edge (the same test per edge, native floats)."""
+        inside = False
+        for g in self.segs:
+            if (g.by > y) != (g.ay > y) and x < g.bx + (y - g.by) * (g.ax - g.bx) / (g.ay - g.by):
+                inside = not inside
+        return inside
+
+
+def area2(p: list[float]) -> float:
+    """Twice the signed area of ring ``p`` (positive: counter-clockwise)."""
+    n = len(p) // 2
+    total = 0.0
+    jx = p[2 * n - 2]
+    jy = p[2 * n - 1]
+    for i in range(n):
+        ix = p[2 * i]
+        iy = p[2 * i + 1]
+        total += jx * iy - ix * jy
+        jx = ix
+        jy = iy
+    return total
