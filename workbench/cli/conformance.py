@@ -124,11 +124,13 @@ def make_reach_cases(
             raise WorkbenchError(msg)
     if log is not None:
         from workbench.drives import open_log  # noqa: PLC0415
-        from workbench.engines.reachsets.cases import drive_case_document  # noqa: PLC0415
+        from workbench.engines.registry import engine  # noqa: PLC0415
 
+        to_cases = engine("reachsets").case_document
+        assert to_cases is not None  # the reach-set engine writes its case documents
         drive = open_log(log, map_path=None, profile=None, ego_id=None)
         try:
-            document = drive_case_document(drive, name=log.stem, method=names[0], source=str(log))
+            document = to_cases(drive, name=log.stem, method=names[0], source=str(log))
         finally:
             drive.close()
     else:

@@ -168,6 +168,9 @@ class EngineSpec:
             info``), or ``None``.
         packages: Import packages the engine's verdicts depend on besides its folder (their
             code is fingerprinted by ``workbench batch``).
+        case_document: A recorded drive as the engine library's conformance case document,
+            called ``(drive, *, name, method, source)`` (``workbench conformance
+            reachsets-cases --log``), or ``None``.
     """
 
     name: str
@@ -187,6 +190,7 @@ class EngineSpec:
     what_if: Callable[[Any], Sequence[tuple[str, Any]]] | None = None
     describe: Callable[[LaneMap | None, Any], str] | None = None
     packages: tuple[str, ...] = ()
+    case_document: Callable[..., dict[str, Any]] | None = None
 
 
 @dataclass(frozen=True, slots=True)

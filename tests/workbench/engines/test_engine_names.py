@@ -27,8 +27,10 @@ from workbench.engines.registry import BUILTIN, engine
 
 ROOT = Path(__file__).resolve().parents[3]
 #: (module path, constant): ``workbench conformance rss`` names the conformance suite of the
-#: pure ``rss`` library (DESIGN.md's pinned interface), not the engine.
-ALLOWED = {("workbench/cli/conformance.py", "rss")}
+#: pure ``rss`` library (DESIGN.md's pinned interface), not the engine; ``workbench
+#: conformance reachsets`` likewise the pure ``reachsets`` library's (its ``--log``
+#: conversion is the engine's ``case_document``, taken from the registry).
+ALLOWED = {("workbench/cli/conformance.py", "rss"), ("workbench/cli/conformance.py", "reachsets")}
 
 
 def _builtin_names() -> set[str]:

@@ -17,6 +17,7 @@ if TYPE_CHECKING:
     import rerun as rr
     import rerun.blueprint as rrb
 
+    from loaders.drive import Drive
     from loaders.maps.model import LaneMap
     from workbench.engines.base import EngineRunner, EngineSink
     from workbench.engines.ids import ActorIds
@@ -53,6 +54,12 @@ def _views() -> list[rrb.View]:
     return [rrb.TimeSeriesView(name="first collision [s into plan]", origin="/plots/reach")]
 
 
+def _case_document(drive: Drive, **how: Any) -> dict[str, Any]:
+    from workbench.engines.reachsets.cases import drive_case_document  # noqa: PLC0415
+
+    return drive_case_document(drive, **how)
+
+
 def _incident_overrides() -> dict[str, Any]:
     """In one incident's view: no per-object labels (the incident's objects are highlighted)."""
     import rerun as rr  # noqa: PLC0415 - the viewer's, on demand
@@ -74,4 +81,5 @@ SPEC = EngineSpec(
     options=ReachOptions,
     errors=(ReachSetError,),
     packages=("reachsets",),
+    case_document=_case_document,
 )
