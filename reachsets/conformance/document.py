@@ -25,6 +25,7 @@ from reachsets.conformance.errors import ReachCaseError
 from reachsets.conformance.records import check_expected, result_record
 from reachsets.engine import evaluate_frames
 from reachsets.errors import ReachSetError
+from reachsets.inputs import ObjectStates
 
 if TYPE_CHECKING:
     from collections.abc import Iterator, Mapping, Sequence
@@ -92,8 +93,10 @@ def unique_ids(inputs: ReachInputs, prefix: str) -> ReachInputs:
         prefix: Its prefix within the engine call, e.g. ``"3/"``.
     """
     objects = inputs.objects
-    ids = np.array([f"{prefix}{i}" for i in objects.ids.tolist()], dtype=np.str_)
-    return dataclasses.replace(inputs, objects=dataclasses.replace(objects, ids=ids))
+    columns = {f.name: getattr(objects, f.name) for f in dataclasses.fields(objects)}
+    columns["ids"] = np.array([f"{prefix}{i}" for i in objects.ids.tolist()], dtype=np.str_)
+    # the columns are the checked object's: no second validation
+    return dataclasses.replace(inputs, objects=ObjectStates.rows_of(columns, slice(None)))
 
 
 def _record(
