@@ -98,7 +98,9 @@ def test_settled_closes_step_zero_and_gives_up_on_crossings():
     objs = objects((10.0, 5.0, 0.3, 20.0))
     params = ReachParams(method=ReachMethod.TURN)
     verts = simple_vertices(objs, params.times_array_s, params)
-    ring = Edges(dedup(deletion_coords(objs, params, None)[0].ravel().tolist()))
+    cut = deletion_coords(objs, params, None)
+    assert cut is not None
+    ring = Edges(dedup(cut[0].ravel().tolist()))
     assert settled(verts[0, 0].ravel().tolist(), ring) == []
     square = [0.0, 0.0, 2.0, 0.0, 2.0, 2.0, 0.0, 2.0]
     assert settled(square, Edges([1.0, 1.0, 5.0, 1.0, 5.0, 5.0])) is None
