@@ -44,7 +44,7 @@ $(STAMP): pyproject.toml
 
 setup: $(STAMP)
 
-$(COMPILED): $(STAMP) $(wildcard rss/*.py rss/structured/*.py rss/scene/*.py rss/unstructured/*.py) reachsets/bound_scalar.py reachsets/small_scalar.py reachsets/clip_rings.py reachsets/clip_scalar.py reachsets/clip_cells.py tools/build_compiled.py
+$(COMPILED): $(STAMP) $(wildcard rss/*.py rss/structured/*.py rss/scene/*.py rss/unstructured/*.py) reachsets/bound_scalar.py reachsets/small_scalar.py reachsets/clip_rings.py reachsets/clip_scalar.py reachsets/clip_cells.py reachsets/track_scalar.py tools/build_compiled.py
 	$(BIN)/python tools/build_compiled.py
 
 compiled: $(COMPILED)

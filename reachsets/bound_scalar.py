@@ -79,36 +79,38 @@ def _interp(w: WallLists, s: float) -> tuple[float, float]:
     if j == last or s == cum[j]:
         return w.px[j], w.py[j]
     span = cum[j + 1] - cum[j]
-    out = []
-    for fp in (w.px, w.py):
-        slope = (fp[j + 1] - fp[j]) / span
-        v = slope * (s - cum[j]) + fp[j]
-        if math.isnan(v):
-            v = slope * (s - cum[j + 1]) + fp[j + 1]
-            if math.isnan(v) and fp[j] == fp[j + 1]:
-                v = fp[j]
-        out.append(v)
-    return out[0], out[1]
+    return _lerp(w.px, cum, j, span, s), _lerp(w.py, cum, j, span, s)
+
+
+def _lerp(fp: list[float], cum: list[float], j: int, span: float, s: float) -> float:
+    """One column of ``_interp`` inside interval ``j`` (numpy's branches and arithmetic)."""
+    slope = (fp[j + 1] - fp[j]) / span
+    v = slope * (s - cum[j]) + fp[j]
+    if math.isnan(v):
+        v = slope * (s - cum[j + 1]) + fp[j + 1]
+        if math.isnan(v) and fp[j] == fp[j + 1]:
+            v = fp[j]
+    return v
 
 
 def _nearest_s(w: WallLists, x: float, y: float, wall: int) -> float:
     """Arc length of the nearest point of wall ``wall`` (``walls.wall_frame``'s search)."""
     blocks = w.wall_blk[wall]
-    d2s = []
+    bx, by = w.blk_x, w.blk_y
     low = math.inf
     for b in blocks:
-        dx = x - w.blk_x[b]
-        dy = y - w.blk_y[b]
-        d2 = dx * dx + dy * dy
-        d2s.append(d2)
-        low = min(low, d2)
+        dx = x - bx[b]
+        dy = y - by[b]
+        low = min(low, dx * dx + dy * dy)
     upper = math.sqrt(low)
     best = math.inf
     win = -1
     win_u = 0.0
-    for i, b in enumerate(blocks):
+    for b in blocks:
         reach = upper * (1 + _SLACK) + _SLACK + w.blk_radius[b]
-        if d2s[i] > reach * reach:
+        dx = x - bx[b]
+        dy = y - by[b]
+        if dx * dx + dy * dy > reach * reach:  # the same d2 as above
             continue
         for j in w.blk_seg[b]:
             dx = x - w.start_x[j]

@@ -7,10 +7,16 @@ up (``None``: the caller runs GEOS for that cell).
 
 from __future__ import annotations
 
-from reachsets.clip_rings import Edges, box_of, dedup, inside
+import math
+
+from reachsets.clip_rings import Edges, Seg, area2, box_of, dedup, inside
 from reachsets.clip_scalar import clip_prepared
 
-__all__ = ["Area", "clip", "reduce_cells"]
+__all__ = ["SETTLED_TOL_M", "Area", "clip", "reduce_cells", "settled"]
+
+#: Slack of ``settled``, metres: an edge this far inside the cell still counts as outside it
+#: (what it leaves out is a sliver thinner than this along a chord of the cell).
+SETTLED_TOL_M = 1e-11
 
 
 def _near(e: Edges, box: list[float]) -> Edges:
@@ -71,13 +77,74 @@ def reduce_cells(
     for cell in cells:
         parts: list[list[float]] | None = [cell]
         if cut is not None:
-            parts = clip_prepared(cell, cut, difference=True)
+            parts = _minus(cell, cut)
         if shell is not None:
             parts = _each(parts, shell, difference=False)
         for hole in holes:
             parts = _each(parts, hole, difference=True)
         out.append(parts)
     return out
+
+
+def _minus(cell: list[float], cut: Edges) -> list[list[float]] | None:
+    """``cell - cut``: the clipper's, else ``settled``'s closed form (``None``: neither)."""
+    parts = clip_prepared(cell, cut, difference=True)
+    return parts if parts is not None else settled(cell, cut)
+
+
+def settled(cell: list[float], cut: Edges) -> list[list[float]] | None:
+    """``cell - cut`` for a convex cell whose interior no edge of ``cut`` enters, else ``None``.
+
+    The closed form of the contacts the clipper gives up on when they are only touches: at
+    step 0 the body's front edge lies on an edge of the deletion polygon, which holds the rest
+    of the body (so the cell is empty). No edge of ``cut`` enters the interior when, for each,
+    the segment lies outside one of the cell's edge lines or the cell on one side of the
+    segment's line (within ``SETTLED_TOL_M``); then the interior lies wholly inside ``cut``
+    (empty) or wholly outside (the cell), as its centroid does.
+    """
+    a = dedup(cell)
+    n = len(a) // 2
+    turn = area2(a)
+    if n < 3 or turn == 0.0:  # noqa: PLR2004
+        return None
+    sign = 1.0 if turn > 0 else -1.0
+    for j in range(n):  # convex: every corner turns the same way
+        k, m = (j + 1) % n, (j + 2) % n
+        ex, ey = a[2 * k] - a[2 * j], a[2 * k + 1] - a[2 * j + 1]
+        fx, fy = a[2 * m] - a[2 * k], a[2 * m + 1] - a[2 * k + 1]
+        if sign * (ex * fy - ey * fx) < 0:
+            return None
+    for g in cut.segs:
+        if not _outside(a, g, sign):
+            return None
+    cx = sum([a[2 * j] for j in range(n)]) / n
+    cy = sum([a[2 * j + 1] for j in range(n)]) / n
+    return [] if cut.contains(cx, cy) else [a]
+
+
+def _outside(a: list[float], g: Seg, sign: float) -> bool:
+    """Whether segment ``g`` misses the interior of the convex ring ``a`` (``sign``: its turn)."""
+    px, py, qx, qy = g.ax, g.ay, g.bx, g.by
+    n = len(a) // 2
+    for j in range(n):  # the segment beyond one of the cell's edges
+        k = (j + 1) % n
+        ax, ay = a[2 * j], a[2 * j + 1]
+        ex, ey = a[2 * k] - ax, a[2 * k + 1] - ay
+        tol = SETTLED_TOL_M * math.sqrt(ex * ex + ey * ey)
+        # outward is to the right of a counter-clockwise edge: sign * cross <= 0
+        if (
+            sign * (ex * (py - ay) - ey * (px - ax)) <= tol
+            and sign * (ex * (qy - ay) - ey * (qx - ax)) <= tol
+        ):
+            return True
+    sx, sy = qx - px, qy - py
+    tol = SETTLED_TOL_M * math.sqrt(sx * sx + sy * sy)
+    lo = hi = 0.0
+    for j in range(n):  # the cell on one side of the segment's line
+        c = sx * (a[2 * j + 1] - py) - sy * (a[2 * j] - px)
+        lo = min(lo, c)
+        hi = max(hi, c)
+    return lo >= -tol or hi <= tol
 
 
 def _each(parts: list[list[float]] | None, e: Edges, difference: bool) -> list[list[float]] | None:  # noqa: FBT001

@@ -18,6 +18,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import shapely
 
+from reachsets import track_scalar
+
 if TYPE_CHECKING:
     from numpy.typing import NDArray
 
@@ -30,6 +32,9 @@ CENTRE_STEP_M = 1.0
 #: Segments either side of the nearest centre point searched by ``TrackGeometry.project``.
 LOCATE_WINDOW = 3
 _WINDOW = np.arange(-LOCATE_WINDOW, LOCATE_WINDOW)
+#: Up to this many positions ``project`` and ``lateral_m`` go point by point with the compiled
+#: twin (``track_scalar``, bit-identical); from the sources never.
+SCALAR_POINTS_MAX = 8 if not track_scalar.__file__.endswith(".py") else 0
 
 #: Half window over which the centre-line heading is differentiated for the curvature.
 CURVATURE_HALF_WINDOW_M = 5.0
@@ -62,6 +67,8 @@ class TrackGeometry:
         length_m: Centre-line length.
         seg_m: Centre-line segment vectors, ``(C - 1, 2)`` (for ``locate``).
         seg_len_sq_m2: Their squared lengths, ``(C - 1,)``.
+        rows: The columns ``track_scalar`` reads, as lists (centre x, y, segment x, y, squared
+            length, arc length, normal x, y).
     """
 
     centre_m: NDArray[np.float64]
@@ -78,6 +85,7 @@ class TrackGeometry:
     length_m: float
     seg_m: NDArray[np.float64]
     seg_len_sq_m2: NDArray[np.float64]
+    rows: list[list[float]]
 
     def project(self, x_m: Any, y_m: Any) -> NDArray[np.float64]:
         """Arc length of the nearest centre-line point, ``(N,)`` for ``(N,)`` positions.
@@ -89,6 +97,10 @@ class TrackGeometry:
         """
         x = np.asarray(x_m, dtype=np.float64).reshape(-1)
         y = np.asarray(y_m, dtype=np.float64).reshape(-1)
+        if len(x) <= SCALAR_POINTS_MAX:
+            xs, ys = x.tolist(), y.tolist()
+            if all(map(math.isfinite, xs + ys)):
+                return np.array(track_scalar.project_rows(xs, ys, self.rows, LOCATE_WINDOW))
         c = self.centre_m
         near = np.argmin((x[:, None] - c[:, 0]) ** 2 + (y[:, None] - c[:, 1]) ** 2, axis=1)
         # integer bounds: maximum/minimum (np.clip without its per-call iinfo look-up)
@@ -125,6 +137,13 @@ class TrackGeometry:
         ``s_m``: the positions' ``project`` when already known.
         """
         s = self.project(x_m, y_m) if s_m is None else s_m
+        x = np.asarray(x_m, dtype=np.float64).reshape(-1)
+        if 0 < len(x) <= SCALAR_POINTS_MAX and np.ndim(x_m) == 1:
+            xs = x.tolist()
+            ys = np.asarray(y_m, dtype=np.float64).reshape(-1).tolist()
+            ss = np.asarray(s, dtype=np.float64).reshape(-1).tolist()
+            if len(ss) == len(xs) and all(map(math.isfinite, xs + ys + ss)):
+                return np.array(track_scalar.lateral_rows(xs, ys, ss, self.rows))
         i = self.index_at(s)
         dx = np.asarray(x_m, dtype=float) - self.centre_m[i, 0]
         dy = np.asarray(y_m, dtype=float) - self.centre_m[i, 1]
@@ -198,6 +217,7 @@ def build_track(bounds: TrackBounds, closed_gap_m: float = 35.0) -> TrackGeometr
         polygon = shapely.make_valid(shapely.polygons(ring))
     shapely.prepare(polygon)
     seg = np.diff(centre, axis=0)
+    seg_len_sq = np.maximum(seg[:, 0] ** 2 + seg[:, 1] ** 2, 1e-24)
     return TrackGeometry(
         centre_m=centre,
         s_m=s,
@@ -212,5 +232,12 @@ def build_track(bounds: TrackBounds, closed_gap_m: float = 35.0) -> TrackGeometr
         closed=closed,
         length_m=float(s[-1]),
         seg_m=seg,
-        seg_len_sq_m2=np.maximum(seg[:, 0] ** 2 + seg[:, 1] ** 2, 1e-24),
+        seg_len_sq_m2=seg_len_sq,
+        rows=[
+            *centre.T.tolist(),
+            *seg.T.tolist(),
+            seg_len_sq.tolist(),
+            s.tolist(),
+            *normal.T.tolist(),
+        ],
     )

@@ -69,6 +69,19 @@ def first_hits(
             cut = np.full(len(touch), None, dtype=object)
             cut[touched] = found
     grid = patches(touch) if patches is not None else None
+    if len(touch) == 1:  # one object (a frame by frame monitor): the same rounds, unstacked
+        lo, size = 0, 1
+        while lo < len(steps):
+            k = steps[lo : lo + size]
+            ok = _reduced_touch(
+                sets_m, ego_m, rows[lo : lo + size], k, area=area, cut=cut, grid=grid
+            )
+            if ok.any():
+                hits[0, k[int(np.argmax(ok))]] = True
+                break
+            lo += size
+            size *= 2
+        return hits
     rank = np.arange(len(rows)) - np.searchsorted(rows, rows)  # place within its row
     done = np.zeros(len(touch), dtype=bool)
     lo, size = 0, 1

@@ -57,8 +57,8 @@ _LOG = logging.getLogger(__name__)
 #: structured engine of small frames, ``rss.structured.small``, the point-by-point
 #: trajectory sets of small unstructured frames, ``rss.unstructured.*_small``, and the reach
 #: sets' scalar ``bound`` curves, one-frame occupancy and polygon clipper,
-#: ``reachsets.bound_scalar``, ``small_scalar``, ``clip_rings``, ``clip_scalar`` and
-#: ``clip_cells``).
+#: ``reachsets.bound_scalar``, ``small_scalar``, ``clip_rings``, ``clip_scalar``,
+#: ``clip_cells`` and ``track_scalar``).
 MODULES = (
     "rss.structured.batch",
     "rss.structured.stacking",
@@ -96,6 +96,7 @@ MODULES = (
     "reachsets.clip_rings",
     "reachsets.clip_scalar",
     "reachsets.clip_cells",
+    "reachsets.track_scalar",
 )
 #: Name of mypyc's shared library of the group (``<GROUP>__mypyc``).
 GROUP = "rss_workbench_compiled"
