@@ -6,7 +6,17 @@ bounding boxes, orientation and whether it is well conditioned for the clipper.
 
 from __future__ import annotations
 
-__all__ = ["EPS", "Edges", "Seg", "area2", "box_of", "conditioned", "dedup", "inside"]
+__all__ = [
+    "EPS",
+    "Edges",
+    "Seg",
+    "area2",
+    "box_of",
+    "conditioned",
+    "dedup",
+    "inside",
+    "surely_simple",
+]
 
 #: Crossing parameters this close to an edge's end, and sines of edge angles this small,
 #: are degenerate (GEOS decides them).
@@ -158,3 +168,42 @@ def area2(p: list[float]) -> float:
         jx = ix
         jy = iy
     return total
+
+
+def surely_simple(ring: list[float]) -> bool:
+    """Whether ring ``ring`` is surely a valid polygon shell for GEOS (``False``: ask GEOS).
+
+    ``True`` only when every coordinate is finite, at least three vertices are distinct
+    (repeated consecutive ones dropped, as GEOS does), no two edges that do not share a
+    vertex come near each other (disjoint boxes, or one edge's ends strictly on one side of
+    the other's line by more than ``EPS`` of the extent squared), and no two consecutive
+    edges fold back onto each other. Near contacts answer ``False`` (conservative).
+    """
+    p = dedup(ring)
+    n = len(p) // 2
+    if n < 3 or any(v - v != 0.0 for v in p):  # noqa: PLR2004  (NaN, infinities)
+        return False
+    box = box_of(p)
+    ext = box[2] - box[0] + box[3] - box[1]
+    tol = EPS * ext * ext
+    if not conditioned(p, box):
+        return False
+    segs = Edges(p).segs
+    for i in range(n):
+        g = segs[i]
+        for j in range(i + 2, n if i else n - 1):
+            h = segs[j]
+            if g.x1 < h.x0 or h.x1 < g.x0 or g.y1 < h.y0 or h.y1 < g.y0:
+                continue
+            if not (_apart(g, h, tol) or _apart(h, g, tol)):
+                return False
+    return True
+
+
+def _apart(g: Seg, h: Seg, tol: float) -> bool:
+    """Whether both ends of ``h`` lie strictly on one side of ``g``'s line (margin ``tol``)."""
+    dx = g.bx - g.ax
+    dy = g.by - g.ay
+    s = dx * (h.ay - g.ay) - dy * (h.ax - g.ax)
+    t = dx * (h.by - g.ay) - dy * (h.bx - g.ax)
+    return (s > tol and t > tol) or (s < -tol and t < -tol)

@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import shapely
 
-from reachsets import clip_cells
+from reachsets import clip_cells, clip_rings
 
 if TYPE_CHECKING:
     from numpy.typing import NDArray
@@ -65,7 +65,7 @@ def scalar_sets(
     n, t = verts.shape[:2]
     if n == 0 or t == 0 or (deletion is None and area is None):
         return np.asarray(shapely.polygons(verts)).reshape(n, t)
-    cut, dl = _deletion(deletion, n)
+    dl = _deletion(deletion, n)
     prepared = prepared_area(area) if area is not None else None
     xy: list[float] = []
     sizes: list[int] = []
@@ -88,25 +88,38 @@ def scalar_sets(
     out = _assemble(xy, sizes, owner, n * t)
     if fallback:
         flat = verts.reshape(n * t, *verts.shape[2:])
-        out[fallback] = _geos_cells(flat, cut, area, fallback, t)
+        out[fallback] = _geos_cells(flat, deletion, area, fallback, t)
     return out.reshape(n, t)
 
 
-def _deletion(
-    deletion: NDArray[np.float64] | None, n: int
-) -> tuple[NDArray[np.object_], list[list[float] | None]]:
-    """The deletion polygons for GEOS (made valid) and the clipper's rings (``None``: not simple).
+def _deletion(deletion: NDArray[np.float64] | None, n: int) -> list[list[float] | None]:
+    """The clipper's deletion rings (``None``: not simple for GEOS; empty without deletion).
 
-    Without deletion: no polygons and empty rings.
+    ``clip_rings.surely_simple`` answers most rings; GEOS' ``is_valid`` only the others.
     """
     if deletion is None:
-        return np.full(n, None, dtype=object), [[] for _ in range(n)]
-    cut = np.asarray(shapely.polygons(deletion))
+        return [[] for _ in range(n)]
+    flat: list[list[float] | None] = list(deletion.reshape(n, -1).tolist())
+    unsure = [i for i in range(n) if not clip_rings.surely_simple(flat[i] or [])]
+    if unsure:
+        valid = np.asarray(shapely.is_valid(shapely.polygons(deletion[unsure])), dtype=bool)
+        for i, ok in zip(unsure, valid.tolist(), strict=True):
+            if not ok:
+                flat[i] = None
+    return flat
+
+
+def _cut(
+    deletion: NDArray[np.float64] | None, rows: NDArray[np.int64]
+) -> NDArray[np.object_] | None:
+    """The deletion polygons of objects ``rows`` for GEOS, made valid where they are not."""
+    if deletion is None:
+        return None
+    cut = np.asarray(shapely.polygons(deletion[rows]))
     simple = np.asarray(shapely.is_valid(cut), dtype=bool)
     if not simple.all():
         cut[~simple] = shapely.make_valid(cut[~simple])
-    flat = deletion.reshape(n, -1).tolist()
-    return cut, [flat[i] if simple[i] else None for i in range(n)]
+    return cut
 
 
 def _assemble(
@@ -139,13 +152,18 @@ def _assemble(
 
 
 def _geos_cells(
-    flat: NDArray[np.float64], cut: NDArray[np.object_], area: Any, cells: list[int], t: int
+    flat: NDArray[np.float64],
+    deletion: NDArray[np.float64] | None,
+    area: Any,
+    cells: list[int],
+    t: int,
 ) -> NDArray[np.object_]:
     """The cells ``cells`` (flat indices) with GEOS, as ``reachable_sets`` computes them."""
     idx = np.array(cells, dtype=np.int64)
     sets = np.asarray(shapely.polygons(flat[idx]))
-    if cut[0] is not None:
-        sets = np.asarray(shapely.difference(sets, cut[idx // t]))
+    cut = _cut(deletion, idx // t)
+    if cut is not None:
+        sets = np.asarray(shapely.difference(sets, cut))
     if area is not None:
         left = ~np.asarray(shapely.is_empty(sets), dtype=bool)  # empty & area is empty
         if left.any():
