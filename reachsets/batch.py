@@ -255,7 +255,7 @@ def _stack_one(
         lat = track.lateral_m(px, py, s_obj)
     rows = np.flatnonzero(keep)
     return FrameBatch(
-        objects=objs.take(rows),
+        objects=objs if len(rows) == n else objs.take(rows),  # read-only arrays: shared
         frame=np.zeros(len(rows), dtype=np.intp),
         offsets=np.array([0, len(rows)], dtype=np.intp),
         skipped_ids=(tuple(str(i) for i in objs.ids[~keep]),),
