@@ -68,7 +68,7 @@ class TrackGeometry:
         seg_m: Centre-line segment vectors, ``(C - 1, 2)`` (for ``locate``).
         seg_len_sq_m2: Their squared lengths, ``(C - 1,)``.
         rows: The columns ``track_scalar`` reads, as lists (centre x, y, segment x, y, squared
-            length, arc length, normal x, y).
+            length, arc length, normal x, y, ``track_scalar.block_boxes`` of the centre).
     """
 
     centre_m: NDArray[np.float64]
@@ -239,5 +239,6 @@ def build_track(bounds: TrackBounds, closed_gap_m: float = 35.0) -> TrackGeometr
             seg_len_sq.tolist(),
             s.tolist(),
             *normal.T.tolist(),
+            track_scalar.block_boxes(*centre.T.tolist()),
         ],
     )

@@ -106,3 +106,20 @@ def test_settled_closes_step_zero_and_gives_up_on_crossings():
     assert settled(square, Edges([1.0, 1.0, 5.0, 1.0, 5.0, 5.0])) is None
     far = Edges([10.0, 10.0, 12.0, 10.0, 12.0, 12.0])
     assert settled(square, far) == [square]
+
+
+def test_scalar_project_ties_and_points_on_the_centre_line():
+    """Equidistant centre points (a circle's middle) and points on the line itself: the
+    skipped blocks of ``track_scalar._nearest`` never change numpy's first ``argmin``.
+    """
+    for amp_m in (0.0, 20.0):
+        track = build_track(_wavy_track(amp_m, closed=True))
+        c = track.centre_m
+        x = np.concatenate([[0.0, 1e-9, -3.0], c[::37, 0], (c[:-1:53, 0] + c[1::53, 0]) / 2])
+        y = np.concatenate([[0.0, 0.0, 2.0], c[::37, 1], (c[:-1:53, 1] + c[1::53, 1]) / 2])
+        for i in range(len(x)):
+            pad_x = np.full(_PAD + 1, x[i])
+            pad_y = np.full(_PAD + 1, y[i])
+            np.testing.assert_array_equal(
+                track.project(x[i : i + 1], y[i : i + 1]), track.project(pad_x, pad_y)[:1]
+            )
