@@ -23,7 +23,7 @@ import numpy as np
 from reachsets import ReachMethod, evaluate_frames
 from reachsets.conformance import evaluate_cases, parse_case, prepare_document, random_document
 from reachsets.conformance.document import BATCH_CASES, PreparedDocument, unique_ids
-from workbench.cli.conformance import record_line
+from workbench.outputs import json_text
 
 __all__ = ["run"]
 
@@ -89,7 +89,7 @@ def run(quick: bool) -> str:  # noqa: FBT001  (bench/run.py interface)
 
             def with_json(prepared: object = prepared) -> None:
                 for record in evaluate_cases(prepared):  # type: ignore[arg-type]
-                    record_line(record)
+                    json_text(record)
 
             ms, ms_json, ms_engine = (
                 _best(fn, rounds) / count * 1e3 for fn in (cases, with_json, _engine_only(prepared))
@@ -112,7 +112,7 @@ def run(quick: bool) -> str:  # noqa: FBT001  (bench/run.py interface)
         " the outlines of every reduced set), what the command runs after reading the file;"
         ' independent cases are rated 64 per engine call. "Of which engine": the'
         " `evaluate_frames` calls alone on the same cases (parsed beforehand). The last"
-        " column adds each record's JSON line (`record_line`, what the command prints; the"
+        " column adds each record's JSON line (`json_text`, what the command prints; the"
         f" reference returns Python lists). Best of {rounds} rounds, CPU time of the process"
         " (`process_time`), not wall time. Start-up (reading the document, preparing the"
         " track; excluded):"

@@ -70,6 +70,17 @@ def json_text(
         default: Turns a value JSON cannot hold into one it can (e.g. ``str`` for paths).
     """
     separators = (",", ":") if compact else None
+    if default is None:
+        # Already strict JSON (the usual case): written as is, without the walk that
+        # replaces non-finite numbers -- the same text, as ``finite`` changes nothing then
+        # (a float subclass such as numpy.float64 is written by float's own repr).
+        # Anything else (NaN, numpy ints and bools) is refused and takes the walk.
+        try:
+            return json.dumps(
+                value, indent=indent, sort_keys=sort_keys, separators=separators, allow_nan=False
+            )
+        except (ValueError, TypeError):
+            pass
     return json.dumps(
         finite(value),
         indent=indent,

@@ -93,3 +93,19 @@ def test_an_unwritable_target_is_one_line_naming_it(tmp_path: Path) -> None:
     assert "\n" not in str(info.value)
     with pytest.raises(WorkbenchError, match="Is a directory"):
         write_json(tmp_path, {}, "OpenLABEL")
+
+
+@pytest.mark.parametrize(
+    "value",
+    [
+        {"a": 1.5, "b": [1, 2.25, "x", None, True], "c": (3, 4.0)},
+        {"f64": np.float64(0.1), "neg": -0.0, "big": 1e300},
+        {"i64": np.int64(3), "b": np.bool_(True), "nan": math.nan},
+        [np.float32(2.5), {"inf": math.inf}],
+    ],
+)
+@pytest.mark.parametrize("compact", [False, True])
+def test_the_strict_shortcut_writes_what_the_walk_writes(value: Any, compact: bool) -> None:
+    separators = (",", ":") if compact else None
+    walked = json.dumps(finite(value), separators=separators, allow_nan=False)
+    assert json_text(value, compact=compact) == walked

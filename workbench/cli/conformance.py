@@ -13,7 +13,7 @@ from rss.errors import RssCaseError
 from workbench.errors import WorkbenchError
 from workbench.outputs import json_text
 
-__all__ = ["record_line", "register"]
+__all__ = ["register"]
 
 conformance_app = typer.Typer(
     help="Conformance runs against reference case files.", no_args_is_help=True
@@ -66,21 +66,7 @@ def reach_cases(
 
     prepared = prepare_document(_read_reach_cases(cases), str(cases), full_sets=full_sets)
     for record in evaluate_cases(prepared):
-        typer.echo(record_line(record))
-
-
-def record_line(record: dict[str, Any]) -> str:
-    """One JSON line of a reach-set record, strict JSON (never NaN).
-
-    Plain ``json.dumps`` when the record already is strict JSON (the records are built from
-    Python numbers, finite by construction), else ``json_text``'s clean-up, which walks
-    every value to replace non-finite numbers: a full-sets record holds thousands of outline
-    coordinates, so the strict dump (which refuses NaN) is tried first.
-    """
-    try:
-        return json.dumps(record, allow_nan=False)
-    except (ValueError, TypeError):
-        return json_text(record)
+        typer.echo(json_text(record))
 
 
 @conformance_app.command("reachsets-cases")
