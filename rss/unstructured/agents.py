@@ -23,6 +23,7 @@ import numpy as np
 
 from rss.model import ObjectType
 from rss.unstructured.errors import UnstructuredInputError
+from rss.unstructured.memory import frozen
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -126,12 +127,12 @@ class UnstructuredAgents:
     def concat(parts: Sequence[UnstructuredAgents]) -> UnstructuredAgents:
         """The agents of ``parts``, one after the other."""
         return UnstructuredAgents(
-            **{n: _frozen(np.concatenate([getattr(p, n) for p in parts])) for n in _FIELDS}
+            **{n: frozen(np.concatenate([getattr(p, n) for p in parts])) for n in _FIELDS}
         )
 
     def take(self, index: IntArray) -> UnstructuredAgents:
         """The agents at ``index``."""
-        return UnstructuredAgents(**{n: _frozen(getattr(self, n)[index]) for n in _FIELDS})
+        return UnstructuredAgents(**{n: frozen(getattr(self, n)[index]) for n in _FIELDS})
 
     def _rows(self) -> list[tuple[float, ...]]:
         """Per agent: the object type, then the float fields (:data:`_FLOAT_FIELDS` order)."""
@@ -174,11 +175,6 @@ def _valid_row(row: tuple[float, ...]) -> bool:
         and values["width_m"] > 0.0
         and model != _INVALID_MODEL
     )
-
-
-def _frozen(values: np.ndarray) -> np.ndarray:
-    values.setflags(write=False)
-    return values
 
 
 _FIELDS = tuple(UnstructuredAgents.__dataclass_fields__)
