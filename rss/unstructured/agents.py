@@ -94,9 +94,8 @@ class UnstructuredAgents:
             UnstructuredInputError: Fields of different lengths or not 1-D.
         """
         n = None
-        for name in self.__dataclass_fields__:
+        for name, dtype in _DTYPES.items():
             value = getattr(self, name)
-            dtype = np.int64 if name.startswith("object") else np.float64
             if not (  # a frozen array owning its data is kept (take, concat)
                 isinstance(value, np.ndarray)
                 and value.dtype == dtype
@@ -114,7 +113,7 @@ class UnstructuredAgents:
 
     def __len__(self) -> int:
         """Number of agents."""
-        return int(self.object_id.shape[0])
+        return len(self.object_id)
 
     @staticmethod
     def from_rows(rows: Sequence[dict[str, float]]) -> UnstructuredAgents:
@@ -179,6 +178,7 @@ def _valid_row(row: tuple[float, ...]) -> bool:
 
 _FIELDS = tuple(UnstructuredAgents.__dataclass_fields__)
 _FLOAT_FIELDS = tuple(n for n in _FIELDS if not n.startswith("object"))
+_DTYPES = {n: np.float64 if n in _FLOAT_FIELDS else np.int64 for n in _FIELDS}
 _MODEL_CODES = _MODEL.tolist()
 #: Agents up to which :meth:`UnstructuredAgents.valid` checks row by row.
 _ROW_CHECK_MAX = 8
