@@ -23,6 +23,7 @@ import numpy as np
 
 from rss.model import ObjectType
 from rss.unstructured.errors import UnstructuredInputError
+from rss.unstructured.memory import frozen
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -93,9 +94,8 @@ class UnstructuredAgents:
             UnstructuredInputError: Fields of different lengths or not 1-D.
         """
         n = None
-        for name in self.__dataclass_fields__:
+        for name, dtype in _DTYPES.items():
             value = getattr(self, name)
-            dtype = np.int64 if name.startswith("object") else np.float64
             if not (  # a frozen array owning its data is kept (take, concat)
                 isinstance(value, np.ndarray)
                 and value.dtype == dtype
@@ -113,7 +113,7 @@ class UnstructuredAgents:
 
     def __len__(self) -> int:
         """Number of agents."""
-        return int(self.object_id.shape[0])
+        return len(self.object_id)
 
     @staticmethod
     def from_rows(rows: Sequence[dict[str, float]]) -> UnstructuredAgents:
@@ -126,12 +126,12 @@ class UnstructuredAgents:
     def concat(parts: Sequence[UnstructuredAgents]) -> UnstructuredAgents:
         """The agents of ``parts``, one after the other."""
         return UnstructuredAgents(
-            **{n: _frozen(np.concatenate([getattr(p, n) for p in parts])) for n in _FIELDS}
+            **{n: frozen(np.concatenate([getattr(p, n) for p in parts])) for n in _FIELDS}
         )
 
     def take(self, index: IntArray) -> UnstructuredAgents:
         """The agents at ``index``."""
-        return UnstructuredAgents(**{n: _frozen(getattr(self, n)[index]) for n in _FIELDS})
+        return UnstructuredAgents(**{n: frozen(getattr(self, n)[index]) for n in _FIELDS})
 
     def _rows(self) -> list[tuple[float, ...]]:
         """Per agent: the object type, then the float fields (:data:`_FLOAT_FIELDS` order)."""
@@ -176,13 +176,9 @@ def _valid_row(row: tuple[float, ...]) -> bool:
     )
 
 
-def _frozen(values: np.ndarray) -> np.ndarray:
-    values.setflags(write=False)
-    return values
-
-
 _FIELDS = tuple(UnstructuredAgents.__dataclass_fields__)
 _FLOAT_FIELDS = tuple(n for n in _FIELDS if not n.startswith("object"))
+_DTYPES = {n: np.float64 if n in _FLOAT_FIELDS else np.int64 for n in _FIELDS}
 _MODEL_CODES = _MODEL.tolist()
 #: Agents up to which :meth:`UnstructuredAgents.valid` checks row by row.
 _ROW_CHECK_MAX = 8

@@ -165,7 +165,7 @@ def plan_sets(corners: FloatArray, plan: PiecePlan) -> TrajectorySets:
     pieces, width = plan.index.shape
     n = corners.shape[1]
     coords = corners[plan.index.T].reshape(width, pieces * n, 2)
-    owner = np.tile(np.arange(n), pieces)
+    owner = np.arange(pieces * n) % n  # np.tile's values, without its Python overhead
     return TrajectorySets(coords, np.repeat(plan.size, n), owner, np.repeat(plan.brake, n), n)
 
 
@@ -193,5 +193,5 @@ def sets_of_points(
     """The pieces of ``plan`` from the poses ``(R, N)`` of its footprint table's rows."""
     points = Points(x_m, y_m, yaw_rad, x_m, yaw_rad)  # speeds and yaw rates are not used
     corners = footprints(points, agents.length_m, agents.width_m, dyn.front_extra_m)
-    table = np.moveaxis(corners, 2, 1).reshape(-1, len(agents), 2)
+    table = corners.transpose(0, 2, 1, 3).reshape(-1, len(agents), 2)  # (R * 4, N, 2)
     return plan_sets(table, plan)

@@ -26,7 +26,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from rss.physics import DISTANCE_PRECISION, SPEED_PRECISION, eq, gt, le
-from rss.unstructured.memory import UnstructuredMemory
+from rss.unstructured.memory import UnstructuredMemory, frozen
 
 if TYPE_CHECKING:
     from rss.arrays import BoolArray, FloatArray, IntArray
@@ -165,14 +165,19 @@ def decide(  # noqa: PLR0917  (one engine step over arrays)
         pos_y = np.where(keep, memory.other_y_m[slot], pos_y)
     remembered = safe | found
     new_value = np.where(safe, other_brake, stored)
-    memory_out = UnstructuredMemory(
-        agents.object_id[remembered],
-        new_value[remembered],
-        agents.object_id[drive],
-        begin[drive],
-        end[drive],
-        pos_x[drive],
-        pos_y[drive],
+    memory_out = UnstructuredMemory(  # fresh arrays of masks, frozen here (no copies)
+        *(
+            frozen(values[mask])
+            for values, mask in (
+                (agents.object_id, remembered),
+                (new_value, remembered),
+                (agents.object_id, drive),
+                (begin, drive),
+                (end, drive),
+                (pos_x, drive),
+                (pos_y, drive),
+            )
+        )
     )
     decisions = Decisions(is_safe, response, begin, end, ego_brake, other_brake, both)
     return decisions, memory_out

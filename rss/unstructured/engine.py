@@ -307,11 +307,11 @@ class _FramesBatch:
         piece_row = kept_row[sets.owner]
         frame = row_frame[piece_row]
         agent = ~is_ego[piece_row]
-        order = np.argsort(agent * count + frame, kind="stable")
+        order = (agent * count + frame).argsort(kind="stable")
         frame, piece_row = frame[order], piece_row[order]
         egos = int(np.count_nonzero(~agent))
         pieces = TrajectorySets(
-            np.take(sets.coords, order, axis=1),  # C order (``[:, order]`` is not)
+            sets.coords.take(order, axis=1),  # C order (``[:, order]`` is not)
             sets.size[order],
             sets.owner[order],
             sets.brake[order],
@@ -327,13 +327,13 @@ class _FramesBatch:
             start,
             checked,
             ego_valid,
-            np.searchsorted(kept_row, start),
+            kept_row.searchsorted(start),
             kept_row,
             pieces.piece_range(
                 0, pieces.owner.size, np.maximum(piece_row - start[frame] - 1, 0), sets.count
             ),
-            np.searchsorted(frame[:egos], frames_at),
-            egos + np.searchsorted(frame[egos:], frames_at),
+            frame[:egos].searchsorted(frames_at),
+            egos + frame[egos:].searchsorted(frames_at),
             flags,
         )
 

@@ -115,12 +115,14 @@ def _box_pairs(
 ) -> tuple[IntArray, IntArray]:
     """Candidate pairs ``(e, a)`` of one frame: every ego piece against every agent piece."""
     e_lo, e_hi, a_lo, a_hi = boxes
+    (ex0, ey0), (ex1, ey1) = e_lo.T[:, :, None], e_hi.T[:, :, None]  # (E, 1) columns
+    (ax0, ay0), (ax1, ay1) = a_lo.T, a_hi.T  # (A,) rows
     candidates = (
-        (e_lo[:, None, 0] <= a_hi[None, :, 0])
-        & (a_lo[None, :, 0] <= e_hi[:, None, 0])
-        & (e_lo[:, None, 1] <= a_hi[None, :, 1])
-        & (a_lo[None, :, 1] <= e_hi[:, None, 1])
-        & (ego_sets.brake[:, None] | agent_sets.brake[None, :])
+        (ex0 <= ax1)
+        & (ax0 <= ex1)
+        & (ey0 <= ay1)
+        & (ay0 <= ey1)
+        & (ego_sets.brake[:, None] | agent_sets.brake)
     )
     e, a = np.nonzero(candidates)
     return e, a

@@ -385,14 +385,14 @@ def footprints(p: Points, length_m: Real, width_m: Real, front_extra_m: FloatArr
         width_m: Width [m].
         front_extra_m: Added in front (the ego's ``min_longitudinal_safety_distance``).
     """
-    front, back, half_w = np.broadcast_arrays(
-        np.asarray(length_m) / 2.0 + front_extra_m,
-        -np.asarray(length_m) / 2.0,
-        np.asarray(width_m) / 2.0,
-    )
-    lon = np.stack((front, front, back, back), axis=-1)
-    lat = np.stack((-half_w, half_w, half_w, -half_w), axis=-1)
+    half_l = np.asarray(length_m) / 2.0  # -(l / 2) is (-l) / 2 to the bit
+    front, half_w = half_l + front_extra_m, np.asarray(width_m) / 2.0
+    lon = np.empty((*np.broadcast_shapes(front.shape, half_w.shape), 4))  # no stack calls
+    lat = np.empty_like(lon)
+    lon[..., :2], lon[..., 2:] = front[..., None], -half_l[..., None]
+    lat[..., 1:3], lat[..., ::3] = half_w[..., None], -half_w[..., None]
     c, s = np.cos(p.yaw_rad)[..., None], np.sin(p.yaw_rad)[..., None]
-    x = p.x_m[..., None] + c * lon - s * lat
-    y = p.y_m[..., None] + s * lon + c * lat
-    return np.stack((x, y), axis=-1)
+    out = np.empty((*np.broadcast_shapes(c.shape, lon.shape), 2))
+    out[..., 0] = p.x_m[..., None] + c * lon - s * lat
+    out[..., 1] = p.y_m[..., None] + s * lon + c * lat
+    return out

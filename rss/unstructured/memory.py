@@ -17,13 +17,17 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["UnstructuredMemory"]
+__all__ = ["UnstructuredMemory", "frozen"]
+
+
+def frozen(values: np.ndarray) -> np.ndarray:
+    """``values`` made read-only in place (a fresh array the caller owns)."""
+    values.setflags(write=False)
+    return values
 
 
 def _frozen(values: object, dtype: type) -> np.ndarray:
-    out: np.ndarray = np.array(values, dtype=dtype).reshape(-1)
-    out.setflags(write=False)
-    return out
+    return frozen(np.array(values, dtype=dtype).reshape(-1))
 
 
 @dataclass(frozen=True)
@@ -49,16 +53,17 @@ class UnstructuredMemory:
     other_y_m: np.ndarray
 
     def __post_init__(self) -> None:
-        """Freeze the arrays with their dtypes."""
-        for name in self.__dataclass_fields__:
-            dtype = (
-                np.int64
-                if name.endswith("ids")
-                else bool
-                if name == "other_must_brake"
-                else np.float64
-            )
-            object.__setattr__(self, name, _frozen(getattr(self, name), dtype))
+        """Freeze the arrays with their dtypes (a frozen 1-D array owning its data is kept)."""
+        for name, dtype in _DTYPES.items():
+            value = getattr(self, name)
+            if not (
+                isinstance(value, np.ndarray)
+                and value.dtype == dtype
+                and value.ndim == 1
+                and value.flags.owndata
+                and not value.flags.writeable
+            ):
+                object.__setattr__(self, name, _frozen(value, dtype))
 
     @staticmethod
     def empty() -> UnstructuredMemory:
@@ -95,3 +100,10 @@ def _lookup(
     pos = np.clip(np.searchsorted(keys[order], query), 0, keys.shape[0] - 1)
     found = keys[order][pos] == query
     return found, np.where(found, values[order][pos], np.zeros(1, dtype=values.dtype))
+
+
+#: Field dtypes of :class:`UnstructuredMemory`.
+_DTYPES: dict[str, type] = {
+    name: np.int64 if name.endswith("ids") else bool if name == "other_must_brake" else np.float64
+    for name in UnstructuredMemory.__dataclass_fields__
+}
