@@ -140,6 +140,9 @@ def _assemble(
             shapely.GeometryType.POLYGON, pts, (offsets, np.arange(len(sizes) + 1))
         )
     )
+    if len(set(owner)) == len(owner):  # one ring per cell (the common case): no grouping
+        out[owner] = polys
+        return out
     own = np.array(owner, dtype=np.int64)
     count = np.bincount(own, minlength=cells)
     one = count[own] == 1

@@ -12,6 +12,7 @@ from reachsets.clip_cells import Area, clip, reduce_cells
 from reachsets.inputs import TrackBounds
 from reachsets.params import ReachMethod, ReachParams
 from reachsets.reachable import reachable_sets
+from reachsets.reduce import _assemble
 from reachsets.track import build_track
 from tests.reachsets.helpers import objects, same_sets
 
@@ -172,3 +173,21 @@ def test_full_sets_equal_geos(method, kind, rows, trim, keep_body):
     want = reachable_sets(objects(*rows), TIMES, params, track, scalar=False)
     assert got.shape == want.shape == (len(rows), len(TIMES))
     same_sets(got, want, TOL)
+
+
+@pytest.mark.parametrize("grouped", [False, True])
+def test_assemble_cells(grouped):
+    """Closed rings become one polygon per cell, several rings a multipolygon, none empty."""
+    square = [0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0]
+    far = [v + 5.0 for v in square]
+    rings = [square, far, square] if grouped else [far, square]
+    owner = [0, 0, 2] if grouped else [0, 2]
+    xy = [v for ring in rings for v in ring]
+    out = _assemble(xy, [len(r) // 2 for r in rings], owner, 3)
+    assert out.shape == (3,)
+    assert out[1].is_empty
+    assert out[2].equals(shapely.box(0, 0, 1, 1))
+    assert out[2].geom_type == "Polygon"
+    want_0 = shapely.union(shapely.box(0, 0, 1, 1), shapely.box(5, 5, 6, 6))
+    assert out[0].equals(want_0 if grouped else shapely.box(5, 5, 6, 6))
+    assert out[0].geom_type == ("MultiPolygon" if grouped else "Polygon")
