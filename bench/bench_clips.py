@@ -14,13 +14,12 @@ from __future__ import annotations
 
 import json
 import os
-import resource
 import tempfile
 import time
 from pathlib import Path
 from typing import Any
 
-from bench.child import run_json
+from bench.child import peak_rss_mib, run_json
 from loaders.timebase import ns_to_s
 
 _MIB = 2**20
@@ -92,7 +91,7 @@ def read_once(log: str) -> dict[str, float]:
         for _, _, message in make_reader(f).iter_messages():
             count += 1
             size += len(message.data)
-    return {"s": time.perf_counter() - started, "messages": count, "rss_mib": _peak_mib()}
+    return {"s": time.perf_counter() - started, "messages": count, "rss_mib": peak_rss_mib()}
 
 
 def cut(log: str, out: str, start: str, end: str) -> dict[str, float]:
@@ -120,7 +119,7 @@ def cut(log: str, out: str, start: str, end: str) -> dict[str, float]:
         "messages": sum(o.messages for o in outcomes),
         "window_s": ns_to_s(window),
         "out_mib": sum(p.stat().st_size for p in Path(out).iterdir()) / _MIB,
-        "rss_mib": _peak_mib(),
+        "rss_mib": peak_rss_mib(),
     }
 
 
@@ -139,11 +138,7 @@ def export_cli(log: str, out: str) -> dict[str, float]:
             raise
     elapsed = time.perf_counter() - started
     index = json.loads((Path(out) / "clips.json").read_text())
-    return {"s": elapsed, "clips": len(index), "rss_mib": _peak_mib()}
-
-
-def _peak_mib() -> float:
-    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    return {"s": elapsed, "clips": len(index), "rss_mib": peak_rss_mib()}
 
 
 def _drop_caches() -> bool:

@@ -3,7 +3,8 @@
 Generates (into a temporary directory) a drive with a 10 Hz ``nav_msgs/Odometry`` ego,
 a 10 Hz ``derived_object_msgs/ObjectArray`` with 30 actors, and a 10 Hz
 ``sensor_msgs/PointCloud2`` padding topic the loader skips: ~1 GB full, ~50 MB quick.
-Iterating all frames runs in a fresh subprocess so ``ru_maxrss`` is the loader's own peak.
+Iterating all frames runs in a fresh subprocess so its peak RSS
+(``bench.child.peak_rss_mib``) is the loader's own.
 """
 
 from __future__ import annotations
@@ -36,7 +37,8 @@ CARLA = "derived_object_msgs/msg/ObjectArray"
 CLOUD = "sensor_msgs/msg/PointCloud2"
 
 _CHILD = """
-import json, os, resource, sys, time
+import json, os, sys, time
+from bench.child import peak_rss_mib
 os.sched_setaffinity(0, {min(os.sched_getaffinity(0))})
 from loaders import open_drive
 t0 = time.perf_counter()
@@ -48,11 +50,12 @@ for frame in drive.frames():
 dt = time.perf_counter() - t0
 drive.close()
 print(json.dumps({"frames": n, "actors": actors, "seconds": dt,
-                  "peak_rss_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024}))
+                  "peak_rss_mb": peak_rss_mib()}))
 """
 
 _CHILD_REPLAY = """
-import json, os, resource, sys, time
+import json, os, sys, time
+from bench.child import peak_rss_mib
 os.sched_setaffinity(0, {min(os.sched_getaffinity(0))})
 from pathlib import Path
 from loaders import open_drive
@@ -64,13 +67,14 @@ dt = time.perf_counter() - t0
 drive.close()
 print(json.dumps({"frames": summary.frames, "seconds": dt,
                   "rrd_mb": Path(sys.argv[2]).stat().st_size / 2**20,
-                  "peak_rss_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024}))
+                  "peak_rss_mb": peak_rss_mib()}))
 """
 
 _BASELINE = """
-import json, resource
+import json
+from bench.child import peak_rss_mib
 import loaders, loaders.open, numpy, rosbags.highlevel, mcap.reader
-print(json.dumps({"peak_rss_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024}))
+print(json.dumps({"peak_rss_mb": peak_rss_mib()}))
 """
 
 

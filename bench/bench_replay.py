@@ -68,9 +68,10 @@ def load_and_log(path: Path, out: Path) -> tuple[int, float]:
 
 
 _CHILD = """
-import json, resource, sys
+import json, sys
 from pathlib import Path
 from bench.bench_replay import PooledDrive
+from bench.child import peak_rss_mib
 from workbench.viewer.replay import replay_drive
 n, out = int(sys.argv[1]), Path(sys.argv[2])
 def rss_mib():
@@ -79,7 +80,7 @@ marks = []
 def progress(done):
     marks.append(rss_mib())
 replay_drive(PooledDrive(n_frames=n, n_actors=30), out=out, progress=progress)
-peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+peak = peak_rss_mib()
 print(json.dumps({"peak_mib": peak, "rss_first_mib": marks[0], "rss_last_mib": marks[-1]}))
 """
 
