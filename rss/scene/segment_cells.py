@@ -23,8 +23,9 @@ nearest one, in the same order (``narrowed``).
 
 from __future__ import annotations
 
+import itertools
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -48,8 +49,8 @@ BAND_M = 6.0
 _SLACK_M = 1e-6
 #: Cell coordinates are clamped to this before the cast to integers.
 _FAR = float(1 << 40)
-#: Pairs of (segment, cell) evaluated at once while building.
-_BLOCK_PAIRS = 1 << 20
+#: Pairs of (segment, cell) evaluated at once while building (bounds the peak memory).
+_BLOCK_PAIRS = 1 << 18
 
 
 @dataclass(frozen=True)
@@ -101,7 +102,17 @@ def _distance(p: FloatArray, a: FloatArray, b: FloatArray) -> FloatArray:
     return out
 
 
-def _cells_of_lines(  # noqa: PLR0917 - the grid and one block of segments
+def _boxes(
+    lines: Polylines, seg: IntArray, origin: FloatArray, cell_m: float, grow_m: float
+) -> tuple[IntArray, IntArray]:
+    """``(S, 2)`` first and last cell ``(ix, iy)`` of each segment's box grown by ``grow_m``."""
+    a, b = lines.xy_m[seg], lines.xy_m[seg + 1]
+    lo = np.floor((np.minimum(a, b) - grow_m - origin) / cell_m).astype(np.int64)
+    hi = np.floor((np.maximum(a, b) + grow_m - origin) / cell_m).astype(np.int64)
+    return lo, hi
+
+
+def _cells_of_lines(  # noqa: PLR0917 - the grid, one piece of segments, its rows
     lines: Polylines,
     seg: IntArray,
     line: IntArray,
@@ -109,19 +120,25 @@ def _cells_of_lines(  # noqa: PLR0917 - the grid and one block of segments
     cell_m: float,
     shape: tuple[int, int],
     band_m: float,
+    rows: tuple[int, int] | None = None,
 ) -> tuple[IntArray, IntArray, IntArray]:
     """Keys, first and last candidate of the cells near the segments ``seg`` of ``line``.
 
-    ``seg`` holds all segments of each of its lines.
+    ``seg`` holds all segments of each of its lines; ``rows``: only the cells of rows
+    ``iy`` in ``[rows[0], rows[1])`` (all of them get every segment that can matter).
+    Sorted by key.
     """
     nx, ny = shape
-    r = cell_m * math.sqrt(0.5) + _SLACK_M
-    slack = 2.0 * r + DISTANCE_TOL_M + _SLACK_M
-    a, b = lines.xy_m[seg], lines.xy_m[seg + 1]
+    slack = _slack(cell_m)
     # every cell within band_m of the line has its nearest segment, and that segment's
     # candidates (within slack more), among the cells of the segments' grown boxes
-    lo = np.floor((np.minimum(a, b) - band_m - slack - origin) / cell_m).astype(np.int64)
-    hi = np.floor((np.maximum(a, b) + band_m + slack - origin) / cell_m).astype(np.int64)
+    lo, hi = _boxes(lines, seg, origin, cell_m, band_m + slack)
+    if rows is not None:
+        lo[:, 1] = np.maximum(lo[:, 1], rows[0])
+        hi[:, 1] = np.minimum(hi[:, 1], rows[1] - 1)
+        inside = lo[:, 1] <= hi[:, 1]
+        seg, line, lo, hi = seg[inside], line[inside], lo[inside], hi[inside]
+    a, b = lines.xy_m[seg], lines.xy_m[seg + 1]
     wide = hi[:, 0] - lo[:, 0] + 1
     row, local = flat_runs(np.zeros(len(seg), dtype=np.int64), wide * (hi[:, 1] - lo[:, 1] + 1))
     ix = lo[row, 0] + local % wide[row]
@@ -133,12 +150,18 @@ def _cells_of_lines(  # noqa: PLR0917 - the grid and one block of segments
     key, d, s = key[order], d[order], seg[row[order]]
     starts = _run_starts(key)
     group = np.repeat(np.arange(len(starts)), np.diff(np.append(starts, len(key))))
-    nearest = np.minimum.reduceat(d, starts)
+    nearest = np.minimum.reduceat(d, starts) if len(starts) else d
     candidate = d < nearest[group] + slack
     first = np.minimum.reduceat(np.where(candidate, s, np.iinfo(np.int64).max), starts)
     last = np.maximum.reduceat(np.where(candidate, s, -1), starts)
     keep = nearest <= band_m
     return key[starts][keep], first[keep], last[keep]
+
+
+def _slack(cell_m: float) -> float:
+    """How much farther than the nearest one a segment may matter for a cell [m]."""
+    r = cell_m * math.sqrt(0.5) + _SLACK_M
+    return 2.0 * r + DISTANCE_TOL_M + _SLACK_M
 
 
 def _run_starts(values: IntArray) -> IntArray:
@@ -148,43 +171,86 @@ def _run_starts(values: IntArray) -> IntArray:
     return np.flatnonzero(np.concatenate([[True], values[1:] != values[:-1]]))
 
 
-def _rows(
-    origin: FloatArray,
-    cell_m: float,
-    shape: tuple[int, int],
-    n_lines: int,
-    cells: tuple[IntArray, ...],
-) -> SegmentCells:
-    """Lay out the cells ``(key, first, last)`` (sorted by key) in rows (see SegmentCells)."""
-    nx, ny = shape
-    key, first, last = cells
-    line, iy, ix = key // (nx * ny), key // nx % ny, key % nx
-    y_first = np.zeros(n_lines, dtype=np.int64)
-    rows = np.zeros(n_lines, dtype=np.int64)
-    at = _run_starts(line)
-    if len(at):
-        y_first[line[at]] = np.minimum.reduceat(iy, at)
-        rows[line[at]] = np.maximum.reduceat(iy, at) - y_first[line[at]] + 1
-    row_base = np.cumsum(rows) - rows
-    row = row_base[line] + iy - y_first[line]
-    x_first = np.zeros(int(rows.sum()), dtype=np.int64)
-    width = np.zeros(int(rows.sum()), dtype=np.int64)
-    at = _run_starts(row)
-    if len(at):
-        x_first[row[at]] = np.minimum.reduceat(ix, at)
-        width[row[at]] = np.maximum.reduceat(ix, at) - x_first[row[at]] + 1
-    offset = np.cumsum(width) - width
-    out_first = np.full(int(width.sum()), -1, dtype=np.int32)  # segment indices
-    out_last = np.full(int(width.sum()), -1, dtype=np.int32)
-    where = offset[row] + ix - x_first[row]
-    out_first[where], out_last[where] = first, last
-    return SegmentCells(
-        origin, cell_m, y_first, rows, row_base, x_first, width, offset, out_first, out_last
-    )
+@dataclass
+class _Layout:
+    """The rows of the cells laid out so far, piece after piece (in key order).
+
+    Only rows holding cells are listed (``line``, ``iy``, ``x_first``, ``width``); the
+    candidate segments of their cells are kept as ``int32`` pieces. Memory: the laid-out
+    cells (8 bytes each) and the rows, never every cell's key.
+    """
+
+    shape: tuple[int, int]
+    rows: list[tuple[IntArray, ...]] = field(default_factory=list)
+    cells: list[tuple[npt.NDArray[np.int32], npt.NDArray[np.int32]]] = field(default_factory=list)
+
+    def add(self, key: IntArray, first: IntArray, last: IntArray) -> None:
+        """Lay out cells ``(key, first, last)`` sorted by key, their rows complete."""
+        nx, ny = self.shape
+        row_key, ix = key // nx, key % nx
+        at = _run_starts(row_key)
+        if not len(at):
+            return
+        x_first = np.minimum.reduceat(ix, at)
+        width = np.maximum.reduceat(ix, at) - x_first + 1
+        offset = np.cumsum(width) - width
+        row = np.repeat(np.arange(len(at)), np.diff(np.append(at, len(key))))
+        where = offset[row] + ix - x_first[row]
+        out_first = np.full(int(width.sum()), -1, dtype=np.int32)  # segment indices
+        out_last = np.full(int(width.sum()), -1, dtype=np.int32)
+        out_first[where], out_last[where] = first, last
+        self.rows.append((row_key[at] // ny, row_key[at] % ny, x_first, width))
+        self.cells.append((out_first, out_last))
+
+    def cells_of(self, origin: FloatArray, cell_m: float, n_lines: int) -> SegmentCells:
+        """The :class:`SegmentCells` (rows without cells inside a line's span: width 0)."""
+        none = np.zeros(0, dtype=np.int64)
+        line, iy, x_some, width_some = (
+            np.concatenate([none, *(row[k] for row in self.rows)]) for k in range(4)
+        )
+        y_first = np.zeros(n_lines, dtype=np.int64)
+        rows = np.zeros(n_lines, dtype=np.int64)
+        at = _run_starts(line)
+        if len(at):
+            y_first[line[at]] = np.minimum.reduceat(iy, at)
+            rows[line[at]] = np.maximum.reduceat(iy, at) - y_first[line[at]] + 1
+        row_base = np.cumsum(rows) - rows
+        row = row_base[line] + iy - y_first[line]
+        x_first = np.zeros(int(rows.sum()), dtype=np.int64)
+        width = np.zeros(int(rows.sum()), dtype=np.int64)
+        x_first[row], width[row] = x_some, width_some
+        offset = np.cumsum(width) - width
+        empty = np.zeros(0, dtype=np.int32)
+        out_first = np.concatenate([empty, *(f for f, _ in self.cells)])
+        out_last = np.concatenate([empty, *(last for _, last in self.cells)])
+        return SegmentCells(
+            origin, cell_m, y_first, rows, row_base, x_first, width, offset, out_first, out_last
+        )
+
+
+def _row_bands(lo: IntArray, hi: IntArray) -> list[tuple[int, int]]:
+    """Rows ``[y0, y1)`` of one line in bands of about :data:`_BLOCK_PAIRS` pairs each.
+
+    ``lo``, ``hi``: ``(S, 2)`` cell boxes of the line's segments.
+    """
+    y0, y1 = int(lo[:, 1].min()), int(hi[:, 1].max()) + 1
+    # pairs per row: each segment adds its box's width to every row of its box
+    per_row = np.zeros(y1 - y0 + 1, dtype=np.int64)
+    np.add.at(per_row, lo[:, 1] - y0, hi[:, 0] - lo[:, 0] + 1)
+    np.add.at(per_row, hi[:, 1] + 1 - y0, -(hi[:, 0] - lo[:, 0] + 1))
+    band = np.cumsum(np.cumsum(per_row[:-1])) // _BLOCK_PAIRS
+    cuts = (np.flatnonzero(np.diff(band)) + 1 + y0).tolist()
+    edges = [y0, *cuts, y1]
+    return list(itertools.pairwise(edges))
 
 
 def segment_cells(lines: Polylines, cell_m: float = CELL_M, band_m: float = BAND_M) -> SegmentCells:
     """Build the cells of ``lines`` (see module docstring); once per map.
+
+    Memory: lines are taken in pieces of about :data:`_BLOCK_PAIRS` (segment, cell) pairs
+    (consecutive lines together, a long line in bands of rows), each laid out at once, so
+    the peak is the laid-out cells (8 bytes each, twice while they are joined) plus one
+    piece, whatever the map's size.
 
     Args:
         lines: The polylines (each with at least two vertices).
@@ -195,25 +261,38 @@ def segment_cells(lines: Polylines, cell_m: float = CELL_M, band_m: float = BAND
     reach = band_m + 2.0 * cell_m + 1.0
     origin = lines.xy_m.min(axis=0) - reach
     nx, ny = (np.ceil((lines.xy_m.max(axis=0) + reach - origin) / cell_m).astype(int) + 1).tolist()
+    shape = (int(nx), int(ny))
     multi = np.flatnonzero(count > 1)
-    # pairs per line, roughly, to cut the lines into blocks of bounded memory
-    extent = np.array(
-        [
-            np.prod(np.ptp(lines.xy_m[lines.start[k] : lines.start[k + 1]], axis=0) + 2 * reach)
-            for k in multi.tolist()
-        ]
-    ).reshape(-1)
-    weight = extent / (cell_m * cell_m) * count[multi]
-    block = np.floor(np.cumsum(weight) / _BLOCK_PAIRS).astype(np.int64)
-    parts: list[tuple[IntArray, IntArray, IntArray]] = [(np.zeros(0, dtype=np.int64),) * 3]
-    for b in np.unique(block).tolist():
-        some = multi[block == b]
-        which, seg = flat_runs(lines.start[some], count[some])
-        parts.append(
-            _cells_of_lines(lines, seg, some[which], origin, cell_m, (int(nx), int(ny)), band_m)
-        )
-    cells = tuple(np.concatenate(column) for column in zip(*parts, strict=True))
-    return _rows(origin, cell_m, (int(nx), int(ny)), len(count), cells)
+    which, seg = flat_runs(lines.start[multi], count[multi])
+    lo, hi = _boxes(lines, seg, origin, cell_m, band_m + _slack(cell_m))
+    pairs = np.bincount(which, np.prod(hi - lo + 1, axis=1), minlength=len(multi))
+    seg_start = np.cumsum(count[multi]) - count[multi]
+    layout = _Layout(shape)
+
+    def flush(some: list[int]) -> None:
+        if some:
+            w, s = flat_runs(lines.start[multi[some]], count[multi[some]])
+            layout.add(*_cells_of_lines(lines, s, multi[some][w], origin, cell_m, shape, band_m))
+        some.clear()
+
+    block: list[int] = []
+    held = 0.0
+    for k in range(len(multi)):
+        if pairs[k] > _BLOCK_PAIRS:  # a long line alone, in bands of rows
+            flush(block)
+            part = slice(int(seg_start[k]), int(seg_start[k] + count[multi[k]]))
+            line = np.full(part.stop - part.start, multi[k], dtype=np.int64)
+            for band in _row_bands(lo[part], hi[part]):
+                cells = _cells_of_lines(lines, seg[part], line, origin, cell_m, shape, band_m, band)
+                layout.add(*cells)
+            continue
+        if held + pairs[k] > _BLOCK_PAIRS:
+            flush(block)
+            held = 0.0
+        block.append(k)
+        held += float(pairs[k])
+    flush(block)
+    return layout.cells_of(origin, cell_m, len(count))
 
 
 def narrowed(

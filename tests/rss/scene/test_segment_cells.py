@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import itertools
 
 import numpy as np
 import pytest
@@ -10,6 +11,7 @@ import shapely
 
 from loaders.maps.opendrive import read_opendrive
 from rss.scene import BoxArrays, border_index, match_boxes, prepare
+from rss.scene import segment_cells as segment_cells_module
 from rss.scene.admap_nearest import nearest_in_windows, segment_window, segments
 from rss.scene.polylines import Polylines, polylines
 from rss.scene.segment_cells import narrowed, segment_cells
@@ -128,6 +130,50 @@ def test_points_off_the_grid_keep_their_window() -> None:
     lo, hi = narrowed(cells, which, points, first, last)
     np.testing.assert_array_equal(lo, first)
     np.testing.assert_array_equal(hi, last)
+
+
+_FIELDS = ("origin_m", "y_first", "rows", "row_base", "x_first", "width", "offset", "first", "last")
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_pieces_of_bounded_memory_lay_out_the_same_cells(
+    seed: int, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Small pieces (consecutive lines together, a long line in bands of rows) give the
+    cells of one piece, field for field."""
+    base = _lines(np.random.default_rng(seed))
+    wiggle = np.c_[np.arange(0.0, 800.0, 7.0), 30.0 * np.sin(np.arange(0.0, 800.0, 7.0) / 90.0)]
+    diagonal = np.c_[np.arange(0.0, 300.0, 11.0), np.arange(0.0, 300.0, 11.0) + 60.0]
+    lines = polylines(
+        np.array(
+            [
+                *(
+                    shapely.LineString(base.xy_m[a:b])
+                    for a, b in itertools.pairwise(base.start.tolist())
+                ),
+                shapely.LineString(wiggle),
+                shapely.LineString(diagonal),
+            ],
+            dtype=object,
+        )
+    )
+    whole = segment_cells(lines)
+    banded = segment_cells_module._cells_of_lines
+    bands: list[tuple[int, int]] = []
+
+    def counted(*args: object) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        if len(args) > 7:  # the rows of a band
+            bands.append(args[7])  # type: ignore[arg-type]
+        return banded(*args)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(segment_cells_module, "_cells_of_lines", counted)
+    for pairs in (1 << 12, 1 << 15):
+        monkeypatch.setattr(segment_cells_module, "_BLOCK_PAIRS", pairs)
+        pieces = segment_cells(lines)
+        assert pieces.cell_m == whole.cell_m
+        for name in _FIELDS:
+            np.testing.assert_array_equal(getattr(pieces, name), getattr(whole, name), name)
+    assert len(bands) > 10  # the long lines were cut into bands of rows
 
 
 def test_single_segment_lines_get_no_cells() -> None:
