@@ -26,6 +26,7 @@ projections; the range is taken value by value with ad-physics' tolerant compari
 
 from __future__ import annotations
 
+import itertools
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -224,6 +225,30 @@ def _stations(length_m: float) -> FloatArray:
     return out
 
 
+#: (point, segment) pairs tried at once by :func:`lane_widths` (bounds its peak memory).
+_WIDTH_PAIRS = 1 << 20
+
+
+def _nearest_in_pieces(lines: Polylines, which: IntArray, points: FloatArray) -> FloatArray:
+    """:func:`nearest_on_lines` (no tie reversal), rows taken in pieces of bounded pairs.
+
+    Every row is searched on its whole line: a long map has many width stations on lines
+    of many segments, so all at once would hold every (point, segment) pair.
+    """
+    if not len(which):
+        return np.zeros(0)
+    steps = segments(lines)
+    first, last = segment_window(lines, which)
+    pairs = np.cumsum(last - first + 1)
+    cuts = np.searchsorted(pairs, np.arange(_WIDTH_PAIRS, int(pairs[-1]), _WIDTH_PAIRS))
+    out = [
+        nearest_in_windows(steps, points[a:b], None, first[a:b], last[a:b])[0]
+        for a, b in itertools.pairwise([0, *np.unique(cuts).tolist(), len(which)])
+        if b > a
+    ]
+    return np.concatenate(out)
+
+
 def lane_widths(
     left_m: tuple[FloatArray, ...], right_m: tuple[FloatArray, ...], backwards: BoolArray
 ) -> tuple[list[FloatArray], list[FloatArray]]:
@@ -259,7 +284,7 @@ def lane_widths(
     ends = interpolate(lines, both, np.concatenate([t, t]) * length[both])
     q = len(t)
     centre = 0.5 * (ends[:q] + ends[q:])
-    s, _ = nearest_on_lines(lines, segments(lines), both, np.concatenate([centre, centre]), None)
+    s = _nearest_in_pieces(lines, both, np.concatenate([centre, centre]))
     feet = interpolate(lines, both, s)
     width = np.hypot(*(feet[:q] - feet[q:]).T)
     split = np.cumsum(count)[:-1]

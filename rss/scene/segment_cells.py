@@ -220,9 +220,16 @@ class _Layout:
         width = np.zeros(int(rows.sum()), dtype=np.int64)
         x_first[row], width[row] = x_some, width_some
         offset = np.cumsum(width) - width
+        # one column joined at a time, its pieces freed before the next: the peak is the
+        # cells once and one column twice
         empty = np.zeros(0, dtype=np.int32)
-        out_first = np.concatenate([empty, *(f for f, _ in self.cells)])
-        out_last = np.concatenate([empty, *(last for _, last in self.cells)])
+        lasts = [last for _, last in self.cells]
+        firsts = [first for first, _ in self.cells]
+        self.cells.clear()
+        out_first = np.concatenate([empty, *firsts])
+        del firsts
+        out_last = np.concatenate([empty, *lasts])
+        del lasts
         return SegmentCells(
             origin, cell_m, y_first, rows, row_base, x_first, width, offset, out_first, out_last
         )
@@ -249,7 +256,7 @@ def segment_cells(lines: Polylines, cell_m: float = CELL_M, band_m: float = BAND
 
     Memory: lines are taken in pieces of about :data:`_BLOCK_PAIRS` (segment, cell) pairs
     (consecutive lines together, a long line in bands of rows), each laid out at once, so
-    the peak is the laid-out cells (8 bytes each, twice while they are joined) plus one
+    the peak is the laid-out cells (8 bytes each, 12 while they are joined) plus one
     piece, whatever the map's size.
 
     Args:

@@ -5,12 +5,13 @@ from __future__ import annotations
 import dataclasses
 import itertools
 import math
+from typing import Any
 
 import numpy as np
 import pytest
 import shapely
 
-from rss.scene import prepare
+from rss.scene import admap_nearest, prepare
 from rss.scene.admap_nearest import lane_widths, nearest_on_lines, range_of, segments
 from rss.scene.matching_points import ad_map_positions
 from rss.scene.polylines import polylines
@@ -101,6 +102,31 @@ def test_widths_of_reversed_lanes_run_in_admap_order() -> None:
     np.testing.assert_allclose(widths, slow_w[::-1], atol=1e-9)
     forward_t, _ = lane_widths((left,), (right,), np.array([False]))
     assert not np.allclose(forward_t[0][1:-1], at[1:-1])  # stations from the other end
+
+
+def test_widths_in_pieces_of_bounded_memory_are_the_same(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Width stations searched a few hundred pairs at a time give the widths of one search."""
+    left, right = _curved_lane()
+    lefts, rights = (
+        (left, left[::-1] + 30.0, left + 60.0),
+        (right, right[::-1] + 30.0, right + 60.0),
+    )
+    backwards = np.array([False, True, False])
+    whole_t, whole_w = lane_widths(lefts, rights, backwards)
+    searched = admap_nearest.nearest_in_windows
+    calls: list[int] = []
+
+    def counted(*args: Any) -> tuple[np.ndarray, np.ndarray]:
+        calls.append(len(args[1]))
+        return searched(*args)
+
+    monkeypatch.setattr(admap_nearest, "nearest_in_windows", counted)
+    monkeypatch.setattr(admap_nearest, "_WIDTH_PAIRS", 100)
+    piece_t, piece_w = lane_widths(lefts, rights, backwards)
+    assert len(calls) > 3  # several pieces
+    assert sum(calls) == 2 * sum(len(t) for t in whole_t)  # every station on both borders
+    for got, want in zip([*piece_t, *piece_w], [*whole_t, *whole_w], strict=True):
+        np.testing.assert_array_equal(got, want)
 
 
 def test_range_of_keeps_bounds_within_one_millimetre() -> None:
