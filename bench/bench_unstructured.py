@@ -40,6 +40,9 @@ SIZES = (1, 10, 50)
 CHUNK = 32
 #: Frames of the chunk the binding is timed on.
 BINDING_FRAMES = 6
+#: CPU time [s] each function spends per round of the per-call table, at least (short calls
+#: get many tries, so that their best call is stable on a shared machine).
+CALL_BUDGET_S = 0.05
 #: Time between frames [s].
 FRAME_DT_S = 0.1
 
@@ -54,21 +57,28 @@ def _advanced(agents: UnstructuredAgents, t_s: float) -> UnstructuredAgents:
     )
 
 
-def _best(fns: tuple[object, ...], rounds: int, calls: int = 3) -> list[float]:
+def _best(
+    fns: tuple[object, ...], rounds: int, calls: int = 3, budget_s: float = 0.0
+) -> list[float]:
     """Best CPU time [s] of one call of each function over ``rounds`` rounds.
 
     CPU time of this process (``time.process_time``), not wall time: the machine is shared
     and a pinned process is often descheduled mid-call. Each round runs every function
-    ``calls`` times in a row (warm caches), the functions taking turns round by round so
-    that all of them meet the same load.
+    ``calls`` times in a row (warm caches), and more until it has spent ``budget_s`` of CPU
+    time in that round (the same rule for every function: a short call gets enough tries
+    for its best to be stable, a long one keeps its ``calls``), the functions taking turns
+    round by round so that all of them meet the same load.
     """
     best = [float("inf")] * len(fns)
     for _ in range(rounds):
         for i, fn in enumerate(fns):
-            for _ in range(calls):
+            done, spent = 0, 0.0
+            while done < calls or spent < budget_s:
                 start = time.process_time()
                 fn()  # type: ignore[operator]
-                best[i] = min(best[i], time.process_time() - start)
+                elapsed = time.process_time() - start
+                best[i] = min(best[i], elapsed)
+                done, spent = done + 1, spent + elapsed
     return best
 
 
@@ -147,7 +157,7 @@ def run_calls(quick: bool) -> str:  # noqa: FBT001
         "| speed-up | speed-up with sets |"
     )
     rows = [header, "|---|---|---|---|---|---|---|"]
-    repeats = 3 if quick else 5
+    repeats, budget_s = (3, 0.02) if quick else (5, CALL_BUDGET_S)
     d = DEFAULT_EGO_DYNAMICS
     for label, share in KINDS:
         for n in SIZES:
@@ -174,13 +184,18 @@ def run_calls(quick: bool) -> str:  # noqa: FBT001
 
             ours()
             theirs()
-            t_ours, t_sets, t_ref = (t / n * 1e3 for t in _best((ours, with_sets, theirs), repeats))
+            t_ours, t_sets, t_ref = (
+                t / n * 1e3 for t in _best((ours, with_sets, theirs), repeats, budget_s=budget_s)
+            )
             rows.append(_row((label, str(n)), (t_ours, t_sets), t_ref))
     return _section(
         "Unstructured RSS (trajectory sets)",
         rows,
-        f"Best call of {repeats} rounds x 3 calls each (CPU time of the process; ours and"
-        " ad-rss take turns round by round), one ego + N agents per call",
+        f"Best call of {repeats} rounds; each round runs every function at least 3 times and"
+        f" until it has spent {budget_s * 1e3:.0f} ms of CPU time (the same rule for ours and"
+        f" ad-rss: a 0.3 ms call gets ~{budget_s / 3e-4:.0f} tries per round, a 9 ms call"
+        f" ~{budget_s / 9e-3:.0f}), ours and ad-rss"
+        " taking turns round by round; CPU time of the process; one ego + N agents per call",
     )
 
 
