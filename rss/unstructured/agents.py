@@ -125,13 +125,11 @@ class UnstructuredAgents:
     @staticmethod
     def concat(parts: Sequence[UnstructuredAgents]) -> UnstructuredAgents:
         """The agents of ``parts``, one after the other."""
-        return UnstructuredAgents(
-            **{n: frozen(np.concatenate([getattr(p, n) for p in parts])) for n in _FIELDS}
-        )
+        return _checked([np.concatenate([getattr(p, n) for p in parts]) for n in _FIELDS])
 
     def take(self, index: IntArray) -> UnstructuredAgents:
         """The agents at ``index``."""
-        return UnstructuredAgents(**{n: frozen(getattr(self, n)[index]) for n in _FIELDS})
+        return _checked([getattr(self, n)[index] for n in _FIELDS])
 
     def _rows(self) -> list[tuple[float, ...]]:
         """Per agent: the object type, then the float fields (:data:`_FLOAT_FIELDS` order)."""
@@ -156,6 +154,19 @@ class UnstructuredAgents:
             & (self.width_m > 0.0)
             & (motion_model(self.object_type) != _INVALID_MODEL)
         )
+
+
+def _checked(values: list[np.ndarray]) -> UnstructuredAgents:
+    """Agents of fresh arrays (``_FIELDS`` order) derived from checked agents.
+
+    Their dtypes are the fields' and their lengths agree (concatenations or one index of
+    every field), so :meth:`UnstructuredAgents.__post_init__`'s checks are skipped; the
+    arrays are frozen in place.
+    """
+    out = object.__new__(UnstructuredAgents)
+    for name, value in zip(_FIELDS, values, strict=True):
+        object.__setattr__(out, name, frozen(value))
+    return out
 
 
 def _valid_row(row: tuple[float, ...]) -> bool:

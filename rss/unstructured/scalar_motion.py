@@ -13,6 +13,9 @@ library's, as numpy's float64 ``sin``/``cos`` on the supported platforms; the te
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
+
+import numpy as np
 
 from rss.physics import (
     ACCELERATION_PRECISION,
@@ -23,10 +26,17 @@ from rss.physics import (
 )
 from rss.structured.scalar_physics import accelerated_limited_movement
 
+if TYPE_CHECKING:
+    from rss.arrays import FloatArray
+    from rss.unstructured.agents import UnstructuredAgents
+    from rss.unstructured.batch import AgentDynamics
+
 __all__ = [
     "ANGULAR_VELOCITY_PRECISION",
     "DYNAMICS_COLUMNS",
     "arc",
+    "corner_table",
+    "corners_of",
     "drive",
     "finish",
     "is_negative_zero",
@@ -213,3 +223,60 @@ def drive(state: State, phase: Phase, limits: tuple[float, float, float, float])
         speed = v1
         k += 1
     return sum_x, sum_y, yaw, speed, rate_end, k
+
+
+def corner_table(
+    poses: list[list[tuple[float, float, float]]],
+    sizes: list[tuple[float, float]],
+    front_extra_m: list[float],
+) -> list[float]:
+    """:func:`rss.unstructured.kinematics.footprints` of ``N`` agents' rows, flat.
+
+    Args:
+        poses: Per agent, the ``(x, y, yaw)`` of its ``R`` footprint-table rows.
+        sizes: Per agent, ``(length [m], width [m])``.
+        front_extra_m: Per agent, the length added in front [m].
+
+    Returns:
+        The corners (FR, FL, BL, BR) of the ``(R * 4, N, 2)`` table of
+        :func:`rss.unstructured.batch.sets_of_points`, row-major: the same operations in
+        the same order as the array twin, so the same floats.
+    """
+    n = len(poses)
+    rows = len(poses[0]) if n else 0
+    sides = []  # per agent: front, -half length, half width, -half width
+    for j in range(n):
+        half_l = sizes[j][0] / 2.0
+        half_w = sizes[j][1] / 2.0
+        sides.append((half_l + front_extra_m[j], -half_l, half_w, -half_w))
+    out = [0.0] * (rows * 8 * n)
+    step = 2 * n  # from one corner of a row to the next
+    for j in range(n):
+        front, back, left, right = sides[j]
+        for r in range(rows):
+            x, y, yaw = poses[j][r]
+            c, s = math.cos(yaw), math.sin(yaw)
+            at = (4 * r * n + j) * 2
+            _corner(out, at, (x, y, c, s), front, right)  # FR
+            _corner(out, at + step, (x, y, c, s), front, left)  # FL
+            _corner(out, at + 2 * step, (x, y, c, s), back, left)  # BL
+            _corner(out, at + 3 * step, (x, y, c, s), back, right)  # BR
+    return out
+
+
+def _corner(
+    out: list[float], at: int, frame: tuple[float, float, float, float], lon: float, lat: float
+) -> None:
+    """Write the corner at ``(lon, lat)`` of the footprint ``(x, y, cos yaw, sin yaw)``."""
+    x, y, c, s = frame
+    out[at] = x + c * lon - s * lat
+    out[at + 1] = y + s * lon + c * lat
+
+
+def corners_of(
+    poses: list[list[tuple[float, float, float]]], agents: UnstructuredAgents, dyn: AgentDynamics
+) -> FloatArray:
+    """The ``(R * 4, N, 2)`` corner table of the agents' rows (:func:`corner_table`)."""
+    sizes = list(zip(agents.length_m.tolist(), agents.width_m.tolist(), strict=True))
+    flat = corner_table(poses, sizes, dyn.front_extra_m.tolist())
+    return np.array(flat, dtype=np.float64).reshape(-1, len(poses), 2)

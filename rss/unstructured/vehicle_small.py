@@ -16,13 +16,13 @@ import functools
 import math
 from typing import TYPE_CHECKING
 
-import numpy as np
-
 from rss.physics import SPEED_PRECISION
+from rss.unstructured.batch import plan_sets
 from rss.unstructured.scalar_motion import (
     DYNAMICS_COLUMNS,
     State,
     arc,
+    corners_of,
     drive,
     finish,
     is_negative_zero,
@@ -35,7 +35,7 @@ from rss.unstructured.vehicle_batch import (
     SPLIT_MIN_AGENTS,
     vehicle_counts,
     vehicle_layout,
-    vehicle_sets_of_points,
+    vehicle_plan,
 )
 
 if TYPE_CHECKING:
@@ -176,5 +176,4 @@ def vehicle_sets_small(agents: UnstructuredAgents, dyn: AgentDynamics) -> Trajec
     step = u.vehicle_trajectory_calculation_step
     grids = (phase_grid(longest[0], step), phase_grid(longest[1], step))
     poses = [a.poses(rows, grids, u) for a in fleet]
-    table = np.array(poses, dtype=np.float64)  # (N, R, 3)
-    return vehicle_sets_of_points(table[:, :, 0].T, table[:, :, 1].T, table[:, :, 2].T, agents, dyn)
+    return plan_sets(corners_of(poses, agents, dyn), vehicle_plan(u))
