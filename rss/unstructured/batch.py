@@ -155,6 +155,13 @@ class PiecePlan:
     _per_piece: dict[int, tuple[IntArray, IntArray, BoolArray]] = field(
         default_factory=dict, init=False, repr=False, compare=False
     )
+    gather: IntArray = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        """``gather``: ``index.T`` in C order (``take`` along it is ~8x quicker than ``[]``)."""
+        gather = np.ascontiguousarray(self.index.T)
+        gather.setflags(write=False)
+        object.__setattr__(self, "gather", gather)
 
     def per_piece(self, count: int) -> tuple[IntArray, IntArray, BoolArray]:
         """``(size, owner, brake)`` of the ``P * count`` pieces of ``count`` agents, read-only.
@@ -187,7 +194,7 @@ def plan_sets(corners: FloatArray, plan: PiecePlan) -> TrajectorySets:
     """
     pieces, width = plan.index.shape
     n = corners.shape[1]
-    coords = corners[plan.index.T].reshape(width, pieces * n, 2)
+    coords = corners.take(plan.gather, axis=0).reshape(width, pieces * n, 2)
     return TrajectorySets(coords, *plan.per_piece(n), n)
 
 
