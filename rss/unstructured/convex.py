@@ -19,7 +19,7 @@ piece.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, Final
 
 __all__ = [
     "APART",
@@ -34,11 +34,13 @@ __all__ = [
 ]
 
 #: Verdicts of :func:`verdict`.
-APART, OVERLAP, UNSURE = 0, 1, 2
+APART: Final = 0
+OVERLAP: Final = 1
+UNSURE: Final = 2
 #: Margin per metre of coordinate magnitude.
-MARGIN_RELATIVE = 1e-9
+MARGIN_RELATIVE: Final = 1e-9
 #: Vertices of a hull with an area (fewer: the pair goes to shapely).
-_POLYGON = 3
+_POLYGON: Final = 3
 
 
 def hull(points: list[list[float]], size: int) -> list[float]:
