@@ -3,7 +3,8 @@
 The twin of ``rss.unstructured.pedestrian_batch._moving`` for small batches (see
 :mod:`rss.unstructured.vehicle_small`): the poses of every row of the footprint table with
 the scalar kernels of :mod:`rss.unstructured.scalar_motion`, in the same operations and
-order, then the same footprint and piece code; the sets are equal to the bit.
+order, then their footprint corners point by point and the same piece plan; the sets are
+equal to the bit.
 """
 
 from __future__ import annotations

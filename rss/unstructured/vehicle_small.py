@@ -5,8 +5,9 @@ builder :func:`rss.unstructured.vehicle_batch.vehicle_sets_batch` spends its tim
 hundred numpy calls on arrays of a few dozen values. This twin computes the same poses with
 the scalar kernels of :mod:`rss.unstructured.scalar_motion` — every row of the footprint
 table, in the same operations and order, the step grid shared by the whole batch as in
-the batched call — and hands them to the same footprint and piece code, so the sets are
-equal to the bit. :func:`rss.unstructured.engine.trajectory_sets` chooses it by size
+the batched call — then their footprint corners (the scalar twin
+:func:`rss.unstructured.scalar_motion.corner_table`) and the same piece plan, so the sets
+are equal to the bit. :func:`rss.unstructured.engine.trajectory_sets` chooses it by size
 (:data:`SMALL_SETS_MAX`) when the compiled modules are in use.
 """
 
