@@ -5,10 +5,11 @@ The small-frame path of the set builders (:mod:`rss.unstructured.vehicle_small`,
 with plain floats instead of a hundred small numpy calls; compiled with mypyc
 (:mod:`rss.compiled`) these run at C speed; :func:`corner_table` gives the footprint
 corners of those points (:func:`rss.unstructured.kinematics.footprints`). Every function
-performs the same IEEE operations in the same order as its array twin and picks the branch the twin's
-``np.where`` picks, so both give the same floats (``math.sin``/``math.cos`` are the C
-library's, as numpy's float64 ``sin``/``cos`` on the supported platforms; the tests of
-``tests/rss/unstructured/test_small.py`` check the equality to the bit).
+performs the same IEEE operations in the same order as its array twin and picks the
+branch the twin's ``np.where`` picks, so both give the same floats (``math.sin``/
+``math.cos`` are the C library's, as numpy's float64 ``sin``/``cos`` on the supported
+platforms; the tests of ``tests/rss/unstructured/test_small.py`` check the equality to
+the bit).
 """
 
 from __future__ import annotations
