@@ -125,13 +125,11 @@ class UnstructuredAgents:
     @staticmethod
     def concat(parts: Sequence[UnstructuredAgents]) -> UnstructuredAgents:
         """The agents of ``parts``, one after the other."""
-        return UnstructuredAgents(
-            **{n: frozen(np.concatenate([getattr(p, n) for p in parts])) for n in _FIELDS}
-        )
+        return _checked([np.concatenate([getattr(p, n) for p in parts]) for n in _FIELDS])
 
     def take(self, index: IntArray) -> UnstructuredAgents:
         """The agents at ``index``."""
-        return UnstructuredAgents(**{n: frozen(getattr(self, n)[index]) for n in _FIELDS})
+        return _checked([getattr(self, n)[index] for n in _FIELDS])
 
     def _rows(self) -> list[tuple[float, ...]]:
         """Per agent: the object type, then the float fields (:data:`_FLOAT_FIELDS` order)."""
@@ -158,20 +156,32 @@ class UnstructuredAgents:
         )
 
 
+def _checked(values: list[np.ndarray]) -> UnstructuredAgents:
+    """Agents of fresh arrays (``_FIELDS`` order) derived from checked agents.
+
+    Their dtypes are the fields' and their lengths agree (concatenations or one index of
+    every field), so :meth:`UnstructuredAgents.__post_init__`'s checks are skipped; the
+    arrays are frozen in place.
+    """
+    out = object.__new__(UnstructuredAgents)
+    for name, value in zip(_FIELDS, values, strict=True):
+        object.__setattr__(out, name, frozen(value))
+    return out
+
+
 def _valid_row(row: tuple[float, ...]) -> bool:
     """:meth:`UnstructuredAgents.valid` of one row (``_rows`` order: type, then the floats)."""
-    kind, *floats = row
-    model = _MODEL_CODES[int(kind)]  # an unknown code raises as in the array test
-    if not all(math.isfinite(v) for v in floats):
+    model = _MODEL_CODES[int(row[0])]  # an unknown code raises as in the array test
+    if not all(map(math.isfinite, row[1:])):
         return False
-    values = dict(zip(_FLOAT_FIELDS, floats, strict=True))
+    yaw, steering, v_min, v_max, length, width = (row[i] for i in _CHECKED_COLUMNS)
     return (
-        abs(values["yaw_rad"]) <= _ANGLE_LIMIT_RAD
-        and abs(values["steering_angle_rad"]) <= _ANGLE_LIMIT_RAD
-        and values["speed_min_mps"] >= 0.0
-        and values["speed_min_mps"] <= values["speed_max_mps"]
-        and values["length_m"] > 0.0
-        and values["width_m"] > 0.0
+        abs(yaw) <= _ANGLE_LIMIT_RAD
+        and abs(steering) <= _ANGLE_LIMIT_RAD
+        and v_min >= 0.0
+        and v_min <= v_max
+        and length > 0.0
+        and width > 0.0
         and model != _INVALID_MODEL
     )
 
@@ -182,4 +192,16 @@ _DTYPES = {n: np.float64 if n in _FLOAT_FIELDS else np.int64 for n in _FIELDS}
 _MODEL_CODES = _MODEL.tolist()
 #: Agents up to which :meth:`UnstructuredAgents.valid` checks row by row.
 _ROW_CHECK_MAX = 8
+#: Columns of a ``_rows`` row (type first) that :func:`_valid_row` tests beyond finiteness.
+_CHECKED_COLUMNS = [
+    1 + _FLOAT_FIELDS.index(name)
+    for name in (
+        "yaw_rad",
+        "steering_angle_rad",
+        "speed_min_mps",
+        "speed_max_mps",
+        "length_m",
+        "width_m",
+    )
+]
 _ANGLE_ROWS = [_FLOAT_FIELDS.index("yaw_rad"), _FLOAT_FIELDS.index("steering_angle_rad")]

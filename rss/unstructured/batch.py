@@ -11,7 +11,7 @@ into :class:`TrajectorySets` (whose shapely hulls are built only when asked for)
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -39,6 +39,8 @@ __all__ = [
 
 #: Corners per footprint (FR, FL, BL, BR).
 CORNERS = 4
+#: Agent counts up to which :meth:`PiecePlan.per_piece` keeps its arrays.
+PER_PIECE_CACHE = 64
 
 
 @dataclass(frozen=True)
@@ -150,6 +152,34 @@ class PiecePlan:
     index: IntArray
     size: IntArray
     brake: BoolArray
+    _per_piece: dict[int, tuple[IntArray, IntArray, BoolArray]] = field(
+        default_factory=dict, init=False, repr=False, compare=False
+    )
+    gather: IntArray = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        """``gather``: ``index.T`` in C order (``take`` along it is ~8x quicker than ``[]``)."""
+        gather = np.ascontiguousarray(self.index.T)
+        gather.setflags(write=False)
+        object.__setattr__(self, "gather", gather)
+
+    def per_piece(self, count: int) -> tuple[IntArray, IntArray, BoolArray]:
+        """``(size, owner, brake)`` of the ``P * count`` pieces of ``count`` agents, read-only.
+
+        Piece-major (owner = agent index); kept per ``count`` up to :data:`PER_PIECE_CACHE`.
+        """
+        out = self._per_piece.get(count)
+        if out is None:
+            out = (
+                np.repeat(self.size, count),
+                np.arange(self.size.size * count) % count,  # np.tile's values, quicker
+                np.repeat(self.brake, count),
+            )
+            for a in out:
+                a.setflags(write=False)
+            if count <= PER_PIECE_CACHE:
+                self._per_piece[count] = out
+        return out
 
 
 def plan_sets(corners: FloatArray, plan: PiecePlan) -> TrajectorySets:
@@ -164,9 +194,8 @@ def plan_sets(corners: FloatArray, plan: PiecePlan) -> TrajectorySets:
     """
     pieces, width = plan.index.shape
     n = corners.shape[1]
-    coords = corners[plan.index.T].reshape(width, pieces * n, 2)
-    owner = np.arange(pieces * n) % n  # np.tile's values, without its Python overhead
-    return TrajectorySets(coords, np.repeat(plan.size, n), owner, np.repeat(plan.brake, n), n)
+    coords = corners.take(plan.gather, axis=0).reshape(width, pieces * n, 2)
+    return TrajectorySets(coords, *plan.per_piece(n), n)
 
 
 def constant(values: object, dtype: type = np.int64) -> np.ndarray:

@@ -19,7 +19,7 @@ piece.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, Final
 
 __all__ = [
     "APART",
@@ -34,11 +34,13 @@ __all__ = [
 ]
 
 #: Verdicts of :func:`verdict`.
-APART, OVERLAP, UNSURE = 0, 1, 2
+APART: Final = 0
+OVERLAP: Final = 1
+UNSURE: Final = 2
 #: Margin per metre of coordinate magnitude.
-MARGIN_RELATIVE = 1e-9
+MARGIN_RELATIVE: Final = 1e-9
 #: Vertices of a hull with an area (fewer: the pair goes to shapely).
-_POLYGON = 3
+_POLYGON: Final = 3
 
 
 def hull(points: list[list[float]], size: int) -> list[float]:
@@ -48,8 +50,11 @@ def hull(points: list[list[float]], size: int) -> list[float]:
     walk that does not close within ``size`` steps (rounding), returns what it has or
     nothing: :func:`verdict` leaves such pieces to shapely.
     """
-    xs = [p[0] for p in points[:size]]
-    ys = [p[1] for p in points[:size]]
+    return _hull_xy([p[0] for p in points[:size]], [p[1] for p in points[:size]])
+
+
+def _hull_xy(xs: list[float], ys: list[float]) -> list[float]:
+    """:func:`hull` of the points ``(xs[i], ys[i])``."""
     n = len(xs)
     start = 0
     for i in range(1, n):
@@ -58,15 +63,14 @@ def hull(points: list[list[float]], size: int) -> list[float]:
     out: list[float] = []
     here = start
     for _ in range(n):
-        out.extend((xs[here], ys[here]))
         px, py = xs[here], ys[here]
-        best = here
+        out.extend((px, py))
+        best, bx, by = here, 0.0, 0.0  # the best point's offset from ``here``
         for r in range(n):
-            bx, by = xs[best] - px, ys[best] - py
             rx, ry = xs[r] - px, ys[r] - py
             turn = bx * ry - by * rx
             if turn < 0.0 or (turn == 0.0 and rx * rx + ry * ry > bx * bx + by * by):
-                best = r
+                best, bx, by = r, rx, ry
         if best == start:
             return out
         if best == here:  # every point coincides
@@ -167,14 +171,23 @@ class Pieces:
         """``coords``: ``(K, P, 2)`` points; ``size``: ``(P,)`` points of each piece."""
         self.coords = coords
         self.size = size
+        self.points: dict[int, tuple[list[float], list[float]]] = {}
         self.hulls: dict[int, list[float]] = {}
+
+    def _points(self, piece: int) -> tuple[list[float], list[float]]:
+        out = self.points.get(piece)
+        if out is None:
+            xy = self.coords[: self.size[piece], piece].T.tolist()
+            out = (xy[0], xy[1])
+            self.points[piece] = out
+        return out
 
     def hull(self, piece: int) -> list[float]:
         """:func:`hull` of one piece."""
         out = self.hulls.get(piece)
         if out is None:
-            size = self.size[piece]
-            out = hull(self.coords[:size, piece].tolist(), size)
+            xs, ys = self._points(piece)
+            out = _hull_xy(xs, ys)
             self.hulls[piece] = out
         return out
 

@@ -26,7 +26,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from rss.physics import DISTANCE_PRECISION, SPEED_PRECISION, eq, gt, le
-from rss.unstructured.memory import UnstructuredMemory, frozen
+from rss.unstructured.memory import UnstructuredMemory
 
 if TYPE_CHECKING:
     from rss.arrays import BoolArray, FloatArray, IntArray
@@ -165,19 +165,13 @@ def decide(  # noqa: PLR0917  (one engine step over arrays)
         pos_y = np.where(keep, memory.other_y_m[slot], pos_y)
     remembered = safe | found
     new_value = np.where(safe, other_brake, stored)
-    memory_out = UnstructuredMemory(  # fresh arrays of masks, frozen here (no copies)
-        *(
-            frozen(values[mask])
-            for values, mask in (
-                (agents.object_id, remembered),
-                (new_value, remembered),
-                (agents.object_id, drive),
-                (begin, drive),
-                (end, drive),
-                (pos_x, drive),
-                (pos_y, drive),
-            )
-        )
+    stored_drive = (
+        [values[drive] for values in (agents.object_id, begin, end, pos_x, pos_y)]
+        if drive.any()
+        else [np.empty(0, dtype=np.int64), *(np.empty(0) for _ in range(4))]
+    )
+    memory_out = UnstructuredMemory.of_fresh(  # fresh arrays of masks, frozen there
+        agents.object_id[remembered], new_value[remembered], *stored_drive
     )
     decisions = Decisions(is_safe, response, begin, end, ego_brake, other_brake, both)
     return decisions, memory_out

@@ -66,6 +66,15 @@ class UnstructuredMemory:
                 object.__setattr__(self, name, _frozen(value, dtype))
 
     @staticmethod
+    def of_fresh(*values: np.ndarray) -> UnstructuredMemory:
+        """The memory of fresh 1-D arrays of the fields' dtypes (frozen here, not checked)."""
+        out = object.__new__(UnstructuredMemory)
+        for name, value in zip(_DTYPES, values, strict=True):
+            value.setflags(write=False)
+            object.__setattr__(out, name, value)
+        return out
+
+    @staticmethod
     def empty() -> UnstructuredMemory:
         """No history."""
         none = np.zeros(0)

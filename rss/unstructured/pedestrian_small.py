@@ -3,7 +3,8 @@
 The twin of ``rss.unstructured.pedestrian_batch._moving`` for small batches (see
 :mod:`rss.unstructured.vehicle_small`): the poses of every row of the footprint table with
 the scalar kernels of :mod:`rss.unstructured.scalar_motion`, in the same operations and
-order, then the same footprint and piece code; the sets are equal to the bit.
+order, then their footprint corners point by point and the same piece plan; the sets are
+equal to the bit.
 """
 
 from __future__ import annotations
@@ -11,16 +12,20 @@ from __future__ import annotations
 import functools
 from typing import TYPE_CHECKING
 
-import numpy as np
-
 from rss.physics import DISTANCE_PRECISION, SPEED_PRECISION
 from rss.structured.scalar_physics import accelerated_limited_movement
+from rss.unstructured.batch import plan_sets
 from rss.unstructured.pedestrian_batch import (
     pedestrian_counts,
     pedestrian_layout,
-    pedestrian_sets_of_points,
+    pedestrian_plan,
 )
-from rss.unstructured.scalar_motion import DYNAMICS_COLUMNS, pedestrian_move, time_to_stop
+from rss.unstructured.scalar_motion import (
+    DYNAMICS_COLUMNS,
+    corners_of,
+    pedestrian_move,
+    time_to_stop,
+)
 
 if TYPE_CHECKING:
     from rss.dynamics import UnstructuredSettings
@@ -95,7 +100,4 @@ def pedestrian_moving_small(agents: UnstructuredAgents, dyn: AgentDynamics) -> T
     columns += [getattr(dyn, f).tolist() for f in DYNAMICS_COLUMNS]
     radius = dyn.settings.pedestrian_turning_radius
     poses = [_poses([float(c[j]) for c in columns], rows, radius) for j in range(len(agents))]
-    table = np.array(poses, dtype=np.float64)  # (N, R, 3)
-    return pedestrian_sets_of_points(
-        table[:, :, 0].T, table[:, :, 1].T, table[:, :, 2].T, agents, dyn
-    )
+    return plan_sets(corners_of(poses, agents, dyn), pedestrian_plan(dyn.settings))

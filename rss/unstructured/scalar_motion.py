@@ -3,16 +3,21 @@
 The small-frame path of the set builders (:mod:`rss.unstructured.vehicle_small`,
 :mod:`rss.unstructured.pedestrian_small`) computes the trajectory points of a few agents
 with plain floats instead of a hundred small numpy calls; compiled with mypyc
-(:mod:`rss.compiled`) these run at C speed. Every function performs the same IEEE
-operations in the same order as its array twin and picks the branch the twin's
-``np.where`` picks, so both give the same floats (``math.sin``/``math.cos`` are the C
-library's, as numpy's float64 ``sin``/``cos`` on the supported platforms; the tests of
-``tests/rss/unstructured/test_small.py`` check the equality to the bit).
+(:mod:`rss.compiled`) these run at C speed; :func:`corner_table` gives the footprint
+corners of those points (:func:`rss.unstructured.kinematics.footprints`). Every function
+performs the same IEEE operations in the same order as its array twin and picks the
+branch the twin's ``np.where`` picks, so both give the same floats (``math.sin``/
+``math.cos`` are the C library's, as numpy's float64 ``sin``/``cos`` on the supported
+platforms; the tests of ``tests/rss/unstructured/test_small.py`` check the equality to
+the bit).
 """
 
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING, Final
+
+import numpy as np
 
 from rss.physics import (
     ACCELERATION_PRECISION,
@@ -23,10 +28,17 @@ from rss.physics import (
 )
 from rss.structured.scalar_physics import accelerated_limited_movement
 
+if TYPE_CHECKING:
+    from rss.arrays import FloatArray
+    from rss.unstructured.agents import UnstructuredAgents
+    from rss.unstructured.batch import AgentDynamics
+
 __all__ = [
     "ANGULAR_VELOCITY_PRECISION",
     "DYNAMICS_COLUMNS",
     "arc",
+    "corner_table",
+    "corners_of",
     "drive",
     "finish",
     "is_negative_zero",
@@ -36,6 +48,14 @@ __all__ = [
     "time_in_movement",
     "time_to_stop",
 ]
+
+#: The precisions of :mod:`rss.physics` as compiled constants (mypyc reads a ``Final``
+#: float natively; an imported name is a dictionary lookup per use).
+_AP: Final = ACCELERATION_PRECISION
+_DISTANCE_MAX_M: Final = DISTANCE_MAX_M
+_DP: Final = DURATION_PRECISION
+_P: Final = DISTANCE_PRECISION
+_SP: Final = SPEED_PRECISION
 
 #: The ``AgentDynamics`` fields the point-by-point set builders read, in their column order.
 DYNAMICS_COLUMNS = (
@@ -47,7 +67,7 @@ DYNAMICS_COLUMNS = (
 )
 
 #: ad-physics ``AngularVelocity`` precision [rad/s] (:mod:`rss.unstructured.kinematics`).
-ANGULAR_VELOCITY_PRECISION = 1e-3
+ANGULAR_VELOCITY_PRECISION: Final = 1e-3
 
 
 def is_negative_zero(value: float) -> bool:
@@ -60,7 +80,7 @@ def time_to_stop(
 ) -> float:
     """:func:`rss.unstructured.kinematics.time_to_stop` of one agent [s]."""
     v_rt, _ = accelerated_limited_movement(speed_mps, max_speed_mps, accel, response_time_s)
-    if abs(v_rt - 0.0) < SPEED_PRECISION:
+    if abs(v_rt - 0.0) < _SP:
         return 0.0
     return response_time_s + v_rt / -brake
 
@@ -69,8 +89,8 @@ def time_in_movement(speed_mps: float, accel_mps2: float, duration_s: float) -> 
     """:func:`rss.unstructured.kinematics.time_in_movement` of one point [s]."""
     if not accel_mps2 < 0.0:
         return duration_s
-    stop = 0.0 if abs(speed_mps - 0.0) < SPEED_PRECISION else speed_mps / -accel_mps2
-    return stop if duration_s - stop >= DURATION_PRECISION else duration_s
+    stop = 0.0 if abs(speed_mps - 0.0) < _SP else speed_mps / -accel_mps2
+    return stop if duration_s - stop >= _DP else duration_s
 
 
 def step_accelerations(low: float, high: float, steps: int) -> list[float]:
@@ -79,7 +99,7 @@ def step_accelerations(low: float, high: float, steps: int) -> list[float]:
     width = (high - low) / (1.0 + steps)
     for k in range(1, steps + 1):
         value = low + width * float(k)
-        out.append(value if high - value >= ACCELERATION_PRECISION else high)
+        out.append(value if high - value >= _AP else high)
     out.append(high)
     return out
 
@@ -87,7 +107,7 @@ def step_accelerations(low: float, high: float, steps: int) -> list[float]:
 def phase_grid(longest_s: float, step_s: float) -> list[float]:
     """Step ends of a phase (``rss.unstructured.kinematics._phase_grid`` of its longest row)."""
     grid = [0.0]
-    while grid[-1] < longest_s and longest_s - grid[-1] >= DURATION_PRECISION:
+    while grid[-1] < longest_s and longest_s - grid[-1] >= _DP:
         grid.append(grid[-1] + step_s)
     return grid
 
@@ -95,8 +115,8 @@ def phase_grid(longest_s: float, step_s: float) -> list[float]:
 def _radius(speed_mps: float, rate_radps: float, min_radius_m: float) -> tuple[float, bool]:
     """``(radius [m], on a circle)`` of the arc kernels (turning or below the minimal radius)."""
     turning = not abs(rate_radps - 0.0) < ANGULAR_VELOCITY_PRECISION
-    radius = speed_mps / rate_radps if turning else DISTANCE_MAX_M
-    if min_radius_m - abs(radius) >= DISTANCE_PRECISION:
+    radius = speed_mps / rate_radps if turning else _DISTANCE_MAX_M
+    if min_radius_m - abs(radius) >= _P:
         return (min_radius_m if radius >= 0.0 else -min_radius_m), True
     return radius, turning
 
@@ -113,7 +133,7 @@ def arc(  # noqa: PLR0917  (one point of a kernel over arrays)
     min_radius_m: float,
 ) -> tuple[float, float, float]:
     """End pose ``(x, y, yaw)`` of :func:`rss.unstructured.kinematics.vehicle_arc` of one point."""
-    if abs(duration_s - 0.0) < DURATION_PRECISION:
+    if abs(duration_s - 0.0) < _DP:
         return x_m, y_m, yaw_rad
     _, dist = accelerated_limited_movement(speed_mps, max_speed_mps, accel_mps2, duration_s)
     radius, circle = _radius(speed_mps, rate_radps, min_radius_m)
@@ -128,7 +148,7 @@ def arc(  # noqa: PLR0917  (one point of a kernel over arrays)
 
 
 #: Pedestrian ratios with ``|ratio| <= radius / 1000 m`` move straight (kinematics' twin).
-PEDESTRIAN_MAX_RADIUS_M = 1000.0
+PEDESTRIAN_MAX_RADIUS_M: Final = 1000.0
 
 
 def pedestrian_move(
@@ -136,7 +156,7 @@ def pedestrian_move(
 ) -> tuple[float, float, float]:
     """:func:`rss.unstructured.kinematics.pedestrian_move` of one point: ``(x, y, yaw)``."""
     x, y, yaw = pose
-    if abs(distance_m - 0.0) < DISTANCE_PRECISION:
+    if abs(distance_m - 0.0) < _P:
         return pose
     if not abs(ratio) > turning_radius_m / PEDESTRIAN_MAX_RADIUS_M:
         return x + math.cos(yaw) * distance_m, y + math.sin(yaw) * distance_m, yaw
@@ -187,17 +207,17 @@ def drive(state: State, phase: Phase, limits: tuple[float, float, float, float])
     start = rate_end
     for i in range(len(grid) - 1):
         t0, t1 = grid[i], grid[i + 1]
-        active = duration - t0 >= DURATION_PRECISION
+        active = duration - t0 >= _DP
         if not active and k > 0 and sum_x != 0.0 and sum_y != 0.0 and yaw != 0.0:
             k += len(grid) - 1 - i
             break
-        full = t1 - duration < DURATION_PRECISION
+        full = t1 - duration < _DP
         dt = step_s if full else duration - t0
         rate = start + change * (t1 if full else duration) * ratio
         if active:
             rate_end = rate
         dist, v1 = 0.0, speed
-        if active and not abs(dt - 0.0) < DURATION_PRECISION:
+        if active and not abs(dt - 0.0) < _DP:
             v1, dist = accelerated_limited_movement(speed, vcap, accel, dt)
         radius, circle = _radius(speed, rate, min_r)
         dpsi = dist / radius if circle else 0.0
@@ -213,3 +233,60 @@ def drive(state: State, phase: Phase, limits: tuple[float, float, float, float])
         speed = v1
         k += 1
     return sum_x, sum_y, yaw, speed, rate_end, k
+
+
+def corner_table(
+    poses: list[list[tuple[float, float, float]]],
+    sizes: list[tuple[float, float]],
+    front_extra_m: list[float],
+) -> list[float]:
+    """:func:`rss.unstructured.kinematics.footprints` of ``N`` agents' rows, flat.
+
+    Args:
+        poses: Per agent, the ``(x, y, yaw)`` of its ``R`` footprint-table rows.
+        sizes: Per agent, ``(length [m], width [m])``.
+        front_extra_m: Per agent, the length added in front [m].
+
+    Returns:
+        The corners (FR, FL, BL, BR) of the ``(R * 4, N, 2)`` table of
+        :func:`rss.unstructured.batch.sets_of_points`, row-major: the same operations in
+        the same order as the array twin, so the same floats.
+    """
+    n = len(poses)
+    rows = len(poses[0]) if n else 0
+    sides = []  # per agent: front, -half length, half width, -half width
+    for j in range(n):
+        half_l = sizes[j][0] / 2.0
+        half_w = sizes[j][1] / 2.0
+        sides.append((half_l + front_extra_m[j], -half_l, half_w, -half_w))
+    out = [0.0] * (rows * 8 * n)
+    step = 2 * n  # from one corner of a row to the next
+    for j in range(n):
+        front, back, left, right = sides[j]
+        for r in range(rows):
+            x, y, yaw = poses[j][r]
+            c, s = math.cos(yaw), math.sin(yaw)
+            at = (4 * r * n + j) * 2
+            _corner(out, at, (x, y, c, s), front, right)  # FR
+            _corner(out, at + step, (x, y, c, s), front, left)  # FL
+            _corner(out, at + 2 * step, (x, y, c, s), back, left)  # BL
+            _corner(out, at + 3 * step, (x, y, c, s), back, right)  # BR
+    return out
+
+
+def _corner(
+    out: list[float], at: int, frame: tuple[float, float, float, float], lon: float, lat: float
+) -> None:
+    """Write the corner at ``(lon, lat)`` of the footprint ``(x, y, cos yaw, sin yaw)``."""
+    x, y, c, s = frame
+    out[at] = x + c * lon - s * lat
+    out[at + 1] = y + s * lon + c * lat
+
+
+def corners_of(
+    poses: list[list[tuple[float, float, float]]], agents: UnstructuredAgents, dyn: AgentDynamics
+) -> FloatArray:
+    """The ``(R * 4, N, 2)`` corner table of the agents' rows (:func:`corner_table`)."""
+    sizes = list(zip(agents.length_m.tolist(), agents.width_m.tolist(), strict=True))
+    flat = corner_table(poses, sizes, dyn.front_extra_m.tolist())
+    return np.array(flat, dtype=np.float64).reshape(-1, len(poses), 2)

@@ -5,8 +5,9 @@ builder :func:`rss.unstructured.vehicle_batch.vehicle_sets_batch` spends its tim
 hundred numpy calls on arrays of a few dozen values. This twin computes the same poses with
 the scalar kernels of :mod:`rss.unstructured.scalar_motion` — every row of the footprint
 table, in the same operations and order, the step grid shared by the whole batch as in
-the batched call — and hands them to the same footprint and piece code, so the sets are
-equal to the bit. :func:`rss.unstructured.engine.trajectory_sets` chooses it by size
+the batched call — then their footprint corners (the scalar twin
+:func:`rss.unstructured.scalar_motion.corner_table`) and the same piece plan, so the sets
+are equal to the bit. :func:`rss.unstructured.engine.trajectory_sets` chooses it by size
 (:data:`SMALL_SETS_MAX`) when the compiled modules are in use.
 """
 
@@ -16,13 +17,13 @@ import functools
 import math
 from typing import TYPE_CHECKING
 
-import numpy as np
-
 from rss.physics import SPEED_PRECISION
+from rss.unstructured.batch import plan_sets
 from rss.unstructured.scalar_motion import (
     DYNAMICS_COLUMNS,
     State,
     arc,
+    corners_of,
     drive,
     finish,
     is_negative_zero,
@@ -35,7 +36,7 @@ from rss.unstructured.vehicle_batch import (
     SPLIT_MIN_AGENTS,
     vehicle_counts,
     vehicle_layout,
-    vehicle_sets_of_points,
+    vehicle_plan,
 )
 
 if TYPE_CHECKING:
@@ -176,5 +177,4 @@ def vehicle_sets_small(agents: UnstructuredAgents, dyn: AgentDynamics) -> Trajec
     step = u.vehicle_trajectory_calculation_step
     grids = (phase_grid(longest[0], step), phase_grid(longest[1], step))
     poses = [a.poses(rows, grids, u) for a in fleet]
-    table = np.array(poses, dtype=np.float64)  # (N, R, 3)
-    return vehicle_sets_of_points(table[:, :, 0].T, table[:, :, 1].T, table[:, :, 2].T, agents, dyn)
+    return plan_sets(corners_of(poses, agents, dyn), vehicle_plan(u))

@@ -23,8 +23,10 @@ from rss.model import ObjectType
 from rss.params import DEFAULT_EGO_DYNAMICS, DEFAULT_PEDESTRIAN_DYNAMICS, DEFAULT_VEHICLE_DYNAMICS
 from rss.unstructured import UnstructuredAgents, check_unstructured, convex, engine, intersect
 from rss.unstructured.batch import AgentDynamics
+from rss.unstructured.kinematics import Points, footprints
 from rss.unstructured.pedestrian_batch import pedestrian_sets_batch
 from rss.unstructured.pedestrian_small import pedestrian_moving_small
+from rss.unstructured.scalar_motion import corner_table
 from rss.unstructured.vehicle_batch import vehicle_sets_batch
 from rss.unstructured.vehicle_small import SMALL_SETS_MAX, vehicle_sets_small
 from tests.rss.unstructured.generators import random_ego, random_frame, random_sequence
@@ -274,3 +276,36 @@ def test_row_by_row_validity_equals_the_array_test(rows) -> None:
     unknown = dataclasses.replace(table, object_type=np.full(len(table), 99))
     with pytest.raises(IndexError):
         unknown.valid()
+
+
+_COORD = st.floats(-5e3, 5e3, allow_nan=False)
+
+
+@SETTINGS
+@given(
+    st.integers(1, SMALL_SETS_MAX).flatmap(
+        lambda n: st.tuples(
+            st.lists(
+                st.lists(st.tuples(_COORD, _COORD, st.floats(-7.0, 7.0)), min_size=3, max_size=3),
+                min_size=n,
+                max_size=n,
+            ),
+            st.lists(
+                st.tuples(st.floats(0.3, 8.0), st.floats(0.3, 3.0), st.sampled_from([0.0, 1.5])),
+                min_size=n,
+                max_size=n,
+            ),
+        )
+    )
+)
+def test_corner_table_point_by_point_equals_the_array_footprints(case) -> None:
+    """``scalar_motion.corner_table`` gives the corners of ``kinematics.footprints`` to the bit."""
+    poses, sizes = case
+    table = np.array(poses, dtype=np.float64)  # (N, R, 3)
+    x, y, yaw = (table[:, :, k].T for k in range(3))
+    length, width, extra = (np.array([s[k] for s in sizes]) for k in range(3))
+    corners = footprints(Points(x, y, yaw, x, yaw), length, width, extra)  # (R, N, 4, 2)
+    expected = corners.transpose(0, 2, 1, 3).reshape(-1, len(poses), 2)
+    flat = corner_table(poses, [(s[0], s[1]) for s in sizes], extra.tolist())
+    got = np.array(flat).reshape(-1, len(poses), 2)
+    assert got.tobytes() == expected.tobytes()
