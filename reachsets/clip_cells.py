@@ -8,6 +8,7 @@ up (``None``: the caller runs GEOS for that cell).
 from __future__ import annotations
 
 import math
+from typing import Final
 
 from reachsets.clip_rings import Edges, Seg, area2, box_of, dedup, inside
 from reachsets.clip_scalar import clip_prepared
@@ -16,7 +17,7 @@ __all__ = ["SETTLED_TOL_M", "Area", "clip", "reduce_cells", "settled"]
 
 #: Slack of ``settled``, metres: an edge this far inside the cell still counts as outside it
 #: (what it leaves out is a sliver thinner than this along a chord of the cell).
-SETTLED_TOL_M = 1e-11
+SETTLED_TOL_M: Final = 1e-11
 
 
 def _near(e: Edges, box: list[float]) -> Edges:

@@ -6,6 +6,8 @@ bounding boxes, orientation and whether it is well conditioned for the clipper.
 
 from __future__ import annotations
 
+from typing import Final
+
 __all__ = [
     "EPS",
     "Edges",
@@ -20,7 +22,7 @@ __all__ = [
 
 #: Crossing parameters this close to an edge's end, and sines of edge angles this small,
 #: are degenerate (GEOS decides them).
-EPS = 1e-9
+EPS: Final = 1e-9
 
 
 def dedup(p: list[float]) -> list[float]:

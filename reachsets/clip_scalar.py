@@ -20,12 +20,14 @@ coordinates). Why not GEOS: ``docs/design-notes.md``, "Full reach sets without G
 
 from __future__ import annotations
 
+from typing import Final
+
 from reachsets.clip_rings import EPS, Edges, Seg, area2, box_of, conditioned, dedup, inside
 
 __all__ = ["clip_prepared"]
 
 #: Nearly parallel edges closer than this fraction of their lengths: degenerate.
-_NEAR = 1e-7
+_NEAR: Final = 1e-7
 
 
 class _Hits:
