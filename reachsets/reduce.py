@@ -72,19 +72,10 @@ def scalar_sets(
     owner: list[int] = []
     fallback: list[int] = []
     rows = verts.reshape(n, t, -1).tolist()
-    for i in range(n):
-        if dl[i] is None or (area is not None and prepared is None):
-            fallback += range(i * t, (i + 1) * t)
-            continue
-        for k, parts in enumerate(clip_cells.reduce_cells(rows[i], dl[i] or [], prepared)):
-            if parts is None:
-                fallback.append(i * t + k)
-                continue
-            for ring in parts:
-                xy += ring
-                xy += ring[:2]  # closed
-                sizes.append(len(ring) // 2 + 1)
-                owner.append(i * t + k)
+    if area is not None and prepared is None:  # not one polygon: GEOS for every cell
+        fallback += range(n * t)
+    else:
+        clip_cells.reduce_objects(rows, dl, prepared, xy, sizes, owner, fallback)
     out = _assemble(xy, sizes, owner, n * t)
     if fallback:
         flat = verts.reshape(n * t, *verts.shape[2:])
