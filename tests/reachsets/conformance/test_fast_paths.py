@@ -1,0 +1,92 @@
+"""The conformance command's fast paths against the general ones they replace.
+
+``cases._inputs`` builds the engine inputs of a parsed case without a second validation; it
+must give the arrays ``reach_inputs_from_arrays`` gives (same dtypes, values to the bit,
+read-only).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from typing import Any
+
+import numpy as np
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from reachsets import reach_inputs_from_arrays
+from reachsets.conformance import parse_case, parse_defaults
+
+_COORD = st.floats(-500.0, 500.0, allow_nan=False)
+_SPEED = st.one_of(st.floats(-5.0, 40.0, allow_nan=False), st.just(-0.0), st.just(0))
+_SIZE = st.one_of(st.none(), st.floats(0.1, 10.0), st.just(3))
+
+
+@st.composite
+def _case(draw: Any) -> dict[str, Any]:
+    k = draw(st.integers(1, 6))
+    ego = {key: draw(st.lists(_COORD, min_size=k, max_size=k)) for key in ("x", "y", "heading")}
+    ego["speed"] = draw(st.lists(_SPEED, min_size=k, max_size=k))
+    if draw(st.booleans()):
+        ego["t_s"] = sorted(draw(st.lists(st.floats(0.0, 10.0), min_size=k, max_size=k)))
+    if draw(st.booleans()):
+        ego["length"] = draw(st.floats(1.0, 6.0))
+    objects = []
+    for n in range(draw(st.integers(0, 3))):
+        obj = {"id": draw(st.sampled_from([f"o{n}", n, f"car-{n}-long-name"]))}
+        obj |= {key: draw(_COORD) for key in ("x", "y", "yaw")} | {"speed": draw(_SPEED)}
+        for key in ("length", "width"):
+            size = draw(_SIZE)
+            if size is not None:
+                obj[key] = size
+        objects.append(obj)
+    return {"id": "c", "ego": ego, "objects": objects}
+
+
+def _adapter(case: dict[str, Any], length_m: float, width_m: float) -> Any:
+    ego, objects = case["ego"], case["objects"]
+    return reach_inputs_from_arrays(
+        ego_x_m=ego["x"],
+        ego_y_m=ego["y"],
+        ego_yaw_rad=ego["heading"],
+        ego_speed_mps=ego["speed"],
+        ego_t_s=ego.get("t_s"),
+        ego_length_m=ego.get("length", length_m),
+        ego_width_m=ego.get("width", width_m),
+        object_ids=[str(o["id"]) for o in objects],
+        object_x_m=[o["x"] for o in objects],
+        object_y_m=[o["y"] for o in objects],
+        object_yaw_rad=[o["yaw"] for o in objects],
+        object_speed_mps=[o["speed"] for o in objects],
+        object_length_m=[o.get("length", math.nan) for o in objects],
+        object_width_m=[o.get("width", math.nan) for o in objects],
+    )
+
+
+def _same_array(got: Any, want: Any) -> None:
+    assert isinstance(got, np.ndarray)
+    assert got.dtype == want.dtype
+    assert got.shape == want.shape
+    assert not got.flags.writeable
+    if got.dtype.kind == "f":  # to the bit, the sign of zero and NaN included
+        assert got.tobytes() == want.tobytes()
+    else:
+        assert got.tolist() == want.tolist()
+
+
+@settings(max_examples=200, deadline=None)
+@given(_case())
+def test_parsed_inputs_are_the_adapters(case: dict[str, Any]) -> None:
+    defaults = parse_defaults({"defaults": {}})
+    got = parse_case(case, defaults, 0).steps[0].inputs
+    want = _adapter(case, defaults.ego_length_m, defaults.ego_width_m)
+    for part in ("ego", "objects"):
+        for field in dataclasses.fields(getattr(want, part)):
+            a, b = getattr(getattr(got, part), field.name), getattr(getattr(want, part), field.name)
+            if isinstance(b, np.ndarray):
+                _same_array(a, b)
+            else:
+                assert a == b
+                assert type(a) is type(b)
+    assert got.track is None
