@@ -2,7 +2,9 @@
 
 ``cases._inputs`` builds the engine inputs of a parsed case without a second validation; it
 must give the arrays ``reach_inputs_from_arrays`` gives (same dtypes, values to the bit,
-read-only).
+read-only). ``records.set_outlines`` reads the outlines of the clipper's cells straight from
+its rings (``ReachResult.rings``); they must be the points the shapely geometries hold, to
+the bit, and every cell flagged exact must be one (rule patches and GEOS cells are not).
 """
 
 from __future__ import annotations
@@ -15,8 +17,10 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from reachsets import reach_inputs_from_arrays
-from reachsets.conformance import parse_case, parse_defaults
+from reachsets import ReachMethod, evaluate_frames, reach_inputs_from_arrays
+from reachsets.conformance import parse_case, parse_defaults, random_document
+from reachsets.conformance.document import prepare_document, unique_ids
+from reachsets.conformance.records import _geometry_outlines, _ring_outlines, set_outlines
 
 _COORD = st.floats(-500.0, 500.0, allow_nan=False)
 _SPEED = st.one_of(st.floats(-5.0, 40.0, allow_nan=False), st.just(-0.0), st.just(0))
@@ -90,3 +94,30 @@ def test_parsed_inputs_are_the_adapters(case: dict[str, Any]) -> None:
                 assert a == b
                 assert type(a) is type(b)
     assert got.track is None
+
+
+@settings(max_examples=15, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1), method=st.sampled_from(list(ReachMethod)))
+def test_ring_outlines_are_the_geometries_points(seed: int, method: ReachMethod) -> None:
+    document = random_document(np.random.default_rng(seed), 24, methods=[method])
+    prepared = prepare_document(document, "random", full_sets=True)
+    defaults = prepared.defaults
+    cases = [parse_case(c, defaults, k) for k, c in enumerate(prepared.cases)]
+    inputs = [unique_ids(c.steps[0].inputs, f"{k}/") for k, c in enumerate(cases)]
+    results, _ = evaluate_frames(inputs, defaults.params[method], defaults.start)
+    exact_cells = 0
+    for result in results:
+        rings = result.rings
+        assert rings is not None  # a track: every set went through the clipper
+        cells = _ring_outlines(rings.cells, rings.start, rings.stop)
+        shapes = _geometry_outlines(result.reach_sets.reshape(-1))
+        exact = rings.cells.exact[rings.start : rings.stop].tolist()
+        assert len(cells) == len(shapes) == len(exact)
+        for ring_cell, shape_cell, is_exact in zip(cells, shapes, exact, strict=True):
+            if is_exact:
+                exact_cells += 1
+                assert ring_cell == shape_cell  # floats compared exactly
+        record = set_outlines(result, str)
+        flat = [cell for obj in record["objects"] for cell in obj["outlines"]]
+        assert flat == shapes
+    assert exact_cells > 0
