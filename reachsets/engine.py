@@ -37,7 +37,7 @@ from reachsets.rules_f1 import evaluate_f1
 from reachsets.rules_road import evaluate_road
 from reachsets.rules_roborace import evaluate_roborace
 from reachsets.track import TrackGeometry, build_track
-from reachsets.verdict import first_hits
+from reachsets.verdict import first_hits, touching
 
 if TYPE_CHECKING:
     from collections.abc import Mapping, Sequence
@@ -347,8 +347,7 @@ def _full_sets(
         rings = None
     if not sets.size:
         return sets, np.zeros(sets.shape, dtype=bool), rings
-    ego = batch.occupancy.polygons[batch.frame]
-    hits = np.asarray(shapely.intersects(sets, ego), dtype=bool)
+    hits = touching(sets, batch.occupancy.corners_m, batch.frame)
     sets = sets.copy()
     sets[np.asarray(shapely.is_empty(sets), dtype=bool)] = None
     return sets, hits, rings
