@@ -23,11 +23,8 @@ SETTLED_TOL_M: Final = 1e-11
 def _near(e: Edges, box: list[float]) -> Edges:
     """A view of ``e`` with only the edges whose bounding box meets ``box`` (x0, y0, x1, y1)."""
     v = Edges([], e)
-    j = -1
     for g in e.sel:
-        j += 1
         if g.x0 <= box[2] and g.x1 >= box[0] and g.y0 <= box[3] and g.y1 >= box[1]:
-            v.idx.append(e.idx[j])
             v.sel.append(g)
     return v
 
@@ -70,7 +67,7 @@ def reduce_cells(
         shell = _near(area.shell, near)
         for hole in area.holes:
             v = _near(hole, near)
-            if v.idx:
+            if v.sel:
                 holes.append(v)
             elif inside(cells[0][0], cells[0][1], hole.xy):  # the sets lie in the hole
                 return [[] for _ in cells]

@@ -106,10 +106,11 @@ def inside(x: float, y: float, p: list[float]) -> bool:
 
 
 class Seg:
-    """One edge ``(ax, ay) -> (bx, by)`` and its bounding box, as native floats (mypyc)."""
+    """Edge ``k`` of a ring, ``(ax, ay) -> (bx, by)``, and its bounding box (native, mypyc)."""
 
-    def __init__(self, ax: float, ay: float, bx: float, by: float) -> None:
-        """Keep the end points; the box is derived."""
+    def __init__(self, ax: float, ay: float, bx: float, by: float, k: int = 0) -> None:
+        """Keep the end points and the index; the box is derived."""
+        self.k = k
         self.ax = ax
         self.ay = ay
         self.bx = bx
@@ -121,18 +122,17 @@ class Seg:
 class Edges:
     """A ring's edges with their bounding boxes, computed once per ring clipped against.
 
-    ``idx``/``sel``: the edges a clip looks at, indices and edges (all, or those near one
-    object: ``clip_cells``).
+    ``sel``: the edges a clip looks at (all, or those near one object: ``clip_cells``), each
+    knowing its index in the ring (``Seg.k``).
     """
 
     def __init__(self, p: list[float], base: Edges | None = None) -> None:
-        """The edges of ring ``p``, or an empty view of ``base``'s (same edges, no ``idx``)."""
+        """The edges of ring ``p``, or an empty view of ``base``'s (same edges, no ``sel``)."""
         self.xy: list[float] = p
         self.segs: list[Seg] = []
         self.ccw: bool = False
         self.ok: bool = False
-        self.idx: list[int] = []
-        self.sel: list[Seg] = []  # the edges of ``idx``
+        self.sel: list[Seg] = []
         if base is not None:  # a view of ``base``
             self.xy = base.xy
             self.segs = base.segs
@@ -142,10 +142,9 @@ class Edges:
         n = len(p) // 2
         for j in range(n):
             k = j + 1 if j + 1 < n else 0
-            self.segs.append(Seg(p[2 * j], p[2 * j + 1], p[2 * k], p[2 * k + 1]))
+            self.segs.append(Seg(p[2 * j], p[2 * j + 1], p[2 * k], p[2 * k + 1], j))
         self.ccw = area2(p) > 0
         self.ok = n >= 3 and conditioned(p, box_of(p))  # noqa: PLR2004
-        self.idx = list(range(n))
         self.sel = self.segs
 
     def contains(self, x: float, y: float) -> bool:
