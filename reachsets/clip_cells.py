@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 from typing import Final
 
-from reachsets.clip_rings import Edges, Seg, area2, box_of, dedup, inside
+from reachsets.clip_rings import Box, Edges, Seg, area2, box_of, dedup, inside
 from reachsets.clip_scalar import clip_prepared
 
 __all__ = ["SETTLED_TOL_M", "Area", "clip", "reduce_cells", "reduce_objects", "settled"]
@@ -20,7 +20,7 @@ __all__ = ["SETTLED_TOL_M", "Area", "clip", "reduce_cells", "reduce_objects", "s
 SETTLED_TOL_M: Final = 1e-11
 
 
-def _near(e: Edges, box: list[float]) -> Edges:
+def _near(e: Edges, box: Box) -> Edges:
     """A view of ``e`` with only the edges whose bounding box meets ``box`` (x0, y0, x1, y1)."""
     v = Edges([], e)
     for g in e.sel:
@@ -58,12 +58,12 @@ def reduce_cells(
     holes: list[Edges] = []
     if area is not None:
         boxes = [box_of(c) for c in cells]
-        near = [
+        near = (
             min([b[0] for b in boxes]),
             min([b[1] for b in boxes]),
             max([b[2] for b in boxes]),
             max([b[3] for b in boxes]),
-        ]
+        )
         shell = _near(area.shell, near)
         for hole in area.holes:
             v = _near(hole, near)

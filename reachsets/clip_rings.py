@@ -10,6 +10,7 @@ from typing import Final
 
 __all__ = [
     "EPS",
+    "Box",
     "Edges",
     "Seg",
     "area2",
@@ -23,6 +24,8 @@ __all__ = [
 #: Crossing parameters this close to an edge's end, and sines of edge angles this small,
 #: are degenerate (GEOS decides them).
 EPS: Final = 1e-9
+#: A bounding box ``(x0, y0, x1, y1)`` (a tuple of floats: unboxed when compiled).
+Box = tuple[float, float, float, float]
 
 
 def dedup(p: list[float]) -> list[float]:
@@ -50,8 +53,8 @@ def dedup(p: list[float]) -> list[float]:
     return out
 
 
-def box_of(p: list[float]) -> list[float]:
-    """Bounding box of ring ``p``: ``[x0, y0, x1, y1]`` (comparisons: compiled to C)."""
+def box_of(p: list[float]) -> Box:
+    """Bounding box of ring ``p``: ``(x0, y0, x1, y1)`` (comparisons: compiled to C)."""
     lo_x = hi_x = p[0]
     lo_y = hi_y = p[1]
     for i in range(1, len(p) // 2):
@@ -65,10 +68,10 @@ def box_of(p: list[float]) -> list[float]:
             lo_y = y
         if y > hi_y:  # noqa: PLR1730
             hi_y = y
-    return [lo_x, lo_y, hi_x, hi_y]
+    return (lo_x, lo_y, hi_x, hi_y)
 
 
-def conditioned(p: list[float], box: list[float]) -> bool:
+def conditioned(p: list[float], box: Box) -> bool:
     """No edge shorter than ``EPS`` of the ring's extent (``box``), no edge folding back."""
     n = len(p) // 2
     tiny = EPS * (box[2] - box[0] + box[3] - box[1])

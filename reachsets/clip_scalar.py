@@ -22,7 +22,17 @@ from __future__ import annotations
 
 from typing import Final
 
-from reachsets.clip_rings import EPS, Edges, Seg, area2, box_of, conditioned, dedup, inside
+from reachsets.clip_rings import (
+    EPS,
+    Box,
+    Edges,
+    Seg,
+    area2,
+    box_of,
+    conditioned,
+    dedup,
+    inside,
+)
 
 __all__ = ["clip_prepared"]
 
@@ -48,7 +58,7 @@ class _Hits:
         self.d: list[float] = []
 
 
-def _candidates(box: list[float], e: Edges) -> list[Seg]:
+def _candidates(box: Box, e: Edges) -> list[Seg]:
     """The edges of ``e`` (among ``e.sel``) whose bounding box meets ``box``."""
     lo_x = box[0]
     lo_y = box[1]
@@ -57,7 +67,7 @@ def _candidates(box: list[float], e: Edges) -> list[Seg]:
     return [g for g in e.sel if g.x0 <= hi_x and g.x1 >= lo_x and g.y0 <= hi_y and g.y1 >= lo_y]
 
 
-def _crossings(a: list[float], box: list[float], e: Edges) -> _Hits | None:
+def _crossings(a: list[float], box: Box, e: Edges) -> _Hits | None:
     """Proper crossings of ring ``a``'s edges (``box``: its bounding box) with ``e``'s.
 
     ``None`` if a contact is degenerate.
