@@ -339,9 +339,9 @@ def _inputs(
     for row, default in ((4, size[0]), (5, size[1])):
         rows[row] = np.where(np.isnan(rows[row]), default, rows[row])
     names = np.array(ids, dtype=np.str_) if ids else np.zeros(0, "<U1")
-    objects = ObjectStates.rows_of(
-        dict(zip(_OBJECT_FIELDS, [names, *rows], strict=True)), slice(None)
-    )
+    names.flags.writeable = False
+    rows.flags.writeable = False
+    objects = ObjectStates.of_frozen(dict(zip(_OBJECT_FIELDS, [names, *rows], strict=True)))
     return ReachInputs(ego=trajectory, objects=objects, track=track)
 
 

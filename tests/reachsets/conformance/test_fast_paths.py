@@ -14,6 +14,7 @@ import math
 from typing import Any
 
 import numpy as np
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -21,6 +22,8 @@ from reachsets import ReachMethod, evaluate_frames, reach_inputs_from_arrays
 from reachsets.conformance import parse_case, parse_defaults, random_document
 from reachsets.conformance.document import prepare_document, unique_ids
 from reachsets.conformance.records import _geometry_outlines, _ring_outlines, set_outlines
+from reachsets.errors import InputShapeError
+from reachsets.inputs import ObjectStates
 
 _COORD = st.floats(-500.0, 500.0, allow_nan=False)
 _SPEED = st.one_of(st.floats(-5.0, 40.0, allow_nan=False), st.just(-0.0), st.just(0))
@@ -121,3 +124,16 @@ def test_ring_outlines_are_the_geometries_points(seed: int, method: ReachMethod)
         flat = [cell for obj in record["objects"] for cell in obj["outlines"]]
         assert flat == shapes
     assert exact_cells > 0
+
+
+def test_of_frozen_shares_read_only_columns_and_refuses_writable_ones() -> None:
+    column = np.array([1.0, 2.0])
+    column.flags.writeable = False
+    names = np.array(["a", "b"], dtype=np.str_)
+    names.flags.writeable = False
+    fields = [f.name for f in dataclasses.fields(ObjectStates)]
+    objects = ObjectStates.of_frozen({f: names if f == "ids" else column for f in fields})
+    assert objects.x_m is column
+    assert len(objects) == 2
+    with pytest.raises(InputShapeError, match="read-only"):
+        ObjectStates.of_frozen({"ids": names, "x_m": np.array([1.0, 2.0])})
