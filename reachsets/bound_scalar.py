@@ -17,11 +17,12 @@ from __future__ import annotations
 import math
 from bisect import bisect_right
 from dataclasses import dataclass
+from typing import Final
 
 __all__ = ["WallLists", "continue_curve"]
 
-_TANGENT_HALF_STEP_M = 0.5
-_SLACK = 1e-9
+_TANGENT_HALF_STEP_M: Final = 0.5
+_SLACK: Final = 1e-9
 
 
 @dataclass(frozen=True)

@@ -6,8 +6,11 @@ bounding boxes, orientation and whether it is well conditioned for the clipper.
 
 from __future__ import annotations
 
+from typing import Final
+
 __all__ = [
     "EPS",
+    "Box",
     "Edges",
     "Seg",
     "area2",
@@ -20,7 +23,9 @@ __all__ = [
 
 #: Crossing parameters this close to an edge's end, and sines of edge angles this small,
 #: are degenerate (GEOS decides them).
-EPS = 1e-9
+EPS: Final = 1e-9
+#: A bounding box ``(x0, y0, x1, y1)`` (a tuple of floats: unboxed when compiled).
+Box = tuple[float, float, float, float]
 
 
 def dedup(p: list[float]) -> list[float]:
@@ -48,8 +53,8 @@ def dedup(p: list[float]) -> list[float]:
     return out
 
 
-def box_of(p: list[float]) -> list[float]:
-    """Bounding box of ring ``p``: ``[x0, y0, x1, y1]`` (comparisons: compiled to C)."""
+def box_of(p: list[float]) -> Box:
+    """Bounding box of ring ``p``: ``(x0, y0, x1, y1)`` (comparisons: compiled to C)."""
     lo_x = hi_x = p[0]
     lo_y = hi_y = p[1]
     for i in range(1, len(p) // 2):
@@ -63,10 +68,10 @@ def box_of(p: list[float]) -> list[float]:
             lo_y = y
         if y > hi_y:  # noqa: PLR1730
             hi_y = y
-    return [lo_x, lo_y, hi_x, hi_y]
+    return (lo_x, lo_y, hi_x, hi_y)
 
 
-def conditioned(p: list[float], box: list[float]) -> bool:
+def conditioned(p: list[float], box: Box) -> bool:
     """No edge shorter than ``EPS`` of the ring's extent (``box``), no edge folding back."""
     n = len(p) // 2
     tiny = EPS * (box[2] - box[0] + box[3] - box[1])
@@ -104,10 +109,11 @@ def inside(x: float, y: float, p: list[float]) -> bool:
 
 
 class Seg:
-    """One edge ``(ax, ay) -> (bx, by)`` and its bounding box, as native floats (mypyc)."""
+    """Edge ``k`` of a ring, ``(ax, ay) -> (bx, by)``, and its bounding box (native, mypyc)."""
 
-    def __init__(self, ax: float, ay: float, bx: float, by: float) -> None:
-        """Keep the end points; the box is derived."""
+    def __init__(self, ax: float, ay: float, bx: float, by: float, k: int = 0) -> None:
+        """Keep the end points and the index; the box is derived."""
+        self.k = k
         self.ax = ax
         self.ay = ay
         self.bx = bx
@@ -119,18 +125,17 @@ class Seg:
 class Edges:
     """A ring's edges with their bounding boxes, computed once per ring clipped against.
 
-    ``idx``/``sel``: the edges a clip looks at, indices and edges (all, or those near one
-    object: ``clip_cells``).
+    ``sel``: the edges a clip looks at (all, or those near one object: ``clip_cells``), each
+    knowing its index in the ring (``Seg.k``).
     """
 
     def __init__(self, p: list[float], base: Edges | None = None) -> None:
-        """The edges of ring ``p``, or an empty view of ``base``'s (same edges, no ``idx``)."""
+        """The edges of ring ``p``, or an empty view of ``base``'s (same edges, no ``sel``)."""
         self.xy: list[float] = p
         self.segs: list[Seg] = []
         self.ccw: bool = False
         self.ok: bool = False
-        self.idx: list[int] = []
-        self.sel: list[Seg] = []  # the edges of ``idx``
+        self.sel: list[Seg] = []
         if base is not None:  # a view of ``base``
             self.xy = base.xy
             self.segs = base.segs
@@ -140,10 +145,9 @@ class Edges:
         n = len(p) // 2
         for j in range(n):
             k = j + 1 if j + 1 < n else 0
-            self.segs.append(Seg(p[2 * j], p[2 * j + 1], p[2 * k], p[2 * k + 1]))
+            self.segs.append(Seg(p[2 * j], p[2 * j + 1], p[2 * k], p[2 * k + 1], j))
         self.ccw = area2(p) > 0
         self.ok = n >= 3 and conditioned(p, box_of(p))  # noqa: PLR2004
-        self.idx = list(range(n))
         self.sel = self.segs
 
     def contains(self, x: float, y: float) -> bool:

@@ -20,12 +20,24 @@ coordinates). Why not GEOS: ``docs/design-notes.md``, "Full reach sets without G
 
 from __future__ import annotations
 
-from reachsets.clip_rings import EPS, Edges, Seg, area2, box_of, conditioned, dedup, inside
+from typing import Final
+
+from reachsets.clip_rings import (
+    EPS,
+    Box,
+    Edges,
+    Seg,
+    area2,
+    box_of,
+    conditioned,
+    dedup,
+    inside,
+)
 
 __all__ = ["clip_prepared"]
 
 #: Nearly parallel edges closer than this fraction of their lengths: degenerate.
-_NEAR = 1e-7
+_NEAR: Final = 1e-7
 
 
 class _Hits:
@@ -46,30 +58,22 @@ class _Hits:
         self.d: list[float] = []
 
 
-def _candidates(box: list[float], e: Edges) -> tuple[list[int], list[Seg]]:
-    """The edges of ``e`` (among ``e.idx``) whose bounding box meets ``box``: indices, edges."""
+def _candidates(box: Box, e: Edges) -> list[Seg]:
+    """The edges of ``e`` (among ``e.sel``) whose bounding box meets ``box``."""
     lo_x = box[0]
     lo_y = box[1]
     hi_x = box[2]
     hi_y = box[3]
-    idx: list[int] = []
-    near: list[Seg] = []
-    c = -1
-    for g in e.sel:
-        c += 1
-        if g.x0 <= hi_x and g.x1 >= lo_x and g.y0 <= hi_y and g.y1 >= lo_y:
-            idx.append(e.idx[c])
-            near.append(g)
-    return idx, near
+    return [g for g in e.sel if g.x0 <= hi_x and g.x1 >= lo_x and g.y0 <= hi_y and g.y1 >= lo_y]
 
 
-def _crossings(a: list[float], box: list[float], e: Edges) -> _Hits | None:
+def _crossings(a: list[float], box: Box, e: Edges) -> _Hits | None:
     """Proper crossings of ring ``a``'s edges (``box``: its bounding box) with ``e``'s.
 
     ``None`` if a contact is degenerate.
     """
     na = len(a) // 2
-    idx, near = _candidates(box, e)
+    near = _candidates(box, e)
     hits = _Hits()
     for i in range(na):
         i1 = (i + 1) % na
@@ -79,12 +83,10 @@ def _crossings(a: list[float], box: list[float], e: Edges) -> _Hits | None:
         ry = a[2 * i1 + 1] - ay
         ex0, ex1 = (ax, a[2 * i1]) if rx > 0 else (a[2 * i1], ax)
         ey0, ey1 = (ay, a[2 * i1 + 1]) if ry > 0 else (a[2 * i1 + 1], ay)
-        c = -1
         for g in near:  # iterating, not indexing: mypyc's unchecked list reads
-            c += 1
             if g.x0 > ex1 or g.x1 < ex0 or g.y0 > ey1 or g.y1 < ey0:
                 continue
-            if not _cross(hits, i, ax, ay, rx, ry, idx[c], g.ax, g.ay, g.bx, g.by):
+            if not _cross(hits, i, ax, ay, rx, ry, g.k, g.ax, g.ay, g.bx, g.by):
                 return None
     return hits
 

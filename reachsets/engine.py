@@ -37,7 +37,7 @@ from reachsets.rules_f1 import evaluate_f1
 from reachsets.rules_road import evaluate_road
 from reachsets.rules_roborace import evaluate_roborace
 from reachsets.track import TrackGeometry, build_track
-from reachsets.verdict import first_hits
+from reachsets.verdict import first_hits, touching
 
 if TYPE_CHECKING:
     from collections.abc import Mapping, Sequence
@@ -48,9 +48,17 @@ if TYPE_CHECKING:
     from reachsets.ltl import LtlMemory
     from reachsets.occupancy import EgoOccupancy
     from reachsets.params import ReachParams
+    from reachsets.reduce import CellRings
     from reachsets.road import RoadGeometry
 
-__all__ = ["AppliedPatch", "Collision", "ReachResult", "RuleState", "evaluate_frames"]
+__all__ = [
+    "AppliedPatch",
+    "Collision",
+    "FrameRings",
+    "ReachResult",
+    "RuleState",
+    "evaluate_frames",
+]
 
 _log = logging.getLogger(__name__)
 
@@ -121,6 +129,8 @@ class ReachResult:
             ``simple`` sets as ``(M, T, 6, 2)`` vertices (verdict only); see ``reach_sets``.
         skipped_road: Lanes and solid lines of the road layout left out for unusable
             geometry (``RoadGeometry.skipped``); the rules ran on the rest.
+        rings: Full geometry: the clipper's rings the sets were built from (``CellRings`` of
+            the engine call, this frame's cells ``cells``), or ``None``.
     """
 
     is_safe: bool
@@ -131,6 +141,7 @@ class ReachResult:
     occupancy: EgoOccupancy
     sets: NDArray[Any]
     skipped_road: tuple[str, ...] = ()
+    rings: FrameRings | None = None
 
     @cached_property
     def reach_sets(self) -> NDArray[np.object_]:
@@ -145,6 +156,21 @@ class ReachResult:
         if not self.sets.size:
             return np.empty(self.sets.shape[:2], dtype=object)
         return np.asarray(shapely.polygons(self.sets))
+
+
+@dataclass(frozen=True, slots=True)
+class FrameRings:
+    """A frame's share of an engine call's :class:`~reachsets.reduce.CellRings`.
+
+    Attributes:
+        cells: The rings of the call's cells (flat ``row * T + step``).
+        start: The frame's first flat cell.
+        stop: One past its last (``start + M * T``).
+    """
+
+    cells: CellRings
+    start: int
+    stop: int
 
 
 def _same_bounds(a: TrackBounds | None, b: TrackBounds | None) -> bool:
@@ -244,11 +270,12 @@ def evaluate_frames(
         batch = stack_frames(run, params, track, road_geo)
         patches, memory = _rule_patches(batch, state.ltl)
         sets: NDArray[Any]
+        rings: CellRings | None = None
         if params.full_geometry or params.keep_largest_part_only:
-            sets, hits = _full_sets(batch, patches)
+            sets, hits, rings = _full_sets(batch, patches)
         else:
             sets, hits = _verdict(batch, patches)
-        results += _split(batch, sets, hits, patches)
+        results += _split(batch, (sets, hits, rings), patches)
         state = RuleState(
             ltl=memory, track_bounds=run[-1].track, track=track, road=road, road_geometry=road_geo
         )
@@ -256,9 +283,13 @@ def evaluate_frames(
 
 
 def _split(
-    batch: FrameBatch, sets: NDArray[Any], hits: NDArray[np.bool_], patches: list[RulePatch]
+    batch: FrameBatch,
+    reduced: tuple[NDArray[Any], NDArray[np.bool_], CellRings | None],
+    patches: list[RulePatch],
 ) -> list[ReachResult]:
-    """Per-frame results of a batch."""
+    """Per-frame results of a batch (``reduced``: its sets, hits and rings)."""
+    sets, hits, rings = reduced
+    steps = sets.shape[1] if sets.ndim > 1 else 0
     times = batch.occupancy.t_s
     ids = batch.objects.ids
     first = np.where(hits.any(axis=1), np.argmax(hits, axis=1), -1)
@@ -287,6 +318,7 @@ def _split(
                 occupancy=batch.occupancy.frame(f),
                 sets=sets[lo:hi],
                 skipped_road=skipped_road,
+                rings=None if rings is None else FrameRings(rings, lo * steps, hi * steps),
             )
         )
     return out
@@ -294,21 +326,31 @@ def _split(
 
 def _full_sets(
     batch: FrameBatch, patches: list[RulePatch]
-) -> tuple[NDArray[np.object_], NDArray[np.bool_]]:
-    """Every reduced set and every cell where it touches the ego footprint, ``(R, T)`` each."""
+) -> tuple[NDArray[np.object_], NDArray[np.bool_], CellRings | None]:
+    """Every reduced set and every cell where it touches the ego footprint, ``(R, T)`` each.
+
+    Also the clipper's rings of the sets (``None`` without), their patched cells not exact.
+    """
     params, objs, times = batch.params, batch.objects, batch.occupancy.t_s
-    sets = reachable_sets(objs, times, params, batch.track)
+    found: list[CellRings] = []
+    sets = reachable_sets(objs, times, params, batch.track, rings=found)
+    rings = found[0] if found else None
     if patches:
-        sets = subtract_patches(sets, patch_grid(patches, _footprints(batch), len(times)))
+        grid = patch_grid(patches, _footprints(batch), len(times))
+        sets = subtract_patches(sets, grid)
+        if rings is not None:
+            at = [g is not None for g in grid.at.reshape(-1)]
+            every = np.repeat([g is not None for g in grid.every], len(times))
+            rings.exact[np.asarray(at, dtype=bool) | every] = False
     if params.keep_largest_part_only and sets.size:
         sets = keep_largest_part(sets)
+        rings = None
     if not sets.size:
-        return sets, np.zeros(sets.shape, dtype=bool)
-    ego = batch.occupancy.polygons[batch.frame]
-    hits = np.asarray(shapely.intersects(sets, ego), dtype=bool)
+        return sets, np.zeros(sets.shape, dtype=bool), rings
+    hits = touching(sets, batch.occupancy.corners_m, batch.frame)
     sets = sets.copy()
     sets[np.asarray(shapely.is_empty(sets), dtype=bool)] = None
-    return sets, hits
+    return sets, hits, rings
 
 
 def _verdict(

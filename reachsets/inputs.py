@@ -172,6 +172,21 @@ class ObjectStates:
         return out
 
     @classmethod
+    def of_frozen(cls, columns: dict[str, NDArray[Any]]) -> ObjectStates:
+        """Objects made of checked, read-only ``(N,)`` columns as they are (no copy, no check).
+
+        Args:
+            columns: Every field name -> its read-only array, values as ``ObjectStates``
+                holds them (ids ``str_``, speeds ``>= 0``): the caller has checked them.
+        """
+        out = object.__new__(cls)
+        for name, col in columns.items():
+            if col.flags.writeable:
+                raise InputShapeError(name, "expected a read-only array", col.shape)
+            object.__setattr__(out, name, col)
+        return out
+
+    @classmethod
     def empty(cls) -> ObjectStates:
         """No objects."""
         z = np.zeros(0)

@@ -12,13 +12,14 @@ from reachsets.params import ReachMethod
 from reachsets.reach_bound import wall_aware_arcs
 from reachsets.reach_simple import simple_reach_polygons, simple_reach_vertices
 from reachsets.reach_turn import funnel_coords, steering_arcs
-from reachsets.reduce import scalar_sets
+from reachsets.reduce import scalar_cells
 
 if TYPE_CHECKING:
     from numpy.typing import NDArray
 
     from reachsets.inputs import ObjectStates
     from reachsets.params import ReachParams
+    from reachsets.reduce import CellRings
     from reachsets.track import TrackGeometry
 
 __all__ = [
@@ -79,6 +80,7 @@ def reachable_sets(
     simple: NDArray[np.object_] | None = None,
     trim: bool = True,
     scalar: bool | None = None,
+    rings: list[CellRings] | None = None,
 ) -> NDArray[np.object_]:
     """Reachable sets of every object at every stamp, ``(N, T)`` shapely geometries.
 
@@ -96,9 +98,10 @@ def reachable_sets(
             keep the plain ``simple`` polygon. ``None`` reduces every cell.
         simple: The ``simple_sets`` of these objects when already computed.
         trim: ``False`` skips the trimming (the caller clips the ego footprints instead).
-        scalar: Reduce every cell with the compiled clipper (``reduce.scalar_sets``; GEOS where
+        scalar: Reduce every cell with the compiled clipper (``reduce.scalar_cells``; GEOS where
             it gives up), the same geometry within 1e-9 m; ``None``: when compiled and
             ``cells`` and ``simple`` are ``None``.
+        rings: Receives the clipper's rings of the sets (``reduce.CellRings``) when it ran.
 
     Returns:
         ``(N, T)`` geometries (possibly multi-part or empty).
@@ -107,7 +110,10 @@ def reachable_sets(
         area = drivable if drivable is not None else (track.polygon if track is not None else None)
         trimmed = area if trim and params.trim_to_drivable else None
         verts = simple_vertices(objects, times_s, params)
-        return scalar_sets(verts, deletion_coords(objects, params, track), trimmed)
+        sets, found = scalar_cells(verts, deletion_coords(objects, params, track), trimmed)
+        if rings is not None and found is not None:
+            rings.append(found)
+        return sets
     sets = simple_sets(objects, times_s, params) if simple is None else simple.copy()
     if sets.size == 0:
         return sets

@@ -10,6 +10,7 @@ result rings (``shapely.linearrings`` / ``polygons`` / ``multipolygons`` on the 
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -20,13 +21,35 @@ from reachsets import clip_cells, clip_rings
 if TYPE_CHECKING:
     from numpy.typing import NDArray
 
-__all__ = ["prepared_area", "scalar_sets"]
+__all__ = ["CellRings", "prepared_area", "scalar_cells", "scalar_sets"]
 
 _POLYGON = 3
 _EMPTY = shapely.Polygon()
 #: Drivable areas prepared for the clipper, by ``id`` (with the geometry, to check identity).
 _AREAS: dict[int, tuple[Any, clip_cells.Area | None]] = {}
 _AREAS_MAX = 8
+
+
+@dataclass(frozen=True)
+class CellRings:
+    """The rings the clipper gave for a grid of cells, the points of their geometries.
+
+    A cell's geometry (``scalar_cells``) is built from exactly these points: one polygon per
+    ring, several rings of a cell a multipolygon in this order, no rings an empty polygon.
+
+    Attributes:
+        xy: Every ring's points, closed (first point repeated), ring after ring, ``(P, 2)``.
+        ends: Point offsets of the rings, ``(R + 1,)`` (ring ``r``: ``ends[r]:ends[r + 1]``).
+        first: Ring offsets of the cells, ``(C + 1,)`` (cell ``c``: rings ``first[c]`` to
+            ``first[c + 1] - 1``); cells are flat ``object * T + step``.
+        exact: ``(C,)``: the cell's geometry is its rings (``False``: computed by GEOS, where
+            the clipper gave up, or changed afterwards, e.g. by a rule patch).
+    """
+
+    xy: NDArray[np.float64]
+    ends: NDArray[np.int64]
+    first: NDArray[np.int64]
+    exact: NDArray[np.bool_]
 
 
 def prepared_area(area: Any) -> clip_cells.Area | None:
@@ -62,9 +85,21 @@ def scalar_sets(
         The same geometry as GEOS' ``difference`` then ``intersection`` (within 1e-9 m);
         an empty result is an empty polygon.
     """
+    return scalar_cells(verts, deletion, area)[0]
+
+
+def scalar_cells(
+    verts: NDArray[np.float64], deletion: NDArray[np.float64] | None, area: Any
+) -> tuple[NDArray[np.object_], CellRings | None]:
+    """:func:`scalar_sets` and the rings its geometries were built from.
+
+    Returns:
+        The ``(N, T)`` geometries and their :class:`CellRings` (``None`` when nothing was
+        clipped: no deletion and no area, or no cells).
+    """
     n, t = verts.shape[:2]
     if n == 0 or t == 0 or (deletion is None and area is None):
-        return np.asarray(shapely.polygons(verts)).reshape(n, t)
+        return np.asarray(shapely.polygons(verts)).reshape(n, t), None
     dl = _deletion(deletion, n)
     prepared = prepared_area(area) if area is not None else None
     xy: list[float] = []
@@ -72,24 +107,27 @@ def scalar_sets(
     owner: list[int] = []
     fallback: list[int] = []
     rows = verts.reshape(n, t, -1).tolist()
-    for i in range(n):
-        if dl[i] is None or (area is not None and prepared is None):
-            fallback += range(i * t, (i + 1) * t)
-            continue
-        for k, parts in enumerate(clip_cells.reduce_cells(rows[i], dl[i] or [], prepared)):
-            if parts is None:
-                fallback.append(i * t + k)
-                continue
-            for ring in parts:
-                xy += ring
-                xy += ring[:2]  # closed
-                sizes.append(len(ring) // 2 + 1)
-                owner.append(i * t + k)
-    out = _assemble(xy, sizes, owner, n * t)
+    if area is not None and prepared is None:  # not one polygon: GEOS for every cell
+        fallback += range(n * t)
+    else:
+        clip_cells.reduce_objects(rows, dl, prepared, xy, sizes, owner, fallback)
+    rings = _rings(xy, sizes, owner, n * t)
+    out = _assemble(rings, owner, n * t)
     if fallback:
         flat = verts.reshape(n * t, *verts.shape[2:])
         out[fallback] = _geos_cells(flat, deletion, area, fallback, t)
-    return out.reshape(n, t)
+        rings.exact[fallback] = False
+    return out.reshape(n, t), rings
+
+
+def _rings(xy: list[float], sizes: list[int], owner: list[int], cells: int) -> CellRings:
+    """The clipper's output as :class:`CellRings` (``owner``: cell per ring, increasing)."""
+    pts = np.fromiter(xy, dtype=np.float64, count=len(xy)).reshape(-1, 2)
+    ends = np.zeros(len(sizes) + 1, dtype=np.int64)
+    np.cumsum(sizes, out=ends[1:])
+    first = np.zeros(cells + 1, dtype=np.int64)
+    np.cumsum(np.bincount(np.asarray(owner, dtype=np.int64), minlength=cells), out=first[1:])
+    return CellRings(pts, ends, first, np.ones(cells, dtype=bool))
 
 
 def _deletion(deletion: NDArray[np.float64] | None, n: int) -> list[list[float] | None]:
@@ -122,22 +160,17 @@ def _cut(
     return cut
 
 
-def _assemble(
-    xy: list[float], sizes: list[int], owner: list[int], cells: int
-) -> NDArray[np.object_]:
+def _assemble(rings: CellRings, owner: list[int], cells: int) -> NDArray[np.object_]:
     """One geometry per cell from its closed rings (none: empty polygon; several: multipolygon).
 
-    ``xy``: all rings' coordinates, flat; ``sizes``: points per ring; ``owner``: cell per ring.
+    ``owner``: cell per ring (``rings.first`` in another form).
     """
     out = np.full(cells, _EMPTY, dtype=object)
-    if not sizes:
+    if not owner:
         return out
-    pts = np.fromiter(xy, dtype=np.float64, count=len(xy)).reshape(-1, 2)
-    offsets = np.zeros(len(sizes) + 1, dtype=np.int64)
-    np.cumsum(sizes, out=offsets[1:])
     polys = np.asarray(
         shapely.from_ragged_array(
-            shapely.GeometryType.POLYGON, pts, (offsets, np.arange(len(sizes) + 1))
+            shapely.GeometryType.POLYGON, rings.xy, (rings.ends, np.arange(len(owner) + 1))
         )
     )
     if len(set(owner)) == len(owner):  # one ring per cell (the common case): no grouping

@@ -9,12 +9,13 @@ bit-identical to the numpy path (tested with Hypothesis in ``tests/reachsets/tes
 from __future__ import annotations
 
 from bisect import bisect_right
+from typing import Final
 
 __all__ = ["BLOCK", "block_boxes", "lateral_rows", "project_rows"]
 
 
 #: Centre points per block of ``block_boxes``.
-BLOCK = 16
+BLOCK: Final = 16
 
 
 def block_boxes(cx: list[float], cy: list[float]) -> list[float]:

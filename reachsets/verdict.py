@@ -29,7 +29,7 @@ if TYPE_CHECKING:
 
     from reachsets.patches import PatchGrid
 
-__all__ = ["first_hits"]
+__all__ = ["first_hits", "touching"]
 
 
 def first_hits(
@@ -129,3 +129,31 @@ def _reduced_touch(
     part = shapely.intersection(part, polys[len(i) :])
     ok = shapely.intersects(part, area) if area is not None else ~shapely.is_empty(part)
     return np.asarray(ok, dtype=bool)
+
+
+def touching(
+    sets: NDArray[np.object_], corners: NDArray[np.float64], frame: NDArray[np.intp]
+) -> NDArray[np.bool_]:
+    """Full geometry: ``shapely.intersects(sets, ego footprint)`` per cell, ``(R, T)``.
+
+    GEOS only runs for the cells whose bounding box meets the footprint's (the others cannot
+    touch it); the footprints of those cells are the only ones built.
+
+    Args:
+        sets: The reduced sets, ``(R, T)``.
+        corners: The ego's footprint corners per frame, ``(F, T, 4, 2)``.
+        frame: Frame of each row, ``(R,)``.
+    """
+    lo, hi = corners.min(axis=2)[frame], corners.max(axis=2)[frame]  # (R, T, 2)
+    box = shapely.bounds(sets)  # NaN for empty sets: never near
+    near = (
+        (box[..., 0] <= hi[..., 0])
+        & (box[..., 2] >= lo[..., 0])
+        & (box[..., 1] <= hi[..., 1])
+        & (box[..., 3] >= lo[..., 1])
+    )
+    hits = np.zeros(sets.shape, dtype=bool)
+    if near.any():
+        ego = shapely.polygons(corners[frame][near])
+        hits[near] = shapely.intersects(sets[near], ego)
+    return hits

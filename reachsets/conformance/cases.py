@@ -13,18 +13,24 @@ import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-from reachsets.adapter import reach_inputs_from_arrays
+import numpy as np
+
 from reachsets.conformance.errors import ReachCaseError
 from reachsets.engine import RuleState
 from reachsets.errors import ParamsError, ReachSetError
-from reachsets.inputs import REFERENCE_EGO_LENGTH_M, REFERENCE_EGO_WIDTH_M, TrackBounds
+from reachsets.inputs import (
+    REFERENCE_EGO_LENGTH_M,
+    REFERENCE_EGO_WIDTH_M,
+    EgoTrajectory,
+    ObjectStates,
+    ReachInputs,
+    TrackBounds,
+)
 from reachsets.params import ReachMethod, ReachParams
 from reachsets.track import build_track
 
 if TYPE_CHECKING:
     from collections.abc import Mapping
-
-    from reachsets.inputs import ReachInputs
 
 __all__ = ["CaseDefaults", "ParsedCase", "ParsedStep", "parse_case", "parse_defaults"]
 
@@ -39,6 +45,8 @@ _STEP_KEYS = frozenset({"ego", "objects", "expected", "time_s", "note"})
 _CASE_KEYS = _STEP_KEYS | {"id", "method", "sequence"}
 _EGO_KEYS = frozenset({*_EGO_ARRAYS, "t_s", "length", "width"})
 _OBJECT_KEYS = frozenset({"id", "x", "y", "yaw", "speed", "length", "width"})
+#: ``ObjectStates`` fields, in the order ``_inputs`` builds them.
+_OBJECT_FIELDS = ("ids", "x_m", "y_m", "yaw_rad", "speed_mps", "length_m", "width_m")
 
 
 @dataclass(frozen=True)
@@ -286,30 +294,55 @@ def _step(where: _Where, raw: object, field: str, defaults: CaseDefaults) -> Par
             )
     length = where.size(f"{dot}ego.length", ego.get("length", defaults.ego_length_m))
     width = where.size(f"{dot}ego.width", ego.get("width", defaults.ego_width_m))
-    try:
-        inputs = reach_inputs_from_arrays(
-            ego_x_m=arrays["x"],
-            ego_y_m=arrays["y"],
-            ego_yaw_rad=arrays["heading"],
-            ego_speed_mps=arrays["speed"],
-            ego_t_s=times,
-            ego_length_m=length,
-            ego_width_m=width,
-            object_ids=columns["id"],
-            object_x_m=columns["x"],
-            object_y_m=columns["y"],
-            object_yaw_rad=columns["yaw"],
-            object_speed_mps=columns["speed"],
-            object_length_m=columns["l"],
-            object_width_m=columns["w"],
-            track=defaults.track,
-        )
-    except ReachSetError as err:
-        raise where.error(f"{dot}ego", getattr(err, "value", None), str(err)) from err
+    ego_rows = [arrays[k] for k in _EGO_ARRAYS]
+    inputs = _inputs(ego_rows, times, (length, width), columns, defaults.track)
     expected = step.get("expected")
     return ParsedStep(
         inputs, None if expected is None else _expected(where, f"{dot}expected", expected)
     )
+
+
+def _inputs(
+    ego: list[list[float]],
+    times: list[float] | None,
+    size: tuple[float, float],
+    columns: dict[str, list[Any]],
+    track: TrackBounds | None,
+) -> ReachInputs:
+    """``reach_inputs_from_arrays`` of values ``_step`` has checked, without checking again.
+
+    Every number is finite, the ego's lists have one length, sizes are positive or NaN
+    (missing: the ego's). The arrays are the adapter's (same dtypes and values, read-only);
+    ``tests/reachsets/conformance`` compares the two.
+
+    Args:
+        ego: The ego's x, y, heading and speed lists.
+        times: Its ``t_s`` (``None``: from the speeds).
+        size: The ego's length and width.
+        columns: The objects' ``id``, ``x``, ``y``, ``yaw``, ``speed``, ``l``, ``w`` lists.
+        track: The shared track bounds.
+    """
+    k = len(ego[0])
+    block = np.array([*ego, [math.nan] * k if times is None else times], dtype=np.float64)
+    block.flags.writeable = False
+    x, y, yaw, speed, t = block
+    trajectory = object.__new__(EgoTrajectory)
+    for name, value in (("x_m", x), ("y_m", y), ("yaw_rad", yaw), ("speed_mps", speed)):
+        object.__setattr__(trajectory, name, value)
+    object.__setattr__(trajectory, "t_s", t)
+    object.__setattr__(trajectory, "length_m", size[0])
+    object.__setattr__(trajectory, "width_m", size[1])
+    ids = columns["id"]
+    rows = np.array([columns[c] for c in ("x", "y", "yaw", "speed", "l", "w")], dtype=np.float64)
+    rows = rows.reshape(6, len(ids))
+    rows[3] = np.clip(rows[3], 0.0, None)  # as ObjectStates: negative speeds read as 0
+    for row, default in ((4, size[0]), (5, size[1])):
+        rows[row] = np.where(np.isnan(rows[row]), default, rows[row])
+    names = np.array(ids, dtype=np.str_) if ids else np.zeros(0, "<U1")
+    names.flags.writeable = False
+    rows.flags.writeable = False
+    objects = ObjectStates.of_frozen(dict(zip(_OBJECT_FIELDS, [names, *rows], strict=True)))
+    return ReachInputs(ego=trajectory, objects=objects, track=track)
 
 
 def parse_case(raw: object, defaults: CaseDefaults, index: int) -> ParsedCase:

@@ -94,9 +94,11 @@ def unique_ids(inputs: ReachInputs, prefix: str) -> ReachInputs:
     """
     objects = inputs.objects
     columns = {f.name: getattr(objects, f.name) for f in dataclasses.fields(objects)}
-    columns["ids"] = np.array([f"{prefix}{i}" for i in objects.ids.tolist()], dtype=np.str_)
-    # the columns are the checked object's: no second validation
-    return dataclasses.replace(inputs, objects=ObjectStates.rows_of(columns, slice(None)))
+    ids = np.array([f"{prefix}{i}" for i in objects.ids.tolist()], dtype=np.str_)
+    ids.flags.writeable = False
+    columns["ids"] = ids
+    # the columns are the checked object's (read-only): shared, no second validation
+    return dataclasses.replace(inputs, objects=ObjectStates.of_frozen(columns))
 
 
 def _record(

@@ -12,7 +12,7 @@ from reachsets.clip_cells import Area, clip, reduce_cells
 from reachsets.inputs import TrackBounds
 from reachsets.params import ReachMethod, ReachParams
 from reachsets.reachable import reachable_sets
-from reachsets.reduce import _assemble
+from reachsets.reduce import _assemble, _rings
 from reachsets.track import build_track
 from tests.reachsets.helpers import objects, same_sets
 
@@ -183,8 +183,13 @@ def test_assemble_cells(grouped):
     rings = [square, far, square] if grouped else [far, square]
     owner = [0, 0, 2] if grouped else [0, 2]
     xy = [v for ring in rings for v in ring]
-    out = _assemble(xy, [len(r) // 2 for r in rings], owner, 3)
+    cells = _rings(xy, [len(r) // 2 for r in rings], owner, 3)
+    assert cells.first.tolist() == ([0, 2, 2, 3] if grouped else [0, 1, 1, 2])
+    out = _assemble(cells, owner, 3)
     assert out.shape == (3,)
+    # the geometries hold the rings' points as they are, in ring order
+    parts = shapely.get_exterior_ring(shapely.get_parts(out))
+    assert np.array_equal(shapely.get_coordinates(parts), cells.xy)
     assert out[1].is_empty
     assert out[2].equals(shapely.box(0, 0, 1, 1))
     assert out[2].geom_type == "Polygon"
