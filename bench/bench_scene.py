@@ -349,8 +349,9 @@ def run(quick: bool) -> str:  # noqa: FBT001 - bench interface
         f"{ref_note}\n\n"
         f"Constellations per frame: {constellations / n:.1f}. One call per frame: "
         f"`check_frame` evaluated {one['rows']:.0f} of its {one['frames']:.0f} frames "
-        "row by row (`rss.structured.small`), the others fell back to the batched "
-        "engine (`check_frames`, F = 1).\n"
+        "row by row (`rss.structured.small`); "
+        f"{one['frames'] - one['rows']:.0f} fell back to the batched engine "
+        "(`check_frames`, F = 1).\n"
     )
 
 
