@@ -20,11 +20,13 @@ from hypothesis import strategies as st
 
 from rss.conformance.cases import parse_case, parse_defaults
 from rss.model import ConstellationType, RoadSegmentType, SpeedInterval
+from rss.structured.batch import take_rows
 from rss.structured.engine import check_frame, check_frames
 from rss.structured.small import check_frame_small
 from rss.structured.small_output import recall
 from rss.structured.small_result import SmallMemory
 from rss.structured.stacking import stack_constellations
+from rss.structured.standstill import apply_standstill
 from tests.rss.structured.generators import random_sequence, renumber
 from tests.rss.structured.test_small import _assert_same, _drive
 
@@ -40,6 +42,7 @@ _INTERSECTION = (
     "IntersectionObjectHasPriority",
     "IntersectionSamePriority",
 )
+_STILL_MPS = 3.0  # standstill threshold: some objects stand, some move
 _LANE_OFFSET = 100  # lane ids of another intersection: beyond every generated id
 _SHIFTS = ((1, 0), (0, 1), (1, 1))  # other lanes on the ego road, the intersecting road, both
 
@@ -114,15 +117,22 @@ def _routes_frames(seed: int, n_pairs: int, n_others: int, steps: int) -> list[l
     return frames
 
 
-def _check_both(
-    frames: list[list[Constellation]],
-) -> tuple[int, int]:
-    """Both paths frame by frame (memory carried); ``(frames, frames the row path took)``."""
+def _check_both(frames: list[list[Constellation]], via: str = "stacking") -> tuple[int, int]:
+    """Both paths frame by frame (memory carried); ``(frames, frames the row path took)``.
+
+    ``via``: the row path reads the rows the stacking step packed (``stacking``), the
+    arrays of a batch it did not stack (``arrays``: road areas padded to the batch's
+    widest), or the standstill rule's copy of a stacked batch (``standstill``).
+    """
     ours_memory: RssMemory | None = None
     batched_memory: RssMemory | None = None
     taken = 0
     for frame in frames:
         batch = stack_constellations(frame)
+        if via == "arrays":
+            batch = take_rows(batch, np.arange(batch.size))
+        elif via == "standstill":
+            batch = apply_standstill(batch, _STILL_MPS)
         before = {}
         if isinstance(ours_memory, SmallMemory):
             before = ours_memory.before
@@ -142,9 +152,15 @@ def _check_both(
 
 
 @settings(max_examples=60, deadline=None)
-@given(st.integers(0, 2**32 - 1), st.integers(1, 4), st.integers(0, 8), st.integers(1, 5))
+@given(
+    st.integers(0, 2**32 - 1),
+    st.integers(1, 4),
+    st.integers(0, 8),
+    st.integers(1, 5),
+    st.sampled_from(["stacking", "arrays", "standstill"]),
+)
 def test_intersection_routes_merged_as_batched(
-    seed: int, n_pairs: int, n_others: int, steps: int
+    seed: int, n_pairs: int, n_others: int, steps: int, via: str
 ) -> None:
     """Several intersection routes per pair (same lanes or not, same dynamics or not)."""
     frames = _routes_frames(seed, n_pairs, n_others, steps)
@@ -155,7 +171,7 @@ def test_intersection_routes_merged_as_batched(
             if c.constellation_type >= ConstellationType.IntersectionEgoHasPriority
         ]
         assert len(keys) - len(set(keys)) >= n_pairs
-    _check_both(frames)
+    _check_both(frames, via)
 
 
 def test_routes_of_other_lanes_are_kept_apart() -> None:
