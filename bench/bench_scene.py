@@ -42,7 +42,7 @@ from rss.scene import (
 )
 from rss.scene.chunked import match_frames
 from rss.scene.create import scene_boxes
-from rss.structured.engine import check_frame, check_frames
+from rss.structured.engine import SmallFrameResult, check_frame, check_frames
 from rss.structured.stacking import stack_constellations
 from workbench.driver import CHUNK_FRAMES, ENGINE_GC_THRESHOLD, engine_gc
 from workbench.engines.rss.adapter import lane_graph_from_map
@@ -137,8 +137,12 @@ def _drives(prep: PreparedGraph, scenes: int, frames: int) -> Drives:
 def _per_frame(
     prep: PreparedGraph, memo: SceneMemo, drives: Drives, settings: SceneSettings
 ) -> Phases:
-    """One call per frame: ``create_scene``, ``stack_constellations``, ``check_frame``."""
-    t = dict.fromkeys(("match", "scene", "stack", "check"), 0.0)
+    """One call per frame: ``create_scene``, ``stack_constellations``, ``check_frame``.
+
+    ``rows`` counts the frames ``check_frame`` evaluated row by row (its small-frame
+    path), ``frames`` those it was called for.
+    """
+    t = dict.fromkeys(("match", "scene", "stack", "check", "rows", "frames"), 0.0)
     for drive in drives:
         memory = None
         for ego, objects in drive:
@@ -148,9 +152,12 @@ def _per_frame(
             if scene.constellations:
                 batch = stack_constellations(scene.constellations)
                 c = time.process_time()
-                _, memory = check_frame(batch, DEFAULT_EGO_DYNAMICS, memory)
+                result, memory = check_frame(batch, DEFAULT_EGO_DYNAMICS, memory)
+                d = time.process_time()
                 t["stack"] += c - b
-                t["check"] += time.process_time() - c
+                t["check"] += d - c
+                t["frames"] += 1
+                t["rows"] += isinstance(result, SmallFrameResult)
             else:
                 memory = None
             t["scene"] += b - a
@@ -340,7 +347,11 @@ def run(quick: bool) -> str:  # noqa: FBT001 - bench interface
         f"| total | **{total(many)}** | {pure_ms('scene', 'stack', 'check')} | {total(one)} "
         f"| {ref_ms()} |\n\n"
         f"{ref_note}\n\n"
-        f"Constellations per frame: {constellations / n:.1f}.\n"
+        f"Constellations per frame: {constellations / n:.1f}. One call per frame: "
+        f"`check_frame` evaluated {one['rows']:.0f} of its {one['frames']:.0f} frames "
+        "row by row (`rss.structured.small`); "
+        f"{one['frames'] - one['rows']:.0f} fell back to the batched engine "
+        "(`check_frames`, F = 1).\n"
     )
 
 

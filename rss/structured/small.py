@@ -11,11 +11,11 @@ response and the memory are computed eagerly, the result arrays are built when f
 chooses it by size (:data:`SMALL_FRAME_MAX`).
 
 It covers the common frame: every constellation valid; rows of one (ego, object, type) key
-(merged by ad-rss, and remembered as one) of a non-intersection type with shared dynamics
-(:mod:`rss.structured.small_merge`). Anything else — an invalid row, an intersection type
-twice for one object, an empty road area — returns ``None`` and the batched engine takes
-the frame, so both paths agree by construction; ``tests/rss/structured/test_small.py``
-checks it.
+(remembered as one) merged into their worst case as the batched engine merges them, for
+every type (:mod:`rss.structured.small_merge`). Anything else — an invalid row, an object
+outside its road area, an empty road area — returns ``None`` and the batched engine takes
+the frame, so both paths agree by construction; ``tests/rss/structured/test_small*.py``
+check it.
 """
 
 from __future__ import annotations
@@ -215,10 +215,7 @@ def check_frame_small(
         if not _row(c, ctype, places, out):
             return None
     unique = len(set(keys)) == len(keys)
-    speeds = merge_rows(out, rows, keys, unique=unique)
-    if speeds is None:
-        return None
-    ego_speeds, other_speeds = speeds
+    ego_speeds, other_speeds = merge_rows(out, rows, keys, unique=unique)
     for c, ctype in enumerate(ctypes):
         row = out.rows[c]
         row.add_states(

@@ -1,19 +1,21 @@
 """Worst-case merging of similar constellations in the small-frame path, one frame.
 
-The row twin of :func:`rss.structured.merge.merge_similar` for the groups it covers:
-rows of one ``(ego, object, type)`` key of a non-intersection type whose ego and object
-share their dynamics records. Every row of such a group gets the group's worst case
-(positions and distances as :func:`rss.structured.merge.merge_position_groups`, ego in
-correct lane: all, other: any, distances to enter: min, to leave: max, speed intervals:
-union) and is checked as that. Any other group (an intersection type, which ad-rss merges
-only for equal intersection lanes, or differing dynamics) is left to the batched engine.
+The row twin of :func:`rss.structured.merge.merge_similar`: rows merge when they share
+the batched engine's group key (``merge._groups``) — ego id, object id and type; for an
+intersection type also the lanes of the Intersection segments of the ego road and of the
+intersecting road (as ad-rss gives constellations of other intersection lanes their own
+id); and the dynamics records of ego and object (rows of one pair and type with other
+dynamics are groups of their own, as in the batched engine). Every row of a group gets
+the group's worst case (positions and distances as
+:func:`rss.structured.merge.merge_position_groups`, ego in correct lane: all, other: any,
+distances to enter: min, to leave: max, speed intervals: union) and is checked as that.
 """
 
 from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from rss.structured.codes import EGO_PRIORITY, OVERLAP
+from rss.structured.codes import EGO_PRIORITY, INTERSECTION_SEGMENT, OVERLAP
 
 if TYPE_CHECKING:
     from rss.structured.small_input import Packed
@@ -21,10 +23,14 @@ if TYPE_CHECKING:
 
 __all__ = ["merge_rows"]
 
+#: A group's key: ego id, object id, type, the intersection lanes of the ego road and of
+#: the intersecting road (empty for other types), ego and object dynamics records.
+_Key = tuple[int, int, int, tuple[int, ...], tuple[int, ...], int, int]
+
 
 def merge_rows(
     out: Columns, rows: Packed, keys: list[tuple[int, int, int]], *, unique: bool
-) -> tuple[list[list[float]], list[list[float]]] | None:
+) -> tuple[list[list[float]], list[list[float]]]:
     """Merge the groups of similar rows of ``out`` in place; speeds per row to check with.
 
     Args:
@@ -35,33 +41,67 @@ def merge_rows(
 
     Returns:
         ``(ego speeds, other speeds)`` per row (lon min, lon max, lat min, lat max [m/s],
-        merged within groups), or ``None`` if a group must go to the batched engine.
+        merged within groups).
     """
     ego_speeds = [rows.speeds[e] for e in rows.ego]
     other_speeds = [rows.speeds[o] for o in rows.other]
     if unique:
         return ego_speeds, other_speeds
-    groups: dict[tuple[int, int, int], list[int]] = {}
+    count: dict[tuple[int, int, int], int] = {}
+    for key in keys:
+        count[key] = count.get(key, 0) + 1
+    lanes: dict[int, tuple[int, ...]] = {}
+    groups: dict[_Key, list[int]] = {}
     for c, key in enumerate(keys):
-        members = groups.get(key)
+        if count[key] == 1:
+            continue
+        ego_lanes: tuple[int, ...] = ()
+        cross_lanes: tuple[int, ...] = ()
+        if key[2] >= EGO_PRIORITY:
+            ego_lanes = _lanes(rows, rows.ego_road[c], lanes)
+            cross_lanes = _lanes(rows, rows.cross_road[c], lanes)
+        group = (
+            key[0],
+            key[1],
+            key[2],
+            ego_lanes,
+            cross_lanes,
+            rows.ego_dynamics[c],
+            rows.other_dynamics[c],
+        )
+        members = groups.get(group)
         if members is None:
-            groups[key] = [c]
+            groups[group] = [c]
         else:
             members.append(c)
-    for key, members in groups.items():
-        if len(members) == 1:
-            continue
-        if key[2] >= EGO_PRIORITY:
-            return None
-        first = members[0]
-        for c in members:
-            if (
-                rows.ego_dynamics[c] != rows.ego_dynamics[first]
-                or rows.other_dynamics[c] != rows.other_dynamics[first]
-            ):
-                return None
-        _merge_group(out, members, ego_speeds, other_speeds)
+    for members in groups.values():
+        if len(members) > 1:
+            _merge_group(out, members, ego_speeds, other_speeds)
     return ego_speeds, other_speeds
+
+
+def _lanes(rows: Packed, road: int, known: dict[int, tuple[int, ...]]) -> tuple[int, ...]:
+    """Sorted lane ids (-1 pads left out) of the Intersection segments of road area ``road``.
+
+    Equal for two rows exactly when ``merge._lane_keys`` is: it sorts the same ids with -1
+    in every other of the batch's ``R * L`` slots, a width all rows share.
+    """
+    found = known.get(road)
+    if found is not None:
+        return found
+    n_segments, n_lanes = rows.road_shape[road]
+    ints = rows.road_ints[road]
+    types = 2 * n_segments * n_lanes
+    ids = [
+        ints[r * n_lanes + j]
+        for r in range(n_segments)
+        if ints[types + r] == INTERSECTION_SEGMENT
+        for j in range(n_lanes)
+        if ints[r * n_lanes + j] != -1
+    ]
+    ids.sort()
+    found = known[road] = tuple(ids)
+    return found
 
 
 def _position(codes: list[int], distances: list[float]) -> tuple[int, float]:
