@@ -106,7 +106,9 @@ def main(argv: list[str] | None = None) -> int:
         f"Machine: {_machine()}.\n\n"
         "Every number below comes from that one run; engines and their reference "
         "implementations ran side by side in the same run where a reference exists (in the "
-        "same process, or for ad-rss-map-integration in its own interpreter).\n\n"
+        "same process, or for ad-rss-map-integration in its own interpreter). "
+        "Before/after measurements and analyses of past speed work: "
+        "[speed history](speed-history.md) (kept by hand; this file is rewritten whole).\n\n"
     )
     args.out.parent.mkdir(parents=True, exist_ok=True)
     args.out.write_text(header + "\n".join(sections))

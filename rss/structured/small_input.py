@@ -34,7 +34,7 @@ if TYPE_CHECKING:
 __all__ = ["SMALL_FRAME_MAX", "Packed", "pack", "packed", "remember"]
 
 #: Largest frame (constellations) :func:`rss.structured.engine.check_frame` evaluates row
-#: by row; measured crossover with the batched engine (docs/benchmarks.md).
+#: by row; measured crossover with the batched engine (docs/speed-history.md).
 SMALL_FRAME_MAX: Final = 128
 
 _FIELDS: Final = tuple(DYNAMICS_KEYS.values())
