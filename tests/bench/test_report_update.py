@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
-from bench.run import _updated
+import pytest
+
+from bench.run import _section, _updated
 
 _REPORT = (
     "# Benchmarks\n\nMeasured by `make bench` on 2026-11-28.\n\nMachine: m.\n\n"
@@ -29,3 +31,14 @@ def test_a_second_update_keeps_one_note() -> None:
     assert twice.count("Re-measured on") == 1
     assert "2026-11-30" in twice
     assert "new b" in twice
+
+
+def test_each_module_runs_in_a_fresh_interpreter_and_returns_its_section() -> None:
+    section = _section("bench_reach_cases", quick=True)
+    assert section.startswith("## Reach-set conformance cases")
+    assert "| simple | full sets |" in section
+
+
+def test_only_benchmark_module_names_run() -> None:
+    with pytest.raises(SystemExit, match="not a benchmark module name"):
+        _section("os; import shutil", quick=True)

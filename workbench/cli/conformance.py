@@ -10,6 +10,7 @@ import typer
 
 from rss.conformance import evaluate_document
 from rss.errors import RssCaseError
+from workbench.driver import engine_gc
 from workbench.errors import WorkbenchError
 from workbench.outputs import json_text
 
@@ -32,8 +33,9 @@ def rss_cases(
         document = json.loads(cases.read_text())
     except json.JSONDecodeError as err:
         raise RssCaseError(str(cases), f"not valid JSON: {err}") from err
-    for record in evaluate_document(document):
-        typer.echo(json_text(record))
+    with engine_gc():  # the drive pipeline's collector threshold (docs/rss_scene.md)
+        for record in evaluate_document(document):
+            typer.echo(json_text(record))
 
 
 def _read_reach_cases(path: Path) -> Any:
@@ -65,8 +67,9 @@ def reach_cases(
     from reachsets.conformance import evaluate_cases, prepare_document  # noqa: PLC0415
 
     prepared = prepare_document(_read_reach_cases(cases), str(cases), full_sets=full_sets)
-    for record in evaluate_cases(prepared):
-        typer.echo(json_text(record))
+    with engine_gc():
+        for record in evaluate_cases(prepared):
+            typer.echo(json_text(record))
 
 
 @conformance_app.command("reachsets-cases")
