@@ -10,13 +10,14 @@ from typing import Any
 import pytest
 import shapely
 
-from reachsets import ReachMethod, ReachParams, evaluate_frames, reach_inputs_from_arrays
+from reachsets import ReachMethod, ReachParams, evaluate_frames
 from reachsets.conformance import (
     ReachCaseError,
     check_expected,
     evaluate_document,
     parse_defaults,
 )
+from tests.reachsets.conformance.direct import direct_inputs
 
 #: A straight track 20 m wide along +x; the ego at 10 m/s, one object 12 m ahead standing
 #: in its lane (the ego drives into it) and one far behind (skipped: followers are responsible).
@@ -38,19 +39,9 @@ def _document(**case: Any) -> dict[str, Any]:
 
 
 def _direct(method: str, objects: list[dict[str, Any]], *, track: bool = True) -> Any:
-    inputs = reach_inputs_from_arrays(
-        ego_x_m=EGO["x"],
-        ego_y_m=EGO["y"],
-        ego_yaw_rad=EGO["heading"],
-        ego_speed_mps=EGO["speed"],
-        ego_t_s=EGO["t_s"],
-        object_ids=[str(o["id"]) for o in objects],
-        object_x_m=[o["x"] for o in objects],
-        object_y_m=[o["y"] for o in objects],
-        object_yaw_rad=[o["yaw"] for o in objects],
-        object_speed_mps=[o["speed"] for o in objects],
-        object_length_m=[o.get("length", math.nan) for o in objects],
-        object_width_m=[o.get("width", math.nan) for o in objects],
+    inputs = direct_inputs(
+        EGO,
+        objects,
         track_left_m=TRACK["left"] if track else None,
         track_right_m=TRACK["right"] if track else None,
     )

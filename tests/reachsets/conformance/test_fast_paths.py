@@ -10,7 +10,6 @@ the bit, and every cell flagged exact must be one (rule patches and GEOS cells a
 from __future__ import annotations
 
 import dataclasses
-import math
 from typing import Any
 
 import numpy as np
@@ -18,12 +17,13 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from reachsets import ReachMethod, evaluate_frames, reach_inputs_from_arrays
+from reachsets import ReachMethod, evaluate_frames
 from reachsets.conformance import parse_case, parse_defaults, random_document
 from reachsets.conformance.document import prepare_document, unique_ids
 from reachsets.conformance.records import _geometry_outlines, _ring_outlines, set_outlines
 from reachsets.errors import InputShapeError
 from reachsets.inputs import ObjectStates
+from tests.reachsets.conformance.direct import direct_inputs
 
 _COORD = st.floats(-500.0, 500.0, allow_nan=False)
 _SPEED = st.one_of(st.floats(-5.0, 40.0, allow_nan=False), st.just(-0.0), st.just(0))
@@ -52,22 +52,12 @@ def _case(draw: Any) -> dict[str, Any]:
 
 
 def _adapter(case: dict[str, Any], length_m: float, width_m: float) -> Any:
-    ego, objects = case["ego"], case["objects"]
-    return reach_inputs_from_arrays(
-        ego_x_m=ego["x"],
-        ego_y_m=ego["y"],
-        ego_yaw_rad=ego["heading"],
-        ego_speed_mps=ego["speed"],
-        ego_t_s=ego.get("t_s"),
+    ego = case["ego"]
+    return direct_inputs(
+        ego,
+        case["objects"],
         ego_length_m=ego.get("length", length_m),
         ego_width_m=ego.get("width", width_m),
-        object_ids=[str(o["id"]) for o in objects],
-        object_x_m=[o["x"] for o in objects],
-        object_y_m=[o["y"] for o in objects],
-        object_yaw_rad=[o["yaw"] for o in objects],
-        object_speed_mps=[o["speed"] for o in objects],
-        object_length_m=[o.get("length", math.nan) for o in objects],
-        object_width_m=[o.get("width", math.nan) for o in objects],
     )
 
 

@@ -12,32 +12,18 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from reachsets import ReachMethod, ReachParams, evaluate_frames, reach_inputs_from_arrays
+from reachsets import ReachMethod, ReachParams, evaluate_frames
 from reachsets.conformance import evaluate_document, random_document
 from reachsets.conformance.document import BATCH_CASES
 from reachsets.inputs import TrackBounds
+from tests.reachsets.conformance.direct import direct_inputs
 
 if TYPE_CHECKING:
     from reachsets.engine import ReachResult
 
 
 def _inputs(step: dict[str, Any], track: TrackBounds) -> Any:
-    ego, objects = step["ego"], step["objects"]
-    return reach_inputs_from_arrays(
-        ego_x_m=ego["x"],
-        ego_y_m=ego["y"],
-        ego_yaw_rad=ego["heading"],
-        ego_speed_mps=ego["speed"],
-        ego_t_s=ego.get("t_s"),
-        object_ids=[o["id"] for o in objects],
-        object_x_m=[o["x"] for o in objects],
-        object_y_m=[o["y"] for o in objects],
-        object_yaw_rad=[o["yaw"] for o in objects],
-        object_speed_mps=[o["speed"] for o in objects],
-        object_length_m=[o["length"] for o in objects],
-        object_width_m=[o["width"] for o in objects],
-        track=track,
-    )
+    return direct_inputs(step["ego"], step["objects"], track=track)
 
 
 def _expected(result: ReachResult) -> dict[str, Any]:
