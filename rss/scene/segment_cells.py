@@ -26,7 +26,7 @@ from __future__ import annotations
 import itertools
 import math
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
@@ -112,30 +112,37 @@ def _boxes(
     return lo, hi
 
 
-def _cells_of_lines(  # noqa: PLR0917 - the grid, one piece of segments, its rows
+class _Grid(NamedTuple):
+    """The cell grid: lower-left corner of cell ``(0, 0)``, cell side, ``(nx, ny)`` cells."""
+
+    origin: FloatArray
+    cell_m: float
+    shape: tuple[int, int]
+
+
+def _cells_of_lines(  # noqa: PLR0917 - one piece of segments, its boxes, the grid, its rows
     lines: Polylines,
     seg: IntArray,
     line: IntArray,
-    origin: FloatArray,
-    cell_m: float,
-    shape: tuple[int, int],
+    boxes: tuple[IntArray, IntArray],
+    grid: _Grid,
     band_m: float,
     rows: tuple[int, int] | None = None,
 ) -> tuple[IntArray, IntArray, IntArray]:
     """Keys, first and last candidate of the cells near the segments ``seg`` of ``line``.
 
-    ``seg`` holds all segments of each of its lines; ``rows``: only the cells of rows
-    ``iy`` in ``[rows[0], rows[1])`` (all of them get every segment that can matter).
-    Sorted by key.
+    ``seg`` holds all segments of each of its lines, ``boxes`` their cell boxes grown by
+    ``band_m`` and the slack (:func:`_boxes`); ``rows``: only the cells of rows ``iy`` in
+    ``[rows[0], rows[1])`` (all of them get every segment that can matter). Sorted by key.
     """
-    nx, ny = shape
+    origin, cell_m, (nx, ny) = grid
     slack = _slack(cell_m)
     # every cell within band_m of the line has its nearest segment, and that segment's
     # candidates (within slack more), among the cells of the segments' grown boxes
-    lo, hi = _boxes(lines, seg, origin, cell_m, band_m + slack)
+    lo, hi = boxes
     if rows is not None:
-        lo[:, 1] = np.maximum(lo[:, 1], rows[0])
-        hi[:, 1] = np.minimum(hi[:, 1], rows[1] - 1)
+        lo = np.column_stack([lo[:, 0], np.maximum(lo[:, 1], rows[0])])
+        hi = np.column_stack([hi[:, 0], np.minimum(hi[:, 1], rows[1] - 1)])
         inside = lo[:, 1] <= hi[:, 1]
         seg, line, lo, hi = seg[inside], line[inside], lo[inside], hi[inside]
     a, b = lines.xy_m[seg], lines.xy_m[seg + 1]
@@ -149,7 +156,7 @@ def _cells_of_lines(  # noqa: PLR0917 - the grid, one piece of segments, its row
     order = np.argsort(key, kind="stable")
     key, d, s = key[order], d[order], seg[row[order]]
     starts = _run_starts(key)
-    group = np.repeat(np.arange(len(starts)), np.diff(np.append(starts, len(key))))
+    group = _run_of(starts, len(key))
     nearest = np.minimum.reduceat(d, starts) if len(starts) else d
     candidate = d < nearest[group] + slack
     first = np.minimum.reduceat(np.where(candidate, s, np.iinfo(np.int64).max), starts)
@@ -162,6 +169,11 @@ def _slack(cell_m: float) -> float:
     """How much farther than the nearest one a segment may matter for a cell [m]."""
     r = cell_m * math.sqrt(0.5) + _SLACK_M
     return 2.0 * r + DISTANCE_TOL_M + _SLACK_M
+
+
+def _run_of(starts: IntArray, size: int) -> IntArray:
+    """``(size,)`` the run each element belongs to, runs starting at ``starts``."""
+    return np.repeat(np.arange(len(starts)), np.diff(np.append(starts, size)))
 
 
 def _run_starts(values: IntArray) -> IntArray:
@@ -194,7 +206,7 @@ class _Layout:
         x_first = np.minimum.reduceat(ix, at)
         width = np.maximum.reduceat(ix, at) - x_first + 1
         offset = np.cumsum(width) - width
-        row = np.repeat(np.arange(len(at)), np.diff(np.append(at, len(key))))
+        row = _run_of(at, len(key))
         where = offset[row] + ix - x_first[row]
         out_first = np.full(int(width.sum()), -1, dtype=np.int32)  # segment indices
         out_last = np.full(int(width.sum()), -1, dtype=np.int32)
@@ -271,34 +283,34 @@ def segment_cells(lines: Polylines, cell_m: float = CELL_M, band_m: float = BAND
     shape = (int(nx), int(ny))
     multi = np.flatnonzero(count > 1)
     which, seg = flat_runs(lines.start[multi], count[multi])
+    line = multi[which]
     lo, hi = _boxes(lines, seg, origin, cell_m, band_m + _slack(cell_m))
     pairs = np.bincount(which, np.prod(hi - lo + 1, axis=1), minlength=len(multi))
-    seg_start = np.cumsum(count[multi]) - count[multi]
+    ends = np.cumsum(count[multi]).tolist()  # each line's segments: seg[starts[k]:ends[k]]
+    starts = [0, *ends[:-1]]
+    grid = _Grid(origin, cell_m, shape)
     layout = _Layout(shape)
 
-    def flush(some: list[int]) -> None:
-        if some:
-            w, s = flat_runs(lines.start[multi[some]], count[multi[some]])
-            layout.add(*_cells_of_lines(lines, s, multi[some][w], origin, cell_m, shape, band_m))
-        some.clear()
+    def piece(a: int, b: int, rows: tuple[int, int] | None = None) -> None:
+        boxes = (lo[a:b], hi[a:b])
+        layout.add(*_cells_of_lines(lines, seg[a:b], line[a:b], boxes, grid, band_m, rows))
 
-    block: list[int] = []
+    first = 0  # the first line of the block of consecutive lines not laid out yet
     held = 0.0
     for k in range(len(multi)):
         if pairs[k] > _BLOCK_PAIRS:  # a long line alone, in bands of rows
-            flush(block)
-            part = slice(int(seg_start[k]), int(seg_start[k] + count[multi[k]]))
-            line = np.full(part.stop - part.start, multi[k], dtype=np.int64)
-            for band in _row_bands(lo[part], hi[part]):
-                cells = _cells_of_lines(lines, seg[part], line, origin, cell_m, shape, band_m, band)
-                layout.add(*cells)
+            if first < k:
+                piece(starts[first], starts[k])
+            for band in _row_bands(lo[starts[k] : ends[k]], hi[starts[k] : ends[k]]):
+                piece(starts[k], ends[k], band)
+            first, held = k + 1, 0.0
             continue
-        if held + pairs[k] > _BLOCK_PAIRS:
-            flush(block)
-            held = 0.0
-        block.append(k)
+        if held + pairs[k] > _BLOCK_PAIRS and first < k:
+            piece(starts[first], starts[k])
+            first, held = k, 0.0
         held += float(pairs[k])
-    flush(block)
+    if first < len(multi):
+        piece(starts[first], len(seg))
     return layout.cells_of(origin, cell_m, len(count))
 
 

@@ -162,8 +162,8 @@ def test_pieces_of_bounded_memory_lay_out_the_same_cells(
     bands: list[tuple[int, int]] = []
 
     def counted(*args: object) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        if len(args) > 7:  # the rows of a band
-            bands.append(args[7])  # type: ignore[arg-type]
+        if len(args) > 6:  # the rows of a band
+            bands.append(args[6])  # type: ignore[arg-type]
         return banded(*args)  # type: ignore[arg-type]
 
     monkeypatch.setattr(segment_cells_module, "_cells_of_lines", counted)
