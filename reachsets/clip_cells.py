@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 from typing import Final
 
-from reachsets.clip_rings import Box, Edges, Seg, area2, box_of, dedup, inside
+from reachsets.clip_rings import Box, Edges, Run, Seg, area2, box_of, dedup, inside
 from reachsets.clip_scalar import clip_prepared
 
 __all__ = ["SETTLED_TOL_M", "Area", "clip", "reduce_cells", "reduce_objects", "settled"]
@@ -21,11 +21,23 @@ SETTLED_TOL_M: Final = 1e-11
 
 
 def _near(e: Edges, box: Box) -> Edges:
-    """A view of ``e`` with only the edges whose bounding box meets ``box`` (x0, y0, x1, y1)."""
+    """A view of ``e`` with only the edges whose bounding box meets ``box`` (x0, y0, x1, y1).
+
+    Runs keep their order; each is cut down to its edges that meet ``box`` (its box shrinks).
+    """
     v = Edges([], e)
-    for g in e.sel:
-        if g.x0 <= box[2] and g.x1 >= box[0] and g.y0 <= box[3] and g.y1 >= box[1]:
-            v.sel.append(g)
+    lo_x = box[0]
+    lo_y = box[1]
+    hi_x = box[2]
+    hi_y = box[3]
+    for run in e.runs:
+        if run.x0 > hi_x or run.x1 < lo_x or run.y0 > hi_y or run.y1 < lo_y:
+            continue
+        kept = [
+            g for g in run.segs if g.x0 <= hi_x and g.x1 >= lo_x and g.y0 <= hi_y and g.y1 >= lo_y
+        ]
+        if kept:
+            v.runs.append(Run(kept))
     return v
 
 
@@ -67,7 +79,7 @@ def reduce_cells(
         shell = _near(area.shell, near)
         for hole in area.holes:
             v = _near(hole, near)
-            if v.sel:
+            if v.runs:
                 holes.append(v)
             elif inside(cells[0][0], cells[0][1], hole.xy):  # the sets lie in the hole
                 return [[] for _ in cells]

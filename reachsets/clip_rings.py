@@ -12,12 +12,14 @@ __all__ = [
     "EPS",
     "Box",
     "Edges",
+    "Run",
     "Seg",
     "area2",
     "box_of",
     "conditioned",
     "dedup",
     "inside",
+    "runs_of",
     "surely_simple",
 ]
 
@@ -122,20 +124,50 @@ class Seg:
         self.y0, self.y1 = (ay, by) if ay < by else (by, ay)
 
 
+#: Consecutive edges per ``Run`` (a clip tests a run's box before its edges' boxes).
+RUN: Final = 8
+
+
+class Run:
+    """Consecutive edges of a ring (in ring order, at least one) and the box of them all."""
+
+    def __init__(self, segs: list[Seg]) -> None:
+        """Keep the edges; the box is their union."""
+        self.segs = segs
+        g = segs[0]
+        x0, y0, x1, y1 = g.x0, g.y0, g.x1, g.y1
+        for h in segs:
+            x0 = min(x0, h.x0)
+            y0 = min(y0, h.y0)
+            x1 = max(x1, h.x1)
+            y1 = max(y1, h.y1)
+        self.x0 = x0
+        self.y0 = y0
+        self.x1 = x1
+        self.y1 = y1
+
+
+def runs_of(segs: list[Seg]) -> list[Run]:
+    """``segs`` (in ring order) cut into runs of ``RUN`` consecutive edges."""
+    return [Run(segs[i : i + RUN]) for i in range(0, len(segs), RUN)]
+
+
 class Edges:
     """A ring's edges with their bounding boxes, computed once per ring clipped against.
 
-    ``sel``: the edges a clip looks at (all, or those near one object: ``clip_cells``), each
-    knowing its index in the ring (``Seg.k``).
+    ``runs``: the edges a clip looks at (all, or those near one object: ``clip_cells``) as
+    runs of consecutive edges in ring order, each edge knowing its index in the ring
+    (``Seg.k``). A clip tests a run's box before its edges' boxes: the edges it tests, and
+    their order, are the same as edge by edge.
     """
 
     def __init__(self, p: list[float], base: Edges | None = None) -> None:
-        """The edges of ring ``p``, or an empty view of ``base``'s (same edges, no ``sel``)."""
+        """The edges of ring ``p``, or an empty view of ``base``'s (same edges, no ``runs``)."""
         self.xy: list[float] = p
         self.segs: list[Seg] = []
         self.ccw: bool = False
         self.ok: bool = False
-        self.sel: list[Seg] = []
+        self.runs: list[Run] = []
         if base is not None:  # a view of ``base``
             self.xy = base.xy
             self.segs = base.segs
@@ -148,7 +180,7 @@ class Edges:
             self.segs.append(Seg(p[2 * j], p[2 * j + 1], p[2 * k], p[2 * k + 1], j))
         self.ccw = area2(p) > 0
         self.ok = n >= 3 and conditioned(p, box_of(p))  # noqa: PLR2004
-        self.sel = self.segs
+        self.runs = runs_of(self.segs)
 
     def contains(self, x: float, y: float) -> bool:
         """``inside(x, y, self.xy)``, edge by edge (the same test per edge, native floats)."""

@@ -26,7 +26,7 @@ from reachsets.clip_rings import (
     EPS,
     Box,
     Edges,
-    Seg,
+    Run,
     area2,
     box_of,
     conditioned,
@@ -58,13 +58,13 @@ class _Hits:
         self.d: list[float] = []
 
 
-def _candidates(box: Box, e: Edges) -> list[Seg]:
-    """The edges of ``e`` (among ``e.sel``) whose bounding box meets ``box``."""
+def _candidates(box: Box, e: Edges) -> list[Run]:
+    """The runs of ``e`` whose bounding box meets ``box``."""
     lo_x = box[0]
     lo_y = box[1]
     hi_x = box[2]
     hi_y = box[3]
-    return [g for g in e.sel if g.x0 <= hi_x and g.x1 >= lo_x and g.y0 <= hi_y and g.y1 >= lo_y]
+    return [r for r in e.runs if r.x0 <= hi_x and r.x1 >= lo_x and r.y0 <= hi_y and r.y1 >= lo_y]
 
 
 def _crossings(a: list[float], box: Box, e: Edges) -> _Hits | None:
@@ -83,11 +83,14 @@ def _crossings(a: list[float], box: Box, e: Edges) -> _Hits | None:
         ry = a[2 * i1 + 1] - ay
         ex0, ex1 = (ax, a[2 * i1]) if rx > 0 else (a[2 * i1], ax)
         ey0, ey1 = (ay, a[2 * i1 + 1]) if ry > 0 else (a[2 * i1 + 1], ay)
-        for g in near:  # iterating, not indexing: mypyc's unchecked list reads
-            if g.x0 > ex1 or g.x1 < ex0 or g.y0 > ey1 or g.y1 < ey0:
+        for run in near:  # iterating, not indexing: mypyc's unchecked list reads
+            if run.x0 > ex1 or run.x1 < ex0 or run.y0 > ey1 or run.y1 < ey0:
                 continue
-            if not _cross(hits, i, ax, ay, rx, ry, g.k, g.ax, g.ay, g.bx, g.by):
-                return None
+            for g in run.segs:
+                if g.x0 > ex1 or g.x1 < ex0 or g.y0 > ey1 or g.y1 < ey0:
+                    continue
+                if not _cross(hits, i, ax, ay, rx, ry, g.k, g.ax, g.ay, g.bx, g.by):
+                    return None
     return hits
 
 

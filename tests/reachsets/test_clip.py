@@ -8,7 +8,8 @@ import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from reachsets.clip_cells import Area, clip, reduce_cells
+from reachsets.clip_cells import Area, _near, clip, reduce_cells
+from reachsets.clip_rings import Edges
 from reachsets.inputs import TrackBounds
 from reachsets.params import ReachMethod, ReachParams
 from reachsets.reachable import reachable_sets
@@ -196,3 +197,38 @@ def test_assemble_cells(grouped):
     want_0 = shapely.union(shapely.box(0, 0, 1, 1), shapely.box(5, 5, 6, 6))
     assert out[0].equals(want_0 if grouped else shapely.box(5, 5, 6, 6))
     assert out[0].geom_type == ("MultiPolygon" if grouped else "Polygon")
+
+
+def _star_ring(seed: int) -> np.ndarray:
+    """A star-shaped ring of 3-60 vertices around the origin (seeded)."""
+    rng = np.random.default_rng(seed)
+    n = int(rng.integers(3, 61))
+    ang = np.sort(rng.uniform(0, 2 * np.pi, n))
+    rad = rng.uniform(0.5, 9.0, n)
+    return np.stack([rad * np.cos(ang), rad * np.sin(ang)], axis=1)
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    ring=st.builds(_star_ring, st.integers(0, 2**31)),
+    box=st.tuples(st.floats(-8, 8), st.floats(-8, 8), st.floats(0, 10), st.floats(0, 10)),
+)
+def test_runs_near_a_box_are_the_edges_near_it(ring, box):
+    """``_near``'s runs hold exactly the edges whose boxes meet the box, in ring order."""
+    x0, y0, w, h = box
+    lo_hi = (x0, y0, x0 + w, y0 + h)
+    edges = Edges(ring.reshape(-1).tolist())
+    view = _near(edges, lo_hi)
+    got = [g.k for run in view.runs for g in run.segs]
+    want = [
+        g.k
+        for g in edges.segs
+        if g.x0 <= lo_hi[2] and g.x1 >= lo_hi[0] and g.y0 <= lo_hi[3] and g.y1 >= lo_hi[1]
+    ]
+    assert got == want
+    for run in [*edges.runs, *view.runs]:  # each run's box holds its edges
+        assert run.segs
+        assert all(
+            run.x0 <= g.x0 and g.x1 <= run.x1 and run.y0 <= g.y0 and g.y1 <= run.y1
+            for g in run.segs
+        )
