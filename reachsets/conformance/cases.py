@@ -47,6 +47,8 @@ _EGO_KEYS = frozenset({*_EGO_ARRAYS, "t_s", "length", "width"})
 _OBJECT_KEYS = frozenset({"id", "x", "y", "yaw", "speed", "length", "width"})
 #: ``ObjectStates`` fields, in the order ``_inputs`` builds them.
 _OBJECT_FIELDS = ("ids", "x_m", "y_m", "yaw_rad", "speed_mps", "length_m", "width_m")
+#: The element types of a list of floats only (the fast path of ``numbers``).
+_FLOAT_ONLY = frozenset({float})
 
 
 @dataclass(frozen=True)
@@ -133,7 +135,7 @@ class _Where:
     def numbers(self, field: str, value: object) -> list[float]:
         if not isinstance(value, list) or not value:
             raise self.error(field, value, "expected a non-empty list of numbers")
-        if all(type(v) is float for v in value) and math.isfinite(sum(value)):
+        if set(map(type, value)) == _FLOAT_ONLY and math.isfinite(sum(value)):
             return value  # the common case at once: a finite sum of floats has finite terms
         return [self.number(f"{field}.{k}", v) for k, v in enumerate(value)]
 
