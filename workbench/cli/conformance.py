@@ -128,6 +128,14 @@ def make_reach_cases(
         document = random_document(rng, random, methods=names, sequences=sequences)
     out.write_text(json_text(document, compact=True) + "\n")
     typer.echo(f"wrote {len(document['cases'])} cases to {out}", err=True)
+    # a drive's steps carry a note only where objects were left out (non-finite values)
+    left = sum(1 for case in document["cases"] for s in case.get("sequence", []) if "note" in s)
+    if left and log is not None:
+        typer.echo(
+            f"{log}: {left} step(s) leave out objects with a non-finite pose, speed or size"
+            " (named in each step's note)",
+            err=True,
+        )
 
 
 def register(app: typer.Typer) -> None:

@@ -21,7 +21,10 @@ if TYPE_CHECKING:
     from loaders.records import Frame
     from reachsets.inputs import ReachInputs
 
-__all__ = ["drive_case_document"]
+__all__ = ["LEFT_OUT", "drive_case_document"]
+
+#: How a step's ``note`` starts when objects of the frame were left out.
+LEFT_OUT = "left out (non-finite pose, speed or size)"
 
 
 def _finite(values: Any) -> list[float]:
@@ -57,6 +60,9 @@ def _step(inputs: ReachInputs, frame: Frame) -> dict[str, Any]:
         for i in np.flatnonzero(keep)
     ]
     step: dict[str, Any] = {"time_s": round(frame.t_ns / 1e9, 9), "ego": plan, "objects": objects}
+    left = [str(i) for i in o.ids[~keep]]
+    if left:  # named, not dropped without a word (the engine would list them as skipped)
+        step["note"] = f"{LEFT_OUT}: {', '.join(left)}"
     label = frame.extras.get("labels", {}).get("safety_dyn") if frame.extras else None
     if isinstance(label, bool):
         step["expected"] = {"safe": label}
@@ -75,7 +81,8 @@ def drive_case_document(
 
     A step's ``expected.safe`` is the log's own ``safety_dyn`` label where it has one
     (ScenarioArchitect logs). Objects with a non-finite pose, speed or size are left out
-    (JSON holds no NaN; the engine would skip them anyway).
+    (JSON holds no NaN; the engine would skip them anyway) and named in the step's ``note``
+    (the only notes this writes).
 
     Args:
         drive: The opened drive (a track map: the case format holds track bounds only).

@@ -4,18 +4,22 @@ drive pipeline's verdicts frame for frame (the racing sample, and both TUM logs 
 
 from __future__ import annotations
 
+import dataclasses
 import json
 from functools import cache
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import pytest
 from typer.testing import CliRunner
 
 from loaders import open_drive
 from reachsets import ReachMethod, ReachParams, evaluate_frames
 from reachsets.conformance import evaluate_document
+from reachsets.inputs import ObjectStates
 from workbench.cli.main import app, main
+from workbench.engines.reachsets import adapter
 from workbench.engines.reachsets.adapter import frame_to_reach_inputs
 from workbench.engines.reachsets.cases import drive_case_document
 
@@ -111,3 +115,38 @@ def test_a_road_drive_is_a_one_line_error(
         == f"error: {log}: the drive has a road map; reach-set case files hold track bounds only\n"
     )
     assert not (tmp_path / "x.json").exists()
+
+
+def test_objects_left_out_are_named(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """A non-finite object is left out of its step and named in the step's note and on stderr."""
+    from workbench.engines.reachsets import cases  # noqa: PLC0415
+
+    real = adapter.reach_inputs_and_kind
+
+    def with_a_nan(frame: Any, *args: Any) -> Any:
+        inputs, kind = real(frame, *args)
+        o = inputs.objects
+        if frame.index != 3 or not len(o):
+            return inputs, kind
+        x = np.array(o.x_m)
+        x[0] = np.nan
+        x.flags.writeable = False
+        columns = {f.name: getattr(o, f.name) for f in dataclasses.fields(o)}
+        objects = ObjectStates.of_frozen({**columns, "x_m": x})
+        return dataclasses.replace(inputs, objects=objects), kind
+
+    monkeypatch.setattr(cases, "reach_inputs_and_kind", with_a_nan)
+    out = tmp_path / "racing.json"
+    made = CliRunner().invoke(
+        app, ["conformance", "reachsets-cases", str(out), "--log", str(SAMPLE)]
+    )
+    assert made.exit_code == 0, made.output
+    steps = json.loads(out.read_text())["cases"][0]["sequence"]
+    noted = [k for k, s in enumerate(steps) if "note" in s]
+    assert noted == [3]
+    left = steps[3]["note"].removeprefix(f"{cases.LEFT_OUT}: ").split(", ")
+    assert left
+    assert not set(left) & {o["id"] for o in steps[3]["objects"]}
+    assert "1 step(s) leave out objects" in made.stderr
+    records = list(evaluate_document(json.loads(out.read_text()), out.name))
+    assert records[3]["ok"] is True  # a note is informational: the step is rated
