@@ -33,7 +33,9 @@ if TYPE_CHECKING:
 
 __all__ = [
     "BLOCK_SEGMENTS",
+    "Blocks",
     "Walls",
+    "block_columns",
     "track_walls",
     "wall_frame",
     "wall_frame_reference",
@@ -249,8 +251,40 @@ def wall_frame_reference(
     return _frame_at(walls, s, which)
 
 
+@dataclass(frozen=True, slots=True)
+class Blocks:
+    """The blocks of each position's wall and their disks, gathered once for many searches.
+
+    Attributes:
+        cols: Blocks of each position's wall, ascending, padded with the empty block,
+            ``(P, Bw)``.
+        x: Their vertex x, ``(P, Bw)`` (m).
+        y: Their vertex y, ``(P, Bw)`` (m).
+        radius: Their radius, ``(P, Bw)`` (m).
+    """
+
+    cols: NDArray[np.intp]
+    x: NDArray[np.float64]
+    y: NDArray[np.float64]
+    radius: NDArray[np.float64]
+
+    def head(self, n: int) -> Blocks:
+        """The blocks of the first ``n`` positions (views)."""
+        return Blocks(self.cols[:n], self.x[:n], self.y[:n], self.radius[:n])
+
+
+def block_columns(walls: Walls, which: NDArray[np.intp] | int) -> Blocks:
+    """The blocks of wall ``which`` (one per position, or one wall for all) for ``wall_frame``."""
+    cols = walls.wall_blk[which]
+    return Blocks(cols, walls.blk_x[cols], walls.blk_y[cols], walls.blk_radius[cols])
+
+
 def wall_frame(
-    walls: Walls, x: NDArray[np.float64], y: NDArray[np.float64], which: NDArray[np.intp] | int
+    walls: Walls,
+    x: NDArray[np.float64],
+    y: NDArray[np.float64],
+    which: NDArray[np.intp] | int,
+    blocks: Blocks | None = None,
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """Nearest point and unit tangent of wall ``which`` for ``(P,)`` positions.
 
@@ -263,29 +297,32 @@ def wall_frame(
         x: Positions, ``(P,)`` (m).
         y: Positions, ``(P,)`` (m).
         which: Wall of every position (0 left, 1 right), or one per position ``(P,)``.
+        blocks: ``block_columns(walls, which)`` when already gathered (repeated searches of
+            the same walls, e.g. one position per curve and chord); the results are the same.
 
     Returns:
         ``(wx, wy, tx, ty)``, each ``(P,)``.
     """
     if len(x) <= _BRUTE_POSITIONS:
         return wall_frame_reference(walls, x, y, which)
-    if not isinstance(which, int) and len(x) > _SPLIT_POSITIONS:
-        out = np.empty((4, len(x)))
-        for wall in (0, 1):
-            mine = which == wall
-            out[:, mine] = wall_frame(walls, x[mine], y[mine], wall)
-        return out[0], out[1], out[2], out[3]
-    cols = walls.wall_blk[which]
-    dx = x[:, None] - walls.blk_x[cols]
-    dy = y[:, None] - walls.blk_y[cols]
+    if blocks is None:
+        if not isinstance(which, int) and len(x) > _SPLIT_POSITIONS:
+            out = np.empty((4, len(x)))
+            for wall in (0, 1):
+                mine = which == wall
+                out[:, mine] = wall_frame(walls, x[mine], y[mine], wall)
+            return out[0], out[1], out[2], out[3]
+        blocks = block_columns(walls, which)
+    dx = x[:, None] - blocks.x
+    dy = y[:, None] - blocks.y
     d2 = dx * dx + dy * dy
     upper = np.sqrt(d2.min(axis=1, keepdims=True))
     if not np.isfinite(upper.sum()):  # non-finite positions: leave them to the reference
         return wall_frame_reference(walls, x, y, which)
-    reach = upper * (1 + _SLACK) + _SLACK + walls.blk_radius[cols]
+    reach = upper * (1 + _SLACK) + _SLACK + blocks.radius
     cand = d2 <= reach * reach
     empty = len(walls.blk_seg) - 1
-    pick = np.sort(np.where(cand, cols, empty), axis=1)[:, : int(cand.sum(axis=1).max())]
+    pick = np.sort(np.where(cand, blocks.cols, empty), axis=1)[:, : int(cand.sum(axis=1).max())]
     seg = walls.blk_seg[pick].reshape(len(x), -1)
     valid = np.repeat(pick < empty, BLOCK_SEGMENTS, axis=1)
     return _frame_at(walls, _nearest(walls, x, y, seg, valid), which)
