@@ -183,16 +183,45 @@ def wall_aware_arcs(
     if scalar if scalar is not None else 2 * n <= SCALAR_CURVES_MAX:
         return _curves_scalar(objects, walls, params)
     curves, (xi, eta, psi, dmax) = _start(objects, params)
-    back = ~_turn(curves, walls, (xi[:, :-1], eta[:, :-1], psi[:, :-1], dmax), params)[1]
-    rows = np.flatnonzero(back.any(axis=1))
+    start = _first_back(curves, walls, (xi, eta, psi, dmax), params)
+    rows = np.flatnonzero(start)
     if len(rows):
-        start = np.argmax(back[rows], axis=1) + 1  # first chord turning back
+        start = start[rows]
         order = np.argsort(start, kind="stable")
         rows, start = rows[order], start[order]
         arcs = tuple(v[rows] for v in (xi, eta, psi, dmax))
         _follow(curves.take(rows), walls, arcs, start, params)
         xi[rows], eta[rows] = arcs[0], arcs[1]
     return (xi[:n], eta[:n]), (xi[n:], eta[n:])
+
+
+#: Chords of the ``turn`` arcs checked together before the undecided curves check the rest.
+FIRST_CHORDS = 6
+
+
+def _first_back(
+    curves: _Curves, walls: Walls, arcs: tuple[NDArray[np.float64], ...], params: ReachParams
+) -> NDArray[np.intp]:
+    """First chord of each curve's ``turn`` arc that may not turn towards the wall (0: none).
+
+    The first ``FIRST_CHORDS`` chords of every curve are checked together, then the rest of
+    the curves that all of those may turn (most curves turn back early: fewer positions to
+    search than all chords at once).
+    """
+    xi, eta, psi, dmax = arcs
+    start = np.zeros(len(xi), dtype=np.intp)
+    live = np.arange(len(xi))
+    last = params.arc_points - 1
+    for lo, hi in ((0, min(FIRST_CHORDS, last)), (min(FIRST_CHORDS, last), last)):
+        if lo >= hi or not len(live):
+            break
+        sub = curves.take(live) if lo else curves
+        chords = tuple(v[live, lo:hi] if lo else v[:, lo:hi] for v in (xi, eta, psi, dmax))
+        back = ~_turn(sub, walls, chords, params)[1]
+        hit = back.any(axis=1)
+        start[live[hit]] = np.argmax(back[hit], axis=1) + lo + 1
+        live = live[~hit]
+    return start
 
 
 def _follow(

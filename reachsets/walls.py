@@ -84,6 +84,9 @@ class Walls:
         blk_radius: Radius around it holding every vertex of the block, ``(B + 1,)``.
         blk_wall: Wall of each block (-1 for the empty block), ``(B + 1,)``.
         wall_blk: Blocks of each wall, ascending, padded with the empty block, ``(2, Bw)``.
+        seg_pack: ``start``, ``seg`` and ``seg_len2`` as rows (one gather per search),
+            ``(5, S)``.
+        seg_at: ``seg_s`` and ``seg_len`` as rows, ``(2, S)``.
     """
 
     pts: NDArray[np.float64]
@@ -102,6 +105,8 @@ class Walls:
     blk_radius: NDArray[np.float64]
     blk_wall: NDArray[np.intp]
     wall_blk: NDArray[np.intp]
+    seg_pack: NDArray[np.float64]
+    seg_at: NDArray[np.float64]
 
 
 def track_walls(track: TrackGeometry) -> Walls:
@@ -178,23 +183,27 @@ def _build(track: TrackGeometry) -> Walls:
     wall_blk[0, : per_wall[0]] = np.arange(per_wall[0])
     wall_blk[1, : per_wall[1]] = per_wall[0] + np.arange(per_wall[1])
     seg_len = np.hypot(seg[:, 0], seg[:, 1])
+    seg_len2 = np.maximum(seg_len**2, 1e-24)
+    seg_s = np.concatenate([c[:-1] for c in cums])
     return Walls(
         pts=np.concatenate(parts),
         cum=np.concatenate(cums),
         start=np.ascontiguousarray(start.T),
         seg=np.ascontiguousarray(seg.T),
         seg_len=seg_len,
-        seg_s=np.concatenate([c[:-1] for c in cums]),
+        seg_s=seg_s,
         seg_wall=np.repeat([0, 1], counts),
         lo=np.array([c[0] for c in cums]),
         hi=np.array([c[-1] for c in cums]),
-        seg_len2=np.maximum(seg_len**2, 1e-24),
+        seg_len2=seg_len2,
         blk_seg=np.concatenate([blk_seg, blk_seg[-1:]]),
         blk_x=np.append(centre[:, 0], np.inf),
         blk_y=np.append(centre[:, 1], np.inf),
         blk_radius=np.append(reach * (1 + _SLACK) + _SLACK, 0.0),
         blk_wall=np.repeat([0, 1, -1], [*per_wall, 1]),
         wall_blk=wall_blk,
+        seg_pack=np.concatenate([start.T, seg.T, seg_len2[None]]),
+        seg_at=np.stack([seg_s, seg_len]),
     )
 
 
@@ -210,16 +219,16 @@ def _nearest(
     ``valid`` marks the pairs that may win (``(P, K)``). The pair arithmetic is the same for every
     search, so the winner does not depend on which other segments were measured.
     """
-    dx = x[:, None] - walls.start[0][seg]
-    dy = y[:, None] - walls.start[1][seg]
-    sx, sy = walls.seg[0][seg], walls.seg[1][seg]
-    u = np.minimum(np.maximum((dx * sx + dy * sy) / walls.seg_len2[seg], 0.0), 1.0)
+    start_x, start_y, sx, sy, seg_len2 = walls.seg_pack[:, seg]
+    dx = x[:, None] - start_x
+    dy = y[:, None] - start_y
+    u = np.minimum(np.maximum((dx * sx + dy * sy) / seg_len2, 0.0), 1.0)
     ox = dx - u * sx
     oy = dy - u * sy
     best = np.argmin(np.where(valid, ox * ox + oy * oy, np.inf), axis=1)
     rows = np.arange(len(best))
-    win = seg[rows, best]
-    s: NDArray[np.float64] = walls.seg_s[win] + u[rows, best] * walls.seg_len[win]
+    seg_s, seg_len = walls.seg_at[:, seg[rows, best]]
+    s: NDArray[np.float64] = seg_s + u[rows, best] * seg_len
     return s
 
 
