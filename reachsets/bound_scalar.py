@@ -19,7 +19,7 @@ from bisect import bisect_right
 from dataclasses import dataclass
 from typing import Final
 
-__all__ = ["WallLists", "continue_curve"]
+__all__ = ["WallLists", "continue_curve", "frames"]
 
 _TANGENT_HALF_STEP_M: Final = 0.5
 _SLACK: Final = 1e-9
@@ -47,6 +47,11 @@ class WallLists:
         blk_y: Vertex y of each block.
         blk_radius: Radius of each block.
         wall_blk: Blocks of each wall, ascending.
+        grid: Per wall, ``x0, y0, cell`` of a grid of square cells (m) around it.
+        grid_n: Per wall, ``nx, ny`` and the index of its first cell in ``grid_at``.
+        grid_at: Where each cell's segments start in ``grid_seg`` (one more entry at the end).
+        grid_seg: The segments of each cell, ascending: every segment that can be the
+            nearest of a position in the cell (``walls.wall_lists``).
     """
 
     cum: list[float]
@@ -66,17 +71,31 @@ class WallLists:
     blk_y: list[float]
     blk_radius: list[float]
     wall_blk: list[list[int]]
+    grid: list[float]
+    grid_n: list[int]
+    grid_at: list[int]
+    grid_seg: list[int]
 
 
-def _interp(w: WallLists, s: float) -> tuple[float, float]:
-    """``np.interp(s, cum, px)`` and ``(..., py)`` (same branches and arithmetic)."""
+def _interp(w: WallLists, s: float, hint: int = -1) -> tuple[float, float]:
+    """``np.interp(s, cum, px)`` and ``(..., py)`` (same branches and arithmetic).
+
+    ``hint``: a vertex near ``s`` to walk from (else a binary search); the same interval.
+    """
     cum = w.cum
     last = len(cum) - 1
     if s > cum[last]:
         return w.px[last], w.py[last]
     if s < cum[0]:
         return w.px[0], w.py[0]
-    j = bisect_right(cum, s) - 1
+    if hint < 0:
+        j = bisect_right(cum, s) - 1
+    else:  # the last vertex at or before s, as the binary search finds it
+        j = min(hint, last)
+        while j < last and cum[j + 1] <= s:
+            j += 1
+        while cum[j] > s:
+            j -= 1
     if j == last or s == cum[j]:
         return w.px[j], w.py[j]
     span = cum[j + 1] - cum[j]
@@ -94,8 +113,21 @@ def _lerp(fp: list[float], cum: list[float], j: int, span: float, s: float) -> f
     return v
 
 
-def _nearest_s(w: WallLists, x: float, y: float, wall: int) -> float:
-    """Arc length of the nearest point of wall ``wall`` (``walls.wall_frame``'s search)."""
+def _nearest_s(w: WallLists, x: float, y: float, wall: int) -> tuple[float, int]:
+    """Arc length of the nearest point of wall ``wall`` (``walls.wall_frame``'s winner).
+
+    The candidate segments are the position's grid cell's; outside the grid, those of the
+    block search (``walls.wall_frame``). Either way a superset of the segments that can be
+    the nearest, measured with the same pair arithmetic: the same winner.
+    """
+    g = 3 * wall
+    cell = w.grid[g + 2]
+    fx = (x - w.grid[g]) / cell
+    fy = (y - w.grid[g + 1]) / cell
+    nx, ny = w.grid_n[g], w.grid_n[g + 1]
+    if 0.0 <= fx < nx and 0.0 <= fy < ny:
+        c = w.grid_n[g + 2] + int(fx) * ny + int(fy)
+        return _closest(w, x, y, w.grid_seg, (w.grid_at[c], w.grid_at[c + 1]))
     blocks = w.wall_blk[wall]
     bx, by = w.blk_x, w.blk_y
     low = math.inf
@@ -104,26 +136,70 @@ def _nearest_s(w: WallLists, x: float, y: float, wall: int) -> float:
         dy = y - by[b]
         low = min(low, dx * dx + dy * dy)
     upper = math.sqrt(low)
-    best = math.inf
-    win = -1
-    win_u = 0.0
+    near: list[int] = []
     for b in blocks:
         reach = upper * (1 + _SLACK) + _SLACK + w.blk_radius[b]
         dx = x - bx[b]
         dy = y - by[b]
-        if dx * dx + dy * dy > reach * reach:  # the same d2 as above
-            continue
-        for j in w.blk_seg[b]:
-            dx = x - w.start_x[j]
-            dy = y - w.start_y[j]
-            sx, sy = w.seg_x[j], w.seg_y[j]
-            u = min(max((dx * sx + dy * sy) / w.seg_len2[j], 0.0), 1.0)
-            ox = dx - u * sx
-            oy = dy - u * sy
-            d = ox * ox + oy * oy
-            if d < best or (d == best and j < win):
-                best, win, win_u = d, j, u
-    return w.seg_s[win] + win_u * w.seg_len[win]
+        if dx * dx + dy * dy <= reach * reach:  # the same d2 as above
+            near.extend(w.blk_seg[b])
+    return _closest(w, x, y, near, (0, len(near)))
+
+
+def _closest(
+    w: WallLists, x: float, y: float, segs: list[int], span: tuple[int, int]
+) -> tuple[float, int]:
+    """Arc length of the nearest point on ``segs[span[0]:span[1]]`` and its segment.
+
+    Ties go to the lowest segment, as numpy's ``argmin`` over ascending segments.
+    """
+    best = math.inf
+    win = -1
+    win_u = 0.0
+    for i in range(span[0], span[1]):
+        j = segs[i]
+        dx = x - w.start_x[j]
+        dy = y - w.start_y[j]
+        sx, sy = w.seg_x[j], w.seg_y[j]
+        u = min(max((dx * sx + dy * sy) / w.seg_len2[j], 0.0), 1.0)
+        ox = dx - u * sx
+        oy = dy - u * sy
+        d = ox * ox + oy * oy
+        if d < best or (d == best and j < win):
+            best, win, win_u = d, j, u
+    return w.seg_s[win] + win_u * w.seg_len[win], win
+
+
+def frames(w: WallLists, xs: list[float], ys: list[float], which: list[int]) -> list[float]:
+    """Nearest wall point and tangent chord of many finite positions (``walls.wall_frame``).
+
+    The arithmetic of ``walls._nearest`` and ``walls._frame_at`` up to the tangent's
+    normalisation (left to numpy's ``hypot``): bit-identical to the numpy search.
+
+    Args:
+        w: Both walls.
+        xs: Positions x (m), ``n`` of them, all finite.
+        ys: Positions y (m).
+        which: Wall of each position (0 left, 1 right).
+
+    Returns:
+        ``4 n`` floats: the wall points' x, then their y, then the tangent chords' x (wall
+        point at ``s + 0.5 m`` minus the one at ``s - 0.5 m``, clamped to the wall), then y.
+    """
+    n = len(xs)
+    out = [0.0] * (4 * n)
+    for i in range(n):
+        wall = which[i]
+        s, seg = _nearest_s(w, xs[i], ys[i], wall)
+        vertex = seg + wall  # the segment's first vertex (each wall has one more vertex)
+        wx, wy = _interp(w, s, vertex)
+        ax, ay = _interp(w, min(s + _TANGENT_HALF_STEP_M, w.hi[wall]), vertex)
+        bx, by = _interp(w, max(s - _TANGENT_HALF_STEP_M, w.lo[wall]), vertex)
+        out[i] = wx
+        out[n + i] = wy
+        out[2 * n + i] = ax - bx
+        out[3 * n + i] = ay - by
+    return out
 
 
 def _turn(
@@ -139,10 +215,10 @@ def _turn(
     step, max_turn = limits
     x = cx + co * xi - si * eta
     y = cy + si * xi + co * eta
-    s = _nearest_s(w, x, y, wall)
-    wx, wy = _interp(w, s)
-    ax, ay = _interp(w, min(s + _TANGENT_HALF_STEP_M, w.hi[wall]))
-    bx, by = _interp(w, max(s - _TANGENT_HALF_STEP_M, w.lo[wall]))
+    s, seg = _nearest_s(w, x, y, wall)
+    wx, wy = _interp(w, s, seg + wall)
+    ax, ay = _interp(w, min(s + _TANGENT_HALF_STEP_M, w.hi[wall]), seg + wall)
+    bx, by = _interp(w, max(s - _TANGENT_HALF_STEP_M, w.lo[wall]), seg + wall)
     tx, ty = ax - bx, ay - by
     norm = max(math.hypot(tx, ty), 1e-12)
     tx, ty = tx / norm, ty / norm

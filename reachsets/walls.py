@@ -24,6 +24,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 import shapely
 
+from reachsets import bound_scalar
 from reachsets.bound_scalar import WallLists
 
 if TYPE_CHECKING:
@@ -33,6 +34,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "BLOCK_SEGMENTS",
+    "SCALAR_SEARCH",
     "Blocks",
     "Walls",
     "block_columns",
@@ -53,6 +55,16 @@ _SPLIT_POSITIONS = 128
 _SLACK = 1e-9
 #: Tracks whose walls are kept (the object is held, so its id is never reused meanwhile).
 _CACHE_SIZE = 4
+#: Cell size of the compiled search's grid of candidate blocks (m; larger for huge walls,
+#: see ``_GRID_CELLS_MAX``) and how far around each wall's blocks it reaches (m).
+_GRID_CELL_M = 4.0
+_GRID_MARGIN_M = 60.0
+_GRID_CELLS_MAX = 1 << 15
+_GRID_PAIRS_MAX = 1 << 24
+_GRID_CHUNK = 2048
+#: ``wall_frame`` searches with the compiled kernel (``bound_scalar.frames``) when it is
+#: compiled; from the sources the numpy block search is faster.
+SCALAR_SEARCH = not bound_scalar.__file__.endswith(".py")
 _CACHE: dict[int, tuple[TrackGeometry, Walls]] = {}
 _LISTS: dict[int, tuple[Walls, WallLists]] = {}
 
@@ -128,6 +140,7 @@ def wall_lists(walls: Walls) -> WallLists:
         return hit[1]
     real = walls.blk_wall >= 0
     n_blk = int(real.sum())
+    grid = _grid(walls)
     out = WallLists(
         cum=walls.cum.tolist(),
         px=walls.pts[:, 0].tolist(),
@@ -146,11 +159,53 @@ def wall_lists(walls: Walls) -> WallLists:
         blk_y=walls.blk_y[:n_blk].tolist(),
         blk_radius=walls.blk_radius[:n_blk].tolist(),
         wall_blk=[[int(b) for b in row if b < n_blk] for row in walls.wall_blk],
+        grid=grid[0],
+        grid_n=grid[1],
+        grid_at=grid[2],
+        grid_seg=grid[3],
     )
     if len(_LISTS) >= _CACHE_SIZE:
         del _LISTS[next(iter(_LISTS))]
     _LISTS[id(walls)] = (walls, out)
     return out
+
+
+def _grid(walls: Walls) -> tuple[list[float], list[int], list[int], list[int]]:
+    """Per wall, a grid of square cells and each cell's candidate segments (``WallLists``).
+
+    A position ``p`` in a cell (centre ``c``, half diagonal ``h``) is at most ``D + h`` from
+    its wall (``D``: the centre's distance to it), so a segment at least ``D + 2 h`` from the
+    centre is never the nearest (nor a tie): the others (plus 1 mm for rounding) are the
+    cell's, ascending.
+    """
+    geo: list[float] = []
+    dims: list[int] = []
+    at = [0]
+    ids: list[int] = []
+    for wall in (0, 1):
+        seg = np.flatnonzero(walls.seg_wall == wall)
+        (sx, sy), (vx, vy) = walls.start[:, seg], walls.seg[:, seg]
+        x0 = float(np.minimum(sx, sx + vx).min()) - _GRID_MARGIN_M
+        y0 = float(np.minimum(sy, sy + vy).min()) - _GRID_MARGIN_M
+        width = float(np.maximum(sx, sx + vx).max()) + _GRID_MARGIN_M - x0
+        height = float(np.maximum(sy, sy + vy).max()) + _GRID_MARGIN_M - y0
+        most = min(_GRID_CELLS_MAX, _GRID_PAIRS_MAX // len(seg))
+        cell = max(_GRID_CELL_M, float(np.sqrt(width * height / most)))
+        nx, ny = int(np.ceil(width / cell)), int(np.ceil(height / cell))
+        geo += [x0, y0, cell]
+        dims += [nx, ny, len(at) - 1]
+        centre_x = np.repeat(x0 + (np.arange(nx) + 0.5) * cell, ny)
+        centre_y = np.tile(y0 + (np.arange(ny) + 0.5) * cell, nx)
+        for first in range(0, nx * ny, _GRID_CHUNK):
+            cx = centre_x[first : first + _GRID_CHUNK, None] - sx
+            cy = centre_y[first : first + _GRID_CHUNK, None] - sy
+            u = np.clip((cx * vx + cy * vy) / walls.seg_len2[seg], 0.0, 1.0)
+            dist = np.hypot(cx - u * vx, cy - u * vy)
+            bound = dist.min(axis=1, keepdims=True) + cell * np.sqrt(2.0) + 1e-3
+            cells, local = np.nonzero(dist <= bound)
+            at += (at[-1] + np.cumsum(np.bincount(cells, minlength=len(cx)))).tolist()
+            ids += seg[local].tolist()
+    return geo, dims, at, ids
 
 
 def _build(track: TrackGeometry) -> Walls:
@@ -312,6 +367,12 @@ def wall_frame(
     Returns:
         ``(wx, wy, tx, ty)``, each ``(P,)``.
     """
+    if SCALAR_SEARCH and np.isfinite(x.sum() + y.sum()):
+        wall = [which] * len(x) if isinstance(which, int) else which.tolist()
+        found = bound_scalar.frames(wall_lists(walls), x.tolist(), y.tolist(), wall)
+        wx, wy, tx, ty = np.array(found).reshape(4, len(x))
+        norm = np.maximum(np.hypot(tx, ty), 1e-12)
+        return wx, wy, tx / norm, ty / norm
     if len(x) <= _BRUTE_POSITIONS:
         return wall_frame_reference(walls, x, y, which)
     if blocks is None:
