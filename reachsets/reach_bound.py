@@ -196,7 +196,7 @@ def wall_aware_arcs(
 
 
 #: Chords of the ``turn`` arcs checked together before the undecided curves check the rest.
-FIRST_CHORDS = 6
+FIRST_CHORDS = 4
 
 
 def _first_back(
