@@ -49,9 +49,8 @@ class WallLists:
         wall_blk: Blocks of each wall, ascending.
         grid: Per wall, ``x0, y0, cell`` of a grid of square cells (m) around it.
         grid_n: Per wall, ``nx, ny`` and the index of its first cell in ``grid_at``.
-        grid_at: Where each cell's segments start in ``grid_seg`` (one more entry at the end).
-        grid_seg: The segments of each cell, ascending: every segment that can be the
-            nearest of a position in the cell (``walls.wall_lists``).
+        cells: The segments of each cell, ascending, that can be the nearest of a position
+            in it (``None`` until the cell is first used; ``_cell_segments``).
     """
 
     cum: list[float]
@@ -73,8 +72,7 @@ class WallLists:
     wall_blk: list[list[int]]
     grid: list[float]
     grid_n: list[int]
-    grid_at: list[int]
-    grid_seg: list[int]
+    cells: list[list[int] | None]
 
 
 def _interp(w: WallLists, s: float, hint: int = -1) -> tuple[float, float]:
@@ -116,9 +114,10 @@ def _lerp(fp: list[float], cum: list[float], j: int, span: float, s: float) -> f
 def _nearest_s(w: WallLists, x: float, y: float, wall: int) -> tuple[float, int]:
     """Arc length of the nearest point of wall ``wall`` (``walls.wall_frame``'s winner).
 
-    The candidate segments are the position's grid cell's; outside the grid, those of the
-    block search (``walls.wall_frame``). Either way a superset of the segments that can be
-    the nearest, measured with the same pair arithmetic: the same winner.
+    The candidate segments are the position's grid cell's (listed on the cell's first
+    use); outside the grid, those of the block search (``walls.wall_frame``). Either way a
+    superset of the segments that can be the nearest, measured with the same pair
+    arithmetic: the same winner.
     """
     g = 3 * wall
     cell = w.grid[g + 2]
@@ -126,8 +125,41 @@ def _nearest_s(w: WallLists, x: float, y: float, wall: int) -> tuple[float, int]
     fy = (y - w.grid[g + 1]) / cell
     nx, ny = w.grid_n[g], w.grid_n[g + 1]
     if 0.0 <= fx < nx and 0.0 <= fy < ny:
-        c = w.grid_n[g + 2] + int(fx) * ny + int(fy)
-        return _closest(w, x, y, w.grid_seg, (w.grid_at[c], w.grid_at[c + 1]))
+        i, j = int(fx), int(fy)
+        c = w.grid_n[g + 2] + i * ny + j
+        segs = w.cells[c]
+        if segs is None:
+            centre = (w.grid[g] + (i + 0.5) * cell, w.grid[g + 1] + (j + 0.5) * cell)
+            segs = _cell_segments(w, centre, wall, cell)
+            w.cells[c] = segs
+        found = _closest(w, x, y, segs)
+    else:
+        found = _closest(w, x, y, _block_segments(w, x, y, wall))
+    return found[0], found[1]
+
+
+def _cell_segments(w: WallLists, centre: tuple[float, float], wall: int, cell: float) -> list[int]:
+    """The segments of ``wall`` that can be the nearest of a position in a grid cell.
+
+    A position ``p`` in the cell (centre ``c``, half diagonal ``h``) is at most ``D + h`` from
+    the wall (``D``: the centre's distance), so a segment farther than ``D + 2 h`` from the
+    centre is never its nearest (nor a tie): the others (plus 1 mm for rounding), ascending.
+    """
+    x, y = centre
+    bound = math.sqrt(_closest(w, x, y, _block_segments(w, x, y, wall))[2])
+    bound += cell * math.sqrt(2.0) + 1e-3
+    out: list[int] = []
+    for b in w.wall_blk[wall]:
+        if math.hypot(x - w.blk_x[b], y - w.blk_y[b]) - w.blk_radius[b] > bound:
+            continue
+        for j in w.blk_seg[b]:
+            if (not out or j != out[-1]) and math.sqrt(_dist2(w, x, y, j)[0]) <= bound:
+                out.append(j)
+    return out
+
+
+def _block_segments(w: WallLists, x: float, y: float, wall: int) -> list[int]:
+    """The segments of the candidate blocks of ``walls.wall_frame``'s block search."""
     blocks = w.wall_blk[wall]
     bx, by = w.blk_x, w.blk_y
     low = math.inf
@@ -143,31 +175,33 @@ def _nearest_s(w: WallLists, x: float, y: float, wall: int) -> tuple[float, int]
         dy = y - by[b]
         if dx * dx + dy * dy <= reach * reach:  # the same d2 as above
             near.extend(w.blk_seg[b])
-    return _closest(w, x, y, near, (0, len(near)))
+    return near
 
 
-def _closest(
-    w: WallLists, x: float, y: float, segs: list[int], span: tuple[int, int]
-) -> tuple[float, int]:
-    """Arc length of the nearest point on ``segs[span[0]:span[1]]`` and its segment.
+def _dist2(w: WallLists, x: float, y: float, j: int) -> tuple[float, float]:
+    """Squared distance to segment ``j`` and the nearest point's fraction along it."""
+    dx = x - w.start_x[j]
+    dy = y - w.start_y[j]
+    sx, sy = w.seg_x[j], w.seg_y[j]
+    u = min(max((dx * sx + dy * sy) / w.seg_len2[j], 0.0), 1.0)
+    ox = dx - u * sx
+    oy = dy - u * sy
+    return ox * ox + oy * oy, u
+
+
+def _closest(w: WallLists, x: float, y: float, segs: list[int]) -> tuple[float, int, float]:
+    """Arc length of the nearest point on segments ``segs``, its segment and squared distance.
 
     Ties go to the lowest segment, as numpy's ``argmin`` over ascending segments.
     """
     best = math.inf
     win = -1
     win_u = 0.0
-    for i in range(span[0], span[1]):
-        j = segs[i]
-        dx = x - w.start_x[j]
-        dy = y - w.start_y[j]
-        sx, sy = w.seg_x[j], w.seg_y[j]
-        u = min(max((dx * sx + dy * sy) / w.seg_len2[j], 0.0), 1.0)
-        ox = dx - u * sx
-        oy = dy - u * sy
-        d = ox * ox + oy * oy
+    for j in segs:
+        d, u = _dist2(w, x, y, j)
         if d < best or (d == best and j < win):
             best, win, win_u = d, j, u
-    return w.seg_s[win] + win_u * w.seg_len[win], win
+    return w.seg_s[win] + win_u * w.seg_len[win], win, best
 
 
 def frames(w: WallLists, xs: list[float], ys: list[float], which: list[int]) -> list[float]:

@@ -55,13 +55,11 @@ _SPLIT_POSITIONS = 128
 _SLACK = 1e-9
 #: Tracks whose walls are kept (the object is held, so its id is never reused meanwhile).
 _CACHE_SIZE = 4
-#: Cell size of the compiled search's grid of candidate blocks (m; larger for huge walls,
-#: see ``_GRID_CELLS_MAX``) and how far around each wall's blocks it reaches (m).
-_GRID_CELL_M = 4.0
+#: Cell size of the scalar search's grid (m; larger for huge walls: at most
+#: ``_GRID_CELLS_MAX`` cells a wall) and how far around each wall's segments it reaches (m).
+_GRID_CELL_M = 2.0
 _GRID_MARGIN_M = 60.0
-_GRID_CELLS_MAX = 1 << 15
-_GRID_PAIRS_MAX = 1 << 24
-_GRID_CHUNK = 2048
+_GRID_CELLS_MAX = 1 << 18
 #: ``wall_frame`` searches with the compiled kernel (``bound_scalar.frames``) when it is
 #: compiled; from the sources the numpy block search is faster.
 SCALAR_SEARCH = not bound_scalar.__file__.endswith(".py")
@@ -161,8 +159,7 @@ def wall_lists(walls: Walls) -> WallLists:
         wall_blk=[[int(b) for b in row if b < n_blk] for row in walls.wall_blk],
         grid=grid[0],
         grid_n=grid[1],
-        grid_at=grid[2],
-        grid_seg=grid[3],
+        cells=[None] * (grid[1][5] + grid[1][3] * grid[1][4]),
     )
     if len(_LISTS) >= _CACHE_SIZE:
         del _LISTS[next(iter(_LISTS))]
@@ -170,18 +167,10 @@ def wall_lists(walls: Walls) -> WallLists:
     return out
 
 
-def _grid(walls: Walls) -> tuple[list[float], list[int], list[int], list[int]]:
-    """Per wall, a grid of square cells and each cell's candidate segments (``WallLists``).
-
-    A position ``p`` in a cell (centre ``c``, half diagonal ``h``) is at most ``D + h`` from
-    its wall (``D``: the centre's distance to it), so a segment at least ``D + 2 h`` from the
-    centre is never the nearest (nor a tie): the others (plus 1 mm for rounding) are the
-    cell's, ascending.
-    """
+def _grid(walls: Walls) -> tuple[list[float], list[int]]:
+    """Per wall, ``x0, y0, cell`` and ``nx, ny, first cell`` of the scalar search's grid."""
     geo: list[float] = []
     dims: list[int] = []
-    at = [0]
-    ids: list[int] = []
     for wall in (0, 1):
         seg = np.flatnonzero(walls.seg_wall == wall)
         (sx, sy), (vx, vy) = walls.start[:, seg], walls.seg[:, seg]
@@ -189,23 +178,11 @@ def _grid(walls: Walls) -> tuple[list[float], list[int], list[int], list[int]]:
         y0 = float(np.minimum(sy, sy + vy).min()) - _GRID_MARGIN_M
         width = float(np.maximum(sx, sx + vx).max()) + _GRID_MARGIN_M - x0
         height = float(np.maximum(sy, sy + vy).max()) + _GRID_MARGIN_M - y0
-        most = min(_GRID_CELLS_MAX, _GRID_PAIRS_MAX // len(seg))
-        cell = max(_GRID_CELL_M, float(np.sqrt(width * height / most)))
+        cell = max(_GRID_CELL_M, float(np.sqrt(width * height / _GRID_CELLS_MAX)))
         nx, ny = int(np.ceil(width / cell)), int(np.ceil(height / cell))
         geo += [x0, y0, cell]
-        dims += [nx, ny, len(at) - 1]
-        centre_x = np.repeat(x0 + (np.arange(nx) + 0.5) * cell, ny)
-        centre_y = np.tile(y0 + (np.arange(ny) + 0.5) * cell, nx)
-        for first in range(0, nx * ny, _GRID_CHUNK):
-            cx = centre_x[first : first + _GRID_CHUNK, None] - sx
-            cy = centre_y[first : first + _GRID_CHUNK, None] - sy
-            u = np.clip((cx * vx + cy * vy) / walls.seg_len2[seg], 0.0, 1.0)
-            dist = np.hypot(cx - u * vx, cy - u * vy)
-            bound = dist.min(axis=1, keepdims=True) + cell * np.sqrt(2.0) + 1e-3
-            cells, local = np.nonzero(dist <= bound)
-            at += (at[-1] + np.cumsum(np.bincount(cells, minlength=len(cx)))).tolist()
-            ids += seg[local].tolist()
-    return geo, dims, at, ids
+        dims += [nx, ny, dims[0] * dims[1] if dims else 0]
+    return geo, dims
 
 
 def _build(track: TrackGeometry) -> Walls:
