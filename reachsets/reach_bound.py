@@ -27,6 +27,7 @@ from reachsets import bound_scalar
 from reachsets.bound_scalar import continue_curve
 from reachsets.reach_turn import arc_profile
 from reachsets.walls import (
+    SCALAR_SEARCH,
     block_columns,
     track_walls,
     wall_frame,
@@ -251,14 +252,14 @@ def _follow(
     )
     side_c = side * params.arc_step_m
     radius = _radius(dmax, params)
-    blocks = block_columns(walls, curves.which)
+    blocks = None if SCALAR_SEARCH else block_columns(walls, curves.which)
     for k in range(int(start[0]), params.arc_points):
         a = int(np.searchsorted(start, k, side="right"))
         j = k - 1
         px, ey, ps = xi[:a, j], eta[:a, j], psi[:a, j]
         x = cx[:a] + co[:a] * px - si[:a] * ey
         y = cy[:a] + si[:a] * px + co[:a] * ey
-        frame = wall_frame(walls, x, y, curves.which[:a], blocks.head(a))
+        frame = wall_frame(walls, x, y, curves.which[:a], blocks and blocks.head(a))
         chord_turn = (ps, dmax[:a, j], radius[:a, j])
         dpsi = _rule(frame, (x, y, yaw[:a], side[:a]), chord_turn, params)[0]
         chord = ps + dpsi / 2
