@@ -10,7 +10,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from reachsets import walls
+from reachsets import reach_bound, walls
 from reachsets.inputs import TrackBounds
 from reachsets.params import ReachMethod, ReachParams
 from reachsets.reach_bound import wall_aware_arcs, wall_aware_arcs_reference
@@ -127,12 +127,16 @@ def _objects_on_loop(track: TrackGeometry, rng: np.random.Generator, n: int) -> 
 _LOOP = build_track(_loop_track())
 
 
-def test_wall_aware_arcs_equal_the_curve_by_curve_reference():
-    """Objects across and beside the loop's walls, slow to fast: every curve bit for bit."""
+@pytest.mark.parametrize("scalar_search", [False, True])
+def test_wall_aware_arcs_equal_the_curve_by_curve_reference(monkeypatch, scalar_search):
+    """Objects across and beside the loop's walls, slow to fast: every curve bit for bit
+    (numpy or compiled wall search)."""
+    monkeypatch.setattr(walls, "SCALAR_SEARCH", scalar_search)
+    monkeypatch.setattr(reach_bound, "SCALAR_SEARCH", scalar_search)
     track = _LOOP
     objs = _objects_on_loop(track, np.random.default_rng(11), 40)
     params = ReachParams(method=ReachMethod.BOUND)
-    got = wall_aware_arcs(objs, params, track)
+    got = wall_aware_arcs(objs, params, track, scalar=False)
     want = wall_aware_arcs_reference(objs, params, track)
     for g_side, w_side in zip(got, want, strict=True):
         for g, w in zip(g_side, w_side, strict=True):
