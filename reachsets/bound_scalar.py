@@ -5,11 +5,19 @@ once and continues the curves that turn back chord by chord. Vectorised over the
 each chord costs about 25 numpy calls on arrays of one or two rows: the cost of one frame's
 ``bound`` check is mostly that loop. For a few curves (one frame, few objects) this module
 walks each curve's chords with plain floats instead (compiled with mypyc with the other
-scalar twins, see ``rss.compiled``): the nearest wall point by the same candidate-block
-search as ``walls.wall_frame`` (same pair arithmetic, same winner, ties to the lowest
-segment), the wall point and tangent interpolated like ``np.interp``, and the turn rule of
-``reach_bound._turn``. ``math.atan2``/``math.hypot`` may differ from numpy's in the last bit,
-so the curves agree with the vectorised ones to about 1e-12 m (tested to 1e-9 m).
+scalar twins, see ``rss.compiled``): the nearest wall point among the segments a grid cell
+lists (below; same pair arithmetic as ``walls.wall_frame``, same winner, ties to the lowest
+segment), the wall point and tangent interpolated like ``np.interp`` (walked from the
+winning segment's vertex), and the turn rule of ``reach_bound._turn``.
+``math.atan2``/``math.hypot`` may differ from numpy's in the last bit, so the curves agree
+with the vectorised ones to about 1e-12 m (tested to 1e-9 m). ``frames`` is the search alone
+(no ``atan2``/``hypot``), bit-identical to numpy's, which ``walls.wall_frame`` uses when
+compiled.
+
+Each wall has a grid of square cells (``walls.wall_lists``); a cell lists, on first use, the
+segments no farther from its centre than the centre's distance to the wall plus the cell's
+diagonal: a point in the cell is at most half a diagonal from the centre, so no other
+segment can be its nearest. Outside the grid the block search of ``walls`` picks them.
 """
 
 from __future__ import annotations

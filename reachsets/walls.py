@@ -13,7 +13,9 @@ at least ``|p - c_b| - r_b`` from any segment of block ``b``, so only the blocks
 ``|p - c_b| - r_b <= min_b' |p - c_b'|`` can hold the nearest segment. ``wall_frame`` measures
 only their segments, with the same arithmetic as the brute-force ``wall_frame_reference``
 (every position against every segment of its wall), so both give bit-identical results,
-including which segment wins a tie (the lowest index).
+including which segment wins a tie (the lowest index). When compiled, ``wall_frame`` hands
+the search to ``bound_scalar.frames`` instead: a grid of 2 m cells per wall, each listing
+(on first use) the segments that can be nearest to a point in it; same pair arithmetic.
 """
 
 from __future__ import annotations
