@@ -152,17 +152,28 @@ def _cell_segments(w: WallLists, centre: tuple[float, float], wall: int, cell: f
     A position ``p`` in the cell (centre ``c``, half diagonal ``h``) is at most ``D + h`` from
     the wall (``D``: the centre's distance), so a segment farther than ``D + 2 h`` from the
     centre is never its nearest (nor a tie): the others (plus 1 mm for rounding), ascending.
+    ``D`` is measured on the blocks not farther than the nearest block vertex.
     """
     x, y = centre
-    bound = math.sqrt(_closest(w, x, y, _block_segments(w, x, y, wall))[2])
-    bound += cell * math.sqrt(2.0) + 1e-3
+    blocks = w.wall_blk[wall]
+    near: list[float] = []  # each block's distance bound |c - c_b| - r_b
+    upper = math.inf
+    for b in blocks:
+        d = math.hypot(x - w.blk_x[b], y - w.blk_y[b])
+        upper = min(upper, d)
+        near.append(d - w.blk_radius[b])
+    dist = math.inf
+    for k, b in enumerate(blocks):
+        if near[k] <= upper:
+            for j in w.blk_seg[b]:
+                dist = min(dist, _dist2(w, x, y, j)[0])
+    bound = math.sqrt(dist) + cell * math.sqrt(2.0) + 1e-3
     out: list[int] = []
-    for b in w.wall_blk[wall]:
-        if math.hypot(x - w.blk_x[b], y - w.blk_y[b]) - w.blk_radius[b] > bound:
-            continue
-        for j in w.blk_seg[b]:
-            if (not out or j != out[-1]) and math.sqrt(_dist2(w, x, y, j)[0]) <= bound:
-                out.append(j)
+    for k, b in enumerate(blocks):
+        if near[k] <= bound:
+            for j in w.blk_seg[b]:
+                if (not out or j != out[-1]) and math.sqrt(_dist2(w, x, y, j)[0]) <= bound:
+                    out.append(j)
     return out
 
 

@@ -14,7 +14,7 @@ at least ``|p - c_b| - r_b`` from any segment of block ``b``, so only the blocks
 only their segments, with the same arithmetic as the brute-force ``wall_frame_reference``
 (every position against every segment of its wall), so both give bit-identical results,
 including which segment wins a tie (the lowest index). When compiled, ``wall_frame`` hands
-the search to ``bound_scalar.frames`` instead: a grid of 2 m cells per wall, each listing
+the search to ``bound_scalar.frames`` instead: a grid of 6 m cells per wall, each listing
 (on first use) the segments that can be nearest to a point in it; same pair arithmetic.
 """
 
@@ -59,7 +59,7 @@ _SLACK = 1e-9
 _CACHE_SIZE = 4
 #: Cell size of the scalar search's grid (m; larger for huge walls: at most
 #: ``_GRID_CELLS_MAX`` cells a wall) and how far around each wall's segments it reaches (m).
-_GRID_CELL_M = 2.0
+_GRID_CELL_M = 6.0
 _GRID_MARGIN_M = 60.0
 _GRID_CELLS_MAX = 1 << 18
 #: ``wall_frame`` searches with the compiled kernel (``bound_scalar.frames``) when it is
