@@ -5,11 +5,19 @@ once and continues the curves that turn back chord by chord. Vectorised over the
 each chord costs about 25 numpy calls on arrays of one or two rows: the cost of one frame's
 ``bound`` check is mostly that loop. For a few curves (one frame, few objects) this module
 walks each curve's chords with plain floats instead (compiled with mypyc with the other
-scalar twins, see ``rss.compiled``): the nearest wall point by the same candidate-block
-search as ``walls.wall_frame`` (same pair arithmetic, same winner, ties to the lowest
-segment), the wall point and tangent interpolated like ``np.interp``, and the turn rule of
-``reach_bound._turn``. ``math.atan2``/``math.hypot`` may differ from numpy's in the last bit,
-so the curves agree with the vectorised ones to about 1e-12 m (tested to 1e-9 m).
+scalar twins, see ``rss.compiled``): the nearest wall point among the segments a grid cell
+lists (below; same pair arithmetic as ``walls.wall_frame``, same winner, ties to the lowest
+segment), the wall point and tangent interpolated like ``np.interp`` (walked from the
+winning segment's vertex), and the turn rule of ``reach_bound._turn``.
+``math.atan2``/``math.hypot`` may differ from numpy's in the last bit, so the curves agree
+with the vectorised ones to about 1e-12 m (tested to 1e-9 m). ``frames`` is the search alone
+(no ``atan2``/``hypot``), bit-identical to numpy's, which ``walls.wall_frame`` uses when
+compiled.
+
+Each wall has a grid of square cells (``walls.wall_lists``); a cell lists, on first use, the
+segments no farther from its centre than the centre's distance to the wall plus the cell's
+diagonal: a point in the cell is at most half a diagonal from the centre, so no other
+segment can be its nearest. Outside the grid the block search of ``walls`` picks them.
 """
 
 from __future__ import annotations
@@ -19,7 +27,7 @@ from bisect import bisect_right
 from dataclasses import dataclass
 from typing import Final
 
-__all__ = ["WallLists", "continue_curve"]
+__all__ = ["WallLists", "continue_curve", "frames"]
 
 _TANGENT_HALF_STEP_M: Final = 0.5
 _SLACK: Final = 1e-9
@@ -47,6 +55,10 @@ class WallLists:
         blk_y: Vertex y of each block.
         blk_radius: Radius of each block.
         wall_blk: Blocks of each wall, ascending.
+        grid: Per wall, ``x0, y0, cell`` of a grid of square cells (m) around it.
+        grid_n: Per wall, ``nx, ny`` and the index of its first cell in ``grid_at``.
+        cells: The segments of each cell, ascending, that can be the nearest of a position
+            in it (``None`` until the cell is first used; ``_cell_segments``).
     """
 
     cum: list[float]
@@ -66,17 +78,30 @@ class WallLists:
     blk_y: list[float]
     blk_radius: list[float]
     wall_blk: list[list[int]]
+    grid: list[float]
+    grid_n: list[int]
+    cells: list[list[int] | None]
 
 
-def _interp(w: WallLists, s: float) -> tuple[float, float]:
-    """``np.interp(s, cum, px)`` and ``(..., py)`` (same branches and arithmetic)."""
+def _interp(w: WallLists, s: float, hint: int = -1) -> tuple[float, float]:
+    """``np.interp(s, cum, px)`` and ``(..., py)`` (same branches and arithmetic).
+
+    ``hint``: a vertex near ``s`` to walk from (else a binary search); the same interval.
+    """
     cum = w.cum
     last = len(cum) - 1
     if s > cum[last]:
         return w.px[last], w.py[last]
     if s < cum[0]:
         return w.px[0], w.py[0]
-    j = bisect_right(cum, s) - 1
+    if hint < 0:
+        j = bisect_right(cum, s) - 1
+    else:  # the last vertex at or before s, as the binary search finds it
+        j = min(hint, last)
+        while j < last and cum[j + 1] <= s:
+            j += 1
+        while cum[j] > s:
+            j -= 1
     if j == last or s == cum[j]:
         return w.px[j], w.py[j]
     span = cum[j + 1] - cum[j]
@@ -94,8 +119,66 @@ def _lerp(fp: list[float], cum: list[float], j: int, span: float, s: float) -> f
     return v
 
 
-def _nearest_s(w: WallLists, x: float, y: float, wall: int) -> float:
-    """Arc length of the nearest point of wall ``wall`` (``walls.wall_frame``'s search)."""
+def _nearest_s(w: WallLists, x: float, y: float, wall: int) -> tuple[float, int]:
+    """Arc length of the nearest point of wall ``wall`` (``walls.wall_frame``'s winner).
+
+    The candidate segments are the position's grid cell's (listed on the cell's first
+    use); outside the grid, those of the block search (``walls.wall_frame``). Either way a
+    superset of the segments that can be the nearest, measured with the same pair
+    arithmetic: the same winner.
+    """
+    g = 3 * wall
+    cell = w.grid[g + 2]
+    fx = (x - w.grid[g]) / cell
+    fy = (y - w.grid[g + 1]) / cell
+    nx, ny = w.grid_n[g], w.grid_n[g + 1]
+    if 0.0 <= fx < nx and 0.0 <= fy < ny:
+        i, j = int(fx), int(fy)
+        c = w.grid_n[g + 2] + i * ny + j
+        segs = w.cells[c]
+        if segs is None:
+            centre = (w.grid[g] + (i + 0.5) * cell, w.grid[g + 1] + (j + 0.5) * cell)
+            segs = _cell_segments(w, centre, wall, cell)
+            w.cells[c] = segs
+        found = _closest(w, x, y, segs)
+    else:
+        found = _closest(w, x, y, _block_segments(w, x, y, wall))
+    return found[0], found[1]
+
+
+def _cell_segments(w: WallLists, centre: tuple[float, float], wall: int, cell: float) -> list[int]:
+    """The segments of ``wall`` that can be the nearest of a position in a grid cell.
+
+    A position ``p`` in the cell (centre ``c``, half diagonal ``h``) is at most ``D + h`` from
+    the wall (``D``: the centre's distance), so a segment farther than ``D + 2 h`` from the
+    centre is never its nearest (nor a tie): the others (plus 1 mm for rounding), ascending.
+    ``D`` is measured on the blocks not farther than the nearest block vertex.
+    """
+    x, y = centre
+    blocks = w.wall_blk[wall]
+    near: list[float] = []  # each block's distance bound |c - c_b| - r_b
+    upper = math.inf
+    for b in blocks:
+        d = math.hypot(x - w.blk_x[b], y - w.blk_y[b])
+        upper = min(upper, d)
+        near.append(d - w.blk_radius[b])
+    dist = math.inf
+    for k, b in enumerate(blocks):
+        if near[k] <= upper:
+            for j in w.blk_seg[b]:
+                dist = min(dist, _dist2(w, x, y, j)[0])
+    bound = math.sqrt(dist) + cell * math.sqrt(2.0) + 1e-3
+    out: list[int] = []
+    for k, b in enumerate(blocks):
+        if near[k] <= bound:
+            for j in w.blk_seg[b]:
+                if (not out or j != out[-1]) and math.sqrt(_dist2(w, x, y, j)[0]) <= bound:
+                    out.append(j)
+    return out
+
+
+def _block_segments(w: WallLists, x: float, y: float, wall: int) -> list[int]:
+    """The segments of the candidate blocks of ``walls.wall_frame``'s block search."""
     blocks = w.wall_blk[wall]
     bx, by = w.blk_x, w.blk_y
     low = math.inf
@@ -104,26 +187,72 @@ def _nearest_s(w: WallLists, x: float, y: float, wall: int) -> float:
         dy = y - by[b]
         low = min(low, dx * dx + dy * dy)
     upper = math.sqrt(low)
-    best = math.inf
-    win = -1
-    win_u = 0.0
+    near: list[int] = []
     for b in blocks:
         reach = upper * (1 + _SLACK) + _SLACK + w.blk_radius[b]
         dx = x - bx[b]
         dy = y - by[b]
-        if dx * dx + dy * dy > reach * reach:  # the same d2 as above
-            continue
-        for j in w.blk_seg[b]:
-            dx = x - w.start_x[j]
-            dy = y - w.start_y[j]
-            sx, sy = w.seg_x[j], w.seg_y[j]
-            u = min(max((dx * sx + dy * sy) / w.seg_len2[j], 0.0), 1.0)
-            ox = dx - u * sx
-            oy = dy - u * sy
-            d = ox * ox + oy * oy
-            if d < best or (d == best and j < win):
-                best, win, win_u = d, j, u
-    return w.seg_s[win] + win_u * w.seg_len[win]
+        if dx * dx + dy * dy <= reach * reach:  # the same d2 as above
+            near.extend(w.blk_seg[b])
+    return near
+
+
+def _dist2(w: WallLists, x: float, y: float, j: int) -> tuple[float, float]:
+    """Squared distance to segment ``j`` and the nearest point's fraction along it."""
+    dx = x - w.start_x[j]
+    dy = y - w.start_y[j]
+    sx, sy = w.seg_x[j], w.seg_y[j]
+    u = min(max((dx * sx + dy * sy) / w.seg_len2[j], 0.0), 1.0)
+    ox = dx - u * sx
+    oy = dy - u * sy
+    return ox * ox + oy * oy, u
+
+
+def _closest(w: WallLists, x: float, y: float, segs: list[int]) -> tuple[float, int, float]:
+    """Arc length of the nearest point on segments ``segs``, its segment and squared distance.
+
+    Ties go to the lowest segment, as numpy's ``argmin`` over ascending segments.
+    """
+    best = math.inf
+    win = -1
+    win_u = 0.0
+    for j in segs:
+        d, u = _dist2(w, x, y, j)
+        if d < best or (d == best and j < win):
+            best, win, win_u = d, j, u
+    return w.seg_s[win] + win_u * w.seg_len[win], win, best
+
+
+def frames(w: WallLists, xs: list[float], ys: list[float], which: list[int]) -> list[float]:
+    """Nearest wall point and tangent chord of many finite positions (``walls.wall_frame``).
+
+    The arithmetic of ``walls._nearest`` and ``walls._frame_at`` up to the tangent's
+    normalisation (left to numpy's ``hypot``): bit-identical to the numpy search.
+
+    Args:
+        w: Both walls.
+        xs: Positions x (m), ``n`` of them, all finite.
+        ys: Positions y (m).
+        which: Wall of each position (0 left, 1 right).
+
+    Returns:
+        ``4 n`` floats: the wall points' x, then their y, then the tangent chords' x (wall
+        point at ``s + 0.5 m`` minus the one at ``s - 0.5 m``, clamped to the wall), then y.
+    """
+    n = len(xs)
+    out = [0.0] * (4 * n)
+    for i in range(n):
+        wall = which[i]
+        s, seg = _nearest_s(w, xs[i], ys[i], wall)
+        vertex = seg + wall  # the segment's first vertex (each wall has one more vertex)
+        wx, wy = _interp(w, s, vertex)
+        ax, ay = _interp(w, min(s + _TANGENT_HALF_STEP_M, w.hi[wall]), vertex)
+        bx, by = _interp(w, max(s - _TANGENT_HALF_STEP_M, w.lo[wall]), vertex)
+        out[i] = wx
+        out[n + i] = wy
+        out[2 * n + i] = ax - bx
+        out[3 * n + i] = ay - by
+    return out
 
 
 def _turn(
@@ -139,10 +268,10 @@ def _turn(
     step, max_turn = limits
     x = cx + co * xi - si * eta
     y = cy + si * xi + co * eta
-    s = _nearest_s(w, x, y, wall)
-    wx, wy = _interp(w, s)
-    ax, ay = _interp(w, min(s + _TANGENT_HALF_STEP_M, w.hi[wall]))
-    bx, by = _interp(w, max(s - _TANGENT_HALF_STEP_M, w.lo[wall]))
+    s, seg = _nearest_s(w, x, y, wall)
+    wx, wy = _interp(w, s, seg + wall)
+    ax, ay = _interp(w, min(s + _TANGENT_HALF_STEP_M, w.hi[wall]), seg + wall)
+    bx, by = _interp(w, max(s - _TANGENT_HALF_STEP_M, w.lo[wall]), seg + wall)
     tx, ty = ax - bx, ay - by
     norm = max(math.hypot(tx, ty), 1e-12)
     tx, ty = tx / norm, ty / norm

@@ -1,5 +1,5 @@
-"""The block search of the nearest wall point and the batched wall-aware curves agree bit for
-bit with their slow references."""
+"""The block search of the nearest wall point (numpy, and the scalar kernel's grid search) and
+the batched wall-aware curves agree bit for bit with their slow references."""
 
 from __future__ import annotations
 
@@ -10,6 +10,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from reachsets import reach_bound, walls
 from reachsets.inputs import TrackBounds
 from reachsets.params import ReachMethod, ReachParams
 from reachsets.reach_bound import wall_aware_arcs, wall_aware_arcs_reference
@@ -45,10 +46,28 @@ _WALLS = track_walls(build_track(_loop_track()))
 
 
 def _assert_same(x: np.ndarray, y: np.ndarray, which: np.ndarray | int) -> None:
-    got = wall_frame(_WALLS, x, y, which)
+    """Both searches (numpy blocks, the scalar kernel's grid) equal the brute force."""
     want = wall_frame_reference(_WALLS, x, y, which)
-    for g, w in zip(got, want, strict=True):
-        np.testing.assert_array_equal(g, w)
+    for scalar in (False, True):
+        with pytest.MonkeyPatch.context() as patch:
+            patch.setattr(walls, "SCALAR_SEARCH", scalar)
+            got = wall_frame(_WALLS, x, y, which)
+        for g, w in zip(got, want, strict=True):
+            np.testing.assert_array_equal(g, w)
+
+
+def test_grid_cells_reach_beyond_the_walls_and_far_positions_still_match():
+    """Positions on the grid's cell borders, at its edge and far outside it (block search)."""
+    lists = walls.wall_lists(_WALLS)
+    x0, y0, cell = lists.grid[:3]
+    nx, ny = lists.grid_n[:2]
+    gx = x0 + cell * np.arange(nx + 1)
+    gy = y0 + cell * np.arange(ny + 1)
+    x = np.concatenate([gx, np.full(ny + 1, gx[nx // 2]), [x0 - 1.0, x0 + nx * cell, 5e3]])
+    y = np.concatenate([np.full(nx + 1, gy[ny // 3]), gy, [y0, y0 - 0.5, -5e3]])
+    left_x = _WALLS.start[0][_WALLS.seg_wall == 0]
+    assert x0 < float(left_x.min()) - 50.0  # the grid reaches beyond its wall
+    _assert_same(x, y, 0)
 
 
 @settings(max_examples=60, deadline=None)
@@ -108,12 +127,16 @@ def _objects_on_loop(track: TrackGeometry, rng: np.random.Generator, n: int) -> 
 _LOOP = build_track(_loop_track())
 
 
-def test_wall_aware_arcs_equal_the_curve_by_curve_reference():
-    """Objects across and beside the loop's walls, slow to fast: every curve bit for bit."""
+@pytest.mark.parametrize("scalar_search", [False, True])
+def test_wall_aware_arcs_equal_the_curve_by_curve_reference(monkeypatch, scalar_search):
+    """Objects across and beside the loop's walls, slow to fast: every curve bit for bit
+    (numpy or compiled wall search)."""
+    monkeypatch.setattr(walls, "SCALAR_SEARCH", scalar_search)
+    monkeypatch.setattr(reach_bound, "SCALAR_SEARCH", scalar_search)
     track = _LOOP
     objs = _objects_on_loop(track, np.random.default_rng(11), 40)
     params = ReachParams(method=ReachMethod.BOUND)
-    got = wall_aware_arcs(objs, params, track)
+    got = wall_aware_arcs(objs, params, track, scalar=False)
     want = wall_aware_arcs_reference(objs, params, track)
     for g_side, w_side in zip(got, want, strict=True):
         for g, w in zip(g_side, w_side, strict=True):
