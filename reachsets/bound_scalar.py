@@ -242,17 +242,22 @@ def frames(w: WallLists, xs: list[float], ys: list[float], which: list[int]) -> 
     n = len(xs)
     out = [0.0] * (4 * n)
     for i in range(n):
-        wall = which[i]
-        s, seg = _nearest_s(w, xs[i], ys[i], wall)
-        vertex = seg + wall  # the segment's first vertex (each wall has one more vertex)
-        wx, wy = _interp(w, s, vertex)
-        ax, ay = _interp(w, min(s + _TANGENT_HALF_STEP_M, w.hi[wall]), vertex)
-        bx, by = _interp(w, max(s - _TANGENT_HALF_STEP_M, w.lo[wall]), vertex)
+        wx, wy, tx, ty = _frame(w, xs[i], ys[i], which[i])
         out[i] = wx
         out[n + i] = wy
-        out[2 * n + i] = ax - bx
-        out[3 * n + i] = ay - by
+        out[2 * n + i] = tx
+        out[3 * n + i] = ty
     return out
+
+
+def _frame(w: WallLists, x: float, y: float, wall: int) -> tuple[float, float, float, float]:
+    """Nearest point of wall ``wall`` and its tangent chord (not normalised), as ``frames``."""
+    s, seg = _nearest_s(w, x, y, wall)
+    vertex = seg + wall  # the segment's first vertex (each wall has one more vertex)
+    wx, wy = _interp(w, s, vertex)
+    ax, ay = _interp(w, min(s + _TANGENT_HALF_STEP_M, w.hi[wall]), vertex)
+    bx, by = _interp(w, max(s - _TANGENT_HALF_STEP_M, w.lo[wall]), vertex)
+    return wx, wy, ax - bx, ay - by
 
 
 def _turn(
@@ -268,11 +273,7 @@ def _turn(
     step, max_turn = limits
     x = cx + co * xi - si * eta
     y = cy + si * xi + co * eta
-    s, seg = _nearest_s(w, x, y, wall)
-    wx, wy = _interp(w, s, seg + wall)
-    ax, ay = _interp(w, min(s + _TANGENT_HALF_STEP_M, w.hi[wall]), seg + wall)
-    bx, by = _interp(w, max(s - _TANGENT_HALF_STEP_M, w.lo[wall]), seg + wall)
-    tx, ty = ax - bx, ay - by
+    wx, wy, tx, ty = _frame(w, x, y, wall)
     norm = max(math.hypot(tx, ty), 1e-12)
     tx, ty = tx / norm, ty / norm
     clearance = -side * (tx * (y - wy) - ty * (x - wx))

@@ -11,7 +11,7 @@ import math
 from typing import Final
 
 from reachsets.clip_rings import Box, Edges, Run, Seg, area2, box_of, dedup, inside
-from reachsets.clip_scalar import clip_prepared
+from reachsets.clip_scalar import clip_prepared, runs_near
 
 __all__ = ["SETTLED_TOL_M", "Area", "clip", "reduce_cells", "reduce_objects", "settled"]
 
@@ -30,9 +30,7 @@ def _near(e: Edges, box: Box) -> Edges:
     lo_y = box[1]
     hi_x = box[2]
     hi_y = box[3]
-    for run in e.runs:
-        if run.x0 > hi_x or run.x1 < lo_x or run.y0 > hi_y or run.y1 < lo_y:
-            continue
+    for run in runs_near(box, e):
         kept = [
             g for g in run.segs if g.x0 <= hi_x and g.x1 >= lo_x and g.y0 <= hi_y and g.y1 >= lo_y
         ]

@@ -34,7 +34,7 @@ from reachsets.clip_rings import (
     inside,
 )
 
-__all__ = ["clip_prepared"]
+__all__ = ["clip_prepared", "runs_near"]
 
 #: Nearly parallel edges closer than this fraction of their lengths: degenerate.
 _NEAR: Final = 1e-7
@@ -58,8 +58,8 @@ class _Hits:
         self.d: list[float] = []
 
 
-def _candidates(box: Box, e: Edges) -> list[Run]:
-    """The runs of ``e`` whose bounding box meets ``box``."""
+def runs_near(box: Box, e: Edges) -> list[Run]:
+    """The runs of ``e`` whose bounding box meets ``box`` (x0, y0, x1, y1)."""
     lo_x = box[0]
     lo_y = box[1]
     hi_x = box[2]
@@ -73,7 +73,7 @@ def _crossings(a: list[float], box: Box, e: Edges) -> _Hits | None:
     ``None`` if a contact is degenerate.
     """
     na = len(a) // 2
-    near = _candidates(box, e)
+    near = runs_near(box, e)
     hits = _Hits()
     for i in range(na):
         i1 = (i + 1) % na

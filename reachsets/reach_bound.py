@@ -52,6 +52,8 @@ __all__ = ["SCALAR_CURVES_MAX", "wall_aware_arcs", "wall_aware_arcs_reference"]
 #: 146: 1.60 against 2.05 ms); 32 keeps the larger batches bit-identical for ~3 us a curve.
 #: From the sources the twin is about 3.5x slower, and 4 curves is the crossover.
 SCALAR_CURVES_MAX = 32 if not bound_scalar.__file__.endswith(".py") else 4
+#: Chords of the ``turn`` arcs checked together before the undecided curves check the rest.
+FIRST_CHORDS = 4
 
 
 @dataclass(frozen=True, slots=True)
@@ -196,10 +198,6 @@ def wall_aware_arcs(
         _follow(curves.take(rows), walls, arcs, start, params)
         xi[rows], eta[rows] = arcs[0], arcs[1]
     return (xi[:n], eta[:n]), (xi[n:], eta[n:])
-
-
-#: Chords of the ``turn`` arcs checked together before the undecided curves check the rest.
-FIRST_CHORDS = 4
 
 
 def _first_back(

@@ -161,7 +161,7 @@ def wall_lists(walls: Walls) -> WallLists:
         wall_blk=[[int(b) for b in row if b < n_blk] for row in walls.wall_blk],
         grid=grid[0],
         grid_n=grid[1],
-        cells=[None] * (grid[1][5] + grid[1][3] * grid[1][4]),
+        cells=[None] * _cell_count(grid[1]),
     )
     if len(_LISTS) >= _CACHE_SIZE:
         del _LISTS[next(iter(_LISTS))]
@@ -185,6 +185,12 @@ def _grid(walls: Walls) -> tuple[list[float], list[int]]:
         geo += [x0, y0, cell]
         dims += [nx, ny, dims[0] * dims[1] if dims else 0]
     return geo, dims
+
+
+def _cell_count(dims: list[int]) -> int:
+    """Cells of both walls' grids (``_grid``'s ``nx, ny, first cell`` per wall)."""
+    nx, ny, first = dims[3:6]  # the second wall's grid follows the first's cells
+    return first + nx * ny
 
 
 def _build(track: TrackGeometry) -> Walls:
